@@ -1,0 +1,120 @@
+# CSF - build, test, install.
+#
+#   make            build build/csfc, build/csfvm, build/libcsfrt.a
+#   make deps       install missing Debian packages (apt-get, as root)
+#   make demo       deps + build + compile and run an example
+#   make check      every test, then the whole suite again under ASan/UBSan
+#   make bench      benchmarks; results under bench/results, summary in bench/README.md
+#   make install    PREFIX=/usr/local DESTDIR=
+
+PREFIX ?= /usr/local
+DESTDIR ?=
+BUILD ?= build
+CC ?= cc
+CFLAGS ?= -O2 -g
+SAN ?=
+
+DEB_PACKAGES = gcc make libgsl-dev check re2c bison pkg-config
+CSF_CFLAGS = -std=c11 -Wall -Wextra -ffp-contract=off -D_DEFAULT_SOURCE $(if $(SAN),-fsanitize=address$(,)undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+, := ,
+CPPFLAGS_ALL = -Iruntime -Icompiler -I$(BUILD)
+LDLIBS_GSL = $(shell pkg-config --libs gsl 2>/dev/null || echo -lgsl -lgslcblas) -lm
+LDFLAGS_SAN = $(if $(SAN),-fsanitize=address$(,)undefined)
+
+RT_SRC = runtime/bytecode.c runtime/vm.c runtime/driver.c runtime/ode.c
+RT_OBJ = $(RT_SRC:runtime/%.c=$(BUILD)/rt/%.o)
+CC_SRC = compiler/util.c compiler/units.c compiler/layout.c compiler/sema.c compiler/gen.c
+CC_GEN = $(BUILD)/lex.c $(BUILD)/parse.c
+CC_OBJ = $(CC_SRC:compiler/%.c=$(BUILD)/cc/%.o) $(BUILD)/cc/lex.o $(BUILD)/cc/parse.o
+
+all: $(BUILD)/csfc $(BUILD)/csfvm $(BUILD)/libcsfrt.a
+
+$(BUILD)/rt/%.o: runtime/%.c runtime/*.h runtime/opcodes.def
+	@mkdir -p $(@D)
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
+
+$(BUILD)/libcsfrt.a: $(RT_OBJ)
+	rm -f $@
+	ar rcs $@ $^
+
+$(BUILD)/parse.c $(BUILD)/parse.h: compiler/parse.y
+	@mkdir -p $(BUILD)
+	bison -Wall -Werror --defines=$(BUILD)/parse.h -o $(BUILD)/parse.c $<
+
+$(BUILD)/lex.c: compiler/lex.re
+	@mkdir -p $(BUILD)
+	re2c -W -Werror -o $@ $<
+
+$(BUILD)/cc/%.o: compiler/%.c compiler/*.h runtime/*.h runtime/opcodes.def $(BUILD)/parse.h
+	@mkdir -p $(@D)
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
+
+$(BUILD)/cc/%.o: $(BUILD)/%.c compiler/*.h runtime/*.h $(BUILD)/parse.h
+	@mkdir -p $(@D)
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
+
+$(BUILD)/csfc: $(CC_OBJ) $(BUILD)/cc/main.o $(BUILD)/libcsfrt.a
+	$(CC) $(LDFLAGS_SAN) -o $@ $(CC_OBJ) $(BUILD)/cc/main.o $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+
+$(BUILD)/csfvm: $(BUILD)/rt/csfvm.o $(BUILD)/libcsfrt.a
+	$(CC) $(LDFLAGS_SAN) -o $@ $^ $(LDLIBS_GSL)
+
+$(BUILD)/rt/csfvm.o: runtime/csfvm.c runtime/*.h runtime/opcodes.def
+	@mkdir -p $(@D)
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
+
+# ---- tests ----
+
+TEST_SRC = $(wildcard tests/unit/*.c)
+TEST_OBJ = $(TEST_SRC:tests/unit/%.c=$(BUILD)/tests/%.o)
+LDLIBS_CHECK = $(shell pkg-config --libs check 2>/dev/null || echo -lcheck -lsubunit -lrt -lpthread) -lm
+
+$(BUILD)/tests/%.o: tests/unit/%.c tests/unit/*.h compiler/*.h runtime/*.h $(BUILD)/parse.h
+	@mkdir -p $(@D)
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -Itests/unit -c $< -o $@
+
+$(BUILD)/unit-tests: $(TEST_OBJ) $(CC_OBJ) $(BUILD)/libcsfrt.a
+	$(CC) $(LDFLAGS_SAN) -o $@ $(TEST_OBJ) $(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_CHECK) $(LDLIBS_GSL)
+
+test: all $(BUILD)/unit-tests
+	CSF_BUILD=$(BUILD) $(BUILD)/unit-tests
+	CSF_BUILD=$(BUILD) sh tests/run.sh
+
+check:
+	$(MAKE) test
+	$(MAKE) test BUILD=build-san SAN=1 CFLAGS="-O1 -g"
+
+# ---- set-up, demo, install ----
+
+deps:
+	@missing=""; for p in $(DEB_PACKAGES); do \
+		dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -z "$$missing" ]; then echo "deps: all present"; \
+	elif [ "$$(id -u)" = 0 ]; then \
+		echo "deps: installing$$missing"; \
+		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing; \
+	else echo "deps: missing$$missing; run: sudo apt-get install$$missing"; exit 1; fi
+
+demo: deps
+	$(MAKE) all
+	$(BUILD)/csfc examples/projectile.csf -o $(BUILD)/projectile.csfb
+	$(BUILD)/csfvm $(BUILD)/projectile.csfb | head -n 12
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/csf \
+		$(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/man/man5
+	install -m 755 $(BUILD)/csfc $(BUILD)/csfvm $(DESTDIR)$(PREFIX)/bin/
+	install -m 644 $(BUILD)/libcsfrt.a $(DESTDIR)$(PREFIX)/lib/
+	install -m 644 runtime/csf.h runtime/csf_ops.h runtime/opcodes.def $(DESTDIR)$(PREFIX)/include/csf/
+	install -m 644 stdlib/mechanics/*.csf $(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics/
+	install -m 644 man/csfc.1 man/csfvm.1 $(DESTDIR)$(PREFIX)/share/man/man1/
+	install -m 644 man/csf.5 $(DESTDIR)$(PREFIX)/share/man/man5/
+
+bench: all
+	$(MAKE) -C bench BUILD=../$(BUILD)
+
+clean:
+	rm -rf build build-san
+
+.PHONY: all deps demo test check install bench clean

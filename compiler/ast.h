@@ -1,0 +1,87 @@
+/*
+ * ast.h - the syntax tree the parser builds. Nothing here is resolved:
+ * names are strings, units are already converted to SI factors.
+ */
+#ifndef CSF_AST_H
+#define CSF_AST_H
+
+#include "csfc.h"
+
+typedef enum ExprKind {
+	E_NUM,    /* num */
+	E_NAME,   /* name */
+	E_DOLLAR, /* name$n */
+	E_FIELD,  /* a.name: object property, vector component, or method without () */
+	E_METHOD, /* a.name(args) */
+	E_CALL,   /* name(args) */
+	E_VEC,    /* (args[0], args[1], args[2]) */
+	E_UNIT,   /* a with unit */
+	E_BIN,    /* a op b; op is a token code */
+	E_NEG,    /* -a */
+	E_NOT     /* not a */
+} ExprKind;
+
+typedef struct Expr Expr;
+struct Expr {
+	ExprKind kind;
+	int op;
+	Loc loc;
+	double num;
+	char *name;
+	int n;
+	Unit unit;
+	char *unit_text;
+	Expr *a, *b;
+	Expr **args;
+	int nargs;
+};
+
+typedef struct Eqn Eqn;
+struct Eqn {
+	Loc loc;
+	Expr *lhs; /* for a derivative: the E_NAME whose derivative is set */
+	int deriv;
+	Expr *rhs;
+	char *text;
+	Eqn *next;
+};
+
+typedef struct ObjRef { Loc loc; char *name; int index; } ObjRef; /* name, or index >= 0 */
+typedef struct WatchItem { Loc loc; char *obj; char *prop; } WatchItem; /* obj may be NULL */
+
+typedef enum StmtKind { S_GLOBAL, S_PROP, S_OBJKIND, S_DEF, S_VECDECL, S_RULE, S_ASSERT, S_START } StmtKind;
+
+typedef struct Stmt Stmt;
+struct Stmt {
+	StmtKind kind;
+	Loc loc;
+	char *text;   /* the statement's source text, for diagnostics */
+	char *name;   /* global, object, kind; S_VECDECL: first of names */
+	Loc name_loc;
+	char *prop;   /* S_PROP; S_OBJKIND: the kind */
+	Loc prop_loc;
+	int isvec;
+	Expr *value;
+	Stmt *body;   /* S_DEF: its property lines (S_PROP with name NULL) */
+	Vec names;    /* S_VECDECL: char*; */
+	char *attr;
+	Vec fors;     /* of ObjRef* */
+	int has_for;
+	Expr *cond;   /* conditional rule or assertion */
+	Eqn *eqns;    /* plain rule: one; conditional: the if branch */
+	Eqn *else_eqns;
+	int has_else;
+	/* S_START */
+	char *var;
+	Expr *till, *by;
+	Vec watch;    /* of WatchItem* */
+	int has_watch;
+	Stmt *next;
+};
+
+Expr *ast_expr(ExprKind k, Loc l);
+
+/* Parses a whole file (with its `using` inclusions) into a statement list. */
+Stmt *parse_file(int file);
+
+#endif

@@ -1,0 +1,93 @@
+/*
+ * csfc.h - shared declarations of the CSF compiler.
+ *
+ * Pipeline: lex.re (re2c scanner) -> layout.c (indentation, `using`
+ * inclusion, unit literals) -> parse.y (bison, builds the AST) -> sema.c
+ * (objects, rule instances, resolution, solving) -> gen.c (bytecode).
+ * Memory: everything the compiler allocates comes from one arena (xalloc)
+ * and is released at exit by arena_free().
+ */
+#ifndef CSFC_H
+#define CSFC_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+/* ---- memory ---- */
+void *xalloc(size_t n);                 /* zeroed; never returns NULL (exits on OOM) */
+void *xrealloc_arr(void *p, size_t n);  /* grows an xalloc'd array to n bytes (copies) */
+char *xstrdup(const char *s);
+char *xstrndup(const char *s, size_t n);
+char *xprintf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void arena_free(void);
+
+/* A growable array of pointers. */
+typedef struct Vec { void **v; int n, cap; } Vec;
+void vec_push(Vec *a, void *x);
+
+/* A string-keyed hash map (keys are not copied). */
+typedef struct Map { char **keys; void **vals; size_t cap, n; } Map;
+void *map_get(Map *m, const char *k);
+void map_put(Map *m, char *k, void *v);
+
+/* ---- sources and diagnostics ---- */
+typedef struct Loc { int file, line, col; } Loc; /* file indexes the source table; line, col from 1 */
+
+typedef struct Source { char *path; char *text; size_t len; } Source;
+extern Vec sources; /* of Source*, index = Loc.file */
+
+/* Reads a file into the source table; returns its index or -1 (errno set). */
+int src_load(const char *path);
+/* The text of line `line` of file `file` (without newline), in a fresh string. */
+char *src_line(int file, int line);
+
+extern int diag_errors;
+/* Reports `file:line:col: error: ...` with the source line and a caret. */
+void error_at(Loc l, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void note_at(Loc l, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* An error with no source position: `csfc: error: ...`. */
+void error_plain(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+extern FILE *diag_out;
+
+/* ---- units (units.c) ---- */
+enum { DIM_L, DIM_M, DIM_T, DIM_A, NDIM };
+typedef struct Unit { double factor; signed char dim[NDIM]; } Unit;
+/* Looks up a unit name; returns 1 and fills *u if known. */
+int unit_lookup(const char *name, Unit *u);
+typedef struct UnitInfo { const char *name; double factor; signed char dim[NDIM]; const char *source; } UnitInfo;
+extern const UnitInfo unit_table[];
+
+/* ---- tokens (lex.re, layout.c) ---- */
+typedef struct Token {
+	int kind;      /* a parser token code (parse.h) or a punctuation character */
+	double num;    /* NUMBER */
+	int n;         /* DOLLAR */
+	char *text;    /* spelling; USING: the path; LEXERROR: the message */
+	Loc loc;
+	int bol;       /* first token of a line */
+	int indent;    /* with bol: the line's indentation in columns */
+	Unit unit;     /* unit tokens made by layout.c */
+	int end_col;   /* column just past the token */
+} Token;
+
+typedef struct Lexer {
+	int file;
+	const char *start, *cur, *lim, *line_start;
+	int line;
+	int bol;
+} Lexer;
+
+void lex_init(Lexer *L, int file);
+/* The next raw token (keywords as their parser token codes). */
+void lex_next(Lexer *L, Token *t);
+/* Parser token code of a keyword, or 0. */
+int lex_keyword(const char *s, size_t n);
+
+/* ---- options ---- */
+typedef struct Options {
+	Vec incdirs;        /* of char*, from -I */
+	const char *stdlib; /* the standard library directory */
+} Options;
+extern Options opts;
+
+#endif

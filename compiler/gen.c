@@ -1,0 +1,413 @@
+/*
+ * gen.c - from a resolved model to a csf_prog (bytecode).
+ *
+ * Only what the scene needs is compiled: the RHS section holds the rule
+ * instances the state derivatives depend on, then the derivatives; the OUT
+ * section holds the instances the watched variables and the assertions
+ * depend on, then the assertions. Memory is laid out as
+ *   t | state | derivatives | globals, properties, temporaries, constants | scratch
+ * where variables and constants get slots as the code first refers to them
+ * and scratch slots (expression temporaries, reused by every instance) are
+ * placed last once their number is known.
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "csfc.h"
+#include "sema.h"
+#include "csf.h"
+#include "gen.h"
+
+#define SCRATCH 0x80000000u
+
+typedef struct Gen {
+	Model *M;
+	csf_prog *p;
+	double *mem;
+	uint32_t nmem, capmem;
+	uint32_t *code;
+	uint32_t ncode, capcode;
+	csf_line *lines;
+	uint32_t nlines, caplines;
+	csf_target *targets;
+	uint32_t ntargets, captargets;
+	uint32_t scratch, max_scratch;
+	char *strs;
+	uint32_t nstrs, capstrs;
+	Vec *Finsts; /* per object index: its F instances */
+	Map strmap;  /* string -> offset + 1 */
+	uint32_t *ctab_slot;
+	uint64_t *ctab_key;
+	unsigned char *ctab_vec;
+	size_t ctab_cap, ctab_n;
+} Gen;
+
+static void *grow(void *p, uint32_t *cap, uint32_t need, size_t elem)
+{
+	if (need <= *cap) return p;
+	uint32_t c = *cap ? *cap : 64;
+	while (c < need) c *= 2;
+	void *q = realloc(p, (size_t)c * elem);
+	if (!q) {
+		fprintf(stderr, "csfc: out of memory\n");
+		exit(2);
+	}
+	*cap = c;
+	return q;
+}
+
+static uint32_t alloc_mem(Gen *G, uint32_t n, const double *init)
+{
+	G->mem = grow(G->mem, &G->capmem, G->nmem + n, sizeof(double));
+	for (uint32_t i = 0; i < n; i++) G->mem[G->nmem + i] = init ? init[i] : 0.0;
+	G->nmem += n;
+	return G->nmem - n;
+}
+
+static uint32_t str_intern(Gen *G, const char *s)
+{
+	uintptr_t known = (uintptr_t)map_get(&G->strmap, s);
+	if (known) return (uint32_t)(known - 1);
+	uint32_t n = (uint32_t)strlen(s) + 1;
+	G->strs = grow(G->strs, &G->capstrs, G->nstrs + n, 1);
+	memcpy(G->strs + G->nstrs, s, n);
+	G->nstrs += n;
+	map_put(&G->strmap, xstrdup(s), (void *)(uintptr_t)(G->nstrs - n + 1));
+	return G->nstrs - n;
+}
+
+static uint32_t var_slot(Gen *G, Var *v)
+{
+	if (v->slot < 0) v->slot = (int)alloc_mem(G, v->isvec ? 3 : 1, v->kind == V_TEMP ? NULL : v->init);
+	return (uint32_t)v->slot;
+}
+
+static uint64_t dbits(double d)
+{
+	uint64_t u;
+	memcpy(&u, &d, 8);
+	return u;
+}
+
+static uint32_t const_slot(Gen *G, const double *c, int isvec)
+{
+	uint64_t key = dbits(c[0]) * 31 + (isvec ? dbits(c[1]) * 17 + dbits(c[2]) * 7 + 1 : 0);
+	if (2 * (G->ctab_n + 1) > G->ctab_cap) {
+		size_t oc = G->ctab_cap;
+		uint32_t *os = G->ctab_slot;
+		uint64_t *ok = G->ctab_key;
+		unsigned char *ov = G->ctab_vec;
+		G->ctab_cap = oc ? 2 * oc : 256;
+		G->ctab_slot = calloc(G->ctab_cap, sizeof *G->ctab_slot);
+		G->ctab_key = calloc(G->ctab_cap, sizeof *G->ctab_key);
+		G->ctab_vec = calloc(G->ctab_cap, 1);
+		if (!G->ctab_slot || !G->ctab_key || !G->ctab_vec) exit(2);
+		G->ctab_n = 0;
+		for (size_t i = 0; i < oc; i++)
+			if (ov[i]) {
+				size_t j = (size_t)(ok[i] % G->ctab_cap);
+				while (G->ctab_vec[j]) j = (j + 1) % G->ctab_cap;
+				G->ctab_key[j] = ok[i];
+				G->ctab_slot[j] = os[i];
+				G->ctab_vec[j] = ov[i];
+				G->ctab_n++;
+			}
+		free(os);
+		free(ok);
+		free(ov);
+	}
+	size_t j = (size_t)(key % G->ctab_cap);
+	for (; G->ctab_vec[j]; j = (j + 1) % G->ctab_cap) {
+		if (G->ctab_key[j] != key || G->ctab_vec[j] != 1 + isvec) continue;
+		const double *m = G->mem + G->ctab_slot[j];
+		if (dbits(m[0]) == dbits(c[0]) && (!isvec || (dbits(m[1]) == dbits(c[1]) && dbits(m[2]) == dbits(c[2]))))
+			return G->ctab_slot[j];
+	}
+	uint32_t s = alloc_mem(G, isvec ? 3 : 1, c);
+	G->ctab_key[j] = key;
+	G->ctab_slot[j] = s;
+	G->ctab_vec[j] = (unsigned char)(1 + isvec);
+	G->ctab_n++;
+	return s;
+}
+
+static uint32_t new_scratch(Gen *G, int width)
+{
+	uint32_t s = G->scratch;
+	G->scratch += (uint32_t)width;
+	if (G->scratch > G->max_scratch) G->max_scratch = G->scratch;
+	return SCRATCH | s;
+}
+
+static uint32_t pc(Gen *G) { return G->ncode; }
+
+static void emit_words(Gen *G, int op, const uint32_t *ops)
+{
+	int n = csf_opinfo_table[op].nops;
+	G->code = grow(G->code, &G->capcode, G->ncode + 1 + (uint32_t)n, sizeof(uint32_t));
+	G->code[G->ncode++] = (uint32_t)op;
+	for (int i = 0; i < n; i++) G->code[G->ncode++] = ops[i];
+}
+
+static void emit_op(Gen *G, int op, uint32_t a, uint32_t b, uint32_t c, uint32_t d)
+{
+	uint32_t ops[4] = { a, b, c, d };
+	emit_words(G, op, ops);
+}
+
+static uint32_t emit(Gen *G, RExpr *e);
+
+static void emit_into(Gen *G, RExpr *e, uint32_t dest)
+{
+	if (e->k == R_OP) {
+		uint32_t o[3] = { 0, 0, 0 };
+		for (int i = 0; i < e->n; i++) o[i] = emit(G, e->a[i]);
+		emit_op(G, e->op, dest, o[0], o[1], o[2]);
+		return;
+	}
+	if (e->k == R_RF) {
+		Vec *fs = &G->Finsts[e->obj->index];
+		Vec tv = { 0 };
+		for (int i = 0; i < fs->n; i++) {
+			Inst *I = fs->v[i];
+			for (int k = 0; k < I->targets.n; k++) vec_push(&tv, I->targets.v[k]);
+		}
+		if (tv.n >= 2) {
+			emit_op(G, CSF_OP_VADD, dest, var_slot(G, tv.v[0]), var_slot(G, tv.v[1]), 0);
+			for (int i = 2; i < tv.n; i++) emit_op(G, CSF_OP_VADD, dest, dest, var_slot(G, tv.v[i]), 0);
+			return;
+		}
+	}
+	uint32_t s = emit(G, e);
+	emit_op(G, e->isvec ? CSF_OP_VMOV : CSF_OP_MOV, dest, s, 0, 0);
+}
+
+static uint32_t emit(Gen *G, RExpr *e)
+{
+	switch (e->k) {
+	case R_CONST: return const_slot(G, e->c, e->isvec);
+	case R_VAR: return e->var->kind == V_TIME ? G->p->tslot : var_slot(G, e->var);
+	case R_COMP: return emit(G, e->a[0]) + (uint32_t)e->comp;
+	case R_RF: {
+		Vec *fs = &G->Finsts[e->obj->index];
+		int n = 0;
+		Var *only = NULL;
+		for (int i = 0; i < fs->n; i++) {
+			Inst *I = fs->v[i];
+			n += I->targets.n;
+			if (I->targets.n) only = I->targets.v[0];
+		}
+		if (n == 0) return const_slot(G, (double[3]){ 0, 0, 0 }, 1);
+		if (n == 1) return var_slot(G, only);
+		uint32_t d = new_scratch(G, 3);
+		emit_into(G, e, d);
+		return d;
+	}
+	case R_OP: {
+		uint32_t d = new_scratch(G, e->isvec ? 3 : 1);
+		emit_into(G, e, d);
+		return d;
+	}
+	}
+	return 0;
+}
+
+static void add_line(Gen *G, uint32_t src)
+{
+	G->lines = grow(G->lines, &G->caplines, G->nlines + 1, sizeof(csf_line));
+	G->lines[G->nlines++] = (csf_line){ pc(G), src };
+}
+
+static void add_target(Gen *G, uint32_t slot, Var *v, uint32_t src, const char *name)
+{
+	G->targets = grow(G->targets, &G->captargets, G->ntargets + 1, sizeof(csf_target));
+	G->targets[G->ntargets++] = (csf_target){ slot, v->isvec ? 3u : 1u, src, str_intern(G, name),
+		                                      str_intern(G, v->obj ? v->obj->name : "global") };
+}
+
+static void emit_assigns(Gen *G, Inst *I, Vec *br)
+{
+	for (int i = 0; i < br->n; i++) {
+		Assign *a = br->v[i];
+		emit_into(G, a->e, var_slot(G, a->var));
+	}
+	/* variables the other branch introduces are zero in this one */
+	for (int i = 0; i < I->targets.n; i++) {
+		Var *v = I->targets.v[i];
+		int set = 0;
+		for (int k = 0; k < br->n; k++) set |= ((Assign *)br->v[k])->var == v;
+		if (!set)
+			emit_op(G, v->isvec ? CSF_OP_VMOV : CSF_OP_MOV, var_slot(G, v), const_slot(G, (double[3]){ 0, 0, 0 }, v->isvec), 0, 0);
+	}
+}
+
+static Vec assert_tab; /* of Inst*, in assertion index order */
+
+static void emit_inst(Gen *G, Inst *I, int sec)
+{
+	G->scratch = 0;
+	add_line(G, (uint32_t)I->src);
+	if (I->isassert) {
+		uint32_t c = emit(G, I->cond);
+		I->assert_index = assert_tab.n;
+		vec_push(&assert_tab, I);
+		emit_op(G, CSF_OP_ASSERT, c, (uint32_t)I->assert_index, 0, 0);
+		return;
+	}
+	if (I->isderiv) {
+		Assign *a = I->then.v[0];
+		uint32_t d = G->p->dstart + (var_slot(G, a->var) - G->p->ystart);
+		emit_into(G, a->e, d);
+		add_target(G, d, a->var, (uint32_t)I->src, xprintf("%s'", a->var->name));
+		return;
+	}
+	(void)sec;
+	if (!I->cond) {
+		emit_assigns(G, I, &I->then);
+	} else {
+		uint32_t c = emit(G, I->cond);
+		uint32_t jz = pc(G);
+		emit_op(G, CSF_OP_JZ, c, 0, 0, 0);
+		emit_assigns(G, I, &I->then);
+		uint32_t jmp = pc(G);
+		emit_op(G, CSF_OP_JMP, 0, 0, 0, 0);
+		G->code[jz + 2] = pc(G);
+		emit_assigns(G, I, &I->els);
+		G->code[jmp + 1] = pc(G);
+	}
+	for (int i = 0; i < I->targets.n; i++) {
+		Var *v = I->targets.v[i];
+		uint32_t src = (uint32_t)I->src;
+		for (int b = 0; b < 2; b++) {
+			Vec *br = b ? &I->els : &I->then;
+			for (int k = 0; k < br->n; k++)
+				if (((Assign *)br->v[k])->var == v) src = (uint32_t)((Assign *)br->v[k])->src;
+		}
+		add_target(G, var_slot(G, v), v, src, v->name);
+	}
+}
+
+static void mark(Gen *G, Inst *I, int sec)
+{
+	if (I->needed[sec]) return;
+	I->needed[sec] = 1;
+	for (int i = 0; i < I->reads.n; i++) {
+		Var *v = I->reads.v[i];
+		if (v->det && v->det != I) mark(G, v->det, sec);
+	}
+	for (int i = 0; i < I->rf_reads.n; i++) {
+		Object *o = I->rf_reads.v[i];
+		Vec *fs = &G->Finsts[o->index];
+		for (int k = 0; k < fs->n; k++) mark(G, fs->v[k], sec);
+	}
+}
+
+int gen_program(Model *M, csf_prog *p)
+{
+	Gen G0 = { 0 }, *G = &G0;
+	memset(p, 0, sizeof *p);
+	G->M = M;
+	G->p = p;
+	assert_tab = (Vec){ 0 };
+	G->Finsts = xalloc((size_t)(M->objects.n + 1) * sizeof(Vec));
+	for (int i = 0; i < M->insts.n; i++) {
+		Inst *I = M->insts.v[i];
+		if (I->isF) vec_push(&G->Finsts[I->bind[0]->index], I);
+	}
+	/* What is needed: derivatives for RHS; watches and assertions for OUT. */
+	for (int i = 0; i < M->insts.n; i++) {
+		Inst *I = M->insts.v[i];
+		if (I->isderiv) mark(G, I, CSF_SEC_RHS);
+		if (I->isassert) mark(G, I, CSF_SEC_OUT);
+	}
+	for (int i = 0; i < M->cols.n; i++) {
+		WatchCol *w = M->cols.v[i];
+		if (w->var->det) mark(G, w->var->det, CSF_SEC_OUT);
+	}
+
+	/* Layout: t, state, derivatives. */
+	p->tslot = alloc_mem(G, 1, NULL);
+	p->ystart = G->nmem;
+	for (int i = 0; i < M->objects.n; i++) {
+		Object *o = M->objects.v[i];
+		for (int j = 0; j < o->props.n; j++) {
+			Var *v = o->props.v[j];
+			if (v->state) var_slot(G, v);
+		}
+	}
+	p->ny = G->nmem - p->ystart;
+	p->dstart = alloc_mem(G, p->ny, NULL);
+	M->time->slot = (int)p->tslot;
+
+	for (int sec = 0; sec < CSF_NSEC; sec++) {
+		G->code = NULL;
+		G->ncode = G->capcode = 0;
+		G->lines = NULL;
+		G->nlines = G->caplines = 0;
+		G->targets = NULL;
+		G->ntargets = G->captargets = 0;
+		for (int i = 0; i < M->insts.n; i++) {
+			Inst *I = M->insts.v[i];
+			if (!I->needed[sec]) continue;
+			if (sec == CSF_SEC_RHS && I->isassert) continue;
+			if (sec == CSF_SEC_OUT && I->isderiv) continue;
+			emit_inst(G, I, sec);
+		}
+		p->code[sec] = G->code;
+		p->ncode[sec] = G->ncode;
+		p->lines[sec] = G->lines;
+		p->nlines[sec] = G->nlines;
+		p->targets[sec] = G->targets;
+		p->ntargets[sec] = G->ntargets;
+	}
+
+	/* Columns. */
+	p->ncols = (uint32_t)M->cols.n;
+	p->cols = calloc(p->ncols + 1, sizeof *p->cols);
+	for (int i = 0; i < M->cols.n; i++) {
+		WatchCol *w = M->cols.v[i];
+		p->cols[i].name = str_intern(G, w->name);
+		p->cols[i].slot = (w->var->kind == V_TIME ? p->tslot : var_slot(G, w->var)) + (uint32_t)w->comp;
+	}
+
+	/* Scratch goes last; relocate scratch operands. */
+	uint32_t base = alloc_mem(G, G->max_scratch, NULL);
+	for (int sec = 0; sec < CSF_NSEC; sec++)
+		for (uint32_t i = 0; i < p->ncode[sec];) {
+			const csf_opinfo *oi = &csf_opinfo_table[p->code[sec][i]];
+			for (int k = 0; k < oi->nops; k++) {
+				uint32_t *w = &p->code[sec][i + 1 + k];
+				int slotk = oi->kind[k] == CSF_K_S || oi->kind[k] == CSF_K_V || oi->kind[k] == CSF_K_DS || oi->kind[k] == CSF_K_DV;
+				if (slotk && (*w & SCRATCH)) *w = base + (*w & ~SCRATCH);
+			}
+			i += 1u + oi->nops;
+		}
+
+	/* Source tables. */
+	p->nfiles = (uint32_t)sources.n;
+	p->files = calloc(p->nfiles + 1, sizeof *p->files);
+	for (int i = 0; i < sources.n; i++) p->files[i] = str_intern(G, ((Source *)sources.v[i])->path);
+	p->nsrcs = (uint32_t)M->srcs.n;
+	p->srcs = calloc(p->nsrcs + 1, sizeof *p->srcs);
+	for (int i = 0; i < M->srcs.n; i++) {
+		SrcEntry *e = M->srcs.v[i];
+		p->srcs[i] = (csf_src){ (uint32_t)e->loc.file, (uint32_t)e->loc.line, str_intern(G, e->text) };
+	}
+	p->nasserts = (uint32_t)assert_tab.n;
+	p->asserts = calloc(p->nasserts + 1, sizeof *p->asserts);
+	for (int i = 0; i < assert_tab.n; i++) {
+		Inst *I = assert_tab.v[i];
+		p->asserts[i] = (csf_assert){ (uint32_t)I->src, str_intern(G, I->bind[0]->name) };
+	}
+	str_intern(G, "");
+	p->strs = G->strs;
+	p->nstrs = G->nstrs;
+	p->mem0 = G->mem;
+	p->nmem = G->nmem;
+	p->till = M->till;
+	p->by = M->by;
+	free(G->ctab_slot);
+	free(G->ctab_key);
+	free(G->ctab_vec);
+	return 0;
+}

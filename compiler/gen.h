@@ -1,0 +1,13 @@
+/*
+ * gen.h - bytecode generation (gen.c).
+ */
+#ifndef CSF_GEN_H
+#define CSF_GEN_H
+
+#include "csf.h"
+#include "sema.h"
+
+/* Fills p (malloc'd tables, free with csf_prog_free) from a resolved model. Returns 0. */
+int gen_program(Model *M, csf_prog *p);
+
+#endif

@@ -1,0 +1,322 @@
+/*
+ * layout.c - the token layer between the scanner and the parser.
+ *
+ * Three jobs, each small:
+ *  - indentation: a stack of indentation widths (as CPython's tokenizer);
+ *    a deeper line after a line ending in ':' opens a block (INDENT), a
+ *    shallower line closes blocks (DEDENT). Blank lines never matter.
+ *  - `using FILE`: textual inclusion. The named file is found next to the
+ *    including file, then in each -I directory, then in the standard
+ *    library; its tokens are spliced in. A file already being included is
+ *    a cycle (an error); a file included before is not included again.
+ *  - unit literals: an identifier that names a unit, directly after a
+ *    number or a ')' , starts a unit expression (`m/s^2`, `kg*m/(s^2)`);
+ *    it becomes one UNIT token carrying its SI factor and dimension.
+ */
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "csfc.h"
+#include "ast.h"
+#include "parse.h"
+
+#define MAX_INCLUDE 64
+#define QSIZE 8
+
+struct Parser {
+	Lexer lex[MAX_INCLUDE];
+	char *real[MAX_INCLUDE];
+	Loc using_loc[MAX_INCLUDE];
+	int depth;
+	Vec included; /* realpaths of files included (or being included) */
+	int indents[1024];
+	int nind;
+	int dedents;       /* DEDENT tokens owed */
+	Token q[QSIZE];    /* lookahead of raw tokens from the current lexer */
+	int qn;
+	int last;          /* kind of the last token given to the parser, -1 at start */
+	int last_colon;    /* the last line given ended with ':' */
+	Token pending;     /* the real token held back behind INDENT/DEDENT */
+	int has_pending;
+	int at_end;        /* the main file has ended: close blocks, then END */
+	Token end;
+	Stmt *head, *tail;
+	char *text;        /* spelling of the last token given */
+};
+
+static char *real_path(const char *p)
+{
+	char buf[PATH_MAX];
+	return realpath(p, buf) ? xstrdup(buf) : xstrdup(p);
+}
+
+Parser *layout_new(int file)
+{
+	Parser *P = xalloc(sizeof *P);
+	lex_init(&P->lex[0], file);
+	P->real[0] = real_path(((Source *)sources.v[file])->path);
+	vec_push(&P->included, P->real[0]);
+	P->depth = 1;
+	P->indents[0] = 0;
+	P->nind = 1;
+	P->last = NEWLINE;
+	return P;
+}
+
+Stmt *layout_result(Parser *P) { return P->head; }
+
+void layout_append(Parser *P, Stmt *s)
+{
+	if (P->tail) P->tail->next = s;
+	else P->head = s;
+	P->tail = s;
+	while (P->tail->next) P->tail = P->tail->next;
+}
+
+const char *layout_token_text(Parser *P) { return P->text; }
+
+static Token *peek(Parser *P, int k)
+{
+	while (P->qn <= k) lex_next(&P->lex[P->depth - 1], &P->q[P->qn++]);
+	return &P->q[k];
+}
+
+static Token take(Parser *P)
+{
+	Token t = *peek(P, 0);
+	memmove(P->q, P->q + 1, (size_t)(P->qn - 1) * sizeof(Token));
+	P->qn--;
+	return t;
+}
+
+static int is_unit_name(Token *t, Unit *u)
+{
+	Unit dummy;
+	return t->kind == IDENT && !t->bol && unit_lookup(t->text, u ? u : &dummy);
+}
+
+static int starts_factor(Parser *P, int k)
+{
+	return is_unit_name(peek(P, k), NULL) || (peek(P, k)->kind == '(' && is_unit_name(peek(P, k + 1), NULL));
+}
+
+static void unit_expr(Parser *P, Unit *u, char **text);
+
+/* factor := name | '(' unit ')' , then an optional ^ [-] integer */
+static void unit_factor(Parser *P, Unit *u, char **text)
+{
+	Token t = take(P);
+	if (t.kind == '(') {
+		*text = xprintf("%s(", *text);
+		unit_expr(P, u, text);
+		if (peek(P, 0)->kind == ')') {
+			take(P);
+			*text = xprintf("%s)", *text);
+		} else {
+			error_at(peek(P, 0)->loc, "expected ')' in unit");
+		}
+	} else {
+		unit_lookup(t.text, u);
+		*text = xprintf("%s%s", *text, t.text);
+	}
+	int neg = peek(P, 1)->kind == '-';
+	Token *n = peek(P, neg ? 2 : 1);
+	if (peek(P, 0)->kind == '^' && n->kind == NUMBER) {
+		take(P);
+		if (neg) take(P);
+		Token e = take(P);
+		double x = neg ? -e.num : e.num;
+		if (x != floor(x) || fabs(x) > 16) {
+			error_at(e.loc, "a unit exponent must be a whole number between -16 and 16");
+			x = 1;
+		}
+		u->factor = pow(u->factor, x);
+		for (int d = 0; d < NDIM; d++) u->dim[d] = (signed char)(u->dim[d] * (int)x);
+		*text = xprintf("%s^%s%s", *text, neg ? "-" : "", e.text);
+	}
+}
+
+static void unit_expr(Parser *P, Unit *u, char **text)
+{
+	unit_factor(P, u, text);
+	while ((peek(P, 0)->kind == '*' || peek(P, 0)->kind == '/') && starts_factor(P, 1)) {
+		int op = take(P).kind;
+		Unit v;
+		*text = xprintf("%s%c", *text, op);
+		unit_factor(P, &v, text);
+		u->factor = op == '*' ? u->factor * v.factor : u->factor / v.factor;
+		for (int d = 0; d < NDIM; d++) u->dim[d] = (signed char)(op == '*' ? u->dim[d] + v.dim[d] : u->dim[d] - v.dim[d]);
+	}
+}
+
+/* Finds the file a `using` names. Returns a path or NULL. */
+static char *find_include(Parser *P, const char *name)
+{
+	size_t n = strlen(name);
+	const char *ext = n >= 4 && strcmp(name + n - 4, ".csf") == 0 ? "" : ".csf";
+	if (name[0] == '/') {
+		char *p = xprintf("%s%s", name, ext);
+		return access(p, R_OK) == 0 ? p : NULL;
+	}
+	Vec dirs = { 0 };
+	char *cur = xstrdup(((Source *)sources.v[P->lex[P->depth - 1].file])->path);
+	char *slash = strrchr(cur, '/');
+	vec_push(&dirs, slash ? (slash[1] = '\0', cur) : ".");
+	for (int i = 0; i < opts.incdirs.n; i++) vec_push(&dirs, opts.incdirs.v[i]);
+	if (opts.stdlib) vec_push(&dirs, (void *)opts.stdlib);
+	for (int i = 0; i < dirs.n; i++) {
+		const char *d = dirs.v[i];
+		size_t dl = strlen(d);
+		char *p = xprintf("%s%s%s%s", d, dl && d[dl - 1] == '/' ? "" : "/", name, ext);
+		if (access(p, R_OK) == 0) return p;
+	}
+	return NULL;
+}
+
+static void do_using(Parser *P, Token *u)
+{
+	if (!u->text[0]) {
+		error_at(u->loc, "'using' needs a file name");
+		return;
+	}
+	char *path = find_include(P, u->text);
+	if (!path) {
+		error_at(u->loc, "cannot find '%s' for 'using' (searched next to this file, -I directories and %s)", u->text,
+		         opts.stdlib ? opts.stdlib : "no standard library");
+		return;
+	}
+	char *rp = real_path(path);
+	for (int i = 0; i < P->depth; i++)
+		if (strcmp(P->real[i], rp) == 0) {
+			error_at(u->loc, "include cycle: '%s' is already being included", path);
+			for (int k = P->depth - 1; k > 0; k--) note_at(P->using_loc[k], "included from here");
+			return;
+		}
+	for (int i = 0; i < P->included.n; i++)
+		if (strcmp(P->included.v[i], rp) == 0) return; /* included before: once is enough */
+	if (P->depth == MAX_INCLUDE) {
+		error_at(u->loc, "'using' nested more than %d deep", MAX_INCLUDE);
+		return;
+	}
+	int f = src_load(path);
+	if (f < 0) {
+		error_at(u->loc, "cannot read '%s': %s", path, strerror(errno));
+		return;
+	}
+	vec_push(&P->included, rp);
+	Lexer *L = &P->lex[P->depth];
+	lex_init(L, f);
+	P->real[P->depth] = rp;
+	P->using_loc[P->depth] = u->loc;
+	P->depth++;
+}
+
+/* Next raw token, with `using` and the ends of included files handled. */
+static Token next_raw(Parser *P)
+{
+	for (;;) {
+		Token t = take(P);
+		if (t.kind == USING) {
+			Token nl = take(P); /* the NEWLINE (or END) after the path */
+			if (nl.kind != NEWLINE && nl.kind != END) error_at(nl.loc, "unexpected text after 'using'");
+			do_using(P, &t);
+			continue;
+		}
+		if (t.kind == END && P->depth > 1) {
+			P->depth--;
+			t.kind = NEWLINE; /* an included file ends its last line */
+			t.bol = 0;
+		}
+		return t;
+	}
+}
+
+/* The next token for the parser, before unit literals are recognised. */
+static Token next_token(Parser *P)
+{
+	Token t;
+	if (P->dedents) {
+		P->dedents--;
+		t = P->pending;
+		t.kind = DEDENT;
+		t.text = NULL;
+		t.end_col = t.loc.col;
+		return t;
+	}
+	if (P->has_pending) {
+		P->has_pending = 0;
+		return P->pending;
+	}
+	for (;;) {
+		t = P->at_end ? P->end : next_raw(P);
+		if (t.kind == NEWLINE && P->last == NEWLINE) continue; /* no empty lines */
+		if (t.kind == END) {
+			P->at_end = 1;
+			P->end = t;
+			if (P->last != NEWLINE && P->last != DEDENT) t.kind = NEWLINE;
+			else if (P->nind > 1) P->nind--, t.kind = DEDENT;
+			return t;
+		}
+		if (!t.bol) return t;
+		int top = P->indents[P->nind - 1];
+		if (t.indent > top) {
+			if (!P->last_colon || P->nind == (int)(sizeof P->indents / sizeof P->indents[0])) {
+				error_at(t.loc, "unexpected indentation");
+				return t;
+			}
+			P->indents[P->nind++] = t.indent;
+		} else if (t.indent < top) {
+			int n = 0;
+			while (P->nind > 1 && t.indent < P->indents[P->nind - 1]) P->nind--, n++;
+			if (t.indent != P->indents[P->nind - 1]) error_at(t.loc, "indentation does not match any enclosing block");
+			P->dedents = n - 1;
+		} else {
+			return t;
+		}
+		P->pending = t;
+		P->pending.bol = 0;
+		P->has_pending = 1;
+		t.kind = t.indent > top ? INDENT : DEDENT;
+		t.text = NULL;
+		t.end_col = t.loc.col;
+		return t;
+	}
+}
+
+int yylex(YYSTYPE *lval, YYLoc *lloc, Parser *P)
+{
+	Token t = next_token(P);
+	if ((P->last == NUMBER || P->last == ')') && is_unit_name(&t, NULL)) {
+		/* t starts a unit expression: put it back and read the whole unit. */
+		memmove(P->q + 1, P->q, (size_t)P->qn * sizeof(Token));
+		P->q[0] = t;
+		P->qn++;
+		Unit un;
+		char *text = xstrdup("");
+		unit_expr(P, &un, &text);
+		t.kind = UNIT;
+		t.unit = un;
+		t.text = text;
+		Token *keep = xalloc(sizeof *keep);
+		*keep = t;
+		lval->tok = keep;
+	}
+	if (t.kind == NEWLINE) P->last_colon = P->last == ':';
+	P->last = t.kind;
+	P->text = t.text ? t.text : (t.kind > 0 && t.kind < 256 ? xprintf("%c", t.kind) : NULL);
+	lloc->file = t.loc.file;
+	lloc->first_line = lloc->last_line = t.loc.line;
+	lloc->first_column = t.loc.col;
+	lloc->last_column = t.end_col > t.loc.col ? t.end_col : t.loc.col + 1;
+	switch (t.kind) {
+	case NUMBER: lval->num = t.num; break;
+	case IDENT: case PROTECTED: lval->str = t.text; break;
+	case DOLLAR: lval->n = t.n; break;
+	default: break;
+	}
+	return t.kind;
+}

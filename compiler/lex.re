@@ -1,0 +1,195 @@
+/*
+ * lex.re - the raw CSF scanner (re2c).
+ *
+ * Produces one token at a time with its line and column. It knows nothing
+ * of indentation blocks or includes: at the start of each non-blank line it
+ * measures the indentation (spaces only: a tab there is an error token) and
+ * marks the first token with bol/indent; blank and comment-only lines are
+ * skipped entirely. layout.c turns indentation into INDENT/DEDENT.
+ */
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+
+#include "csfc.h"
+#include "ast.h"
+#include "parse.h"
+
+static const struct { const char *s; int tok; } keywords[] = {
+	{ "object", OBJECT }, { "def", DEF }, { "global", GLOBAL }, { "rule", RULE }, { "for", FOR },
+	{ "if", IF }, { "else", ELSE }, { "assert", ASSERT }, { "vector", VECTOR }, { "inc", INC },
+	{ "till", TILL }, { "by", BY }, { "watch", WATCH }, { "and", AND }, { "or", OR }, { "not", NOT },
+	{ "using", USING },
+	/* protected names (spec 2.2.3) that no statement uses */
+	{ "None", PROTECTED }, { "True", PROTECTED }, { "False", PROTECTED }, { "const", PROTECTED },
+	{ "scalar", PROTECTED }, { "start", PROTECTED }, { "step", PROTECTED }, { "Pi", PROTECTED },
+};
+
+int lex_keyword(const char *s, size_t n)
+{
+	for (size_t i = 0; i < sizeof keywords / sizeof keywords[0]; i++)
+		if (strlen(keywords[i].s) == n && memcmp(keywords[i].s, s, n) == 0) return keywords[i].tok;
+	return 0;
+}
+
+void lex_init(Lexer *L, int file)
+{
+	Source *s = sources.v[file];
+	L->file = file;
+	L->start = L->cur = L->line_start = s->text;
+	L->lim = s->text + s->len;
+	L->line = 1;
+	L->bol = 1;
+}
+
+static void set_loc(Lexer *L, Token *t, const char *at)
+{
+	t->loc.file = L->file;
+	t->loc.line = L->line;
+	t->loc.col = (int)(at - L->line_start) + 1;
+}
+
+static void error_tok(Lexer *L, Token *t, const char *at, char *msg)
+{
+	set_loc(L, t, at);
+	t->kind = LEXERROR;
+	t->text = msg;
+	error_at(t->loc, "%s", msg);
+}
+
+/* At the start of a line: skips blank and comment lines, measures indentation. */
+static int line_start(Lexer *L, Token *t)
+{
+	for (;;) {
+		const char *p = L->cur;
+		int col = 0;
+		while (p < L->lim && *p == ' ') p++, col++;
+		if (p < L->lim && *p == '\t') {
+			L->cur = p;
+			while (L->cur < L->lim && *L->cur != '\n') L->cur++;
+			error_tok(L, t, p, xstrdup("tabs are not allowed in indentation; indent with spaces"));
+			return -1;
+		}
+		const char *q = p;
+		while (q < L->lim && (*q == ' ' || *q == '\t' || *q == '\r')) q++;
+		if (q < L->lim && *q == '#')
+			while (q < L->lim && *q != '\n') q++;
+		if (q >= L->lim) {
+			L->cur = q;
+			return 0;
+		}
+		if (*q == '\n') {
+			L->cur = q + 1;
+			L->line++;
+			L->line_start = L->cur;
+			continue;
+		}
+		L->cur = p;
+		t->indent = col;
+		return 1;
+	}
+}
+
+void lex_next(Lexer *L, Token *t)
+{
+	memset(t, 0, sizeof *t);
+	if (L->bol) {
+		int r = line_start(L, t);
+		if (r < 0) return;
+		if (r == 1) {
+			t->bol = 1;
+			L->bol = 0;
+		}
+	}
+	const char *tok, *YYCURSOR, *YYMARKER = NULL;
+	for (;;) {
+		tok = YYCURSOR = L->cur;
+		if (YYCURSOR >= L->lim) {
+			set_loc(L, t, YYCURSOR);
+			t->kind = END;
+			return;
+		}
+		/*!re2c
+		re2c:define:YYCTYPE = "unsigned char";
+		re2c:yyfill:enable = 0;
+		re2c:eof = 0;
+		re2c:define:YYLIMIT = "L->lim";
+
+		digits = [0-9]+;
+		exp = [eE] [+-]? digits;
+		number = (digits ("." [0-9]*)? | "." digits) exp?;
+		ident = [a-zA-Z_] [a-zA-Z_0-9]*;
+
+		$ { set_loc(L, t, tok); t->kind = END; return; }
+		[ \t\r]+ { L->cur = YYCURSOR; continue; }
+		"#" [^\n]* { L->cur = YYCURSOR; continue; }
+		"\n" {
+			set_loc(L, t, tok);
+			t->kind = NEWLINE;
+			L->cur = YYCURSOR;
+			L->line++;
+			L->line_start = L->cur;
+			L->bol = 1;
+			return;
+		}
+		number {
+			set_loc(L, t, tok);
+			t->kind = NUMBER;
+			t->num = strtod(tok, NULL);
+			t->text = xstrndup(tok, (size_t)(YYCURSOR - tok));
+			goto done;
+		}
+		ident {
+			set_loc(L, t, tok);
+			size_t n = (size_t)(YYCURSOR - tok);
+			t->text = xstrndup(tok, n);
+			if (n == 3 && memcmp(tok, "Inf", 3) == 0) { t->kind = NUMBER; t->num = HUGE_VAL; goto done; }
+			if (n == 3 && memcmp(tok, "NaN", 3) == 0) { t->kind = NUMBER; t->num = NAN; goto done; }
+			int kw = lex_keyword(tok, n);
+			t->kind = kw ? kw : IDENT;
+			if (kw == USING) {
+				const char *p = YYCURSOR, *e;
+				while (p < L->lim && (*p == ' ' || *p == '\t')) p++;
+				e = p;
+				while (e < L->lim && *e != '\n' && *e != '#') e++;
+				L->cur = e;
+				while (e > p && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r')) e--;
+				if (e - p >= 2 && *p == '"' && e[-1] == '"') p++, e--;
+				t->text = xstrndup(p, (size_t)(e - p));
+				t->end_col = t->loc.col + (int)(L->cur - tok);
+				return;
+			}
+			goto done;
+		}
+		"$" digits {
+			set_loc(L, t, tok);
+			t->kind = DOLLAR;
+			t->n = (int)strtol(tok + 1, NULL, 10);
+			t->text = xstrndup(tok, (size_t)(YYCURSOR - tok));
+			if (YYCURSOR - tok > 6) { L->cur = YYCURSOR; error_tok(L, t, tok, xstrdup("object number too large")); return; }
+			goto done;
+		}
+		"==" { set_loc(L, t, tok); t->kind = EQEQ; goto done; }
+		"!=" { set_loc(L, t, tok); t->kind = NE; goto done; }
+		"<=" { set_loc(L, t, tok); t->kind = LE; goto done; }
+		">=" { set_loc(L, t, tok); t->kind = GE; goto done; }
+		[-+*/^()=,.:<>'] { set_loc(L, t, tok); t->kind = (unsigned char)*tok; goto done; }
+		[\x00] {
+			L->cur = YYCURSOR;
+			error_tok(L, t, tok, xstrdup("NUL character in source"));
+			return;
+		}
+		* {
+			L->cur = YYCURSOR;
+			unsigned char c = (unsigned char)*tok;
+			error_tok(L, t, tok, c >= 32 && c < 127 ? xprintf("unexpected character '%c'", c)
+			                                         : xprintf("unexpected byte 0x%02x", c));
+			return;
+		}
+		*/
+	}
+done:
+	(void)YYMARKER;
+	L->cur = YYCURSOR;
+	t->end_col = t->loc.col + (int)(YYCURSOR - tok);
+}

@@ -1,0 +1,141 @@
+/*
+ * csfc - the CSF compiler driver.
+ */
+#include <errno.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "csfc.h"
+#include "ast.h"
+#include "sema.h"
+#include "gen.h"
+#include "csf.h"
+
+static const char usage[] =
+	"usage: csfc [options] MODEL.csf\n"
+	"Compiles a CSF model to bytecode (MODEL.csfb).\n"
+	"  -o FILE            write the bytecode to FILE\n"
+	"  -I DIR             add DIR to the search path of 'using'\n"
+	"  --explain          print what every rule solves for, and what is left out\n"
+	"  --dump-bytecode    print the compiled code as a listing\n"
+	"  --help, --version\n";
+
+/* The standard library: $CSF_STDLIB, else next to the installed or the built csfc. */
+static const char *find_stdlib(void)
+{
+	const char *env = getenv("CSF_STDLIB");
+	if (env && *env) return env;
+	char exe[PATH_MAX];
+	ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+	if (n <= 0) return NULL;
+	exe[n] = '\0';
+	char *slash = strrchr(exe, '/');
+	if (!slash) return NULL;
+	*slash = '\0';
+	const char *cands[] = { "%s/../share/csf/stdlib", "%s/../stdlib" };
+	for (size_t i = 0; i < sizeof cands / sizeof cands[0]; i++) {
+		char *d = xprintf(cands[i], exe);
+		char *probe = xprintf("%s/mechanics/rules.csf", d);
+		char real[PATH_MAX];
+		if (access(probe, R_OK) == 0) return realpath(d, real) ? xstrdup(real) : d;
+	}
+	return NULL;
+}
+
+static int write_file(const char *path, const unsigned char *buf, size_t len)
+{
+	FILE *f = fopen(path, "wb");
+	if (!f) return -1;
+	size_t w = fwrite(buf, 1, len, f);
+	int bad = w != len || ferror(f);
+	if (fclose(f) != 0) bad = 1;
+	if (bad) remove(path);
+	return bad ? -1 : 0;
+}
+
+static int run(int argc, char **argv)
+{
+	const char *in = NULL, *out = NULL;
+	int explain = 0, dump = 0;
+	for (int i = 1; i < argc; i++) {
+		const char *a = argv[i];
+		if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+			fputs(usage, stdout);
+			return 0;
+		} else if (!strcmp(a, "--version")) {
+			printf("csfc %s\n", CSF_VERSION_STRING);
+			return 0;
+		} else if (!strcmp(a, "-o") && i + 1 < argc) {
+			out = argv[++i];
+		} else if (!strcmp(a, "-I") && i + 1 < argc) {
+			vec_push(&opts.incdirs, argv[++i]);
+		} else if (!strncmp(a, "-I", 2) && a[2]) {
+			vec_push(&opts.incdirs, (void *)(a + 2));
+		} else if (!strcmp(a, "--explain")) {
+			explain = 1;
+		} else if (!strcmp(a, "--dump-bytecode")) {
+			dump = 1;
+		} else if (a[0] == '-' && a[1]) {
+			fprintf(stderr, "csfc: unknown or incomplete option '%s'\n%s", a, usage);
+			return 2;
+		} else if (in) {
+			fprintf(stderr, "csfc: more than one input file\n%s", usage);
+			return 2;
+		} else {
+			in = a;
+		}
+	}
+	if (!in) {
+		fputs(usage, stderr);
+		return 2;
+	}
+	opts.stdlib = find_stdlib();
+	if (src_load(in) < 0) {
+		fprintf(stderr, "csfc: cannot read %s: %s\n", in, strerror(errno));
+		return 2;
+	}
+	Stmt *stmts = parse_file(0);
+	if (diag_errors) return 1;
+	Model *M = sema_run(stmts);
+	if (diag_errors) return 1;
+	csf_prog p;
+	gen_program(M, &p);
+	if (explain) sema_explain(M, stdout);
+	char err[256];
+	if (csf_verify(&p, err, sizeof err)) {
+		fprintf(stderr, "csfc: internal error: generated code does not verify: %s\n", err);
+		csf_prog_free(&p);
+		return 2;
+	}
+	if (dump) csf_disassemble(&p, stdout);
+	unsigned char *buf;
+	size_t len;
+	if (csf_encode(&p, &buf, &len)) {
+		fprintf(stderr, "csfc: out of memory\n");
+		csf_prog_free(&p);
+		return 2;
+	}
+	csf_prog_free(&p);
+	if (!out) {
+		size_t n = strlen(in);
+		out = n > 4 && !strcmp(in + n - 4, ".csf") ? xprintf("%.*sb", (int)n, in) : xprintf("%s.csfb", in);
+	}
+	int st = 0;
+	if (!(explain || dump) || out) {
+		if (write_file(out, buf, len)) {
+			fprintf(stderr, "csfc: cannot write %s: %s\n", out, strerror(errno));
+			st = 2;
+		}
+	}
+	free(buf);
+	return st;
+}
+
+int main(int argc, char **argv)
+{
+	int st = run(argc, argv);
+	arena_free();
+	return st;
+}

@@ -1,0 +1,387 @@
+/*
+ * parse.y - the CSF grammar (bison). It builds the AST and nothing else:
+ * names are resolved, rules solved and units checked by later passes.
+ * Tokens come from layout.c (indentation, inclusion and unit literals on
+ * top of the re2c scanner). Errors recover at the end of the line, so one
+ * run reports several; a token the scanner already reported is not
+ * reported again.
+ */
+%code requires {
+#include "csfc.h"
+#include "ast.h"
+typedef struct YYLoc { int file, first_line, first_column, last_line, last_column; } YYLoc;
+#define YYLLOC_DEFAULT(Cur, Rhs, N) \
+	do { \
+		if (N) { \
+			(Cur).file = YYRHSLOC(Rhs, 1).file; \
+			(Cur).first_line = YYRHSLOC(Rhs, 1).first_line; \
+			(Cur).first_column = YYRHSLOC(Rhs, 1).first_column; \
+			(Cur).last_line = YYRHSLOC(Rhs, N).last_line; \
+			(Cur).last_column = YYRHSLOC(Rhs, N).last_column; \
+		} else { \
+			(Cur) = YYRHSLOC(Rhs, 0); \
+			(Cur).first_line = (Cur).last_line; \
+			(Cur).first_column = (Cur).last_column; \
+		} \
+	} while (0)
+typedef struct Parser Parser;
+}
+
+%code provides {
+int yylex(YYSTYPE *lval, YYLoc *lloc, Parser *P);
+/* The layout layer's state (layout.c). */
+Parser *layout_new(int file);
+Stmt *layout_result(Parser *P);
+void layout_append(Parser *P, Stmt *s);
+const char *layout_token_text(Parser *P);
+}
+
+%code {
+#include <string.h>
+static Loc LOC(YYLoc l) { return (Loc){ l.file, l.first_line, l.first_column }; }
+static Expr *bin(int op, Expr *a, Expr *b, YYLoc l)
+{
+	Expr *e = ast_expr(E_BIN, LOC(l));
+	e->op = op;
+	e->a = a;
+	e->b = b;
+	return e;
+}
+static Expr *with_unit(Expr *a, Token *u)
+{
+	Expr *e = ast_expr(E_UNIT, u->loc);
+	e->a = a;
+	e->unit = u->unit;
+	e->unit_text = u->text;
+	return e;
+}
+/* The rest of the line from l, without a comment or trailing blanks. */
+static char *text_from(Loc l)
+{
+	char *s = src_line(l.file, l.line);
+	char *p = s + (l.col - 1 <= (int)strlen(s) ? l.col - 1 : (int)strlen(s));
+	char *h = strchr(p, '#');
+	if (h) *h = '\0';
+	size_t n = strlen(p);
+	while (n && (p[n - 1] == ' ' || p[n - 1] == '\t' || p[n - 1] == '\r')) p[--n] = '\0';
+	return p;
+}
+static Stmt *stmt(StmtKind k, YYLoc l)
+{
+	Stmt *s = xalloc(sizeof *s);
+	s->kind = k;
+	s->loc = LOC(l);
+	s->text = text_from(s->loc);
+	return s;
+}
+static Eqn *eqn(Expr *lhs, int deriv, Expr *rhs, YYLoc l)
+{
+	Eqn *q = xalloc(sizeof *q);
+	q->loc = LOC(l);
+	q->lhs = lhs;
+	q->deriv = deriv;
+	q->rhs = rhs;
+	q->text = text_from(q->loc);
+	return q;
+}
+static Expr *call(ExprKind k, Expr *recv, char *name, Vec *args, YYLoc l)
+{
+	Expr *e = ast_expr(k, LOC(l));
+	e->a = recv;
+	e->name = name;
+	e->args = (Expr **)args->v;
+	e->nargs = args->n;
+	return e;
+}
+static void yyerror(YYLoc *l, Parser *P, const char *msg);
+}
+
+%define api.pure full
+%define api.location.type {YYLoc}
+%locations
+%define parse.error custom
+%expect 0
+%parse-param {Parser *P}
+%lex-param {Parser *P}
+
+%union {
+	double num;
+	char *str;
+	int n;
+	Token *tok;
+	Expr *expr;
+	Eqn *eqn;
+	Stmt *stmt;
+	ObjRef *ref;
+	WatchItem *watch;
+	Vec vec;
+}
+
+%token END 0 "end of file"
+%token <num> NUMBER "number"
+%token <str> IDENT "name"
+%token <n> DOLLAR "object number ($n)"
+%token <tok> UNIT "unit"
+%token NEWLINE "end of line"
+%token INDENT "indented block"
+%token DEDENT "end of indented block"
+%token LEXERROR "invalid token"
+%token <str> PROTECTED "protected name"
+%token USING "'using'"
+%token OBJECT "'object'" DEF "'def'" GLOBAL "'global'" RULE "'rule'" FOR "'for'"
+%token IF "'if'" ELSE "'else'" ASSERT "'assert'" VECTOR "'vector'" INC "'inc'"
+%token TILL "'till'" BY "'by'" WATCH "'watch'" AND "'and'" OR "'or'" NOT "'not'"
+%token EQEQ "'=='" NE "'!='" LE "'<='" GE "'>='"
+
+%left OR
+%left AND
+%precedence NOT
+%nonassoc '<' '>' LE GE EQEQ NE
+%left '+' '-'
+%left '*' '/'
+%precedence UMINUS
+%right '^'
+
+%type <expr> expr postfix primary
+%type <eqn> eqn eqns
+%type <stmt> stmt block defprop defprops
+%type <vec> args args1 names objrefs watches
+%type <ref> objref
+%type <watch> watch
+%type <str> attr
+%type <expr> till by
+
+%%
+
+file:
+	  %empty
+	| file line
+	;
+
+line:
+	  NEWLINE
+	| stmt NEWLINE       { if ($1) layout_append(P, $1); }
+	| block              { if ($1) layout_append(P, $1); }
+	| error NEWLINE      { yyerrok; }
+	;
+
+stmt:
+	  GLOBAL IDENT '=' expr {
+		$$ = stmt(S_GLOBAL, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->value = $4;
+	}
+	| OBJECT IDENT ':' IDENT {
+		$$ = stmt(S_OBJKIND, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->prop = $4; $$->prop_loc = LOC(@4);
+	}
+	| OBJECT IDENT ':' IDENT '=' expr {
+		$$ = stmt(S_PROP, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->prop = $4; $$->prop_loc = LOC(@4);
+		$$->value = $6;
+	}
+	| OBJECT IDENT ':' VECTOR IDENT '=' expr {
+		$$ = stmt(S_PROP, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->prop = $5; $$->prop_loc = LOC(@5);
+		$$->value = $7; $$->isvec = 1;
+	}
+	| VECTOR names {
+		$$ = stmt(S_VECDECL, @$); $$->names = $2;
+	}
+	| RULE attr ':' eqn {
+		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->eqns = $4;
+	}
+	| RULE attr FOR objrefs ':' eqn {
+		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->fors = $4; $$->has_for = 1; $$->eqns = $6;
+	}
+	| ASSERT expr {
+		$$ = stmt(S_ASSERT, @$); $$->cond = $2; $$->text = text_from(LOC(@2));
+	}
+	| INC IDENT till by {
+		$$ = stmt(S_START, @$); $$->var = $2; $$->name_loc = LOC(@2); $$->till = $3; $$->by = $4;
+	}
+	| INC IDENT till by WATCH watches {
+		$$ = stmt(S_START, @$); $$->var = $2; $$->name_loc = LOC(@2); $$->till = $3; $$->by = $4;
+		$$->watch = $6; $$->has_watch = 1;
+	}
+	;
+
+till: %empty { $$ = NULL; } | TILL expr { $$ = $2; } ;
+by:   %empty { $$ = NULL; } | BY expr   { $$ = $2; } ;
+
+attr: %empty { $$ = NULL; } | IDENT { $$ = $1; } ;
+
+block:
+	  DEF IDENT ':' NEWLINE INDENT defprops DEDENT {
+		$$ = stmt(S_DEF, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->body = $6;
+	}
+	| RULE attr ':' IF expr ':' NEWLINE INDENT eqns DEDENT {
+		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->cond = $5; $$->eqns = $9;
+	}
+	| RULE attr ':' IF expr ':' NEWLINE INDENT eqns DEDENT ELSE ':' NEWLINE INDENT eqns DEDENT {
+		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->cond = $5; $$->eqns = $9; $$->else_eqns = $15; $$->has_else = 1;
+	}
+	| RULE attr FOR objrefs ':' IF expr ':' NEWLINE INDENT eqns DEDENT {
+		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->fors = $4; $$->has_for = 1; $$->cond = $7; $$->eqns = $11;
+	}
+	| RULE attr FOR objrefs ':' IF expr ':' NEWLINE INDENT eqns DEDENT ELSE ':' NEWLINE INDENT eqns DEDENT {
+		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->fors = $4; $$->has_for = 1; $$->cond = $7; $$->eqns = $11;
+		$$->else_eqns = $17; $$->has_else = 1;
+	}
+	;
+
+defprops:
+	  defprop            { $$ = $1; }
+	| defprops defprop   {
+		$$ = $1;
+		if ($2) {
+			if (!$$) $$ = $2;
+			else { Stmt *s = $$; while (s->next) s = s->next; s->next = $2; }
+		}
+	}
+	;
+
+defprop:
+	  IDENT '=' expr NEWLINE {
+		$$ = stmt(S_PROP, @$); $$->prop = $1; $$->prop_loc = LOC(@1); $$->value = $3;
+	}
+	| VECTOR IDENT '=' expr NEWLINE {
+		$$ = stmt(S_PROP, @$); $$->prop = $2; $$->prop_loc = LOC(@2); $$->value = $4; $$->isvec = 1;
+	}
+	| error NEWLINE { $$ = NULL; yyerrok; }
+	;
+
+eqns:
+	  eqn NEWLINE        { $$ = $1; }
+	| eqns eqn NEWLINE   { $$ = $1; Eqn *q = $$; while (q->next) q = q->next; q->next = $2; }
+	;
+
+eqn:
+	  expr '=' expr      { $$ = eqn($1, 0, $3, @$); }
+	| IDENT '\'' '=' expr {
+		Expr *e = ast_expr(E_NAME, LOC(@1)); e->name = $1;
+		$$ = eqn(e, 1, $4, @$);
+	}
+	;
+
+names:
+	  IDENT              { $$ = (Vec){ 0 }; vec_push(&$$, $1); }
+	| names ',' IDENT    { $$ = $1; vec_push(&$$, $3); }
+	;
+
+objrefs:
+	  objref             { $$ = (Vec){ 0 }; vec_push(&$$, $1); }
+	| objrefs ',' objref { $$ = $1; vec_push(&$$, $3); }
+	;
+
+objref:
+	  IDENT  { $$ = xalloc(sizeof *$$); $$->loc = LOC(@1); $$->name = $1; $$->index = -1; }
+	| NUMBER { $$ = xalloc(sizeof *$$); $$->loc = LOC(@1); $$->index = $1 >= 0 && $1 < 1e9 ? (int)$1 : 1000000000;
+	           if ($$->index != $1) error_at($$->loc, "object number must be a whole number"); }
+	;
+
+watches:
+	  watch              { $$ = (Vec){ 0 }; vec_push(&$$, $1); }
+	| watches ',' watch  { $$ = $1; vec_push(&$$, $3); }
+	;
+
+watch:
+	  IDENT              { $$ = xalloc(sizeof *$$); $$->loc = LOC(@1); $$->prop = $1; }
+	| IDENT '.' IDENT    { $$ = xalloc(sizeof *$$); $$->loc = LOC(@1); $$->obj = $1; $$->prop = $3; }
+	;
+
+expr:
+	  expr OR expr       { $$ = bin(OR, $1, $3, @2); }
+	| expr AND expr      { $$ = bin(AND, $1, $3, @2); }
+	| NOT expr           { $$ = ast_expr(E_NOT, LOC(@1)); $$->a = $2; }
+	| expr '<' expr      { $$ = bin('<', $1, $3, @2); }
+	| expr '>' expr      { $$ = bin('>', $1, $3, @2); }
+	| expr LE expr       { $$ = bin(LE, $1, $3, @2); }
+	| expr GE expr       { $$ = bin(GE, $1, $3, @2); }
+	| expr EQEQ expr     { $$ = bin(EQEQ, $1, $3, @2); }
+	| expr NE expr       { $$ = bin(NE, $1, $3, @2); }
+	| expr '+' expr      { $$ = bin('+', $1, $3, @2); }
+	| expr '-' expr      { $$ = bin('-', $1, $3, @2); }
+	| expr '*' expr      { $$ = bin('*', $1, $3, @2); }
+	| expr '/' expr      { $$ = bin('/', $1, $3, @2); }
+	| expr '^' expr      { $$ = bin('^', $1, $3, @2); }
+	| '-' expr %prec UMINUS { $$ = ast_expr(E_NEG, LOC(@1)); $$->a = $2; }
+	| '+' expr %prec UMINUS { $$ = $2; }
+	| postfix
+	;
+
+postfix:
+	  primary
+	| postfix '.' IDENT  { $$ = ast_expr(E_FIELD, LOC(@3)); $$->a = $1; $$->name = $3; }
+	| postfix '.' IDENT '(' args ')' { $$ = call(E_METHOD, $1, $3, &$5, @3); }
+	;
+
+primary:
+	  NUMBER             { $$ = ast_expr(E_NUM, LOC(@1)); $$->num = $1; }
+	| NUMBER UNIT        { Expr *n = ast_expr(E_NUM, LOC(@1)); n->num = $1; $$ = with_unit(n, $2); }
+	| IDENT              { $$ = ast_expr(E_NAME, LOC(@1)); $$->name = $1; }
+	| IDENT DOLLAR       { $$ = ast_expr(E_DOLLAR, LOC(@1)); $$->name = $1; $$->n = $2; }
+	| IDENT '(' args ')' { $$ = call(E_CALL, NULL, $1, &$3, @1); }
+	| IDENT '(' args ')' UNIT { $$ = with_unit(call(E_CALL, NULL, $1, &$3, @1), $5); }
+	| '(' expr ')'       { $$ = $2; }
+	| '(' expr ')' UNIT  { $$ = with_unit($2, $4); }
+	| '(' expr ',' expr ',' expr ')' {
+		$$ = ast_expr(E_VEC, LOC(@1)); $$->args = xalloc(3 * sizeof(Expr *)); $$->nargs = 3;
+		$$->args[0] = $2; $$->args[1] = $4; $$->args[2] = $6;
+	}
+	| '(' expr ',' expr ',' expr ')' UNIT {
+		Expr *v = ast_expr(E_VEC, LOC(@1)); v->args = xalloc(3 * sizeof(Expr *)); v->nargs = 3;
+		v->args[0] = $2; v->args[1] = $4; v->args[2] = $6;
+		$$ = with_unit(v, $8);
+	}
+	;
+
+args:
+	  %empty             { $$ = (Vec){ 0 }; }
+	| args1
+	;
+
+args1:
+	  expr               { $$ = (Vec){ 0 }; vec_push(&$$, $1); }
+	| args1 ',' expr     { $$ = $1; vec_push(&$$, $3); }
+	;
+
+%%
+
+static void yyerror(YYLoc *l, Parser *P, const char *msg)
+{
+	(void)P;
+	error_at(LOC(*l), "%s", msg);
+}
+
+static int yyreport_syntax_error(const yypcontext_t *ctx, Parser *P)
+{
+	yysymbol_kind_t got = yypcontext_token(ctx);
+	Loc l = LOC(*yypcontext_location(ctx));
+	if (got == YYSYMBOL_LEXERROR) return 0; /* the scanner reported it */
+	yysymbol_kind_t exp[6];
+	int n = yypcontext_expected_tokens(ctx, exp, 6);
+	int wants_name = 0;
+	for (int i = 0; i < n && i < 6; i++) wants_name |= exp[i] == YYSYMBOL_IDENT;
+	const char *text = layout_token_text(P);
+	if (wants_name && (got == YYSYMBOL_PROTECTED || (got >= YYSYMBOL_USING && got <= YYSYMBOL_NOT))) {
+		error_at(l, "'%s' is a protected name and cannot be used as a name", text);
+		return 0;
+	}
+	if (got == YYSYMBOL_INDENT) {
+		error_at(l, "unexpected indentation");
+		return 0;
+	}
+	char buf[512];
+	size_t k = (size_t)snprintf(buf, sizeof buf, "syntax error: unexpected %s", yysymbol_name(got));
+	if (text && got != YYSYMBOL_NEWLINE && got != YYSYMBOL_YYEOF && got != YYSYMBOL_DEDENT)
+		k += (size_t)snprintf(buf + k, sizeof buf - k, " '%s'", text);
+	if (n > 0 && n <= 5)
+		for (int i = 0; i < n && k < sizeof buf; i++)
+			k += (size_t)snprintf(buf + k, sizeof buf - k, "%s%s", i == 0 ? ", expecting " : " or ",
+			                      yysymbol_name(exp[i]));
+	error_at(l, "%s", buf);
+	return 0;
+}
+
+Stmt *parse_file(int file)
+{
+	Parser *P = layout_new(file);
+	yyparse(P);
+	return layout_result(P);
+}

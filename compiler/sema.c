@@ -1,0 +1,1397 @@
+/*
+ * sema.c - from statements to a resolved model.
+ *
+ * 1. Objects, kinds and globals are built; initial values are constant
+ *    expressions folded with the runtime's own arithmetic (fold_op).
+ * 2. Rules are instantiated: a rule applies to every object ($0) and every
+ *    permitted tuple ($1..$k, spec 2.2.1) that has the properties it reads,
+ *    or to the objects its `for` list names.
+ * 3. Derivative rules (`v' = a`) are found first: their left sides become
+ *    state variables, determined at the start of every evaluation.
+ * 4. The other rules are resolved in source order, except that a rule
+ *    reading RF waits until every rule with attribute F has been resolved
+ *    (RF is their sum). For each instance the target is chosen by the
+ *    precedence of spec 2.4.1 among the variables not yet determined
+ *    (unwatched temporary, then property, then global; the later defined
+ *    first); none left is "overdetermined", an undetermined temporary read
+ *    is "unresolvable". The equation is then solved for the target
+ *    symbolically: it must be linear in it.
+ * 5. Assertions and the watch list are resolved; then gen.c keeps only the
+ *    instances that the derivatives, the watches and the assertions need.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_const_mksa.h>
+
+#include "csfc.h"
+#include "sema.h"
+#include "csf.h"
+#include "parse.h"
+
+/* ---- state of the pass ---- */
+
+static Model *M;
+static Map objects_by_name, globals_by_name, kinds, temps, prop_names, vector_decls;
+static int def_counter;
+
+static const char *const predefined_names[] = { "t", "RF", NULL };
+
+/* ---- folding with the runtime's arithmetic ---- */
+
+#define FOLD_ARGS1 , 0
+#define FOLD_ARGS2 , 0, 3
+#define FOLD_ARGS3 , 0, 3, 6
+#define FOLD_ARGS4 , 0, 3, 6, 9
+
+void fold_op(int op, double in[3][3], double out[3])
+{
+	double m[12] = { 0 };
+	for (int i = 0; i < 3; i++)
+		for (int k = 0; k < 3; k++) m[3 + 3 * i + k] = in[i][k];
+	switch (op) {
+#define OP(name, n, a, b, c, d, syn) case CSF_OP_##name: csf_op_##name(m FOLD_ARGS##n); break;
+#define CTRL(name, n, a, b, c, d, syn)
+#include "opcodes.def"
+#undef OP
+#undef CTRL
+	default: break;
+	}
+	/* VPACK reads scalars from 3, 6, 9: the layout above gives it in[0][0], in[1][0], in[2][0]. */
+	out[0] = m[0];
+	out[1] = m[1];
+	out[2] = m[2];
+}
+
+/* ---- expressions ---- */
+
+static RExpr *rnew(RKind k, Loc l)
+{
+	RExpr *e = xalloc(sizeof *e);
+	e->k = k;
+	e->loc = l;
+	return e;
+}
+
+static RExpr *rconst(double x, Loc l)
+{
+	RExpr *e = rnew(R_CONST, l);
+	e->c[0] = x;
+	return e;
+}
+
+static RExpr *rvconst(const double *v, Loc l)
+{
+	RExpr *e = rnew(R_CONST, l);
+	memcpy(e->c, v, sizeof e->c);
+	e->isvec = 1;
+	return e;
+}
+
+static int is_const(RExpr *e, double x) { return e->k == R_CONST && !e->isvec && e->c[0] == x; }
+
+/* Builds op(a, b, c) of the given result type, folding constant operands. */
+static RExpr *rop(int op, int isvec, Loc l, RExpr *a, RExpr *b, RExpr *c)
+{
+	RExpr *e = rnew(R_OP, l);
+	e->op = op;
+	e->isvec = isvec;
+	e->a[0] = a;
+	e->a[1] = b;
+	e->a[2] = c;
+	e->n = c ? 3 : b ? 2 : 1;
+	int allc = 1;
+	for (int i = 0; i < e->n; i++) allc &= e->a[i]->k == R_CONST;
+	if (allc) {
+		double in[3][3] = { { 0 } }, out[3];
+		for (int i = 0; i < e->n; i++) memcpy(in[i], e->a[i]->c, sizeof in[i]);
+		fold_op(op, in, out);
+		int ok = 1;
+		for (int k = 0; k < (isvec ? 3 : 1); k++) ok &= !isnan(out[k]) && !(out[k] == 0 && signbit(out[k]));
+		if (ok) {
+			RExpr *k = rnew(R_CONST, l);
+			memcpy(k->c, out, sizeof out);
+			k->isvec = isvec;
+			return k;
+		}
+	}
+	return e;
+}
+
+static int opcode_of_func(const char *name, int *nargs)
+{
+	static const struct { const char *n; int op, args; } f[] = {
+		{ "sin", CSF_OP_SIN, 1 }, { "cos", CSF_OP_COS, 1 }, { "tan", CSF_OP_TAN, 1 },
+		{ "asin", CSF_OP_ASIN, 1 }, { "acos", CSF_OP_ACOS, 1 }, { "atan", CSF_OP_ATAN, 1 },
+		{ "sinh", CSF_OP_SINH, 1 }, { "cosh", CSF_OP_COSH, 1 }, { "tanh", CSF_OP_TANH, 1 },
+		{ "exp", CSF_OP_EXP, 1 }, { "log", CSF_OP_LOG, 1 }, { "log10", CSF_OP_LOG10, 1 },
+		{ "sqrt", CSF_OP_SQRT, 1 }, { "abs", CSF_OP_ABS, 1 }, { "atan2", CSF_OP_ATAN2, 2 },
+		{ "min", CSF_OP_MIN, 2 }, { "max", CSF_OP_MAX, 2 },
+	};
+	for (size_t i = 0; i < sizeof f / sizeof f[0]; i++)
+		if (strcmp(f[i].n, name) == 0) {
+			*nargs = f[i].args;
+			return f[i].op;
+		}
+	return -1;
+}
+
+/* ---- resolution context ---- */
+
+typedef struct Ctx {
+	int init;          /* building an initial value: only constants */
+	Object *self;      /* init: the object being defined, if any */
+	Object **bind;
+	int nbind;
+	Vec *reads;        /* Var* read */
+	Vec *rf;           /* Object* whose RF is read */
+	Vec *pending;      /* Var* temporaries read but not yet existing */
+	int failed;
+	int rule_ctx;      /* names may be temporaries */
+} Ctx;
+
+static void add_unique(Vec *v, void *x)
+{
+	if (!v) return;
+	for (int i = 0; i < v->n; i++)
+		if (v->v[i] == x) return;
+	vec_push(v, x);
+}
+
+static int is_predefined(const char *n)
+{
+	for (int i = 0; predefined_names[i]; i++)
+		if (strcmp(n, predefined_names[i]) == 0) return 1;
+	return 0;
+}
+
+static Var *prop_of(Object *o, const char *name)
+{
+	for (int i = 0; i < o->props.n; i++) {
+		Var *v = o->props.v[i];
+		if (strcmp(v->name, name) == 0) return v;
+	}
+	return NULL;
+}
+
+static char *temp_key(const char *name, Object **bind, int nbind)
+{
+	char *k = xstrdup(name);
+	for (int i = 0; i < nbind; i++) k = xprintf("%s\x01%d", k, bind[i]->index);
+	return k;
+}
+
+/* The temporary `name` of a binding: the tuple's own, else $0's. */
+static Var *find_temp(const char *name, Object **bind, int nbind)
+{
+	Var *v = map_get(&temps, temp_key(name, bind, nbind));
+	if (!v && nbind > 1) v = map_get(&temps, temp_key(name, bind, 1));
+	return v;
+}
+
+static RExpr *var_ref(Ctx *C, Var *v, Loc l)
+{
+	if (C->init) {
+		if (v->kind == V_TIME) {
+			error_at(l, "'t' is not known at compile time; an initial value must be a constant");
+			C->failed = 1;
+			return rconst(0, l);
+		}
+		return v->isvec ? rvconst(v->init, l) : rconst(v->init[0], l);
+	}
+	RExpr *e = rnew(R_VAR, l);
+	e->var = v;
+	e->isvec = v->isvec;
+	add_unique(C->reads, v);
+	return e;
+}
+
+static RExpr *build(Ctx *C, Expr *x);
+
+static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int explicit_obj)
+{
+	Loc l = x->loc;
+	if (!explicit_obj) {
+		if (strcmp(name, "t") == 0) return var_ref(C, M->time, l);
+		if (strcmp(name, "RF") == 0) {
+			if (C->init || !o) {
+				error_at(l, "RF is only defined in rules");
+				C->failed = 1;
+				return rvconst((double[3]){ 0, 0, 0 }, l);
+			}
+			RExpr *e = rnew(R_RF, l);
+			e->obj = o;
+			e->isvec = 1;
+			add_unique(C->rf, o);
+			return e;
+		}
+		Var *g = map_get(&globals_by_name, name);
+		if (g) return var_ref(C, g, l);
+	}
+	if (o) {
+		Var *p = prop_of(o, name);
+		if (p) return var_ref(C, p, l);
+	}
+	if (C->init) {
+		if (explicit_obj) error_at(l, "object '%s' has no property '%s' (yet)", o->name, name);
+		else error_at(l, "unknown name '%s' in an initial value", name);
+		C->failed = 1;
+		return rconst(0, l);
+	}
+	if (map_get(&prop_names, name) || explicit_obj) {
+		if (explicit_obj) {
+			Var *t = map_get(&temps, temp_key(name, &o, 1));
+			if (t) return var_ref(C, t, l);
+			error_at(l, "object '%s' has no property '%s'", o->name, name);
+		}
+		C->failed = 2; /* not applicable to this binding */
+		return rconst(0, l);
+	}
+	/* A temporary of this binding (or, for NAME$n, of object $n). */
+	Object **bind = C->bind;
+	int nbind = C->nbind;
+	if (o != C->bind[0]) {
+		bind = xalloc(sizeof *bind);
+		bind[0] = o;
+		nbind = 1;
+	}
+	Var *t = find_temp(name, bind, nbind);
+	if (!t) {
+		for (int i = 0; C->pending && i < C->pending->n; i++) {
+			Var *p = C->pending->v[i];
+			if (strcmp(p->name, name) == 0 && p->obj == o) t = p;
+		}
+	}
+	if (!t) {
+		t = xalloc(sizeof *t);
+		t->kind = V_TEMP;
+		t->name = (char *)name;
+		t->obj = o;
+		t->loc = l;
+		t->slot = -1;
+		t->isvec = map_get(&vector_decls, name) != NULL;
+		t->key = temp_key(name, bind, nbind);
+		t->order = def_counter++;
+		vec_push(C->pending, t);
+	}
+	return var_ref(C, t, l);
+}
+
+static void type_error(Ctx *C, Loc l, const char *msg)
+{
+	error_at(l, "%s", msg);
+	C->failed = 1;
+}
+
+static RExpr *build_method(Ctx *C, Expr *x, RExpr *r, const char *name, Expr **args, int nargs)
+{
+	Loc l = x->loc;
+	if (!r->isvec) {
+		if (!r->isbool) error_at(l, "'.%s' needs a vector, but this is a scalar", name);
+		else error_at(l, "'.%s' needs a vector, but this is a condition", name);
+		C->failed = 1;
+		return rconst(0, l);
+	}
+	static const struct { const char *n; int op, nargs, argvec, resvec; } m[] = {
+		{ "mul", CSF_OP_VMUL, 1, 0, 1 }, { "dot", CSF_OP_VDOT, 1, 1, 0 }, { "cross", CSF_OP_VCROSS, 1, 1, 1 },
+		{ "mag", CSF_OP_VMAG, 0, 0, 0 }, { "angle", CSF_OP_VANGLE, 1, 1, 0 }, { "unit", CSF_OP_VUNIT, 0, 0, 1 },
+		{ "proj", CSF_OP_VPROJ, 1, 1, 1 },
+	};
+	for (size_t i = 0; i < sizeof m / sizeof m[0]; i++) {
+		if (strcmp(m[i].n, name) != 0) continue;
+		if (nargs != m[i].nargs) {
+			error_at(l, "'.%s' takes %d argument%s, not %d", name, m[i].nargs, m[i].nargs == 1 ? "" : "s", nargs);
+			C->failed = 1;
+			return rconst(0, l);
+		}
+		RExpr *a = nargs ? build(C, args[0]) : NULL;
+		if (a && (a->isvec != m[i].argvec || a->isbool)) {
+			error_at(args[0]->loc, "the argument of '.%s' must be a %s", name, m[i].argvec ? "vector" : "scalar");
+			C->failed = 1;
+			return rconst(0, l);
+		}
+		return rop(m[i].op, m[i].resvec, l, r, a, NULL);
+	}
+	error_at(l, "unknown vector method '.%s' (known: .mul .dot .cross .mag .angle .unit .proj .x .y .z)", name);
+	C->failed = 1;
+	return rconst(0, l);
+}
+
+static RExpr *build_bin(Ctx *C, Expr *x)
+{
+	RExpr *a = build(C, x->a), *b = build(C, x->b);
+	Loc l = x->loc;
+	int op = x->op;
+	if (op == AND || op == OR) {
+		if (!a->isbool || !b->isbool) return type_error(C, l, "'and' and 'or' combine conditions"), a;
+		RExpr *e = rop(op == AND ? CSF_OP_AND : CSF_OP_OR, 0, l, a, b, NULL);
+		e->isbool = 1;
+		return e;
+	}
+	if (a->isbool || b->isbool) return type_error(C, l, "a condition cannot be used as a number"), a;
+	switch (op) {
+	case '<': case '>': case LE: case GE: case EQEQ: case NE: {
+		if (a->isvec || b->isvec) return type_error(C, l, "vectors cannot be compared; compare .mag or a component"), a;
+		int o = op == '<' ? CSF_OP_LT : op == '>' ? CSF_OP_GT : op == LE ? CSF_OP_LE : op == GE ? CSF_OP_GE
+		        : op == EQEQ ? CSF_OP_EQ : CSF_OP_NE;
+		RExpr *e = rop(o, 0, l, a, b, NULL);
+		e->isbool = 1;
+		return e;
+	}
+	case '+': case '-':
+		if (a->isvec != b->isvec)
+			return type_error(C, l, op == '+' ? "cannot add a vector and a scalar" : "cannot subtract a vector and a scalar"), a;
+		return rop(a->isvec ? (op == '+' ? CSF_OP_VADD : CSF_OP_VSUB) : (op == '+' ? CSF_OP_ADD : CSF_OP_SUB), a->isvec, l,
+		           a, b, NULL);
+	case '*':
+		if (a->isvec && b->isvec) return type_error(C, l, "cannot multiply two vectors: use .dot or .cross"), a;
+		if (a->isvec) return rop(CSF_OP_VMUL, 1, l, a, b, NULL);
+		if (b->isvec) return rop(CSF_OP_VMUL, 1, l, b, a, NULL);
+		return rop(CSF_OP_MUL, 0, l, a, b, NULL);
+	case '/':
+		if (b->isvec) return type_error(C, l, "cannot divide by a vector"), a;
+		return rop(a->isvec ? CSF_OP_VDIV : CSF_OP_DIV, a->isvec, l, a, b, NULL);
+	case '^':
+		if (a->isvec || b->isvec) return type_error(C, l, "'^' needs scalars"), a;
+		return rop(CSF_OP_POW, 0, l, a, b, NULL);
+	}
+	return type_error(C, l, "unknown operator"), a;
+}
+
+static RExpr *build_coords(Ctx *C, Expr *x)
+{
+	RExpr *r[3];
+	for (int i = 0; i < 3; i++) {
+		r[i] = build(C, x->args[i]);
+		if (r[i]->isvec || r[i]->isbool || r[i]->k != R_CONST) {
+			type_error(C, x->args[i]->loc, "coordinates must be constant scalars");
+			return rvconst((double[3]){ 0, 0, 0 }, x->loc);
+		}
+	}
+	double a = r[0]->c[0], b = r[1]->c[0], c = r[2]->c[0], v[3];
+	if (strcmp(x->name, "sph") == 0) { /* r, theta from +z, phi from +x */
+		v[0] = a * sin(b) * cos(c);
+		v[1] = a * sin(b) * sin(c);
+		v[2] = a * cos(b);
+	} else if (strcmp(x->name, "cyl") == 0) { /* rho, phi, z */
+		v[0] = a * cos(b);
+		v[1] = a * sin(b);
+		v[2] = c;
+	} else {
+		v[0] = a;
+		v[1] = b;
+		v[2] = c;
+	}
+	return rvconst(v, x->loc);
+}
+
+static RExpr *build(Ctx *C, Expr *x)
+{
+	Loc l = x->loc;
+	switch (x->kind) {
+	case E_NUM: return rconst(x->num, l);
+	case E_NAME: return build_name(C, x, x->name, C->init ? C->self : C->bind[0], 0);
+	case E_DOLLAR:
+		if (C->init) return type_error(C, l, "'$n' is only meaningful in rules"), rconst(0, l);
+		if (x->n >= C->nbind) return type_error(C, l, "no such object in this rule"), rconst(0, l);
+		return build_name(C, x, x->name, C->bind[x->n], 0);
+	case E_FIELD: {
+		if (x->a->kind == E_NAME) {
+			Object *o = map_get(&objects_by_name, x->a->name);
+			if (o && !(C->bind && prop_of(C->bind[0], x->a->name)) && !map_get(&globals_by_name, x->a->name))
+				return build_name(C, x, x->name, o, 1);
+		}
+		RExpr *r = build(C, x->a);
+		const char *n = x->name;
+		if ((n[0] == 'x' || n[0] == 'y' || n[0] == 'z') && n[1] == '\0') {
+			if (!r->isvec) return type_error(C, l, "a component (.x .y .z) needs a vector"), rconst(0, l);
+			if (r->k == R_CONST) return rconst(r->c[n[0] - 'x'], l);
+			RExpr *e = rnew(R_COMP, l);
+			e->a[0] = r;
+			e->n = 1;
+			e->comp = n[0] - 'x';
+			return e;
+		}
+		return build_method(C, x, r, n, NULL, 0);
+	}
+	case E_METHOD: return build_method(C, x, build(C, x->a), x->name, x->args, x->nargs);
+	case E_CALL: {
+		if (!strcmp(x->name, "sph") || !strcmp(x->name, "cyl") || !strcmp(x->name, "cart")) {
+			if (!C->init) return type_error(C, l, "local coordinates (sph, cyl, cart) are only for initial values"), rconst(0, l);
+			if (x->nargs != 3) return type_error(C, l, "local coordinates take 3 values"), rconst(0, l);
+			return build_coords(C, x);
+		}
+		int nargs, op = opcode_of_func(x->name, &nargs);
+		if (op < 0) return type_error(C, l, xprintf("unknown function '%s'", x->name)), rconst(0, l);
+		if (x->nargs != nargs)
+			return type_error(C, l, xprintf("'%s' takes %d argument%s, not %d", x->name, nargs, nargs == 1 ? "" : "s", x->nargs)),
+			       rconst(0, l);
+		RExpr *a[2] = { NULL, NULL };
+		for (int i = 0; i < nargs; i++) {
+			a[i] = build(C, x->args[i]);
+			if (a[i]->isvec || a[i]->isbool)
+				return type_error(C, x->args[i]->loc, xprintf("'%s' needs a scalar argument", x->name)), rconst(0, l);
+		}
+		return rop(op, 0, l, a[0], a[1], NULL);
+	}
+	case E_VEC: {
+		RExpr *c[3];
+		for (int i = 0; i < 3; i++) {
+			c[i] = build(C, x->args[i]);
+			if (c[i]->isvec || c[i]->isbool)
+				return type_error(C, x->args[i]->loc, "a vector's components must be scalars"), rconst(0, l);
+		}
+		return rop(CSF_OP_VPACK, 1, l, c[0], c[1], c[2]);
+	}
+	case E_UNIT: {
+		RExpr *a = build(C, x->a);
+		if (a->isbool) return type_error(C, l, "a unit cannot follow a condition"), a;
+		if (x->unit.factor == 1) return a;
+		return rop(a->isvec ? CSF_OP_VMUL : CSF_OP_MUL, a->isvec, l, a, rconst(x->unit.factor, l), NULL);
+	}
+	case E_BIN: return build_bin(C, x);
+	case E_NEG: {
+		RExpr *a = build(C, x->a);
+		if (a->isbool) return type_error(C, l, "cannot negate a condition: use 'not'"), a;
+		return rop(a->isvec ? CSF_OP_VNEG : CSF_OP_NEG, a->isvec, l, a, NULL, NULL);
+	}
+	case E_NOT: {
+		RExpr *a = build(C, x->a);
+		if (!a->isbool) return type_error(C, l, "'not' needs a condition"), a;
+		RExpr *e = rop(CSF_OP_NOT, 0, l, a, NULL, NULL);
+		e->isbool = 1;
+		return e;
+	}
+	}
+	return rconst(0, l);
+}
+
+/* ---- objects, kinds, globals ---- */
+
+static int check_name(const char *n, Loc l, const char *what)
+{
+	if (is_predefined(n)) {
+		error_at(l, "'%s' is predefined and cannot name %s", n, what);
+		return 0;
+	}
+	return 1;
+}
+
+static Var *new_global(const char *name, int isvec, const double *v, Loc l)
+{
+	Var *g = xalloc(sizeof *g);
+	g->kind = V_GLOBAL;
+	g->name = (char *)name;
+	g->isvec = isvec;
+	memcpy(g->init, v, sizeof g->init);
+	g->loc = l;
+	g->slot = -1;
+	g->order = def_counter++;
+	vec_push(&M->globals, g);
+	map_put(&globals_by_name, g->name, g);
+	return g;
+}
+
+static void predefine(void)
+{
+	Loc none = { 0, 0, 0 };
+	M->time = xalloc(sizeof *M->time);
+	M->time->kind = V_TIME;
+	M->time->name = "t";
+	M->time->slot = -1;
+	new_global("g", 1, (double[3]){ 0, 0, -GSL_CONST_MKSA_GRAV_ACCEL }, none);
+	new_global("G", 0, (double[3]){ GSL_CONST_MKSA_GRAVITATIONAL_CONSTANT, 0, 0 }, none);
+	new_global("c", 0, (double[3]){ GSL_CONST_MKSA_SPEED_OF_LIGHT, 0, 0 }, none);
+	new_global("e", 0, (double[3]){ M_E, 0, 0 }, none);
+	new_global("pi", 0, (double[3]){ M_PI, 0, 0 }, none);
+}
+
+static RExpr *const_value(Expr *x, Object *self, int *ok)
+{
+	Ctx C = { 0 };
+	C.init = 1;
+	C.self = self;
+	RExpr *r = build(&C, x);
+	*ok = !C.failed;
+	if (*ok && (r->k != R_CONST || r->isbool)) {
+		error_at(x->loc, r->isbool ? "a value cannot be a condition" : "this value is not known at compile time");
+		*ok = 0;
+	}
+	return r;
+}
+
+static Object *get_object(const char *name, Loc l)
+{
+	Object *o = map_get(&objects_by_name, name);
+	if (o) return o;
+	if (!check_name(name, l, "an object")) return NULL;
+	if (map_get(&globals_by_name, name)) {
+		error_at(l, "'%s' is a global and cannot name an object", name);
+		return NULL;
+	}
+	o = xalloc(sizeof *o);
+	o->name = (char *)name;
+	o->loc = l;
+	o->index = M->objects.n;
+	vec_push(&M->objects, o);
+	map_put(&objects_by_name, o->name, o);
+	return o;
+}
+
+/* Defines or overrides property p of o from a property statement. */
+static void set_prop(Object *o, Stmt *s, int from_kind)
+{
+	if (!check_name(s->prop, s->prop_loc, "a property")) return;
+	if (map_get(&globals_by_name, s->prop)) {
+		error_at(s->prop_loc, "'%s' is a global constant; a property cannot have the same name", s->prop);
+		return;
+	}
+	int ok;
+	RExpr *r = const_value(s->value, o, &ok);
+	if (!ok) return;
+	if (s->isvec && !r->isvec) {
+		error_at(s->value->loc, "property '%s' is declared a vector but its value is a scalar", s->prop);
+		return;
+	}
+	Var *p = prop_of(o, s->prop);
+	if (p) {
+		if (!p->from_kind) {
+			error_at(s->prop_loc, "property '%s' of object '%s' is already defined", s->prop, o->name);
+			note_at(p->loc, "defined here");
+			return;
+		}
+		if (p->isvec != r->isvec) {
+			error_at(s->value->loc, "property '%s' is a %s; this value is a %s", s->prop, p->isvec ? "vector" : "scalar",
+			         r->isvec ? "vector" : "scalar");
+			return;
+		}
+		memcpy(p->init, r->c, sizeof p->init);
+		p->loc = s->prop_loc;
+		p->from_kind = from_kind;
+		return;
+	}
+	p = xalloc(sizeof *p);
+	p->kind = V_PROP;
+	p->name = s->prop;
+	p->obj = o;
+	p->isvec = r->isvec;
+	memcpy(p->init, r->c, sizeof p->init);
+	p->loc = s->prop_loc;
+	p->slot = -1;
+	p->order = def_counter++;
+	p->from_kind = from_kind;
+	vec_push(&o->props, p);
+	map_put(&prop_names, p->name, p);
+}
+
+static void build_objects(Stmt *stmts)
+{
+	for (Stmt *s = stmts; s; s = s->next) {
+		switch (s->kind) {
+		case S_GLOBAL: {
+			if (!check_name(s->name, s->name_loc, "a global")) break;
+			int ok;
+			RExpr *r = const_value(s->value, NULL, &ok);
+			if (!ok) break;
+			Var *g = map_get(&globals_by_name, s->name);
+			if (g) {
+				if (g->isvec != r->isvec) {
+					error_at(s->value->loc, "'%s' is a %s; it cannot be overridden by a %s", s->name,
+					         g->isvec ? "vector" : "scalar", r->isvec ? "vector" : "scalar");
+					break;
+				}
+				memcpy(g->init, r->c, sizeof g->init);
+				g->loc = s->name_loc;
+			} else if (map_get(&objects_by_name, s->name) || map_get(&prop_names, s->name)) {
+				error_at(s->name_loc, "'%s' already names an object or a property", s->name);
+			} else {
+				new_global(s->name, r->isvec, r->c, s->name_loc);
+			}
+			break;
+		}
+		case S_DEF:
+			if (map_get(&kinds, s->name)) {
+				error_at(s->name_loc, "kind '%s' is already defined", s->name);
+				break;
+			}
+			map_put(&kinds, s->name, s);
+			break;
+		case S_OBJKIND: {
+			Stmt *k = map_get(&kinds, s->prop);
+			if (!k) {
+				error_at(s->prop_loc, "unknown kind '%s'", s->prop);
+				break;
+			}
+			Object *o = get_object(s->name, s->name_loc);
+			if (!o) break;
+			for (Stmt *p = k->body; p; p = p->next)
+				if (!prop_of(o, p->prop)) set_prop(o, p, 1);
+			break;
+		}
+		case S_PROP: {
+			Object *o = get_object(s->name, s->name_loc);
+			if (o) set_prop(o, s, 0);
+			break;
+		}
+		default:
+			break;
+		}
+	}
+}
+
+/* ---- rule instances ---- */
+
+static int max_dollar(Expr *x)
+{
+	if (!x) return 0;
+	int m = x->kind == E_DOLLAR ? x->n : 0;
+	int a = max_dollar(x->a), b = max_dollar(x->b);
+	if (a > m) m = a;
+	if (b > m) m = b;
+	for (int i = 0; i < x->nargs; i++) {
+		int c = max_dollar(x->args[i]);
+		if (c > m) m = c;
+	}
+	return m;
+}
+
+static int reads_rf(Expr *x)
+{
+	if (!x) return 0;
+	if (x->kind == E_NAME && strcmp(x->name, "RF") == 0) return 1;
+	if (reads_rf(x->a) || reads_rf(x->b)) return 1;
+	for (int i = 0; i < x->nargs; i++)
+		if (reads_rf(x->args[i])) return 1;
+	return 0;
+}
+
+static int stmt_max_dollar(Stmt *s)
+{
+	int m = max_dollar(s->cond);
+	for (int b = 0; b < 2; b++)
+		for (Eqn *q = b ? s->else_eqns : s->eqns; q; q = q->next) {
+			int k = max_dollar(q->lhs), r = max_dollar(q->rhs);
+			if (k > m) m = k;
+			if (r > m) m = r;
+		}
+	return m;
+}
+
+static int stmt_reads_rf(Stmt *s)
+{
+	if (reads_rf(s->cond)) return 1;
+	for (int b = 0; b < 2; b++)
+		for (Eqn *q = b ? s->else_eqns : s->eqns; q; q = q->next)
+			if (reads_rf(q->lhs) || reads_rf(q->rhs)) return 1;
+	return 0;
+}
+
+/* Does every name the statement reads exist for this binding? (Without reporting.) */
+static int names_apply(Expr *x, Object **bind, int nbind, const char **missing)
+{
+	if (!x) return 1;
+	if (x->kind == E_NAME || x->kind == E_DOLLAR) {
+		Object *o = x->kind == E_DOLLAR ? (x->n < nbind ? bind[x->n] : NULL) : bind[0];
+		if (!o) return 1;
+		if (x->kind == E_NAME && (is_predefined(x->name) || map_get(&globals_by_name, x->name))) return 1;
+		if (map_get(&prop_names, x->name) && !prop_of(o, x->name)) {
+			*missing = x->name;
+			return 0;
+		}
+		return 1;
+	}
+	if (x->kind == E_FIELD && x->a->kind == E_NAME && map_get(&objects_by_name, x->a->name) &&
+	    !prop_of(bind[0], x->a->name))
+		return 1;
+	if (!names_apply(x->a, bind, nbind, missing) || !names_apply(x->b, bind, nbind, missing)) return 0;
+	for (int i = 0; i < x->nargs; i++)
+		if (!names_apply(x->args[i], bind, nbind, missing)) return 0;
+	return 1;
+}
+
+static int stmt_applies(Stmt *s, Object **bind, int nbind, const char **missing)
+{
+	if (!names_apply(s->cond, bind, nbind, missing)) return 0;
+	for (int b = 0; b < 2; b++)
+		for (Eqn *q = b ? s->else_eqns : s->eqns; q; q = q->next)
+			if (!names_apply(q->lhs, bind, nbind, missing) || !names_apply(q->rhs, bind, nbind, missing)) return 0;
+	return 1;
+}
+
+/* Calls f for every binding the statement applies to; returns how many. */
+static int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
+{
+	int k = stmt_max_dollar(s);
+	int nobj = M->objects.n;
+	int count = 0;
+	const char *missing = NULL;
+	if (s->has_for) {
+		int n = s->fors.n;
+		Object **bind = xalloc((size_t)n * sizeof *bind);
+		for (int i = 0; i < n; i++) {
+			ObjRef *r = s->fors.v[i];
+			Object *o = r->name ? map_get(&objects_by_name, r->name)
+			                    : (r->index < nobj ? M->objects.v[r->index] : NULL);
+			if (!o) {
+				if (r->name) error_at(r->loc, "unknown object '%s'", r->name);
+				else error_at(r->loc, "there is no object number %d (objects are numbered from 0)", r->index);
+				return -1;
+			}
+			for (int j = 0; j < i; j++)
+				if (bind[j] == o) {
+					error_at(r->loc, "object '%s' is named twice in 'for'", o->name);
+					return -1;
+				}
+			bind[i] = o;
+		}
+		if (k >= n) {
+			error_at(s->loc, "the rule reads $%d but 'for' names only %d object%s", k, n, n == 1 ? "" : "s");
+			return -1;
+		}
+		if (!stmt_applies(s, bind, n, &missing)) {
+			error_at(s->loc, "this rule reads '%s', which object '%s' does not have", missing, bind[0]->name);
+			return -1;
+		}
+		f(s, bind, n);
+		return 1;
+	}
+	int *idx = xalloc((size_t)(k + 1) * sizeof *idx);
+	for (int i0 = 0; i0 < nobj; i0++) {
+		/* $1..$k: combinations of the other objects in ascending order (k == 1: every other object) */
+		int others = nobj - 1;
+		if (k > others) break;
+		for (int j = 0; j < k; j++) idx[j] = j;
+		for (;;) {
+			Object **bind = xalloc((size_t)(k + 1) * sizeof *bind);
+			bind[0] = M->objects.v[i0];
+			for (int j = 0; j < k; j++) bind[j + 1] = M->objects.v[idx[j] < i0 ? idx[j] : idx[j] + 1];
+			if (stmt_applies(s, bind, k + 1, &missing)) {
+				f(s, bind, k + 1);
+				count++;
+			}
+			int j = k - 1;
+			while (j >= 0 && idx[j] == others - k + j) j--;
+			if (j < 0) break;
+			idx[j]++;
+			for (int q = j + 1; q < k; q++) idx[q] = idx[q - 1] + 1;
+		}
+	}
+	if (count == 0) {
+		if (missing) error_at(s->loc, "this %s applies to no object: none has '%s'", s->kind == S_ASSERT ? "assertion" : "rule", missing);
+		else error_at(s->loc, "this %s applies to no object", s->kind == S_ASSERT ? "assertion" : "rule");
+		return -1;
+	}
+	return count;
+}
+
+static int add_src(Loc l, char *text)
+{
+	SrcEntry *e = xalloc(sizeof *e);
+	e->loc = l;
+	e->text = text;
+	vec_push(&M->srcs, e);
+	return M->srcs.n - 1;
+}
+
+static Inst *new_inst(Stmt *s, Object **bind, int nbind)
+{
+	Inst *I = xalloc(sizeof *I);
+	I->st = s;
+	I->bind = bind;
+	I->nbind = nbind;
+	I->assert_index = -1;
+	I->isF = s->attr && strcmp(s->attr, "F") == 0;
+	return I;
+}
+
+static const char *var_label(Var *v)
+{
+	if (!v->obj) return v->name;
+	return xprintf("%s.%s", v->obj->name, v->name);
+}
+
+static int determined(Var *v) { return v->kind == V_TIME || v->state || v->det != NULL; }
+
+static void explain_det(Var *v)
+{
+	if (v->kind == V_TIME) return;
+	if (v->state) {
+		Inst *d = v->deriv;
+		note_at(d->st->loc, "%s is a state variable, integrated by this rule", var_label(v));
+	} else if (v->det) {
+		note_at(v->det->st->loc, "%s is determined by this rule", var_label(v));
+	}
+}
+
+/* ---- solving ---- */
+
+/* e = a*x + b, where x is the target; a is a scalar (NULL: 0), b of e's type (NULL: 0). */
+typedef struct Lin { RExpr *a, *b; int ok; } Lin;
+
+static int contains(RExpr *e, Var *x)
+{
+	if (e->k == R_VAR) return e->var == x;
+	for (int i = 0; i < e->n; i++)
+		if (contains(e->a[i], x)) return 1;
+	return 0;
+}
+
+static RExpr *sadd(RExpr *p, RExpr *q, int sub, Loc l)
+{
+	if (!q) return p;
+	if (!p) return sub ? rop(q->isvec ? CSF_OP_VNEG : CSF_OP_NEG, q->isvec, l, q, NULL, NULL) : q;
+	return rop(p->isvec ? (sub ? CSF_OP_VSUB : CSF_OP_VADD) : (sub ? CSF_OP_SUB : CSF_OP_ADD), p->isvec, l, p, q, NULL);
+}
+
+static RExpr *smul(RExpr *p, RExpr *s, Loc l) /* p * scalar s */
+{
+	if (!p) return NULL;
+	if (is_const(s, 1)) return p;
+	if (!p->isvec && is_const(p, 1)) return s;
+	return rop(p->isvec ? CSF_OP_VMUL : CSF_OP_MUL, p->isvec, l, p, s, NULL);
+}
+
+static RExpr *sdiv(RExpr *p, RExpr *s, Loc l)
+{
+	if (!p) return NULL;
+	if (is_const(s, 1)) return p;
+	return rop(p->isvec ? CSF_OP_VDIV : CSF_OP_DIV, p->isvec, l, p, s, NULL);
+}
+
+static Lin lin(RExpr *e, Var *x)
+{
+	Lin r = { NULL, NULL, 1 };
+	if (!contains(e, x)) {
+		r.b = e;
+		return r;
+	}
+	if (e->k == R_VAR) {
+		r.a = rconst(1, e->loc);
+		return r;
+	}
+	if (e->k != R_OP) {
+		r.ok = 0;
+		return r;
+	}
+	Lin p = lin(e->a[0], x), q = e->n > 1 ? lin(e->a[1], x) : (Lin){ NULL, NULL, 1 };
+	if (!p.ok || !q.ok) return (Lin){ NULL, NULL, 0 };
+	Loc l = e->loc;
+	switch (e->op) {
+	case CSF_OP_ADD: case CSF_OP_VADD: case CSF_OP_SUB: case CSF_OP_VSUB: {
+		int sub = e->op == CSF_OP_SUB || e->op == CSF_OP_VSUB;
+		r.a = p.a && q.a ? sadd(p.a, q.a, sub, l) : p.a ? p.a : q.a ? sadd(NULL, q.a, sub, l) : NULL;
+		r.b = sadd(p.b, q.b, sub, l);
+		return r;
+	}
+	case CSF_OP_NEG: case CSF_OP_VNEG:
+		r.a = p.a ? sadd(NULL, p.a, 1, l) : NULL;
+		r.b = p.b ? sadd(NULL, p.b, 1, l) : NULL;
+		return r;
+	case CSF_OP_MUL: case CSF_OP_VMUL:
+		if (p.a && !q.a) {
+			r.a = smul(p.a, e->a[1], l);
+			r.b = smul(p.b, e->a[1], l);
+			return r;
+		}
+		if (q.a && !p.a && e->op == CSF_OP_MUL) {
+			r.a = smul(q.a, e->a[0], l);
+			r.b = smul(q.b, e->a[0], l);
+			return r;
+		}
+		break;
+	case CSF_OP_DIV: case CSF_OP_VDIV:
+		if (p.a && !q.a) {
+			r.a = sdiv(p.a, e->a[1], l);
+			r.b = sdiv(p.b, e->a[1], l);
+			return r;
+		}
+		break;
+	}
+	return (Lin){ NULL, NULL, 0 };
+}
+
+/* Solves lhs = rhs for x. Returns NULL (after an error) when it cannot. */
+static RExpr *solve(RExpr *lhs, RExpr *rhs, Var *x, Loc l, const char *text)
+{
+	int inl = contains(lhs, x), inr = contains(rhs, x);
+	if (lhs->k == R_VAR && lhs->var == x && !inr) return rhs;
+	if (rhs->k == R_VAR && rhs->var == x && !inl) return lhs;
+	Lin p = lin(lhs, x), q = lin(rhs, x);
+	if (!p.ok || !q.ok) {
+		error_at(l, "cannot solve '%s' for %s: it is not linear in %s", text, var_label(x), x->name);
+		return NULL;
+	}
+	/* p.a x + p.b = q.a x + q.b  =>  x = (q.b - p.b) / (p.a - q.a); one side without x keeps its form */
+	RExpr *num, *den;
+	if (!inl) {
+		num = q.b ? sadd(lhs, q.b, 1, l) : lhs;
+		den = q.a;
+	} else if (!inr) {
+		num = p.b ? sadd(rhs, p.b, 1, l) : rhs;
+		den = p.a;
+	} else {
+		den = sadd(p.a, q.a, 1, l);
+		num = q.b && p.b ? sadd(q.b, p.b, 1, l) : q.b ? q.b : p.b ? sadd(NULL, p.b, 1, l) : NULL;
+	}
+	if (!den || is_const(den, 0)) {
+		error_at(l, "cannot solve '%s' for %s: %s cancels out", text, var_label(x), x->name);
+		return NULL;
+	}
+	if (!num) num = x->isvec ? rvconst((double[3]){ 0, 0, 0 }, l) : rconst(0, l);
+	if (is_const(den, -1)) return sadd(NULL, num, 1, l);
+	return sdiv(num, den, l);
+}
+
+/* ---- resolving one rule instance ---- */
+
+static int cur_src; /* source entry of the statement being instantiated */
+
+static int var_class(Var *v)
+{
+	switch (v->kind) {
+	case V_TEMP: return 1;
+	case V_PROP: return 2;
+	case V_GLOBAL: return 3;
+	default: return 9;
+	}
+}
+
+static const char *class_name(Var *v)
+{
+	switch (v->kind) {
+	case V_TEMP: return "unwatched temporary";
+	case V_PROP: return "watched variable";
+	case V_GLOBAL: return "global";
+	default: return "time";
+	}
+}
+
+static void register_temp(Var *t)
+{
+	if (map_get(&temps, t->key)) return;
+	if (!check_name(t->name, t->loc, "a temporary")) return;
+	map_put(&temps, t->key, t);
+	vec_push(&M->temps, t);
+}
+
+/*
+ * Resolves one equation of instance I: chooses the target among the
+ * undetermined variables, solves for it, records the assignment. Returns
+ * the target, or NULL after reporting an error.
+ */
+static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
+{
+	Vec reads = { 0 }, pending = { 0 }, rf = { 0 };
+	Ctx C = { 0 };
+	C.bind = I->bind;
+	C.nbind = I->nbind;
+	C.reads = &reads;
+	C.rf = &rf;
+	C.pending = &pending;
+	C.rule_ctx = 1;
+	RExpr *lhs = build(&C, q->lhs), *rhs = build(&C, q->rhs);
+	if (C.failed) return NULL;
+	if (lhs->isbool || rhs->isbool) {
+		error_at(q->loc, "an equation relates values, not conditions");
+		return NULL;
+	}
+	Var *x = NULL;
+	for (int i = 0; i < reads.n; i++) {
+		Var *v = reads.v[i];
+		if (determined(v)) continue;
+		if (!x || var_class(v) < var_class(x) || (var_class(v) == var_class(x) && v->order > x->order)) x = v;
+	}
+	if (!x) {
+		error_at(q->loc, "rule '%s' is overdetermined%s%s: every variable in it is already determined", q->text,
+		         I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "");
+		for (int i = 0; i < reads.n; i++) explain_det(reads.v[i]);
+		return NULL;
+	}
+	for (int i = 0; i < reads.n; i++) {
+		Var *v = reads.v[i];
+		if (v != x && v->kind == V_TEMP && !determined(v)) {
+			error_at(q->loc, "rule '%s' is unresolvable%s%s: it solves for %s but also reads %s, which no earlier rule determines",
+			         q->text, I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", x->name, v->name);
+			return NULL;
+		}
+	}
+	/* A new temporary takes its type from the other side of its equation. */
+	if (x->kind == V_TEMP && !map_get(&temps, x->key)) {
+		RExpr *side = lhs->k == R_VAR && lhs->var == x ? lhs : rhs->k == R_VAR && rhs->var == x ? rhs : NULL;
+		if (side) {
+			side->isvec = (side == lhs ? rhs : lhs)->isvec;
+			if (map_get(&vector_decls, x->name) && !side->isvec) {
+				error_at(q->loc, "'%s' is declared a vector, but '%s' makes it a scalar", x->name, q->text);
+				return NULL;
+			}
+			x->isvec = side->isvec;
+		}
+	}
+	if (lhs->isvec != rhs->isvec) {
+		error_at(q->rhs->loc, "the two sides of '%s' differ: %s = %s", q->text, lhs->isvec ? "vector" : "scalar",
+		         rhs->isvec ? "vector" : "scalar");
+		return NULL;
+	}
+	if (x->kind == V_TEMP && !map_get(&temps, x->key)) register_temp(x);
+	RExpr *sol = solve(lhs, rhs, x, q->loc, q->text);
+	if (!sol) return NULL;
+	if (sol->isvec != x->isvec) {
+		error_at(q->loc, "'%s' would make %s a %s, but it is a %s", q->text, var_label(x), sol->isvec ? "vector" : "scalar",
+		         x->isvec ? "vector" : "scalar");
+		return NULL;
+	}
+	Assign *a = xalloc(sizeof *a);
+	a->var = x;
+	a->e = sol;
+	a->src = src;
+	vec_push(branch, a);
+	for (int i = 0; i < reads.n; i++)
+		if (reads.v[i] != x) add_unique(&I->reads, reads.v[i]);
+	for (int i = 0; i < rf.n; i++) add_unique(&I->rf_reads, rf.v[i]);
+	x->det = I;
+	add_unique(&I->targets, x);
+	I->why = I->why ? xprintf("%s, %s (%s)", I->why, x->name, class_name(x)) : xprintf("%s (%s)", x->name, class_name(x));
+	return x;
+}
+
+static RExpr *build_cond(Inst *I, Expr *cond, const char *what)
+{
+	Vec pending = { 0 }, rf = { 0 };
+	Ctx C = { 0 };
+	C.bind = I->bind;
+	C.nbind = I->nbind;
+	C.reads = &I->reads;
+	C.rf = &rf;
+	C.pending = &pending;
+	C.rule_ctx = 1;
+	RExpr *r = build(&C, cond);
+	if (C.failed) return NULL;
+	if (!r->isbool) {
+		error_at(cond->loc, "%s must be a condition (a comparison)", what);
+		return NULL;
+	}
+	for (int i = 0; i < I->reads.n; i++) {
+		Var *v = I->reads.v[i];
+		if (v->kind == V_TEMP && !determined(v)) {
+			error_at(cond->loc, "%s reads '%s', which no rule determines", what, v->name);
+			return NULL;
+		}
+	}
+	for (int i = 0; i < rf.n; i++) add_unique(&I->rf_reads, rf.v[i]);
+	return r;
+}
+
+static int stmt_src(Stmt *s) { return add_src(s->loc, s->text); }
+
+static Vec *cur_insts;
+
+static void inst_rule(Stmt *s, Object **bind, int nbind)
+{
+	Inst *I = new_inst(s, bind, nbind);
+	I->src = cur_src;
+	if (!s->cond) {
+		if (!resolve_eqn(I, s->eqns, &I->then, I->src)) return;
+	} else {
+		I->cond = build_cond(I, s->cond, "the condition of a rule");
+		if (!I->cond) return;
+		for (int b = 0; b < 2; b++) {
+			Vec *br = b ? &I->els : &I->then;
+			for (Eqn *q = b ? s->else_eqns : s->eqns; q; q = q->next) {
+				if (q->deriv) {
+					error_at(q->loc, "a derivative rule cannot be conditional");
+					return;
+				}
+				if (!resolve_eqn(I, q, br, add_src(q->loc, q->text))) return;
+			}
+			/* the other branch must not see this branch's targets as determined */
+			for (int i = 0; i < br->n; i++) ((Assign *)br->v[i])->var->det = NULL;
+		}
+		for (int i = 0; i < I->targets.n; i++) ((Var *)I->targets.v[i])->det = I;
+		/* a variable introduced in one branch is defined in all (zero where not stated) */
+	}
+	if (I->isF)
+		for (int i = 0; i < I->targets.n; i++) {
+			Var *v = I->targets.v[i];
+			if (!v->isvec) {
+				error_at(s->loc, "a rule with attribute F must determine a force (a vector); %s is a scalar", v->name);
+				return;
+			}
+		}
+	vec_push(cur_insts, I);
+}
+
+static Vec deriv_insts;
+
+static void inst_deriv(Stmt *s, Object **bind, int nbind)
+{
+	Inst *I = new_inst(s, bind, nbind);
+	I->isderiv = 1;
+	I->src = cur_src;
+	Var *v = prop_of(bind[0], s->eqns->lhs->name);
+	if (!v) {
+		error_at(s->eqns->lhs->loc, "'%s' is not a property of object '%s': only properties can be integrated",
+		         s->eqns->lhs->name, bind[0]->name);
+		return;
+	}
+	if (v->state) {
+		error_at(s->loc, "%s already has a derivative rule", var_label(v));
+		note_at(v->deriv->st->loc, "the first derivative rule for %s", var_label(v));
+		return;
+	}
+	v->state = 1;
+	v->deriv = I;
+	add_unique(&I->targets, v);
+	I->why = xprintf("integrates %s (state variable)", v->name);
+	vec_push(&deriv_insts, I);
+}
+
+static void resolve_deriv(Inst *I)
+{
+	Eqn *q = I->st->eqns;
+	Vec pending = { 0 }, rf = { 0 };
+	Ctx C = { 0 };
+	C.bind = I->bind;
+	C.nbind = I->nbind;
+	C.reads = &I->reads;
+	C.rf = &rf;
+	C.pending = &pending;
+	C.rule_ctx = 1;
+	RExpr *r = build(&C, q->rhs);
+	if (C.failed) return;
+	Var *v = I->targets.v[0];
+	if (r->isbool || r->isvec != v->isvec) {
+		error_at(q->rhs->loc, "the derivative of %s must be a %s", var_label(v), v->isvec ? "vector" : "scalar");
+		return;
+	}
+	for (int i = 0; i < I->reads.n; i++) {
+		Var *w = I->reads.v[i];
+		if (w->kind == V_TEMP && !determined(w)) {
+			error_at(q->loc, "rule '%s' is unresolvable: it reads '%s', which no rule determines", q->text, w->name);
+			return;
+		}
+	}
+	for (int i = 0; i < rf.n; i++) add_unique(&I->rf_reads, rf.v[i]);
+	Assign *a = xalloc(sizeof *a);
+	a->var = v;
+	a->e = r;
+	a->src = I->src;
+	vec_push(&I->then, a);
+}
+
+static void inst_assert(Stmt *s, Object **bind, int nbind)
+{
+	Inst *I = new_inst(s, bind, nbind);
+	I->isassert = 1;
+	I->src = cur_src;
+	I->cond = build_cond(I, s->cond, "an assertion");
+	if (!I->cond) return;
+	vec_push(cur_insts, I);
+}
+
+/* ---- the watch list ---- */
+
+static void add_col(Var *v, const char *label)
+{
+	for (int c = 0; c < (v->isvec ? 3 : 1); c++) {
+		WatchCol *w = xalloc(sizeof *w);
+		w->var = v;
+		w->comp = c;
+		w->name = v->isvec ? xprintf("%s.%c", label, 'x' + c) : xstrdup(label);
+		vec_push(&M->cols, w);
+	}
+}
+
+static void build_watch(Stmt *st)
+{
+	if (!st || !st->has_watch) {
+		for (int i = 0; i < M->objects.n; i++) {
+			Object *o = M->objects.v[i];
+			for (int j = 0; j < o->props.n; j++) add_col(o->props.v[j], var_label(o->props.v[j]));
+		}
+		return;
+	}
+	for (int i = 0; i < st->watch.n; i++) {
+		WatchItem *w = st->watch.v[i];
+		if (w->obj) {
+			Object *o = map_get(&objects_by_name, w->obj);
+			if (!o) {
+				error_at(w->loc, "unknown object '%s'", w->obj);
+				continue;
+			}
+			Var *v = prop_of(o, w->prop);
+			if (!v) v = map_get(&temps, temp_key(w->prop, &o, 1));
+			if (!v) {
+				error_at(w->loc, "object '%s' has no property or temporary '%s'", o->name, w->prop);
+				continue;
+			}
+			add_col(v, var_label(v));
+			continue;
+		}
+		if (strcmp(w->prop, "t") == 0) continue; /* t is always the first column */
+		Var *g = map_get(&globals_by_name, w->prop);
+		if (g) {
+			add_col(g, g->name);
+			continue;
+		}
+		int found = 0;
+		for (int j = 0; j < M->objects.n; j++) {
+			Object *o = M->objects.v[j];
+			Var *v = prop_of(o, w->prop);
+			if (!v) v = map_get(&temps, temp_key(w->prop, &o, 1));
+			if (v) {
+				add_col(v, var_label(v));
+				found = 1;
+			}
+		}
+		if (!found) error_at(w->loc, "nothing to watch: no object has '%s'", w->prop);
+	}
+}
+
+static double const_time(Expr *x, double dflt, const char *what)
+{
+	if (!x) return dflt;
+	int ok;
+	RExpr *r = const_value(x, NULL, &ok);
+	if (!ok) return dflt;
+	if (r->isvec || !isfinite(r->c[0]) || r->c[0] < 0) {
+		error_at(x->loc, "'%s' needs a finite, non-negative time", what);
+		return dflt;
+	}
+	return r->c[0];
+}
+
+/* ---- the pass ---- */
+
+static void check_sections(Stmt *stmts)
+{
+	int section = 0; /* 0 objects, 1 rules, 2 start */
+	Stmt *start = NULL;
+	for (Stmt *s = stmts; s; s = s->next) {
+		int sec = s->kind == S_START ? 2 : (s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_VECDECL) ? 1 : 0;
+		if (start) {
+			error_at(s->loc, "the start directive ('inc ...') must be the last statement");
+			note_at(start->loc, "start directive here");
+			return;
+		}
+		if (sec < section) {
+			error_at(s->loc, "%s must come before the rules (objects, then rules, then the start directive)",
+			         s->kind == S_DEF ? "a kind definition" : s->kind == S_GLOBAL ? "a global" : "an object definition");
+		}
+		if (sec > section) section = sec;
+		if (s->kind == S_START) start = s;
+	}
+}
+
+Model *sema_run(Stmt *stmts)
+{
+	M = xalloc(sizeof *M);
+	memset(&objects_by_name, 0, sizeof(Map));
+	predefine();
+	check_sections(stmts);
+	build_objects(stmts);
+
+	Stmt *start = NULL;
+	Vec rules = { 0 };
+	for (Stmt *s = stmts; s; s = s->next) {
+		if (s->kind == S_START) start = s;
+		if (s->kind == S_VECDECL)
+			for (int i = 0; i < s->names.n; i++) map_put(&vector_decls, s->names.v[i], s);
+		if (s->kind == S_RULE || s->kind == S_ASSERT) vec_push(&M->stmts, s);
+		if (s->kind == S_RULE) vec_push(&rules, s);
+	}
+	if (!start) {
+		Loc end = { 0, 1, 1 };
+		for (Stmt *s = stmts; s; s = s->next) end = s->loc;
+		if (stmts) error_at(end, "no start directive: the model must end with 'inc t till TIME by STEP watch ...'");
+		else error_plain("%s: empty model: there is nothing to simulate", ((Source *)sources.v[0])->path);
+	} else {
+		if (strcmp(start->var, "t") != 0) error_at(start->name_loc, "only time can be incremented: write 'inc t ...'");
+		M->till = const_time(start->till, 10, "till");
+		M->by = const_time(start->by, M->till > 0 ? M->till / 1000 : 0.01, "by");
+		if (!(M->by > 0)) error_at(start->by ? start->by->loc : start->loc, "'by' must be a positive time");
+		M->start = start;
+	}
+	if (diag_errors) return M;
+
+	/* Derivative rules first: their targets are state, determined from the start. */
+	for (int i = 0; i < rules.n; i++) {
+		Stmt *s = rules.v[i];
+		if (!s->cond && s->eqns->deriv) {
+			cur_src = stmt_src(s);
+			for_each_binding(s, inst_deriv);
+		}
+	}
+	/* Algebraic rules in order; those reading RF after the last F rule. */
+	int lastF = -1;
+	for (int i = 0; i < rules.n; i++) {
+		Stmt *s = rules.v[i];
+		if (s->attr && strcmp(s->attr, "F") == 0) lastF = i;
+	}
+	Vec order = { 0 }, deferred = { 0 };
+	for (int i = 0; i < rules.n; i++) {
+		Stmt *s = rules.v[i];
+		if (!s->cond && s->eqns->deriv) continue;
+		if (i < lastF && stmt_reads_rf(s) && !(s->attr && strcmp(s->attr, "F") == 0)) vec_push(&deferred, s);
+		else vec_push(&order, s);
+		if (i == lastF)
+			for (int k = 0; k < deferred.n; k++) vec_push(&order, deferred.v[k]);
+	}
+	cur_insts = &M->insts;
+	for (int i = 0; i < order.n; i++) {
+		Stmt *s = order.v[i];
+		if (s->attr && strcmp(s->attr, "F") == 0 && stmt_reads_rf(s)) {
+			error_at(s->loc, "a rule with attribute F cannot read RF: RF is the sum of the F rules");
+			continue;
+		}
+		cur_src = stmt_src(s);
+		for_each_binding(s, inst_rule);
+	}
+	for (int i = 0; i < deriv_insts.n; i++) {
+		resolve_deriv(deriv_insts.v[i]);
+		vec_push(&M->insts, deriv_insts.v[i]);
+	}
+	for (Stmt *s = stmts; s; s = s->next)
+		if (s->kind == S_ASSERT) {
+			cur_src = add_src(s->loc, s->text);
+			for_each_binding(s, inst_assert);
+		}
+	build_watch(start);
+	return M;
+}
+
+/* ---- --explain ---- */
+
+void sema_explain(Model *Mo, FILE *f)
+{
+	for (int i = 0; i < Mo->stmts.n; i++) {
+		Stmt *s = Mo->stmts.v[i];
+		Source *src = sources.v[s->loc.file];
+		fprintf(f, "%s:%d: %s%s\n", src->path, s->loc.line, s->kind == S_ASSERT ? "assert " : "", s->text);
+		int n = 0;
+		for (int k = 0; k < Mo->insts.n; k++) {
+			Inst *I = Mo->insts.v[k];
+			if (I->st != s) continue;
+			n++;
+			fprintf(f, "  for %s", I->bind[0]->name);
+			for (int b = 1; b < I->nbind; b++) fprintf(f, "%s%s", b == 1 ? " with " : ", ", I->bind[b]->name);
+			if (I->isassert) fprintf(f, ": checked at every output step");
+			else fprintf(f, ": %s%s", I->isderiv ? "" : "solves for ", I->why ? I->why : "?");
+			if (!I->isassert && !I->needed[0] && !I->needed[1]) fprintf(f, "; left out: nothing needs it");
+			else if (!I->isassert)
+				fprintf(f, "; computed in %s", I->needed[0] && I->needed[1] ? "rhs and out" : I->needed[0] ? "rhs" : "out");
+			fputc('\n', f);
+		}
+		if (!n) fprintf(f, "  applies to no object\n");
+	}
+	for (int i = 0; i < Mo->objects.n; i++) {
+		Object *o = Mo->objects.v[i];
+		fprintf(f, "object %s:", o->name);
+		for (int j = 0; j < o->props.n; j++) {
+			Var *v = o->props.v[j];
+			fprintf(f, "%s %s (%s)", j ? "," : "", v->name,
+			        v->state ? "state" : v->det ? xprintf("computed, line %d", v->det->st->loc.line) : "constant");
+		}
+		fputc('\n', f);
+	}
+}

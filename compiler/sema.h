@@ -1,0 +1,101 @@
+/*
+ * sema.h - the resolved model: objects, variables, rule instances.
+ */
+#ifndef CSF_SEMA_H
+#define CSF_SEMA_H
+
+#include "csfc.h"
+#include "ast.h"
+
+typedef struct Object Object;
+typedef struct Inst Inst;
+
+typedef enum VarKind { V_TIME, V_GLOBAL, V_PROP, V_TEMP } VarKind;
+
+typedef struct Var {
+	VarKind kind;
+	char *name;
+	Object *obj;     /* owner (props, temps), NULL for globals and t */
+	int isvec;
+	int order;       /* definition order, for the precedence of spec 2.4.1 */
+	double init[3];
+	Loc loc;
+	int state;       /* integrated: has a derivative rule */
+	Inst *det;       /* the instance that determines it, if any */
+	Inst *deriv;     /* its derivative rule instance (state variables) */
+	int slot;        /* memory slot, -1 until allocated */
+	char *key;       /* temps: lookup key */
+	int from_kind;   /* props: the value is a kind's default, not yet set */
+} Var;
+
+struct Object {
+	char *name;
+	Loc loc;
+	int index;
+	Vec props;       /* of Var* (V_PROP), in definition order */
+};
+
+typedef enum RKind { R_CONST, R_VAR, R_RF, R_OP, R_COMP } RKind;
+
+typedef struct RExpr RExpr;
+struct RExpr {
+	RKind k;
+	int isvec, isbool;
+	int op;          /* csf opcode for R_OP */
+	double c[3];     /* R_CONST */
+	Var *var;        /* R_VAR */
+	Object *obj;     /* R_RF */
+	int comp;        /* R_COMP: 0..2 of a[0] */
+	RExpr *a[3];
+	int n;
+	Loc loc;
+};
+
+/* An assignment a rule instance performs: var := e. */
+typedef struct Assign { Var *var; RExpr *e; int src; } Assign;
+
+struct Inst {
+	Stmt *st;
+	Object **bind;   /* $0, $1, ... */
+	int nbind;
+	int isassert, isderiv, isF;
+	RExpr *cond;     /* conditional rule or assertion */
+	Vec then, els;   /* of Assign*: the branches (a plain rule uses then) */
+	Vec targets;     /* of Var*: every variable it determines (union of branches) */
+	Vec reads;       /* of Var*: every variable it reads */
+	Vec rf_reads;    /* of Object*: whose RF it reads */
+	int needed[2];   /* by the RHS section, by the OUT section */
+	int src;         /* its statement in the source table */
+	int assert_index;
+	char *why;       /* for --explain: what it solves for and why */
+};
+
+typedef struct WatchCol { char *name; Var *var; int comp; } WatchCol;
+
+typedef struct Model {
+	Vec objects;     /* of Object* */
+	Vec globals;     /* of Var* */
+	Var *time;
+	Vec insts;       /* of Inst*: algebraic rules in resolution order, then derivatives, then assertions */
+	Vec temps;       /* of Var* */
+	Vec cols;        /* of WatchCol* */
+	Vec stmts;       /* of Stmt*: rules and assertions in source order (for --explain) */
+	Vec srcs;        /* of Stmt* or Eqn* text: see gen.c */
+	double till, by;
+	Stmt *start;
+} Model;
+
+/* A statement in the source table (what runtime errors name). */
+typedef struct SrcEntry { Loc loc; char *text; } SrcEntry;
+
+/* Builds and resolves the model from the statement list. Errors are reported; check diag_errors. */
+Model *sema_run(Stmt *stmts);
+
+/* Writes what each rule solves for and which rules were left out (csfc --explain). */
+void sema_explain(Model *M, FILE *f);
+
+/* Evaluates an instruction on constant operands with the runtime's own functions.
+ * in: operand values (3 doubles each); out: result (3 doubles). */
+void fold_op(int op, double in[3][3], double out[3]);
+
+#endif

@@ -1,0 +1,212 @@
+/*
+ * util.c - the compiler's arena, source table and diagnostics.
+ *
+ * Diagnostics follow gcc: `file:line:col: error: message`, then the source
+ * line, then a caret under the column. They go to diag_out (stderr unless
+ * a test redirects it), so tests can compare the exact text.
+ */
+#include <errno.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "csfc.h"
+#include "ast.h"
+
+typedef struct Block { struct Block *next; max_align_t data[]; } Block;
+static Block *blocks;
+
+void *xalloc(size_t n)
+{
+	Block *b = calloc(1, sizeof(Block) + n);
+	if (!b) {
+		fprintf(stderr, "csfc: out of memory\n");
+		exit(2);
+	}
+	b->next = blocks;
+	blocks = b;
+	return b->data;
+}
+
+void *xrealloc_arr(void *p, size_t n)
+{
+	void *q = xalloc(n);
+	if (p) memcpy(q, p, n); /* callers only grow, and the old block is at least as large as its use */
+	return q;
+}
+
+void arena_free(void)
+{
+	while (blocks) {
+		Block *b = blocks->next;
+		free(blocks);
+		blocks = b;
+	}
+}
+
+char *xstrndup(const char *s, size_t n)
+{
+	char *p = xalloc(n + 1);
+	memcpy(p, s, n);
+	return p;
+}
+
+char *xstrdup(const char *s) { return xstrndup(s, strlen(s)); }
+
+char *xprintf(const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	int n = vsnprintf(NULL, 0, fmt, ap);
+	va_end(ap);
+	char *p = xalloc((size_t)n + 1);
+	va_start(ap, fmt);
+	vsnprintf(p, (size_t)n + 1, fmt, ap);
+	va_end(ap);
+	return p;
+}
+
+void vec_push(Vec *a, void *x)
+{
+	if (a->n == a->cap) {
+		int cap = a->cap ? 2 * a->cap : 8;
+		void **v = xalloc((size_t)cap * sizeof *v);
+		if (a->n) memcpy(v, a->v, (size_t)a->n * sizeof *v);
+		a->v = v;
+		a->cap = cap;
+	}
+	a->v[a->n++] = x;
+}
+
+Expr *ast_expr(ExprKind k, Loc l)
+{
+	Expr *e = xalloc(sizeof *e);
+	e->kind = k;
+	e->loc = l;
+	return e;
+}
+
+Vec sources;
+Options opts;
+int diag_errors;
+FILE *diag_out;
+
+int src_load(const char *path)
+{
+	FILE *f = fopen(path, "rb");
+	if (!f) return -1;
+	size_t cap = 4096, n = 0;
+	char *buf = malloc(cap);
+	while (buf) {
+		n += fread(buf + n, 1, cap - n - 1, f);
+		if (n < cap - 1) break;
+		char *b = realloc(buf, cap *= 2);
+		if (!b) free(buf);
+		buf = b;
+	}
+	int bad = !buf || ferror(f);
+	fclose(f);
+	if (bad) {
+		free(buf);
+		errno = EIO;
+		return -1;
+	}
+	Source *s = xalloc(sizeof *s);
+	s->path = xstrdup(path);
+	s->text = xstrndup(buf, n); /* NUL-terminated copy in the arena */
+	s->len = n;
+	free(buf);
+	vec_push(&sources, s);
+	return sources.n - 1;
+}
+
+char *src_line(int file, int line)
+{
+	Source *s = sources.v[file];
+	const char *p = s->text, *end = s->text + s->len;
+	for (int l = 1; l < line && p < end; p++)
+		if (*p == '\n') l++;
+	const char *e = p;
+	while (e < end && *e != '\n') e++;
+	if (e > p && e[-1] == '\r') e--;
+	return xstrndup(p, (size_t)(e - p));
+}
+
+static void vdiag(Loc l, const char *kind, const char *fmt, va_list ap)
+{
+	FILE *out = diag_out ? diag_out : stderr;
+	Source *s = sources.v[l.file];
+	fprintf(out, "%s:%d:%d: %s: ", s->path, l.line, l.col, kind);
+	vfprintf(out, fmt, ap);
+	fputc('\n', out);
+	char *line = src_line(l.file, l.line);
+	fprintf(out, "  %s\n  ", line);
+	for (int i = 1; i < l.col && line[i - 1]; i++) fputc(line[i - 1] == '\t' ? '\t' : ' ', out);
+	fputs("^\n", out);
+}
+
+void error_at(Loc l, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vdiag(l, "error", fmt, ap);
+	va_end(ap);
+	diag_errors++;
+}
+
+void note_at(Loc l, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vdiag(l, "note", fmt, ap);
+	va_end(ap);
+}
+
+void error_plain(const char *fmt, ...)
+{
+	FILE *out = diag_out ? diag_out : stderr;
+	va_list ap;
+	va_start(ap, fmt);
+	fputs("csfc: error: ", out);
+	vfprintf(out, fmt, ap);
+	fputc('\n', out);
+	va_end(ap);
+	diag_errors++;
+}
+
+/* ---- a string map ---- */
+
+static size_t str_hash(const char *s)
+{
+	size_t h = 1469598103934665603ull;
+	while (*s) h = (h ^ (unsigned char)*s++) * 1099511628211ull;
+	return h;
+}
+
+void *map_get(Map *m, const char *k)
+{
+	if (!m->cap) return NULL;
+	for (size_t i = str_hash(k) & (m->cap - 1);; i = (i + 1) & (m->cap - 1)) {
+		if (!m->keys[i]) return NULL;
+		if (strcmp(m->keys[i], k) == 0) return m->vals[i];
+	}
+}
+
+void map_put(Map *m, char *k, void *v)
+{
+	if (2 * (m->n + 1) > m->cap) {
+		Map g = { 0 };
+		g.cap = m->cap ? 2 * m->cap : 64;
+		g.keys = xalloc(g.cap * sizeof *g.keys);
+		g.vals = xalloc(g.cap * sizeof *g.vals);
+		for (size_t i = 0; i < m->cap; i++)
+			if (m->keys[i]) map_put(&g, m->keys[i], m->vals[i]);
+		*m = g;
+	}
+	size_t i = str_hash(k) & (m->cap - 1);
+	while (m->keys[i] && strcmp(m->keys[i], k) != 0) i = (i + 1) & (m->cap - 1);
+	if (!m->keys[i]) m->n++;
+	m->keys[i] = k;
+	m->vals[i] = v;
+}
+

@@ -1,0 +1,367 @@
+/*
+ * bytecode.c - encoding, decoding, verification and listing of .csfb files.
+ *
+ * The format is described in bytecode.h. Decoding reads through a bounded
+ * cursor: every read checks the bytes left, every array count is checked
+ * against the bytes left before it is allocated, so a truncated or hostile
+ * file costs at most its own size in memory. After decoding, csf_verify
+ * checks every cross-reference (string offsets, memory slots, sources) and
+ * every instruction (opcode in range, operands in bounds, jumps forward to
+ * an instruction boundary inside the section). A verified program cannot
+ * make the VM read or write outside its memory or loop forever.
+ */
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <stdarg.h>
+
+#include "csf.h"
+#include "bytecode.h"
+
+_Static_assert(sizeof(csf_src) == 12 && sizeof(csf_col) == 8 && sizeof(csf_assert) == 8 &&
+               sizeof(csf_target) == 20 && sizeof(csf_line) == 8, "tables are arrays of u32");
+
+const csf_opinfo csf_opinfo_table[CSF_NOPCODES] = {
+#define OP(name, n, a, b, c, d, syn) \
+	[CSF_OP_##name] = { #name, syn, n, { CSF_K_##a, CSF_K_##b, CSF_K_##c, CSF_K_##d } },
+#define CTRL OP
+#include "opcodes.def"
+#undef CTRL
+#undef OP
+};
+
+unsigned long csf_crc32(const unsigned char *buf, size_t len)
+{
+	unsigned long crc = 0xFFFFFFFFul;
+	for (size_t i = 0; i < len; i++) {
+		crc ^= buf[i];
+		for (int k = 0; k < 8; k++)
+			crc = (crc >> 1) ^ (0xEDB88320ul & (0ul - (crc & 1ul)));
+	}
+	return crc ^ 0xFFFFFFFFul;
+}
+
+/* ---- encoding ---- */
+
+typedef struct wbuf { unsigned char *p; size_t len, cap; int oom; } wbuf;
+
+static void put(wbuf *w, const void *src, size_t n)
+{
+	if (w->oom) return;
+	if (w->len + n > w->cap) {
+		size_t cap = w->cap ? w->cap : 4096;
+		while (cap < w->len + n) cap *= 2;
+		unsigned char *q = realloc(w->p, cap);
+		if (!q) { w->oom = 1; return; }
+		w->p = q;
+		w->cap = cap;
+	}
+	memcpy(w->p + w->len, src, n);
+	w->len += n;
+}
+
+static void put_u32(wbuf *w, uint32_t v)
+{
+	unsigned char b[4] = { v & 0xFF, (v >> 8) & 0xFF, (v >> 16) & 0xFF, (v >> 24) & 0xFF };
+	put(w, b, 4);
+}
+
+static void put_f64(wbuf *w, double d)
+{
+	uint64_t u;
+	memcpy(&u, &d, 8);
+	put_u32(w, (uint32_t)u);
+	put_u32(w, (uint32_t)(u >> 32));
+}
+
+static void put_u32s(wbuf *w, const uint32_t *v, size_t n)
+{
+	for (size_t i = 0; i < n; i++) put_u32(w, v[i]);
+}
+
+int csf_encode(const csf_prog *p, unsigned char **out, size_t *len)
+{
+	wbuf w = { 0 };
+	put(&w, CSFB_MAGIC, 4);
+	put_u32(&w, CSFB_VERSION);
+	put_u32(&w, CSFB_INT_PROBE);
+	put_f64(&w, CSFB_FLOAT_PROBE);
+	put_u32(&w, 0); /* payload size, patched below */
+	put_u32(&w, 0); /* crc, patched below */
+
+	put_u32(&w, p->nstrs);
+	put(&w, p->strs, p->nstrs);
+	put_u32(&w, p->nmem);
+	for (uint32_t i = 0; i < p->nmem; i++) put_f64(&w, p->mem0[i]);
+	put_u32(&w, p->tslot);
+	put_u32(&w, p->ystart);
+	put_u32(&w, p->dstart);
+	put_u32(&w, p->ny);
+	put_f64(&w, p->till);
+	put_f64(&w, p->by);
+	put_u32(&w, p->nfiles);
+	put_u32s(&w, p->files, p->nfiles);
+	put_u32(&w, p->nsrcs);
+	put_u32s(&w, (const uint32_t *)p->srcs, 3 * (size_t)p->nsrcs);
+	put_u32(&w, p->ncols);
+	put_u32s(&w, (const uint32_t *)p->cols, 2 * (size_t)p->ncols);
+	put_u32(&w, p->nasserts);
+	put_u32s(&w, (const uint32_t *)p->asserts, 2 * (size_t)p->nasserts);
+	for (int s = 0; s < CSF_NSEC; s++) {
+		put_u32(&w, p->ntargets[s]);
+		put_u32s(&w, (const uint32_t *)p->targets[s], 5 * (size_t)p->ntargets[s]);
+		put_u32(&w, p->ncode[s]);
+		put_u32s(&w, p->code[s], p->ncode[s]);
+		put_u32(&w, p->nlines[s]);
+		put_u32s(&w, (const uint32_t *)p->lines[s], 2 * (size_t)p->nlines[s]);
+	}
+	if (w.oom || w.len - CSFB_HEADER_SIZE > 0xFFFFFFFFu) {
+		free(w.p);
+		return -1;
+	}
+	size_t plen = w.len - CSFB_HEADER_SIZE;
+	unsigned long crc = csf_crc32(w.p + CSFB_HEADER_SIZE, plen);
+	for (int i = 0; i < 4; i++) {
+		w.p[20 + i] = (unsigned char)(plen >> (8 * i));
+		w.p[24 + i] = (unsigned char)(crc >> (8 * i));
+	}
+	*out = w.p;
+	*len = w.len;
+	return 0;
+}
+
+/* ---- decoding ---- */
+
+typedef struct rbuf { const unsigned char *p; size_t left; const char *what; } rbuf;
+
+static uint32_t le32(const unsigned char *b)
+{
+	return (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
+}
+
+static int get_u32(rbuf *r, uint32_t *v)
+{
+	if (r->left < 4) return -1;
+	*v = le32(r->p);
+	r->p += 4;
+	r->left -= 4;
+	return 0;
+}
+
+static int get_f64(rbuf *r, double *d)
+{
+	uint32_t lo, hi;
+	if (get_u32(r, &lo) || get_u32(r, &hi)) return -1;
+	uint64_t u = (uint64_t)hi << 32 | lo;
+	memcpy(d, &u, 8);
+	return 0;
+}
+
+/* Reads a count of elements of size elem bytes and allocates the array. */
+static int get_array(rbuf *r, uint32_t *n, void **arr, size_t elem)
+{
+	if (get_u32(r, n)) return -1;
+	if ((size_t)*n > r->left / elem) return -1;
+	*arr = malloc(*n ? (size_t)*n * elem : 1);
+	if (!*arr) return -1;
+	if (elem == 1) {
+		memcpy(*arr, r->p, *n);
+		r->p += *n;
+		r->left -= *n;
+		return 0;
+	}
+	if (elem == 8) {
+		for (uint32_t i = 0; i < *n; i++) get_f64(r, (double *)*arr + i);
+		return 0;
+	}
+	for (size_t i = 0; i < (size_t)*n * (elem / 4); i++) get_u32(r, (uint32_t *)*arr + i);
+	return 0;
+}
+
+static int fail(char *err, size_t errlen, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(err, errlen, fmt, ap);
+	va_end(ap);
+	return -1;
+}
+
+int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, size_t errlen)
+{
+	memset(p, 0, sizeof *p);
+	if (len < CSFB_HEADER_SIZE) return fail(err, errlen, "file too short for a CSF bytecode header (%zu bytes)", len);
+	if (memcmp(buf, CSFB_MAGIC, 4) != 0) return fail(err, errlen, "not a CSF bytecode file (bad magic)");
+	if (le32(buf + 4) != CSFB_VERSION)
+		return fail(err, errlen, "bytecode format version %lu, this runtime reads version %u",
+		            (unsigned long)le32(buf + 4), CSFB_VERSION);
+	if (le32(buf + 8) != CSFB_INT_PROBE) return fail(err, errlen, "integer layout probe mismatch");
+	{
+		rbuf r = { buf + 12, 8, "" };
+		double probe;
+		get_f64(&r, &probe);
+		if (probe != CSFB_FLOAT_PROBE) return fail(err, errlen, "floating-point layout probe mismatch");
+	}
+	if ((size_t)le32(buf + 20) != len - CSFB_HEADER_SIZE)
+		return fail(err, errlen, "payload size %lu does not match file size %zu (truncated or padded file)",
+		            (unsigned long)le32(buf + 20), len);
+	if (csf_crc32(buf + CSFB_HEADER_SIZE, len - CSFB_HEADER_SIZE) != le32(buf + 24))
+		return fail(err, errlen, "checksum mismatch (corrupted file)");
+
+	rbuf r = { buf + CSFB_HEADER_SIZE, len - CSFB_HEADER_SIZE, "" };
+	int bad = 0;
+	void *a;
+#define ARR(n, field, elem) (bad = bad || get_array(&r, &(n), &a, (elem)), (field) = bad ? (field) : a)
+	ARR(p->nstrs, p->strs, 1);
+	ARR(p->nmem, p->mem0, 8);
+	bad = bad || get_u32(&r, &p->tslot) || get_u32(&r, &p->ystart) || get_u32(&r, &p->dstart) || get_u32(&r, &p->ny);
+	bad = bad || get_f64(&r, &p->till) || get_f64(&r, &p->by);
+	ARR(p->nfiles, p->files, 4);
+	ARR(p->nsrcs, p->srcs, sizeof(csf_src));
+	ARR(p->ncols, p->cols, sizeof(csf_col));
+	ARR(p->nasserts, p->asserts, sizeof(csf_assert));
+	for (int s = 0; s < CSF_NSEC; s++) {
+		ARR(p->ntargets[s], p->targets[s], sizeof(csf_target));
+		ARR(p->ncode[s], p->code[s], 4);
+		ARR(p->nlines[s], p->lines[s], sizeof(csf_line));
+	}
+#undef ARR
+	if (bad) {
+		csf_prog_free(p);
+		return fail(err, errlen, "truncated or malformed payload");
+	}
+	if (r.left != 0) {
+		csf_prog_free(p);
+		return fail(err, errlen, "%zu bytes of trailing garbage after the payload", r.left);
+	}
+	if (csf_verify(p, err, errlen)) {
+		csf_prog_free(p);
+		return -1;
+	}
+	return 0;
+}
+
+static int slot_ok(const csf_prog *p, uint32_t s, uint32_t width)
+{
+	return s < p->nmem && width <= p->nmem - s;
+}
+
+int csf_verify(const csf_prog *p, char *err, size_t errlen)
+{
+	if (p->nstrs == 0 || p->strs[p->nstrs - 1] != '\0') return fail(err, errlen, "string table is not NUL-terminated");
+#define STR_OK(off) ((off) < p->nstrs)
+	if (!slot_ok(p, p->tslot, 1)) return fail(err, errlen, "time slot %lu out of range", (unsigned long)p->tslot);
+	if (!slot_ok(p, p->ystart, p->ny) || !slot_ok(p, p->dstart, p->ny))
+		return fail(err, errlen, "state layout out of range");
+	if (p->ny && p->ystart < p->dstart + p->ny && p->dstart < p->ystart + p->ny)
+		return fail(err, errlen, "state and derivative regions overlap");
+	if (!(p->by > 0) || !isfinite(p->by) || !(p->till >= 0) || !isfinite(p->till))
+		return fail(err, errlen, "invalid run range (till %g, by %g)", p->till, p->by);
+	if (p->till / p->by > 4e15) return fail(err, errlen, "too many output steps");
+	for (uint32_t i = 0; i < p->nfiles; i++)
+		if (!STR_OK(p->files[i])) return fail(err, errlen, "file name %lu out of range", (unsigned long)i);
+	for (uint32_t i = 0; i < p->nsrcs; i++)
+		if (p->srcs[i].file >= p->nfiles || !STR_OK(p->srcs[i].text))
+			return fail(err, errlen, "source entry %lu out of range", (unsigned long)i);
+	for (uint32_t i = 0; i < p->ncols; i++)
+		if (!STR_OK(p->cols[i].name) || !slot_ok(p, p->cols[i].slot, 1))
+			return fail(err, errlen, "output column %lu out of range", (unsigned long)i);
+	for (uint32_t i = 0; i < p->nasserts; i++)
+		if (p->asserts[i].src >= p->nsrcs || !STR_OK(p->asserts[i].object))
+			return fail(err, errlen, "assertion %lu out of range", (unsigned long)i);
+	for (int s = 0; s < CSF_NSEC; s++) {
+		for (uint32_t i = 0; i < p->ntargets[s]; i++) {
+			const csf_target *t = &p->targets[s][i];
+			if ((t->width != 1 && t->width != 3) || !slot_ok(p, t->slot, t->width) || t->src >= p->nsrcs ||
+			    !STR_OK(t->name) || !STR_OK(t->object))
+				return fail(err, errlen, "target %lu of section %d out of range", (unsigned long)i, s);
+		}
+		/* Instruction boundaries first, so jumps can be checked against them. */
+		uint32_t n = p->ncode[s];
+		unsigned char *start = calloc((size_t)n + 1, 1);
+		if (!start) return fail(err, errlen, "out of memory");
+		for (uint32_t pc = 0; pc < n;) {
+			uint32_t op = p->code[s][pc];
+			if (op >= CSF_NOPCODES) {
+				free(start);
+				return fail(err, errlen, "section %d: invalid opcode %lu at %lu", s, (unsigned long)op, (unsigned long)pc);
+			}
+			if (csf_opinfo_table[op].nops >= n - pc) {
+				free(start);
+				return fail(err, errlen, "section %d: instruction at %lu runs past the end of the code", s,
+				            (unsigned long)pc);
+			}
+			start[pc] = 1;
+			pc += 1u + csf_opinfo_table[op].nops;
+		}
+		start[n] = 1;
+		for (uint32_t pc = 0; pc < n;) {
+			const csf_opinfo *oi = &csf_opinfo_table[p->code[s][pc]];
+			for (int k = 0; k < oi->nops; k++) {
+				uint32_t v = p->code[s][pc + 1 + k];
+				int ok = 1;
+				switch (oi->kind[k]) {
+				case CSF_K_DS: case CSF_K_S: ok = slot_ok(p, v, 1); break;
+				case CSF_K_DV: case CSF_K_V: ok = slot_ok(p, v, 3); break;
+				case CSF_K_J: ok = v > pc && v <= n && start[v]; break;
+				case CSF_K_AS: ok = v < p->nasserts; break;
+				default: ok = 0; break;
+				}
+				if (!ok) {
+					free(start);
+					return fail(err, errlen, "section %d: operand %d of %s at %lu out of range", s, k + 1,
+					            oi->name, (unsigned long)pc);
+				}
+			}
+			pc += 1u + oi->nops;
+		}
+		free(start);
+		for (uint32_t i = 0; i < p->nlines[s]; i++)
+			if (p->lines[s][i].pc > n || p->lines[s][i].src >= p->nsrcs)
+				return fail(err, errlen, "line table entry %lu of section %d out of range", (unsigned long)i, s);
+	}
+#undef STR_OK
+	return 0;
+}
+
+void csf_prog_free(csf_prog *p)
+{
+	free(p->strs);
+	free(p->mem0);
+	free(p->files);
+	free(p->srcs);
+	free(p->cols);
+	free(p->asserts);
+	for (int s = 0; s < CSF_NSEC; s++) {
+		free(p->targets[s]);
+		free(p->code[s]);
+		free(p->lines[s]);
+	}
+	memset(p, 0, sizeof *p);
+}
+
+void csf_disassemble(const csf_prog *p, FILE *f)
+{
+	static const char *const secname[CSF_NSEC] = { "rhs", "out" };
+	fprintf(f, "; memory %lu slots, t at %lu, state %lu..%lu, derivatives %lu..%lu\n", (unsigned long)p->nmem,
+	        (unsigned long)p->tslot, (unsigned long)p->ystart, (unsigned long)(p->ystart + p->ny),
+	        (unsigned long)p->dstart, (unsigned long)(p->dstart + p->ny));
+	for (int s = 0; s < CSF_NSEC; s++) {
+		fprintf(f, "section %s (%lu words)\n", secname[s], (unsigned long)p->ncode[s]);
+		uint32_t li = 0;
+		for (uint32_t pc = 0; pc < p->ncode[s];) {
+			while (li < p->nlines[s] && p->lines[s][li].pc <= pc) {
+				const csf_src *src = &p->srcs[p->lines[s][li].src];
+				if (p->lines[s][li].pc == pc)
+					fprintf(f, "  ; %s:%lu: %s\n", csf_str(p, p->files[src->file]), (unsigned long)src->line,
+					        csf_str(p, src->text));
+				li++;
+			}
+			const csf_opinfo *oi = &csf_opinfo_table[p->code[s][pc]];
+			fprintf(f, "  %5lu  %-7s", (unsigned long)pc, oi->name);
+			for (int k = 0; k < oi->nops; k++) fprintf(f, " %lu", (unsigned long)p->code[s][pc + 1 + k]);
+			fprintf(f, "%*s; %s\n", 4 * (4 - oi->nops), "", oi->synopsis);
+			pc += 1u + oi->nops;
+		}
+	}
+}

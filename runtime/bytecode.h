@@ -1,0 +1,47 @@
+/*
+ * bytecode.h - the .csfb file format, defined once.
+ *
+ * All integers are unsigned 32-bit little-endian; doubles are IEEE 754
+ * binary64 stored little-endian. A file is a 28-byte header and a payload:
+ *
+ *   offset  size  field
+ *   0       4     magic "CSFB"
+ *   4       4     format version (CSFB_VERSION)
+ *   8       4     integer probe CSFB_INT_PROBE
+ *   12      8     float probe CSFB_FLOAT_PROBE
+ *   20      4     payload size in bytes (must equal file size - 28)
+ *   24      4     CRC-32 (IEEE 802.3) of the payload
+ *
+ * The payload is these fields in this order (count-prefixed arrays; every
+ * count is checked against the bytes that remain before anything is
+ * allocated):
+ *
+ *   strings   u32 n, n bytes (NUL-terminated strings; last byte is NUL)
+ *   memory    u32 nmem, nmem doubles (initial image)
+ *   layout    u32 tslot, ystart, dstart, ny
+ *   run       double till, by
+ *   files     u32 n, n x {u32 name}
+ *   sources   u32 n, n x {u32 file, line, text}
+ *   columns   u32 n, n x {u32 name, slot}
+ *   asserts   u32 n, n x {u32 src, object}
+ *   then for each code section (RHS, OUT):
+ *   targets   u32 n, n x {u32 slot, width, src, name, object}
+ *   code      u32 n, n words (opcode, operands...)
+ *   lines     u32 n, n x {u32 pc, src}
+ *
+ * The loader (csf_decode) rejects any file whose fields or instructions are
+ * out of range; see csf_verify in bytecode.c for the full list of checks.
+ */
+#ifndef CSF_BYTECODE_H
+#define CSF_BYTECODE_H
+
+#define CSFB_MAGIC "CSFB"
+#define CSFB_VERSION 1u
+#define CSFB_INT_PROBE 0x01020304u
+#define CSFB_FLOAT_PROBE 370.5
+#define CSFB_HEADER_SIZE 28u
+
+/* CRC-32 of len bytes (the format's checksum). */
+unsigned long csf_crc32(const unsigned char *buf, size_t len);
+
+#endif

@@ -1,0 +1,151 @@
+/*
+ * csf.h - the public interface of libcsfrt, the CSF runtime.
+ *
+ * A compiled model is a csf_prog: an initial memory image, two code
+ * sections (RHS computes the state derivatives, OUT computes what the watch
+ * list and the assertions need, then checks the assertions), and the tables
+ * that name memory slots and source positions for output and diagnostics.
+ * The bytecode file format that carries it is described in bytecode.h and in
+ * csf(5).
+ *
+ * A model is executed by csf_run(), the integrator driver, which calls back
+ * into an execution function: csf_vm_exec() interprets the code sections;
+ * a generated executable passes its own compiled function instead. Both see
+ * the same program tables and the same driver, so they produce the same
+ * bytes on stdout and stderr.
+ */
+#ifndef CSF_H
+#define CSF_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include "csf_ops.h"
+
+#define CSF_VERSION_STRING "0.1.0"
+
+enum { CSF_SEC_RHS = 0, CSF_SEC_OUT = 1, CSF_NSEC = 2 };
+
+/* Opcodes, from opcodes.def. */
+enum csf_opcode {
+#define OP(name, n, a, b, c, d, syn) CSF_OP_##name,
+#define CTRL OP
+#include "opcodes.def"
+#undef CTRL
+#undef OP
+	CSF_NOPCODES
+};
+
+/* Operand kinds of opcodes.def. */
+enum csf_operand_kind { CSF_K___ = 0, CSF_K_DS, CSF_K_DV, CSF_K_S, CSF_K_V, CSF_K_J, CSF_K_AS };
+
+typedef struct csf_opinfo {
+	const char *name;     /* "ADD" */
+	const char *synopsis; /* "R[A] := R[B] + R[C]" */
+	uint8_t nops;         /* number of operands */
+	uint8_t kind[4];      /* enum csf_operand_kind, CSF_K___ past nops */
+} csf_opinfo;
+
+/* Indexed by enum csf_opcode. */
+extern const csf_opinfo csf_opinfo_table[CSF_NOPCODES];
+
+/* One output column: header text and the memory slot printed. */
+typedef struct csf_col { uint32_t name, slot; } csf_col;
+/* A source statement: file (index into files), line, its text. */
+typedef struct csf_src { uint32_t file, line, text; } csf_src;
+/* A value a code section computes, in the order it computes them. */
+typedef struct csf_target { uint32_t slot, width, src, name, object; } csf_target;
+/* An assertion: its statement and the object it was checked for. */
+typedef struct csf_assert { uint32_t src, object; } csf_assert;
+/* Line table entry: instructions from pc on belong to statement src. */
+typedef struct csf_line { uint32_t pc, src; } csf_line;
+
+/*
+ * A program. Strings are offsets into strs (every one NUL-terminated).
+ * Memory: slot tslot holds t; slots [ystart, ystart+ny) the state vector;
+ * [dstart, dstart+ny) its derivative, written by the RHS section.
+ */
+typedef struct csf_prog {
+	char *strs;
+	uint32_t nstrs;
+	double *mem0;
+	uint32_t nmem;
+	uint32_t tslot, ystart, dstart, ny;
+	double till, by;
+	uint32_t ncols, nfiles, nsrcs, nasserts;
+	csf_col *cols;
+	uint32_t *files;
+	csf_src *srcs;
+	csf_assert *asserts;
+	uint32_t ntargets[CSF_NSEC], ncode[CSF_NSEC], nlines[CSF_NSEC];
+	csf_target *targets[CSF_NSEC];
+	uint32_t *code[CSF_NSEC];
+	csf_line *lines[CSF_NSEC];
+} csf_prog;
+
+/* String at offset off of p's string table. */
+static inline const char *csf_str(const csf_prog *p, uint32_t off) { return p->strs + off; }
+
+/*
+ * Serialises p into a malloc'd buffer (*out, *len); the caller frees it.
+ * Returns 0, or -1 when memory runs out.
+ */
+int csf_encode(const csf_prog *p, unsigned char **out, size_t *len);
+
+/*
+ * Parses and verifies a bytecode image. On success fills *p (free with
+ * csf_prog_free) and returns 0. On any defect returns -1 and writes a
+ * one-line reason into err (never crashes, never allocates more than the
+ * image justifies).
+ */
+int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, size_t errlen);
+
+/* Verifies a program's tables and code (csf_decode calls it). 0 or -1 + reason. */
+int csf_verify(const csf_prog *p, char *err, size_t errlen);
+
+/* Frees everything a decoded or compiler-built program owns. */
+void csf_prog_free(csf_prog *p);
+
+/* Writes a human-readable listing of p's code to f. */
+void csf_disassemble(const csf_prog *p, FILE *f);
+
+/*
+ * Runs code section sec of p on memory m. Returns -1, or the index of the
+ * first assertion that failed (execution stops there).
+ */
+typedef int (*csf_exec_fn)(const csf_prog *p, int sec, double *m);
+
+/* The interpreter: a csf_exec_fn for verified programs. */
+int csf_vm_exec(const csf_prog *p, int sec, double *m);
+
+/* Run-time options, parsed identically by csfvm and generated executables. */
+typedef struct csf_opts {
+	const char *method; /* ODE stepper name, NULL for the default */
+	double tol;         /* local error bound, <= 0 for the default */
+	int header_units;   /* reserved */
+} csf_opts;
+
+/*
+ * Parses run-time options from argv[first..argc); stores the remaining
+ * positional arguments' indices in pos[] (at most npos) and their count in
+ * *npos_out. Returns 0, 1 if --help was printed, or 2 after printing a
+ * usage error to stderr.
+ */
+int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int npos, int *npos_out,
+                   const char *usage);
+
+/*
+ * Simulates p: integrates the state from t = 0 to till, evaluating OUT at
+ * t_k = k*by and writing one CSV row each to out (diagnostics to err).
+ * Returns the process exit status: 0 done, 1 the model failed (assertion,
+ * non-finite value, integrator failure), 2 bad options or an output error.
+ */
+int csf_run(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, FILE *out, FILE *err);
+
+/* Formats x so that it reads back to the same double (shortest of %.15g..%.17g). */
+void csf_fmt_double(char buf[32], double x);
+
+/* Names of the available ODE methods, NULL-terminated; default first. */
+extern const char *const csf_method_names[];
+
+#endif

@@ -1,0 +1,34 @@
+/*
+ * ode.h - the runtime's only window on GSL's odeiv2 (implemented in ode.c).
+ */
+#ifndef CSF_ODE_H
+#define CSF_ODE_H
+
+#include <stddef.h>
+
+/* Right-hand side: dydt = f(t, y). Returns 0, or non-zero to stop the integration. */
+typedef int (*csf_rhs_fn)(double t, const double *y, double *dydt, void *ctx);
+
+typedef struct csf_ode csf_ode;
+
+enum { CSF_ODE_OK = 0, CSF_ODE_STOPPED = 1, CSF_ODE_FAILED = 2 };
+
+/*
+ * A new integrator for n state variables with the named method (NULL for the
+ * default), internal steps never longer than hmax, local error bound tol
+ * (absolute and relative; <= 0 for the default). Returns NULL and writes a
+ * reason to err for an unknown method or when memory runs out.
+ */
+csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, csf_rhs_fn f, void *ctx, char *err,
+                     size_t errlen);
+
+/*
+ * Advances (*t, y) to exactly t1. Returns CSF_ODE_OK; CSF_ODE_STOPPED when f
+ * asked to stop (*t is then the time of the failing evaluation's step
+ * start); CSF_ODE_FAILED with a reason in err for any other GSL failure.
+ */
+int csf_ode_advance(csf_ode *o, double *t, double t1, double *y, char *err, size_t errlen);
+
+void csf_ode_free(csf_ode *o);
+
+#endif
