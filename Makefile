@@ -76,8 +76,11 @@ $(BUILD)/tests/%.o: tests/unit/%.c tests/unit/*.h compiler/*.h runtime/*.h $(BUI
 $(BUILD)/unit-tests: $(TEST_OBJ) $(CC_OBJ) $(BUILD)/libcsfrt.a
 	$(CC) $(LDFLAGS_SAN) -o $@ $(TEST_OBJ) $(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_CHECK) $(LDLIBS_GSL)
 
-test: all $(BUILD)/unit-tests
-	CSF_BUILD=$(BUILD) $(BUILD)/unit-tests
+$(BUILD)/fuzz-bytecode: tests/fuzz_bytecode.c $(BUILD)/libcsfrt.a
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+
+test: all $(BUILD)/unit-tests $(BUILD)/fuzz-bytecode
+	CSF_STDLIB=$(CURDIR)/stdlib $(BUILD)/unit-tests
 	CSF_BUILD=$(BUILD) sh tests/run.sh
 
 check:

@@ -38,6 +38,8 @@ extern Vec sources; /* of Source*, index = Loc.file */
 
 /* Reads a file into the source table; returns its index or -1 (errno set). */
 int src_load(const char *path);
+/* Adds an in-memory source (tests); returns its index. */
+int src_add(const char *name, const char *text);
 /* The text of line `line` of file `file` (without newline), in a fresh string. */
 char *src_line(int file, int line);
 

@@ -165,13 +165,13 @@ static char *find_include(Parser *P, const char *name)
 	Vec dirs = { 0 };
 	char *cur = xstrdup(((Source *)sources.v[P->lex[P->depth - 1].file])->path);
 	char *slash = strrchr(cur, '/');
-	vec_push(&dirs, slash ? (slash[1] = '\0', cur) : ".");
+	vec_push(&dirs, slash ? (slash[1] = '\0', cur) : "");
 	for (int i = 0; i < opts.incdirs.n; i++) vec_push(&dirs, opts.incdirs.v[i]);
 	if (opts.stdlib) vec_push(&dirs, (void *)opts.stdlib);
 	for (int i = 0; i < dirs.n; i++) {
 		const char *d = dirs.v[i];
 		size_t dl = strlen(d);
-		char *p = xprintf("%s%s%s%s", d, dl && d[dl - 1] == '/' ? "" : "/", name, ext);
+		char *p = xprintf("%s%s%s%s", d, !dl || d[dl - 1] == '/' ? "" : "/", name, ext);
 		if (access(p, R_OK) == 0) return p;
 	}
 	return NULL;

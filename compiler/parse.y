@@ -369,7 +369,7 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, Parser *P)
 	}
 	char buf[512];
 	size_t k = (size_t)snprintf(buf, sizeof buf, "syntax error: unexpected %s", yysymbol_name(got));
-	if (text && got != YYSYMBOL_NEWLINE && got != YYSYMBOL_YYEOF && got != YYSYMBOL_DEDENT)
+	if (text && (got == YYSYMBOL_IDENT || got == YYSYMBOL_NUMBER || got == YYSYMBOL_UNIT || got == YYSYMBOL_DOLLAR))
 		k += (size_t)snprintf(buf + k, sizeof buf - k, " '%s'", text);
 	if (n > 0 && n <= 5)
 		for (int i = 0; i < n && k < sizeof buf; i++)

@@ -137,6 +137,8 @@ static int opcode_of_func(const char *name, int *nargs)
 	return -1;
 }
 
+static int determined(struct Var *v);
+
 /* ---- resolution context ---- */
 
 typedef struct Ctx {
@@ -149,6 +151,7 @@ typedef struct Ctx {
 	Vec *pending;      /* Var* temporaries read but not yet existing */
 	int failed;
 	int rule_ctx;      /* names may be temporaries */
+	int key_nbind;     /* how much of the binding keys a temporary: 1 for `for` rules, all for $n tuples */
 } Ctx;
 
 static void add_unique(Vec *v, void *x)
@@ -250,7 +253,7 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 	}
 	/* A temporary of this binding (or, for NAME$n, of object $n). */
 	Object **bind = C->bind;
-	int nbind = C->nbind;
+	int nbind = C->key_nbind ? C->key_nbind : C->nbind;
 	if (o != C->bind[0]) {
 		bind = xalloc(sizeof *bind);
 		bind[0] = o;
@@ -284,10 +287,18 @@ static void type_error(Ctx *C, Loc l, const char *msg)
 	C->failed = 1;
 }
 
+/* A temporary no rule has determined yet takes the type its use asks for. */
+static int infer_vector(RExpr *r)
+{
+	if (r->k != R_VAR || r->var->kind != V_TEMP || determined(r->var) || map_get(&temps, r->var->key)) return 0;
+	r->isvec = r->var->isvec = 1;
+	return 1;
+}
+
 static RExpr *build_method(Ctx *C, Expr *x, RExpr *r, const char *name, Expr **args, int nargs)
 {
 	Loc l = x->loc;
-	if (!r->isvec) {
+	if (!r->isvec && !infer_vector(r)) {
 		if (!r->isbool) error_at(l, "'.%s' needs a vector, but this is a scalar", name);
 		else error_at(l, "'.%s' needs a vector, but this is a condition", name);
 		C->failed = 1;
@@ -340,6 +351,8 @@ static RExpr *build_bin(Ctx *C, Expr *x)
 		return e;
 	}
 	case '+': case '-':
+		if (a->isvec && !b->isvec) infer_vector(b);
+		if (b->isvec && !a->isvec) infer_vector(a);
 		if (a->isvec != b->isvec)
 			return type_error(C, l, op == '+' ? "cannot add a vector and a scalar" : "cannot subtract a vector and a scalar"), a;
 		return rop(a->isvec ? (op == '+' ? CSF_OP_VADD : CSF_OP_VSUB) : (op == '+' ? CSF_OP_ADD : CSF_OP_SUB), a->isvec, l,
@@ -767,8 +780,10 @@ static int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 			bind[0] = M->objects.v[i0];
 			for (int j = 0; j < k; j++) bind[j + 1] = M->objects.v[idx[j] < i0 ? idx[j] : idx[j] + 1];
 			if (stmt_applies(s, bind, k + 1, &missing)) {
+				int before = diag_errors;
 				f(s, bind, k + 1);
 				count++;
+				if (diag_errors > before) return -1; /* one report per statement, not per object */
 			}
 			int j = k - 1;
 			while (j >= 0 && idx[j] == others - k + j) j--;
@@ -919,7 +934,7 @@ static RExpr *solve(RExpr *lhs, RExpr *rhs, Var *x, Loc l, const char *text)
 	if (rhs->k == R_VAR && rhs->var == x && !inl) return lhs;
 	Lin p = lin(lhs, x), q = lin(rhs, x);
 	if (!p.ok || !q.ok) {
-		error_at(l, "cannot solve '%s' for %s: it is not linear in %s", text, var_label(x), x->name);
+		error_at(l, "cannot solve \"%s\" for %s: it is not linear in %s", text, var_label(x), x->name);
 		return NULL;
 	}
 	/* p.a x + p.b = q.a x + q.b  =>  x = (q.b - p.b) / (p.a - q.a); one side without x keeps its form */
@@ -935,7 +950,7 @@ static RExpr *solve(RExpr *lhs, RExpr *rhs, Var *x, Loc l, const char *text)
 		num = q.b && p.b ? sadd(q.b, p.b, 1, l) : q.b ? q.b : p.b ? sadd(NULL, p.b, 1, l) : NULL;
 	}
 	if (!den || is_const(den, 0)) {
-		error_at(l, "cannot solve '%s' for %s: %s cancels out", text, var_label(x), x->name);
+		error_at(l, "cannot solve \"%s\" for %s: %s cancels out", text, var_label(x), x->name);
 		return NULL;
 	}
 	if (!num) num = x->isvec ? rvconst((double[3]){ 0, 0, 0 }, l) : rconst(0, l);
@@ -990,6 +1005,7 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 	C.rf = &rf;
 	C.pending = &pending;
 	C.rule_ctx = 1;
+	C.key_nbind = I->st->has_for ? 1 : I->nbind;
 	RExpr *lhs = build(&C, q->lhs), *rhs = build(&C, q->rhs);
 	if (C.failed) return NULL;
 	if (lhs->isbool || rhs->isbool) {
@@ -1003,7 +1019,7 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 		if (!x || var_class(v) < var_class(x) || (var_class(v) == var_class(x) && v->order > x->order)) x = v;
 	}
 	if (!x) {
-		error_at(q->loc, "rule '%s' is overdetermined%s%s: every variable in it is already determined", q->text,
+		error_at(q->loc, "rule \"%s\" is overdetermined%s%s: every variable in it is already determined", q->text,
 		         I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "");
 		for (int i = 0; i < reads.n; i++) explain_det(reads.v[i]);
 		return NULL;
@@ -1011,7 +1027,7 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 	for (int i = 0; i < reads.n; i++) {
 		Var *v = reads.v[i];
 		if (v != x && v->kind == V_TEMP && !determined(v)) {
-			error_at(q->loc, "rule '%s' is unresolvable%s%s: it solves for %s but also reads %s, which no earlier rule determines",
+			error_at(q->loc, "rule \"%s\" is unresolvable%s%s: it solves for %s but also reads %s, which no earlier rule determines",
 			         q->text, I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", x->name, v->name);
 			return NULL;
 		}
@@ -1022,14 +1038,14 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 		if (side) {
 			side->isvec = (side == lhs ? rhs : lhs)->isvec;
 			if (map_get(&vector_decls, x->name) && !side->isvec) {
-				error_at(q->loc, "'%s' is declared a vector, but '%s' makes it a scalar", x->name, q->text);
+				error_at(q->loc, "'%s' is declared a vector, but \"%s\" makes it a scalar", x->name, q->text);
 				return NULL;
 			}
 			x->isvec = side->isvec;
 		}
 	}
 	if (lhs->isvec != rhs->isvec) {
-		error_at(q->rhs->loc, "the two sides of '%s' differ: %s = %s", q->text, lhs->isvec ? "vector" : "scalar",
+		error_at(q->rhs->loc, "the two sides of \"%s\" differ: %s = %s", q->text, lhs->isvec ? "vector" : "scalar",
 		         rhs->isvec ? "vector" : "scalar");
 		return NULL;
 	}
@@ -1037,7 +1053,7 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 	RExpr *sol = solve(lhs, rhs, x, q->loc, q->text);
 	if (!sol) return NULL;
 	if (sol->isvec != x->isvec) {
-		error_at(q->loc, "'%s' would make %s a %s, but it is a %s", q->text, var_label(x), sol->isvec ? "vector" : "scalar",
+		error_at(q->loc, "\"%s\" would make %s a %s, but it is a %s", q->text, var_label(x), sol->isvec ? "vector" : "scalar",
 		         x->isvec ? "vector" : "scalar");
 		return NULL;
 	}
@@ -1065,6 +1081,7 @@ static RExpr *build_cond(Inst *I, Expr *cond, const char *what)
 	C.rf = &rf;
 	C.pending = &pending;
 	C.rule_ctx = 1;
+	C.key_nbind = I->st->has_for ? 1 : I->nbind;
 	RExpr *r = build(&C, cond);
 	if (C.failed) return NULL;
 	if (!r->isbool) {
@@ -1157,6 +1174,7 @@ static void resolve_deriv(Inst *I)
 	C.rf = &rf;
 	C.pending = &pending;
 	C.rule_ctx = 1;
+	C.key_nbind = I->st->has_for ? 1 : I->nbind;
 	RExpr *r = build(&C, q->rhs);
 	if (C.failed) return;
 	Var *v = I->targets.v[0];
@@ -1167,7 +1185,7 @@ static void resolve_deriv(Inst *I)
 	for (int i = 0; i < I->reads.n; i++) {
 		Var *w = I->reads.v[i];
 		if (w->kind == V_TEMP && !determined(w)) {
-			error_at(q->loc, "rule '%s' is unresolvable: it reads '%s', which no rule determines", q->text, w->name);
+			error_at(q->loc, "rule \"%s\" is unresolvable: it reads '%s', which no rule determines", q->text, w->name);
 			return;
 		}
 	}

@@ -120,6 +120,16 @@ int src_load(const char *path)
 	return sources.n - 1;
 }
 
+int src_add(const char *name, const char *text)
+{
+	Source *s = xalloc(sizeof *s);
+	s->path = xstrdup(name);
+	s->text = xstrdup(text);
+	s->len = strlen(text);
+	vec_push(&sources, s);
+	return sources.n - 1;
+}
+
 char *src_line(int file, int line)
 {
 	Source *s = sources.v[file];

@@ -27,13 +27,11 @@ static inline double csf_bool(int c) { return c ? 1.0 : 0.0; }
 
 static inline double csf_vmag3(double x, double y, double z) { return sqrt(x * x + y * y + z * z); }
 
+/* The angle between a and b, as atan2(|a x b|, a . b): accurate near 0 and pi too. */
 static inline double csf_vangle3(const double *a, const double *b)
 {
-	double d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-	double c = d / (csf_vmag3(a[0], a[1], a[2]) * csf_vmag3(b[0], b[1], b[2]));
-	if (c > 1.0) c = 1.0;
-	if (c < -1.0) c = -1.0;
-	return acos(c);
+	double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2], z = a[0] * b[1] - a[1] * b[0];
+	return atan2(csf_vmag3(x, y, z), a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
 }
 
 #define CSF_OP1(name, expr) \

@@ -127,7 +127,7 @@ static void report_nonfinite(const csf_prog *p, int sec, const double *m, double
 	uint32_t k = 0;
 	while (k + 1 < tg->width && isfinite(m[tg->slot + k])) k++;
 	csf_fmt_double(vb, m[tg->slot + k]);
-	fprintf(err, "%s:%lu: error: non-finite value at t=%s: %s%s%s (object %s) = %s, in rule: %s\n",
+	fprintf(err, "%s:%lu: error: non-finite value at t=%s: %s%s%s (object %s) = %s, computed by: %s\n",
 	        csf_str(p, p->files[s->file]), (unsigned long)s->line, tb, csf_str(p, tg->name),
 	        tg->width == 3 ? "." : "", tg->width == 3 ? (const char *[]){ "x", "y", "z" }[k] : "",
 	        csf_str(p, tg->object), vb, csf_str(p, s->text));
@@ -203,7 +203,10 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, FILE *out, F
 			if (st == CSF_ODE_FAILED) {
 				char tb[32];
 				csf_fmt_double(tb, t);
-				fprintf(err, "error: integration failed at t=%s: %s\n", tb, msg);
+				fprintf(err,
+				        "error: integration failed at t=%s: %s (the step size collapsed: the solution may be "
+				        "singular there, or the problem stiff; try another --method or a smaller 'by')\n",
+				        tb, msg);
 				status = 1;
 				goto done;
 			}

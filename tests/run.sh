@@ -1,0 +1,162 @@
+#!/bin/sh
+# tests/run.sh - the golden and end-to-end suites (the Check unit suites are
+# build/unit-tests). Run from the top of the tree; CSF_BUILD names the build
+# directory holding csfc and csfvm (default: build).
+#
+#  1. exact answers: every tests/e2e/X.csf and examples/X.csf is compiled and
+#     run; X.check, an awk program, compares each CSV row with the exact or
+#     analytic solution and exits non-zero on the first row that misses.
+#  2. diagnostics: every tests/diag/X.csf must fail to compile with exit 1 and
+#     print each line of X.err exactly (file:line:col: error: ...).
+#  3. run-time failures: every tests/runtime/X.csf is run; X.expect gives the
+#     exit status, the number of CSV data rows that must be on stdout, and
+#     lines that must appear on stderr.
+#  4. hostile bytecode, bad usage, output errors, install, a 300-body scene.
+# The last line is "N passed, N failed".
+set -u
+B=$(cd "${CSF_BUILD:-build}" && pwd)
+CSFC=$B/csfc
+CSFVM=$B/csfvm
+TOP=$(pwd)
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+
+# 1. exact answers
+for m in tests/e2e/*.csf examples/*.csf; do
+	[ -f "$m" ] || continue
+	chk=${m%.csf}.check
+	if ! "$CSFC" "$m" -o "$T/m.csfb" 2>"$T/err"; then
+		bad "$m: does not compile: $(head -n 1 "$T/err")"
+		continue
+	fi
+	if ! "$CSFVM" "$T/m.csfb" >"$T/out.csv" 2>"$T/err"; then
+		bad "$m: csfvm failed: $(head -n 1 "$T/err")"
+		continue
+	fi
+	if [ -f "$chk" ]; then
+		if ! awk -F, -f "$chk" "$T/out.csv" >"$T/chk" 2>&1; then
+			bad "$m: $(head -n 3 "$T/chk")"
+			continue
+		fi
+	elif [ "${m#examples/}" = "$m" ]; then
+		bad "$m: no checker $chk"
+		continue
+	fi
+	ok
+done
+
+# 2. diagnostics
+for m in tests/diag/*.csf; do
+	exp=${m%.csf}.err
+	[ -f "$exp" ] || continue
+	(cd tests/diag && "$CSFC" "$(basename "$m")" -o "$T/d.csfb") >/dev/null 2>"$T/err"
+	st=$?
+	if [ $st -ne 1 ]; then
+		bad "$m: exit status $st, expected 1"
+		continue
+	fi
+	missing=0
+	while IFS= read -r line; do
+		grep -Fxq -- "$line" "$T/err" || { missing=1; bad "$m: expected: $line"; echo "   got: $(head -n 1 "$T/err")"; break; }
+	done <"$exp"
+	[ $missing -eq 0 ] && ok
+done
+
+# 3. run-time failures
+for m in tests/runtime/*.csf; do
+	exp=${m%.csf}.expect
+	[ -f "$exp" ] || continue
+	if ! (cd tests/runtime && "$CSFC" "$(basename "$m")" -o "$T/r.csfb") 2>"$T/err"; then
+		bad "$m: does not compile: $(head -n 1 "$T/err")"
+		continue
+	fi
+	(cd tests/runtime && "$CSFVM" "$T/r.csfb") >"$T/out.csv" 2>"$T/err"
+	st=$?
+	want_st=$(awk '$1 == "exit" { print $2 }' "$exp")
+	want_rows=$(awk '$1 == "rows" { print $2 }' "$exp")
+	rows=$(($(wc -l <"$T/out.csv") - 1))
+	if [ "$st" != "$want_st" ]; then
+		bad "$m: exit status $st, expected $want_st"
+		continue
+	fi
+	if [ "$rows" != "$want_rows" ]; then
+		bad "$m: $rows data rows on stdout, expected $want_rows"
+		continue
+	fi
+	missing=0
+	sed -n 's/^stderr //p' "$exp" >"$T/want"
+	while IFS= read -r line; do
+		grep -Fq -- "$line" "$T/err" || { missing=1; bad "$m: expected on stderr: $line"; echo "   got: $(head -n 1 "$T/err")"; break; }
+	done <"$T/want"
+	[ $missing -eq 0 ] && ok
+done
+
+# 4a. hostile bytecode: every byte flipped, every truncation (csfvm must exit 2, never crash)
+printf 'object p: x = 1\nobject p: v = 0\nrule: x'"'"' = v\nrule: v'"'"' = -x\nassert x < 2\ninc t till 1 by 0.5 watch x, v\n' >"$T/h.csf"
+"$CSFC" "$T/h.csf" -o "$T/h.csfb" 2>/dev/null
+if "$B/fuzz-bytecode" "$T/h.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode: $(tail -n 3 "$T/fuzz")"; fi
+# and through the real executable, on a sample of corruptions
+size=$(wc -c <"$T/h.csfb")
+vmfail=0
+for off in 0 4 8 12 20 24 28 40 $((size / 2)) $((size - 1)); do
+	cp "$T/h.csfb" "$T/c.csfb"
+	printf '\377' | dd of="$T/c.csfb" bs=1 seek="$off" conv=notrunc 2>/dev/null
+	"$CSFVM" "$T/c.csfb" >/dev/null 2>"$T/err"
+	st=$?
+	if [ $st -ne 2 ] || ! grep -q "invalid bytecode" "$T/err"; then vmfail=1; bad "csfvm on a corrupted byte at $off: exit $st"; fi
+	head -c "$off" "$T/h.csfb" >"$T/c.csfb"
+	"$CSFVM" "$T/c.csfb" >/dev/null 2>&1
+	st=$?
+	[ $st -eq 2 ] || { vmfail=1; bad "csfvm on a file truncated to $off bytes: exit $st"; }
+done
+[ $vmfail -eq 0 ] && ok
+
+# 4b. bad usage and unreadable files: exit 2
+u=0
+"$CSFC" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfc without arguments: not exit 2"; }
+"$CSFC" --no-such-flag x.csf >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfc --no-such-flag: not exit 2"; }
+"$CSFC" "$T/does-not-exist.csf" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfc on a missing file: not exit 2"; }
+"$CSFVM" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm without arguments: not exit 2"; }
+"$CSFVM" "$T/does-not-exist.csfb" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm on a missing file: not exit 2"; }
+"$CSFVM" --method nosuch "$T/h.csfb" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm --method nosuch: not exit 2"; }
+"$CSFVM" --tol -1 "$T/h.csfb" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm --tol -1: not exit 2"; }
+[ $u -eq 0 ] && ok
+
+# 4c. output errors are reported: a full disk, a closed pipe
+printf 'object p: x = 1\nrule: x'"'"' = 1\ninc t till 100000 by 1 watch x\n' >"$T/long.csf"
+"$CSFC" "$T/long.csf" -o "$T/long.csfb" 2>/dev/null
+if [ -w /dev/full ]; then
+	"$CSFVM" "$T/long.csfb" >/dev/full 2>"$T/err"
+	st=$?
+	if [ $st -eq 2 ] && grep -q "cannot write output" "$T/err"; then ok; else bad "csfvm >/dev/full: exit $st, $(head -n 1 "$T/err")"; fi
+fi
+st=$( { "$CSFVM" "$T/long.csfb" 2>"$T/err"; echo $? >"$T/st"; } | head -n 1 >/dev/null; cat "$T/st")
+if [ "$st" -eq 2 ] && grep -q "cannot write output" "$T/err"; then ok; else bad "csfvm | head -n 1: exit $st"; fi
+
+# 4d. a 300-body scene with a pair rule compiles and runs (no fixed object limit)
+awk 'BEGIN {
+	print "using mechanics/mass_point"
+	for (i = 0; i < 300; i++) {
+		printf "object b%d: mass_point\n", i
+		printf "object b%d: pos = (%d, %d, 0) m\n", i, i % 20, int(i / 20)
+	}
+	print "using mechanics/rules"
+	print "rule F: Fg = (pos$1 - pos).mul(G*m*m$1/(pos$1 - pos).mag^3)"
+	print "inc t till 1 s by 0.5 s watch b0.pos, b299.pos"
+}' >"$T/n300.csf"
+if "$CSFC" "$T/n300.csf" -o "$T/n300.csfb" 2>"$T/err" && "$CSFVM" "$T/n300.csfb" >"$T/out.csv" 2>>"$T/err" &&
+	[ "$(wc -l <"$T/out.csv")" -eq 4 ]; then ok; else bad "300-body scene: $(head -n 1 "$T/err")"; fi
+
+# 4e. make install into a staging directory; the installed csfc finds the standard library
+if make -s install BUILD="${CSF_BUILD:-build}" PREFIX=/usr DESTDIR="$T/stage" >/dev/null 2>"$T/err" &&
+	(cd "$T" && "$T/stage/usr/bin/csfc" "$TOP/examples/projectile.csf" -o "$T/p.csfb") 2>"$T/err" &&
+	"$T/stage/usr/bin/csfvm" "$T/p.csfb" >/dev/null 2>>"$T/err" &&
+	[ -f "$T/stage/usr/share/man/man5/csf.5" ] && [ -f "$T/stage/usr/lib/libcsfrt.a" ] &&
+	[ -f "$T/stage/usr/include/csf/csf.h" ]; then ok; else bad "make install: $(head -n 1 "$T/err")"; fi
+
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]

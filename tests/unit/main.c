@@ -1,0 +1,67 @@
+/*
+ * The unit-test runner: every module's Check suite, in fork mode so a
+ * crash fails one test, not the run.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "suites.h"
+#include "gen.h"
+
+int compile_string(const char *text, csf_prog *p, char **diag)
+{
+	char *buf = NULL;
+	size_t len = 0;
+	FILE *mem = open_memstream(&buf, &len);
+	diag_out = mem;
+	diag_errors = 0;
+	opts.stdlib = getenv("CSF_STDLIB");
+	int f = src_add("t.csf", text);
+	Stmt *s = parse_file(f);
+	int errs = diag_errors;
+	if (!errs) {
+		Model *M = sema_run(s);
+		errs = diag_errors;
+		if (!errs) {
+			gen_program(M, p);
+			char err[256];
+			ck_assert_msg(csf_verify(p, err, sizeof err) == 0, "generated code does not verify: %s", err);
+		}
+	}
+	fclose(mem);
+	diag_out = NULL;
+	if (diag) *diag = buf;
+	else free(buf);
+	return errs;
+}
+
+double *run_out(const csf_prog *p)
+{
+	double *m = malloc(p->nmem * sizeof *m + 1);
+	memcpy(m, p->mem0, p->nmem * sizeof *m);
+	csf_vm_exec(p, CSF_SEC_OUT, m);
+	return m;
+}
+
+int col_slot(const csf_prog *p, const char *name)
+{
+	for (uint32_t i = 0; i < p->ncols; i++)
+		if (strcmp(csf_str(p, p->cols[i].name), name) == 0) return (int)p->cols[i].slot;
+	return -1;
+}
+
+int main(void)
+{
+	SRunner *sr = srunner_create(units_suite());
+	srunner_add_suite(sr, lex_suite());
+	srunner_add_suite(sr, parse_suite());
+	srunner_add_suite(sr, sema_suite());
+	srunner_add_suite(sr, bytecode_suite());
+	srunner_add_suite(sr, vm_suite());
+	srunner_set_fork_status(sr, CK_FORK);
+	srunner_run_all(sr, CK_NORMAL);
+	int failed = srunner_ntests_failed(sr);
+	srunner_free(sr);
+	return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}

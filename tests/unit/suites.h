@@ -1,0 +1,36 @@
+/*
+ * suites.h - the Check suites of the unit tests, one per module, and the
+ * helpers they share (compiling a model held in a string).
+ */
+#ifndef CSF_SUITES_H
+#define CSF_SUITES_H
+
+#include <check.h>
+#include <stdlib.h>
+
+#include "csfc.h"
+#include "ast.h"
+#include "sema.h"
+#include "csf.h"
+
+Suite *units_suite(void);
+Suite *lex_suite(void);
+Suite *parse_suite(void);
+Suite *sema_suite(void);
+Suite *bytecode_suite(void);
+Suite *vm_suite(void);
+
+/*
+ * Compiles source text (file name "t.csf") to a verified program in *p.
+ * Diagnostics are captured into a string returned in *diag (may be NULL).
+ * Returns the number of errors.
+ */
+int compile_string(const char *text, csf_prog *p, char **diag);
+
+/* Runs the OUT section of p at t = 0 on a fresh copy of its memory; returns the memory (free it). */
+double *run_out(const csf_prog *p);
+
+/* Slot of output column `name` in p, or -1. */
+int col_slot(const csf_prog *p, const char *name);
+
+#endif

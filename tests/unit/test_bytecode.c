@@ -1,0 +1,133 @@
+/* The bytecode writer, reader and verifier. */
+#include <string.h>
+
+#include "suites.h"
+#include "bytecode.h"
+
+static const char *model = "object b: x = 1\nobject b: v = 0\nrule: x' = v\nrule: v' = -x\n"
+                           "rule: if x > 0:\n    s = 1\nelse:\n    s = -1\nassert x < 2\ninc t till 1 by 0.5 watch x, s\n";
+
+START_TEST(test_roundtrip)
+{
+	csf_prog p, q;
+	ck_assert_int_eq(compile_string(model, &p, NULL), 0);
+	unsigned char *buf;
+	size_t len;
+	ck_assert_int_eq(csf_encode(&p, &buf, &len), 0);
+	char err[256];
+	ck_assert_msg(csf_decode(buf, len, &q, err, sizeof err) == 0, "%s", err);
+	ck_assert_uint_eq(p.nmem, q.nmem);
+	ck_assert(memcmp(p.mem0, q.mem0, p.nmem * sizeof(double)) == 0);
+	for (int s = 0; s < CSF_NSEC; s++) {
+		ck_assert_uint_eq(p.ncode[s], q.ncode[s]);
+		ck_assert(memcmp(p.code[s], q.code[s], p.ncode[s] * 4) == 0);
+		ck_assert_uint_eq(p.ntargets[s], q.ntargets[s]);
+	}
+	ck_assert_uint_eq(p.ncols, q.ncols);
+	ck_assert_str_eq(csf_str(&q, q.cols[1].name), "b.s");
+	ck_assert(q.till == 1 && q.by == 0.5);
+	ck_assert_uint_eq(q.nasserts, 1);
+	free(buf);
+	csf_prog_free(&p);
+	csf_prog_free(&q);
+}
+END_TEST
+
+START_TEST(test_header_checks)
+{
+	csf_prog p, q;
+	ck_assert_int_eq(compile_string(model, &p, NULL), 0);
+	unsigned char *buf;
+	size_t len;
+	csf_encode(&p, &buf, &len);
+	char err[256];
+	static const struct { size_t off; const char *why; } c[] = {
+		{ 0, "bad magic" }, { 4, "version" }, { 8, "integer layout" }, { 12, "floating-point layout" },
+		{ 20, "payload size" }, { 24, "checksum" }, { 40, "checksum" },
+	};
+	for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+		buf[c[i].off] ^= 0x5A;
+		ck_assert_int_eq(csf_decode(buf, len, &q, err, sizeof err), -1);
+		ck_assert_msg(strstr(err, c[i].why) != NULL, "offset %zu: %s", c[i].off, err);
+		buf[c[i].off] ^= 0x5A;
+	}
+	ck_assert_int_eq(csf_decode(buf, 10, &q, err, sizeof err), -1);
+	ck_assert_int_eq(csf_decode(buf, len - 1, &q, err, sizeof err), -1);
+	free(buf);
+	csf_prog_free(&p);
+}
+END_TEST
+
+/* Each defect planted in a valid program must be caught by csf_verify. */
+START_TEST(test_verifier)
+{
+	csf_prog p;
+	ck_assert_int_eq(compile_string(model, &p, NULL), 0);
+	char err[256];
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), 0);
+	uint32_t *code = p.code[CSF_SEC_OUT];
+	/* find the JZ of the conditional rule and the ASSERT */
+	uint32_t jz = 0, as = 0;
+	for (uint32_t i = 0; i < p.ncode[CSF_SEC_OUT]; i += 1u + csf_opinfo_table[code[i]].nops) {
+		if (code[i] == CSF_OP_JZ) jz = i;
+		if (code[i] == CSF_OP_ASSERT) as = i;
+	}
+	ck_assert(code[jz] == CSF_OP_JZ && code[as] == CSF_OP_ASSERT);
+	struct { uint32_t *w; uint32_t bad; const char *why; } c[] = {
+		{ &code[0], CSF_NOPCODES, "invalid opcode" },
+		{ &code[jz + 1], p.nmem, "out of range" },         /* read past memory */
+		{ &code[jz + 2], jz, "out of range" },             /* backward jump (a loop) */
+		{ &code[jz + 2], jz + 1, "out of range" },         /* into the middle of an instruction */
+		{ &code[jz + 2], p.ncode[CSF_SEC_OUT] + 1, "out of range" },
+		{ &code[as + 2], 7, "out of range" },              /* no such assertion */
+		{ &p.tslot, p.nmem, "time slot" },
+		{ &p.ny, p.nmem, "state layout" },
+		{ &p.cols[0].slot, p.nmem + 5, "column" },
+		{ &p.srcs[0].file, 99, "source entry" },
+		{ &p.targets[CSF_SEC_RHS][0].width, 2, "target" },
+	};
+	for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+		uint32_t keep = *c[i].w;
+		*c[i].w = c[i].bad;
+		ck_assert_msg(csf_verify(&p, err, sizeof err) == -1, "defect %zu accepted", i);
+		ck_assert_msg(strstr(err, c[i].why) != NULL, "defect %zu: %s", i, err);
+		*c[i].w = keep;
+	}
+	p.strs[p.nstrs - 1] = 'x';
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
+	p.strs[p.nstrs - 1] = '\0';
+	p.by = 0;
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
+	p.by = 0.5;
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), 0);
+	csf_prog_free(&p);
+}
+END_TEST
+
+START_TEST(test_disassembler)
+{
+	csf_prog p;
+	ck_assert_int_eq(compile_string(model, &p, NULL), 0);
+	char *buf;
+	size_t len;
+	FILE *f = open_memstream(&buf, &len);
+	csf_disassemble(&p, f);
+	fclose(f);
+	ck_assert_msg(strstr(buf, "section rhs") && strstr(buf, "section out") && strstr(buf, "JZ") &&
+	              strstr(buf, "ASSERT") && strstr(buf, "t.csf:3: rule: x' = v"), "%s", buf);
+	free(buf);
+	csf_prog_free(&p);
+}
+END_TEST
+
+Suite *bytecode_suite(void)
+{
+	Suite *s = suite_create("bytecode");
+	TCase *tc = tcase_create("format");
+	tcase_add_test(tc, test_roundtrip);
+	tcase_add_test(tc, test_header_checks);
+	tcase_add_test(tc, test_verifier);
+	tcase_add_test(tc, test_disassembler);
+	suite_add_tcase(s, tc);
+	return s;
+}

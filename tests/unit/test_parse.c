@@ -1,0 +1,122 @@
+/* The parser and the layout layer: statements, blocks, precedence, units. */
+#include <string.h>
+
+#include "suites.h"
+#include "parse.h"
+
+static Stmt *parse_string(const char *text, char **diag)
+{
+	char *buf = NULL;
+	size_t len = 0;
+	diag_out = open_memstream(&buf, &len);
+	diag_errors = 0;
+	Stmt *s = parse_file(src_add("p.csf", text));
+	fclose(diag_out);
+	diag_out = NULL;
+	if (diag) *diag = buf;
+	else free(buf);
+	return s;
+}
+
+START_TEST(test_statements)
+{
+	Stmt *s = parse_string("global k = 2\nobject b: m = 1 kg\nobject b: vector v = (1, 2, 3) m/s\n"
+	                       "object c: b\nvector W\nrule F for b, c: W = g.mul(m)\nassert m > 0\n"
+	                       "inc t till 2 s by 1 ms watch pos, b.v\n",
+	                       NULL);
+	ck_assert_int_eq(diag_errors, 0);
+	StmtKind k[] = { S_GLOBAL, S_PROP, S_PROP, S_OBJKIND, S_VECDECL, S_RULE, S_ASSERT, S_START };
+	for (int i = 0; i < 8; i++, s = s->next) {
+		ck_assert_ptr_nonnull(s);
+		ck_assert_msg(s->kind == k[i], "statement %d", i);
+		if (i == 2) ck_assert(s->isvec && s->value->kind == E_UNIT);
+		if (i == 5) {
+			ck_assert_str_eq(s->attr, "F");
+			ck_assert_int_eq(s->fors.n, 2);
+			ck_assert_str_eq(s->text, "rule F for b, c: W = g.mul(m)");
+		}
+		if (i == 6) ck_assert_str_eq(s->text, "m > 0");
+		if (i == 7) {
+			ck_assert_int_eq(s->watch.n, 2);
+			ck_assert_str_eq(((WatchItem *)s->watch.v[1])->obj, "b");
+		}
+	}
+}
+END_TEST
+
+START_TEST(test_blocks)
+{
+	Stmt *s = parse_string("def k:\n    m = 1\n    vector p = (0, 0, 0)\n"
+	                       "object b: k\nrule: if m > 0:\n    x = 1\n    y = 2\nelse:\n    x = 3\n"
+	                       "inc t\n",
+	                       NULL);
+	ck_assert_int_eq(diag_errors, 0);
+	ck_assert_int_eq(s->kind, S_DEF);
+	ck_assert_ptr_nonnull(s->body);
+	ck_assert_ptr_nonnull(s->body->next);
+	ck_assert(s->body->next->isvec);
+	Stmt *r = s->next->next;
+	ck_assert_int_eq(r->kind, S_RULE);
+	ck_assert_ptr_nonnull(r->cond);
+	ck_assert_ptr_nonnull(r->eqns->next);
+	ck_assert(r->has_else);
+	ck_assert_ptr_null(r->else_eqns->next);
+}
+END_TEST
+
+START_TEST(test_precedence)
+{
+	Stmt *s = parse_string("rule: y = -x^2 + 3 * z / w\ninc t\n", NULL);
+	ck_assert_int_eq(diag_errors, 0);
+	Expr *e = s->eqns->rhs; /* (-(x^2)) + ((3*z)/w) */
+	ck_assert(e->kind == E_BIN && e->op == '+');
+	ck_assert(e->a->kind == E_NEG && e->a->a->kind == E_BIN && e->a->a->op == '^');
+	ck_assert(e->b->kind == E_BIN && e->b->op == '/' && e->b->a->op == '*');
+}
+END_TEST
+
+START_TEST(test_derivative_and_dollar)
+{
+	Stmt *s = parse_string("rule: v' = a$1.mul(2)\ninc t\n", NULL);
+	ck_assert_int_eq(diag_errors, 0);
+	ck_assert(s->eqns->deriv);
+	ck_assert_str_eq(s->eqns->lhs->name, "v");
+	Expr *e = s->eqns->rhs;
+	ck_assert(e->kind == E_METHOD && e->a->kind == E_DOLLAR && e->a->n == 1);
+}
+END_TEST
+
+START_TEST(test_unit_only_after_literal)
+{
+	/* `2 m` is two metres; `2 * m` is twice the variable m */
+	Stmt *s = parse_string("rule: y = 2 m\nrule: z = 2 * m\ninc t\n", NULL);
+	ck_assert_int_eq(diag_errors, 0);
+	ck_assert(s->eqns->rhs->kind == E_UNIT);
+	ck_assert(s->next->eqns->rhs->kind == E_BIN);
+	ck_assert(s->next->eqns->rhs->b->kind == E_NAME);
+}
+END_TEST
+
+START_TEST(test_recovery)
+{
+	char *d;
+	parse_string("object b: x = 1 +\nobject c: y = )\nobject d: z = 1\nrule: = 2\ninc t\n", &d);
+	ck_assert_int_eq(diag_errors, 3);
+	ck_assert_msg(strstr(d, "p.csf:1:18: error:") && strstr(d, "p.csf:2:15: error:") && strstr(d, "p.csf:4:7: error:"), "%s", d);
+	free(d);
+}
+END_TEST
+
+Suite *parse_suite(void)
+{
+	Suite *s = suite_create("parse");
+	TCase *tc = tcase_create("grammar");
+	tcase_add_test(tc, test_statements);
+	tcase_add_test(tc, test_blocks);
+	tcase_add_test(tc, test_precedence);
+	tcase_add_test(tc, test_derivative_and_dollar);
+	tcase_add_test(tc, test_unit_only_after_literal);
+	tcase_add_test(tc, test_recovery);
+	suite_add_tcase(s, tc);
+	return s;
+}
