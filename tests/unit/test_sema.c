@@ -56,6 +56,7 @@ START_TEST(test_resolve_and_solve)
 	char *d;
 	int errs = compile_string(cases[_i].src, &p, &d);
 	ck_assert_msg(errs == 0, "case %d: %s", _i, d);
+	free(d);
 	int s = col_slot(&p, cases[_i].col);
 	ck_assert_msg(s >= 0, "case %d: no column %s", _i, cases[_i].col);
 	double *m = run_out(&p);
