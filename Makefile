@@ -15,15 +15,16 @@ CFLAGS ?= -O2 -g
 SAN ?=
 
 DEB_PACKAGES = gcc make libgsl-dev check re2c bison pkg-config
-CSF_CFLAGS = -std=c11 -Wall -Wextra -ffp-contract=off -D_DEFAULT_SOURCE $(if $(SAN),-fsanitize=address$(,)undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
 , := ,
+SANFLAGS = $(if $(SAN),-fsanitize=address$(,)undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+CSF_CFLAGS = -std=c11 -Wall -Wextra -ffp-contract=off -D_DEFAULT_SOURCE $(SANFLAGS)
 CPPFLAGS_ALL = -Iruntime -Icompiler -I$(BUILD)
 LDLIBS_GSL = $(shell pkg-config --libs gsl 2>/dev/null || echo -lgsl -lgslcblas) -lm
 LDFLAGS_SAN = $(if $(SAN),-fsanitize=address$(,)undefined)
 
-RT_SRC = runtime/bytecode.c runtime/vm.c runtime/driver.c runtime/ode.c
+RT_SRC = runtime/bytecode.c runtime/vm.c runtime/driver.c runtime/ode.c runtime/main.c
 RT_OBJ = $(RT_SRC:runtime/%.c=$(BUILD)/rt/%.o)
-CC_SRC = compiler/util.c compiler/units.c compiler/layout.c compiler/sema.c compiler/gen.c
+CC_SRC = compiler/util.c compiler/units.c compiler/layout.c compiler/sema.c compiler/gen.c compiler/emit_c.c
 CC_GEN = $(BUILD)/lex.c $(BUILD)/parse.c
 CC_OBJ = $(CC_SRC:compiler/%.c=$(BUILD)/cc/%.o) $(BUILD)/cc/lex.o $(BUILD)/cc/parse.o
 
@@ -81,7 +82,7 @@ $(BUILD)/fuzz-bytecode: tests/fuzz_bytecode.c $(BUILD)/libcsfrt.a
 
 test: all $(BUILD)/unit-tests $(BUILD)/fuzz-bytecode
 	CSF_STDLIB=$(CURDIR)/stdlib $(BUILD)/unit-tests
-	CSF_BUILD=$(BUILD) sh tests/run.sh
+	CSF_BUILD=$(BUILD) CFLAGS="$(CFLAGS) $(SANFLAGS)" sh tests/run.sh
 
 check:
 	$(MAKE) test
@@ -113,6 +114,11 @@ install: all
 	install -m 644 stdlib/mechanics/*.csf $(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics/
 	install -m 644 man/csfc.1 man/csfvm.1 $(DESTDIR)$(PREFIX)/share/man/man1/
 	install -m 644 man/csf.5 $(DESTDIR)$(PREFIX)/share/man/man5/
+	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig
+	printf '%s\n' 'prefix=$(PREFIX)' 'libdir=$${prefix}/lib' 'includedir=$${prefix}/include' '' \
+		'Name: csfrt' 'Description: CSF runtime library (integrator driver, loader, output) for generated models' \
+		'Version: 0.1.0' 'Requires.private: gsl' 'Cflags: -I$${includedir}/csf -ffp-contract=off' \
+		'Libs: -L$${libdir} -lcsfrt -lgsl -lgslcblas -lm' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/csfrt.pc
 
 bench: all
 	$(MAKE) -C bench BUILD=../$(BUILD)

@@ -12,6 +12,7 @@
 #include "sema.h"
 #include "gen.h"
 #include "csf.h"
+#include "emit_c.h"
 
 static const char usage[] =
 	"usage: csfc [options] MODEL.csf\n"
@@ -20,6 +21,8 @@ static const char usage[] =
 	"  -I DIR             add DIR to the search path of 'using'\n"
 	"  --explain          print what every rule solves for, and what is left out\n"
 	"  --dump-bytecode    print the compiled code as a listing\n"
+	"  --emit-c           translate to C: with -o NAME.c write the source, otherwise\n"
+	"                     build an executable (with $CC $CFLAGS, libcsfrt and GSL)\n"
 	"  --help, --version\n";
 
 /* The standard library: $CSF_STDLIB, else next to the installed or the built csfc. */
@@ -58,7 +61,7 @@ static int write_file(const char *path, const unsigned char *buf, size_t len)
 static int run(int argc, char **argv)
 {
 	const char *in = NULL, *out = NULL;
-	int explain = 0, dump = 0;
+	int explain = 0, dump = 0, emit = 0;
 	for (int i = 1; i < argc; i++) {
 		const char *a = argv[i];
 		if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -77,6 +80,8 @@ static int run(int argc, char **argv)
 			explain = 1;
 		} else if (!strcmp(a, "--dump-bytecode")) {
 			dump = 1;
+		} else if (!strcmp(a, "--emit-c")) {
+			emit = 1;
 		} else if (a[0] == '-' && a[1]) {
 			fprintf(stderr, "csfc: unknown or incomplete option '%s'\n%s", a, usage);
 			return 2;
@@ -117,18 +122,36 @@ static int run(int argc, char **argv)
 		csf_prog_free(&p);
 		return 2;
 	}
-	csf_prog_free(&p);
-	if (!out) {
-		size_t n = strlen(in);
-		out = n > 4 && !strcmp(in + n - 4, ".csf") ? xprintf("%.*sb", (int)n, in) : xprintf("%s.csfb", in);
-	}
 	int st = 0;
-	if (!(explain || dump) || out) {
+	size_t n = strlen(in);
+	char *stem = n > 4 && !strcmp(in + n - 4, ".csf") ? xstrndup(in, n - 4) : xstrdup(in);
+	if (emit) {
+		if (!out) out = stem;
+		size_t on = strlen(out);
+		int source_only = on > 2 && !strcmp(out + on - 2, ".c");
+		char *cpath = source_only ? (char *)out : xprintf("%s.csfc-tmp.c", out);
+		FILE *f = fopen(cpath, "w");
+		if (!f) {
+			fprintf(stderr, "csfc: cannot write %s: %s\n", cpath, strerror(errno));
+			st = 2;
+		} else {
+			emit_c(&p, buf, len, in, f);
+			if (ferror(f) | fclose(f)) {
+				fprintf(stderr, "csfc: cannot write %s\n", cpath);
+				st = 2;
+			} else if (!source_only) {
+				st = emit_c_executable(cpath, out);
+			}
+			if (!source_only) remove(cpath);
+		}
+	} else {
+		if (!out) out = xprintf("%s.csfb", stem);
 		if (write_file(out, buf, len)) {
 			fprintf(stderr, "csfc: cannot write %s: %s\n", out, strerror(errno));
 			st = 2;
 		}
 	}
+	csf_prog_free(&p);
 	free(buf);
 	return st;
 }

@@ -142,6 +142,13 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
  */
 int csf_run(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, FILE *out, FILE *err);
 
+/*
+ * The whole command line of csfvm (image NULL: the bytecode file is the
+ * argument) and of a generated executable (image: its embedded bytecode,
+ * exec: its compiled code). Returns the process exit status.
+ */
+int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len, csf_exec_fn exec);
+
 /* Formats x so that it reads back to the same double (shortest of %.15g..%.17g). */
 void csf_fmt_double(char buf[32], double x);
 

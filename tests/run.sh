@@ -11,7 +11,8 @@
 #  3. run-time failures: every tests/runtime/X.csf is run; X.expect gives the
 #     exit status, the number of CSV data rows that must be on stdout, and
 #     lines that must appear on stderr.
-#  4. hostile bytecode, bad usage, output errors, install, a 300-body scene.
+#  4. both execution paths give identical output: csfvm and `csfc --emit-c`.
+#  5. hostile bytecode, bad usage, output errors, install, a 300-body scene.
 # The last line is "N passed, N failed".
 set -u
 B=$(cd "${CSF_BUILD:-build}" && pwd)
@@ -95,7 +96,34 @@ for m in tests/runtime/*.csf; do
 	[ $missing -eq 0 ] && ok
 done
 
-# 4a. hostile bytecode: every byte flipped, every truncation (csfvm must exit 2, never crash)
+# 4. both execution paths: every model above through csfvm and through
+#    `csfc --emit-c`; stdout must be byte-identical, stderr and exit status
+#    equal. tests/emit-c-skip.txt lists models that cannot pass, with a reason.
+for m in tests/e2e/*.csf examples/*.csf tests/runtime/*.csf; do
+	[ -f "$m" ] || continue
+	if grep -q "^$m " tests/emit-c-skip.txt 2>/dev/null; then continue; fi
+	d=$(dirname "$m")
+	f=$(basename "$m")
+	if ! (cd "$d" && "$CSFC" "$f" -o "$T/v.csfb" && "$CSFC" --emit-c "$f" -o "$T/exe") >"$T/cerr" 2>&1; then
+		bad "$m: --emit-c: $(head -n 3 "$T/cerr")"
+		continue
+	fi
+	(cd "$d" && "$CSFVM" "$T/v.csfb") >"$T/v.out" 2>"$T/v.err"
+	vs=$?
+	(cd "$d" && "$T/exe") >"$T/c.out" 2>"$T/c.err"
+	cs=$?
+	if [ $vs -ne $cs ]; then
+		bad "$m: exit status csfvm $vs, generated executable $cs"
+	elif ! cmp -s "$T/v.out" "$T/c.out"; then
+		bad "$m: stdout differs between csfvm and the generated executable: $(cmp "$T/v.out" "$T/c.out")"
+	elif ! cmp -s "$T/v.err" "$T/c.err"; then
+		bad "$m: stderr differs: $(head -n 1 "$T/v.err") / $(head -n 1 "$T/c.err")"
+	else
+		ok
+	fi
+done
+
+# 5a. hostile bytecode: every byte flipped, every truncation (csfvm must exit 2, never crash)
 printf 'object p: x = 1\nobject p: v = 0\nrule: x'"'"' = v\nrule: v'"'"' = -x\nassert x < 2\ninc t till 1 by 0.5 watch x, v\n' >"$T/h.csf"
 "$CSFC" "$T/h.csf" -o "$T/h.csfb" 2>/dev/null
 if "$B/fuzz-bytecode" "$T/h.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode: $(tail -n 3 "$T/fuzz")"; fi
@@ -115,7 +143,7 @@ for off in 0 4 8 12 20 24 28 40 $((size / 2)) $((size - 1)); do
 done
 [ $vmfail -eq 0 ] && ok
 
-# 4b. bad usage and unreadable files: exit 2
+# 5b. bad usage and unreadable files: exit 2
 u=0
 "$CSFC" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfc without arguments: not exit 2"; }
 "$CSFC" --no-such-flag x.csf >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfc --no-such-flag: not exit 2"; }
@@ -126,7 +154,7 @@ u=0
 "$CSFVM" --tol -1 "$T/h.csfb" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm --tol -1: not exit 2"; }
 [ $u -eq 0 ] && ok
 
-# 4c. output errors are reported: a full disk, a closed pipe
+# 5c. output errors are reported: a full disk, a closed pipe
 printf 'object p: x = 1\nrule: x'"'"' = 1\ninc t till 100000 by 1 watch x\n' >"$T/long.csf"
 "$CSFC" "$T/long.csf" -o "$T/long.csfb" 2>/dev/null
 if [ -w /dev/full ]; then
@@ -137,7 +165,7 @@ fi
 st=$( { "$CSFVM" "$T/long.csfb" 2>"$T/err"; echo $? >"$T/st"; } | head -n 1 >/dev/null; cat "$T/st")
 if [ "$st" -eq 2 ] && grep -q "cannot write output" "$T/err"; then ok; else bad "csfvm | head -n 1: exit $st"; fi
 
-# 4d. a 300-body scene with a pair rule compiles and runs (no fixed object limit)
+# 5d. a 300-body scene with a pair rule compiles and runs (no fixed object limit)
 awk 'BEGIN {
 	print "using mechanics/mass_point"
 	for (i = 0; i < 300; i++) {
@@ -151,12 +179,19 @@ awk 'BEGIN {
 if "$CSFC" "$T/n300.csf" -o "$T/n300.csfb" 2>"$T/err" && "$CSFVM" "$T/n300.csfb" >"$T/out.csv" 2>>"$T/err" &&
 	[ "$(wc -l <"$T/out.csv")" -eq 4 ]; then ok; else bad "300-body scene: $(head -n 1 "$T/err")"; fi
 
-# 4e. make install into a staging directory; the installed csfc finds the standard library
+# 5e. make install into a staging directory; the installed csfc finds the standard library
 if make -s install BUILD="${CSF_BUILD:-build}" PREFIX=/usr DESTDIR="$T/stage" >/dev/null 2>"$T/err" &&
 	(cd "$T" && "$T/stage/usr/bin/csfc" "$TOP/examples/projectile.csf" -o "$T/p.csfb") 2>"$T/err" &&
 	"$T/stage/usr/bin/csfvm" "$T/p.csfb" >/dev/null 2>>"$T/err" &&
 	[ -f "$T/stage/usr/share/man/man5/csf.5" ] && [ -f "$T/stage/usr/lib/libcsfrt.a" ] &&
-	[ -f "$T/stage/usr/include/csf/csf.h" ]; then ok; else bad "make install: $(head -n 1 "$T/err")"; fi
+	[ -f "$T/stage/usr/include/csf/csf.h" ] && [ -f "$T/stage/usr/lib/pkgconfig/csfrt.pc" ]; then ok; else bad "make install: $(head -n 1 "$T/err")"; fi
+# the installed csfc builds an executable; the generated source builds with pkg-config alone
+if (cd "$T" && "$T/stage/usr/bin/csfc" --emit-c "$TOP/examples/projectile.csf" -o "$T/pexe" &&
+	"$T/stage/usr/bin/csfc" --emit-c "$TOP/examples/projectile.csf" -o "$T/p.c") 2>"$T/err" &&
+	"$T/pexe" >"$T/p1.out" && "$T/stage/usr/bin/csfvm" "$T/p.csfb" >"$T/p2.out" && cmp -s "$T/p1.out" "$T/p2.out" &&
+	PKG_CONFIG_SYSROOT_DIR="$T/stage" PKG_CONFIG_PATH="$T/stage/usr/lib/pkgconfig" \
+		sh -c 'cc ${CFLAGS:-} "$1" -o "$2" $(pkg-config --cflags --libs csfrt)' sh "$T/p.c" "$T/pexe2" 2>>"$T/err" &&
+	"$T/pexe2" >"$T/p3.out" && cmp -s "$T/p1.out" "$T/p3.out"; then ok; else bad "installed --emit-c / pkg-config: $(head -n 2 "$T/err")"; fi
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -1,0 +1,91 @@
+/*
+ * main.c - the command line shared by csfvm and every generated executable.
+ *
+ * csfvm passes no image: the bytecode comes from the file named on the
+ * command line and runs on the VM. A generated executable passes the image
+ * compiled into it and its own compiled code sections. Options, messages and
+ * exit statuses are therefore the same for both.
+ */
+#include <errno.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "csf.h"
+
+static const char vm_usage[] =
+	"usage: csfvm [--method NAME] [--tol EPS] MODEL.csfb\n"
+	"Runs a compiled CSF model and writes its watched variables as CSV on stdout.\n"
+	"  --method NAME  ODE stepper: rk8pd (default), rk2, rk4, rkf45, rkck, msadams\n"
+	"  --tol EPS      local error bound per internal step (default 1e-10)\n"
+	"  --help, --version\n";
+
+static const char exe_usage[] =
+	"usage: %s [--method NAME] [--tol EPS]\n"
+	"Runs the CSF model compiled into this program and writes its watched variables as CSV on stdout.\n"
+	"  --method NAME  ODE stepper: rk8pd (default), rk2, rk4, rkf45, rkck, msadams\n"
+	"  --tol EPS      local error bound per internal step (default 1e-10)\n"
+	"  --help, --version\n";
+
+/* Reads all of path into a malloc'd buffer. Returns NULL with errno set on failure. */
+static unsigned char *slurp(const char *path, size_t *len)
+{
+	FILE *f = fopen(path, "rb");
+	if (!f) return NULL;
+	size_t cap = 1 << 16, n = 0;
+	unsigned char *buf = malloc(cap);
+	while (buf) {
+		n += fread(buf + n, 1, cap - n, f);
+		if (n < cap) break;
+		unsigned char *b = realloc(buf, cap *= 2);
+		if (!b) free(buf);
+		buf = b;
+	}
+	int bad = !buf || ferror(f);
+	int e = errno;
+	fclose(f);
+	if (bad) {
+		free(buf);
+		errno = e ? e : EIO;
+		return NULL;
+	}
+	*len = n;
+	return buf;
+}
+
+int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len, csf_exec_fn exec)
+{
+	csf_opts o;
+	int pos[1], npos;
+	char usage[1024];
+	if (image) snprintf(usage, sizeof usage, exe_usage, argv[0]);
+	else snprintf(usage, sizeof usage, "%s", vm_usage);
+	int st = csf_parse_opts(argc, argv, 1, &o, pos, image ? 0 : 1, &npos, usage);
+	if (st) return st == 1 ? 0 : 2;
+	if (!image && npos != 1) {
+		fputs(usage, stderr);
+		return 2;
+	}
+	const char *path = image ? argv[0] : argv[pos[0]];
+	size_t len = image_len;
+	unsigned char *buf = NULL;
+	if (!image) {
+		buf = slurp(path, &len);
+		if (!buf) {
+			fprintf(stderr, "csfvm: cannot read %s: %s\n", path, strerror(errno));
+			return 2;
+		}
+	}
+	csf_prog p;
+	char err[256];
+	if (csf_decode(image ? image : buf, len, &p, err, sizeof err)) {
+		fprintf(stderr, "%s: %s: invalid bytecode: %s\n", image ? argv[0] : "csfvm", path, err);
+		free(buf);
+		return 2;
+	}
+	free(buf);
+	signal(SIGPIPE, SIG_IGN);
+	st = csf_run(&p, exec, &o, stdout, stderr);
+	csf_prog_free(&p);
+	return st;
+}
