@@ -962,10 +962,15 @@ static RExpr *solve(RExpr *lhs, RExpr *rhs, Var *x, Loc l, const char *text)
 
 static int cur_src; /* source entry of the statement being instantiated */
 
+static Map watched; /* names in the watch list, and OBJECT\x01NAME */
+
 static int var_class(Var *v)
 {
 	switch (v->kind) {
-	case V_TEMP: return 1;
+	case V_TEMP:
+		if (map_get(&watched, v->name) || (v->obj && map_get(&watched, xprintf("%s\x01%s", v->obj->name, v->name))))
+			return 2; /* a watched temporary ranks with the watched variables */
+		return 1;
 	case V_PROP: return 2;
 	case V_GLOBAL: return 3;
 	default: return 9;
@@ -975,7 +980,7 @@ static int var_class(Var *v)
 static const char *class_name(Var *v)
 {
 	switch (v->kind) {
-	case V_TEMP: return "unwatched temporary";
+	case V_TEMP: return var_class(v) == 1 ? "unwatched temporary" : "watched temporary";
 	case V_PROP: return "watched variable";
 	case V_GLOBAL: return "global";
 	default: return "time";
@@ -1066,7 +1071,9 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 		if (reads.v[i] != x) add_unique(&I->reads, reads.v[i]);
 	for (int i = 0; i < rf.n; i++) add_unique(&I->rf_reads, rf.v[i]);
 	x->det = I;
-	add_unique(&I->targets, x);
+	for (int i = 0; i < I->targets.n; i++)
+		if (I->targets.v[i] == x) return x; /* the other branch of a conditional rule: already listed */
+	vec_push(&I->targets, x);
 	I->why = I->why ? xprintf("%s, %s (%s)", I->why, x->name, class_name(x)) : xprintf("%s (%s)", x->name, class_name(x));
 	return x;
 }
@@ -1233,6 +1240,11 @@ static void build_watch(Stmt *st)
 		WatchItem *w = st->watch.v[i];
 		if (w->obj) {
 			Object *o = map_get(&objects_by_name, w->obj);
+			if (!o && (map_get(&prop_names, w->obj) || map_get(&globals_by_name, w->obj))) {
+				error_at(w->loc, "'%s.%s': watch the whole variable ('watch %s' gives its x, y and z columns)", w->obj,
+				         w->prop, w->obj);
+				continue;
+			}
 			if (!o) {
 				error_at(w->loc, "unknown object '%s'", w->obj);
 				continue;
@@ -1331,6 +1343,10 @@ Model *sema_run(Stmt *stmts)
 		M->start = start;
 	}
 	if (diag_errors) return M;
+	for (int i = 0; start && i < start->watch.n; i++) {
+		WatchItem *w = start->watch.v[i];
+		map_put(&watched, w->obj ? xprintf("%s\x01%s", w->obj, w->prop) : w->prop, w);
+	}
 
 	/* Derivative rules first: their targets are state, determined from the start. */
 	for (int i = 0; i < rules.n; i++) {

@@ -42,7 +42,8 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 			fputs(usage, stdout);
 			return 1;
 		} else if (strcmp(a, "--version") == 0) {
-			printf("csf %s\n", CSF_VERSION_STRING);
+			const char *slash = strrchr(argv[0], '/');
+			printf("%s %s\n", slash ? slash + 1 : argv[0], CSF_VERSION_STRING);
 			return 1;
 		} else if (strcmp(a, "--method") == 0 && i + 1 < argc) {
 			o->method = argv[++i];
