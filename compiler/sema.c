@@ -106,15 +106,13 @@ static RExpr *rop(int op, int isvec, Loc l, RExpr *a, RExpr *b, RExpr *c)
 	if (allc) {
 		double in[3][3] = { { 0 } }, out[3];
 		for (int i = 0; i < e->n; i++) memcpy(in[i], e->a[i]->c, sizeof in[i]);
+		/* Folding -0.0 and NaN is safe here: the constant pool (gen.c) tells
+		 * constants apart by their bits, not by ==. */
 		fold_op(op, in, out);
-		int ok = 1;
-		for (int k = 0; k < (isvec ? 3 : 1); k++) ok &= !isnan(out[k]) && !(out[k] == 0 && signbit(out[k]));
-		if (ok) {
-			RExpr *k = rnew(R_CONST, l);
-			memcpy(k->c, out, sizeof out);
-			k->isvec = isvec;
-			return k;
-		}
+		RExpr *k = rnew(R_CONST, l);
+		memcpy(k->c, out, sizeof out);
+		k->isvec = isvec;
+		return k;
 	}
 	return e;
 }
