@@ -1,0 +1,217 @@
+/*
+ * nbody.c - the hand-written C reference for the pairwise-gravity benchmark.
+ *
+ *   nbody [--stats] IC_FILE TILL BY WATCH...
+ *
+ * Integrates the model that gen_nbody.sh writes as CSF, the way csfvm does:
+ * GSL rk8pd under gsl_odeiv2_driver_alloc_y_new with h0 = BY, epsabs =
+ * epsrel = 1e-10, hmax = BY, and gsl_odeiv2_driver_apply to every output
+ * time t_k = k*BY (the same k range as runtime/driver.c). It prints the same
+ * CSV as csfvm for the watched bodies (pos and v of each WATCH index, in the
+ * order given), formatted as csfvm formats numbers, so the two outputs can
+ * be compared value by value.
+ *
+ * The arithmetic is the VM's, operation for operation (see the listing of
+ * `csfc --dump-bytecode` in bench/README.md). For body i and every other
+ * body j in ascending order:
+ *
+ *   d   = pos_j - pos_i                      VSUB  (per component)
+ *   gm  = G * m_i                            MUL
+ *   gmm = gm * m_j                           MUL
+ *   r   = sqrt((dx*dx + dy*dy) + dz*dz)      VMAG  (csf_vmag3)
+ *   r3  = pow(r, 3.0)                        POW
+ *   s   = gmm / r3                           DIV
+ *   F   = (dx*s, dy*s, dz*s)                 VMUL
+ *   RF  = ((F_j0 + F_j1) + F_j2) + ...       VADD chain, j ascending
+ *   a   = (RF.x/m_i, RF.y/m_i, RF.z/m_i)     VDIV
+ *   pos' = v, v' = a                         VMOV
+ *
+ * so its results are bit-identical to csfvm's. What it leaves out is what a
+ * person writing C would not write: the VM evaluates pos_j - pos_i twice and
+ * G*m_i once per pair, stores every pair force in memory before summing, and
+ * copies the state in and the derivatives out around each evaluation; here
+ * the repeated values are computed once (the same IEEE results) and the sum
+ * is accumulated in registers. Compile with -O2 -ffp-contract=off (no FMA
+ * contraction, never -ffast-math), as the VM is.
+ *
+ * Built with -DNBODY_CUBE (bin/nbody_cube), it computes r^3 as r*r*r
+ * instead of pow(r, 3.0): what one would write by hand, but no longer the
+ * VM's arithmetic (results differ in the last bits). The benchmark runs it
+ * as a third, informational program, to show what pow costs.
+ *
+ * --stats prints, on stderr, the number of right-hand side evaluations and
+ * the smallest distance between two bodies seen at the output times (a
+ * check that the run has no close encounter).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_const_mksa.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+
+static size_t n;  /* bodies */
+static double *m; /* masses */
+static unsigned long nevals; /* right-hand side evaluations */
+
+/* y = (pos_0, v_0, pos_1, v_1, ...), 6 doubles a body, as the VM's state. */
+static int rhs(double t, const double *y, double *dydt, void *ctx)
+{
+	(void)t;
+	(void)ctx;
+	nevals++;
+	const double G = GSL_CONST_MKSA_GRAVITATIONAL_CONSTANT;
+	for (size_t i = 0; i < n; i++) {
+		const double *pi = y + 6 * i;
+		const double gm = G * m[i];
+		double ax = 0, ay = 0, az = 0;
+		int first = 1;
+		for (size_t j = 0; j < n; j++) {
+			if (j == i) continue;
+			const double *pj = y + 6 * j;
+			double dx = pj[0] - pi[0], dy = pj[1] - pi[1], dz = pj[2] - pi[2];
+			double gmm = gm * m[j];
+			double r = sqrt(dx * dx + dy * dy + dz * dz);
+#ifdef NBODY_CUBE
+			double s = gmm / (r * r * r); /* not the VM's arithmetic: see the top */
+#else
+			double s = gmm / pow(r, 3.0);
+#endif
+			double fx = dx * s, fy = dy * s, fz = dz * s;
+			if (first) {
+				ax = fx, ay = fy, az = fz;
+				first = 0;
+			} else {
+				ax = ax + fx, ay = ay + fy, az = az + fz;
+			}
+		}
+		double *d = dydt + 6 * i;
+		d[0] = y[6 * i + 3];
+		d[1] = y[6 * i + 4];
+		d[2] = y[6 * i + 5];
+		d[3] = ax / m[i];
+		d[4] = ay / m[i];
+		d[5] = az / m[i];
+	}
+	return GSL_SUCCESS;
+}
+
+/* As runtime/driver.c's csf_fmt_double: the shortest of %.15g..%.17g that reads back exactly. */
+static void fmt(char buf[32], double x)
+{
+	if (isnan(x)) {
+		strcpy(buf, "nan");
+		return;
+	}
+	if (isinf(x)) {
+		strcpy(buf, x > 0 ? "inf" : "-inf");
+		return;
+	}
+	for (int prec = 15; prec <= 17; prec++) {
+		snprintf(buf, 32, "%.*g", prec, x);
+		if (strtod(buf, NULL) == x) return;
+	}
+}
+
+static double min_dist(const double *y)
+{
+	double best = INFINITY;
+	for (size_t i = 0; i < n; i++)
+		for (size_t j = i + 1; j < n; j++) {
+			double dx = y[6 * j] - y[6 * i], dy = y[6 * j + 1] - y[6 * i + 1], dz = y[6 * j + 2] - y[6 * i + 2];
+			double r = sqrt(dx * dx + dy * dy + dz * dz);
+			if (r < best) best = r;
+		}
+	return best;
+}
+
+static void die(const char *msg)
+{
+	fprintf(stderr, "nbody: %s\n", msg);
+	exit(2);
+}
+
+int main(int argc, char **argv)
+{
+	int check = 0, a = 1;
+	if (a < argc && strcmp(argv[a], "--stats") == 0) check = 1, a++;
+	if (argc - a < 3) die("usage: nbody [--stats] IC_FILE TILL BY WATCH...");
+	FILE *f = fopen(argv[a], "r");
+	if (!f) die("cannot open the initial conditions");
+	double till = strtod(argv[a + 1], NULL), by = strtod(argv[a + 2], NULL);
+	if (!(by > 0) || !(till >= 0)) die("TILL and BY must be positive numbers");
+	int nw = argc - a - 3;
+	size_t *w = malloc((nw ? nw : 1) * sizeof *w);
+
+	if (fscanf(f, "%zu", &n) != 1 || n < 2) die("bad initial conditions: body count");
+	m = malloc(n * sizeof *m);
+	double *y = malloc(6 * n * sizeof *y);
+	if (!w || !m || !y) die("out of memory");
+	for (size_t i = 0; i < n; i++) {
+		/* strtod on the very strings csfc reads, so the doubles are the same */
+		char s[7][64];
+		if (fscanf(f, "%63s %63s %63s %63s %63s %63s %63s", s[0], s[1], s[2], s[3], s[4], s[5], s[6]) != 7)
+			die("bad initial conditions: short file");
+		m[i] = strtod(s[0], NULL);
+		for (int k = 0; k < 6; k++) y[6 * i + k] = strtod(s[k + 1], NULL);
+	}
+	fclose(f);
+	for (int k = 0; k < nw; k++) {
+		long v = strtol(argv[a + 3 + k], NULL, 10);
+		if (v < 0 || (size_t)v >= n) die("watch index out of range");
+		w[k] = (size_t)v;
+	}
+
+	gsl_set_error_handler_off();
+	gsl_odeiv2_system sys = { rhs, NULL, 6 * n, NULL };
+	gsl_odeiv2_driver *drv = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, by, 1e-10, 1e-10);
+	if (!drv || gsl_odeiv2_driver_set_hmax(drv, by) != GSL_SUCCESS) die("cannot set up the integrator");
+
+	static const char *const comp[] = { "pos.x", "pos.y", "pos.z", "v.x", "v.y", "v.z" };
+	fputs("t", stdout);
+	for (int k = 0; k < nw; k++)
+		for (int c = 0; c < 6; c++) printf(",p%zu.%s", w[k], comp[c]);
+	putchar('\n');
+
+	/* The last k with k*by <= till, allowing for till/by's rounding (as driver.c). */
+	double kmax = floor(till / by);
+	if ((kmax + 1) * by <= till * (1 + 1e-12)) kmax += 1;
+
+	double t = 0, dmin = INFINITY;
+	char b[32];
+	for (double k = 0; k <= kmax; k++) {
+		double tk = k * by;
+		if (tk > t) {
+			int st = gsl_odeiv2_driver_apply(drv, &t, tk, y);
+			if (st != GSL_SUCCESS) {
+				fprintf(stderr, "nbody: integration failed at t=%g: %s\n", t, gsl_strerror(st));
+				return 1;
+			}
+		}
+		t = tk;
+		fmt(b, tk);
+		fputs(b, stdout);
+		for (int q = 0; q < nw; q++)
+			for (int c = 0; c < 6; c++) {
+				fmt(b, y[6 * w[q] + c]);
+				putchar(',');
+				fputs(b, stdout);
+			}
+		putchar('\n');
+		if (check) {
+			double d = min_dist(y);
+			if (d < dmin) dmin = d;
+		}
+	}
+	if (check)
+		fprintf(stderr, "nbody: %lu right-hand side evaluations, %.0f output steps, closest approach %.6g m\n",
+		        nevals, kmax, dmin);
+	gsl_odeiv2_driver_free(drv);
+	free(y);
+	free(m);
+	free(w);
+	if (fflush(stdout) != 0 || ferror(stdout)) die("cannot write output");
+	return 0;
+}
