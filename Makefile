@@ -121,7 +121,7 @@ install: all
 		'Libs: -L$${libdir} -lcsfrt -lgsl -lgslcblas -lm' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/csfrt.pc
 
 bench: all
-	$(MAKE) -C bench BUILD=../$(BUILD)
+	$(MAKE) -C bench BUILD=$(abspath $(BUILD))
 
 clean:
 	rm -rf build build-san

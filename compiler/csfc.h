@@ -33,7 +33,7 @@ void map_put(Map *m, char *k, void *v);
 /* ---- sources and diagnostics ---- */
 typedef struct Loc { int file, line, col; } Loc; /* file indexes the source table; line, col from 1 */
 
-typedef struct Source { char *path; char *text; size_t len; } Source;
+typedef struct Source { char *path; char *text; size_t len; int nlines; size_t *line_start; } Source;
 extern Vec sources; /* of Source*, index = Loc.file */
 
 /* Reads a file into the source table; returns its index or -1 (errno set). */

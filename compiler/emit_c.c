@@ -37,6 +37,14 @@ static void comment(FILE *f, const char *s)
 	fputs(" */", f);
 }
 
+/* Instructions per generated function: C compilers slow down badly on huge functions. */
+#define CHUNK 1000
+
+/*
+ * Writes section sec as functions fname_0, fname_1, ... of about CHUNK
+ * instructions each, split only where a statement's code starts (jumps
+ * never leave a statement), and fname calling them in order.
+ */
 static void emit_section(const csf_prog *p, int sec, const char *fname, FILE *f)
 {
 	uint32_t n = p->ncode[sec];
@@ -47,11 +55,18 @@ static void emit_section(const csf_prog *p, int sec, const char *fname, FILE *f)
 		if (code[pc] == CSF_OP_JMP) target[code[pc + 1]] = 1;
 		if (code[pc] == CSF_OP_JZ) target[code[pc + 2]] = 1;
 	}
-	fprintf(f, "static int %s(double *m)\n{\n", fname);
+	int nchunks = 0, count = 0;
 	uint32_t li = 0;
+	fprintf(f, "CSF_CHUNK int %s_%d(double *m)\n{\n", fname, nchunks++);
 	for (uint32_t pc = 0; pc < n;) {
+		int starts = 0;
 		while (li < p->nlines[sec] && p->lines[sec][li].pc <= pc) {
 			if (p->lines[sec][li].pc == pc) {
+				if (!starts && count >= CHUNK) {
+					fprintf(f, "\treturn -1;\n}\n\nCSF_CHUNK int %s_%d(double *m)\n{\n", fname, nchunks++);
+					count = 0;
+				}
+				starts = 1;
 				const csf_src *s = &p->srcs[p->lines[sec][li].src];
 				fputc('\t', f);
 				comment(f, xprintf("%s:%lu: %s", csf_str(p, p->files[s->file]), (unsigned long)s->line, csf_str(p, s->text)));
@@ -78,10 +93,19 @@ static void emit_section(const csf_prog *p, int sec, const char *fname, FILE *f)
 			fputs(");\n", f);
 			break;
 		}
+		count++;
 		pc += 1u + oi->nops;
 	}
 	if (target[n]) fprintf(f, "L%lu:\n", (unsigned long)n);
 	fputs("\treturn -1;\n}\n\n", f);
+	fprintf(f, "static int %s(double *m)\n{\n", fname);
+	if (nchunks == 1) {
+		fprintf(f, "\treturn %s_0(m);\n}\n\n", fname);
+	} else {
+		fputs("\tint r;\n", f);
+		for (int i = 0; i < nchunks; i++) fprintf(f, "\tif ((r = %s_%d(m)) >= 0) return r;\n", fname, i);
+		fputs("\treturn -1;\n}\n\n", f);
+	}
 	free(target);
 }
 
@@ -93,7 +117,9 @@ void emit_c(const csf_prog *p, const unsigned char *image, size_t len, const cha
 	      " * instruction by instruction; the embedded image carries its tables.\n"
 	      " * Build: cc -O2 -ffp-contract=off model.c $(pkg-config --cflags --libs csfrt)\n */\n",
 	      f);
-	fputs("#include \"csf.h\"\n\n", f);
+	fputs("#include \"csf.h\"\n\n"
+	      "#if defined(__GNUC__)\n#define CSF_CHUNK static __attribute__((noinline))\n#else\n#define CSF_CHUNK static\n#endif\n\n",
+	      f);
 	fprintf(f, "static const unsigned char csf_model_image[%zu] = {", len);
 	for (size_t i = 0; i < len; i++) fprintf(f, "%s%u,", i % 16 ? " " : "\n\t", image[i]);
 	fputs("\n};\n\n", f);

@@ -130,12 +130,26 @@ int src_add(const char *name, const char *text)
 	return sources.n - 1;
 }
 
+/* Indexes the starts of s's lines, once, so that src_line is O(1). */
+static void index_lines(Source *s)
+{
+	int n = 1;
+	for (size_t i = 0; i < s->len; i++) n += s->text[i] == '\n';
+	s->line_start = xalloc((size_t)(n + 1) * sizeof *s->line_start);
+	s->line_start[0] = 0;
+	int k = 1;
+	for (size_t i = 0; i < s->len; i++)
+		if (s->text[i] == '\n') s->line_start[k++] = i + 1;
+	s->line_start[n] = s->len + 1;
+	s->nlines = n;
+}
+
 char *src_line(int file, int line)
 {
 	Source *s = sources.v[file];
-	const char *p = s->text, *end = s->text + s->len;
-	for (int l = 1; l < line && p < end; p++)
-		if (*p == '\n') l++;
+	if (!s->line_start) index_lines(s);
+	if (line < 1 || line > s->nlines) return xstrdup("");
+	const char *p = s->text + s->line_start[line - 1], *end = s->text + s->len;
 	const char *e = p;
 	while (e < end && *e != '\n') e++;
 	if (e > p && e[-1] == '\r') e--;

@@ -58,7 +58,7 @@ START_TEST(test_program_shape)
 	FILE *f = open_memstream(&buf, &blen);
 	emit_c(&p, img, len, "t.csf", f);
 	fclose(f);
-	ck_assert_msg(strstr(buf, "#include \"csf.h\"") && strstr(buf, "static int csf_model_rhs(double *m)") &&
+	ck_assert_msg(strstr(buf, "#include \"csf.h\"") && strstr(buf, "CSF_CHUNK int csf_model_rhs_0(double *m)") && strstr(buf, "static int csf_model_rhs(double *m)") &&
 	              strstr(buf, "static int csf_model_out(double *m)") && strstr(buf, "/* t.csf:2: rule: x' = -x */") &&
 	              strstr(buf, xprintf("csf_model_image[%zu]", len)) && strstr(buf, "return csf_main(argc, argv"),
 	              "%s", buf);
