@@ -185,8 +185,8 @@ static void do_using(Parser *P, Token *u)
 	}
 	char *path = find_include(P, u->text);
 	if (!path) {
-		error_at(u->loc, "cannot find '%s' for 'using' (searched next to this file, -I directories and %s)", u->text,
-		         opts.stdlib ? opts.stdlib : "no standard library");
+		error_at(u->loc, "cannot find '%s' for 'using' (searched next to this file, in the -I directories and %s)",
+		         u->text, opts.stdlib ? "in the standard library" : "found no standard library");
 		return;
 	}
 	char *rp = real_path(path);
