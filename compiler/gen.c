@@ -36,6 +36,7 @@ typedef struct Gen {
 	uint32_t nstrs, capstrs;
 	Vec *Finsts; /* per object index: its F instances */
 	Map strmap;  /* string -> offset + 1 */
+	Map cse;     /* within one equation: expression -> its scratch slot + 1 */
 	uint32_t *ctab_slot;
 	uint64_t *ctab_key;
 	unsigned char *ctab_vec;
@@ -157,6 +158,27 @@ static void emit_op(Gen *G, int op, uint32_t a, uint32_t b, uint32_t c, uint32_t
 
 static uint32_t emit(Gen *G, RExpr *e);
 
+/* A key naming e's value structurally (operations and operand identities). */
+static char *expr_key(Gen *G, RExpr *e)
+{
+	switch (e->k) {
+	case R_CONST: return xprintf("k%016llx.%016llx.%016llx.%d", (unsigned long long)dbits(e->c[0]),
+		                          (unsigned long long)dbits(e->c[1]), (unsigned long long)dbits(e->c[2]), e->isvec);
+	case R_VAR: return xprintf("v%p", (void *)e->var);
+	case R_RF: return xprintf("F%p", (void *)e->obj);
+	case R_COMP: return xprintf("c%d(%s)", e->comp, expr_key(G, e->a[0]));
+	case R_OP: {
+		char *k = xprintf("o%d", e->op);
+		for (int i = 0; i < e->n; i++) k = xprintf("%s(%s)", k, expr_key(G, e->a[i]));
+		return k;
+	}
+	}
+	return "";
+}
+
+/* Forgets the values computed so far (after an assignment, at a branch). */
+static void cse_reset(Gen *G) { G->cse = (Map){ 0 }; }
+
 static void emit_into(Gen *G, RExpr *e, uint32_t dest)
 {
 	if (e->k == R_OP) {
@@ -204,8 +226,14 @@ static uint32_t emit(Gen *G, RExpr *e)
 		return d;
 	}
 	case R_OP: {
+		/* the same operation on the same operands within one equation is computed once:
+		   the value is the same bits, so this never changes a result */
+		char *key = expr_key(G, e);
+		uintptr_t known = (uintptr_t)map_get(&G->cse, key);
+		if (known) return (uint32_t)(known - 1);
 		uint32_t d = new_scratch(G, e->isvec ? 3 : 1);
 		emit_into(G, e, d);
+		map_put(&G->cse, key, (void *)(uintptr_t)(d + 1));
 		return d;
 	}
 	}
@@ -229,8 +257,10 @@ static void emit_assigns(Gen *G, Inst *I, Vec *br)
 {
 	for (int i = 0; i < br->n; i++) {
 		Assign *a = br->v[i];
+		cse_reset(G);
 		emit_into(G, a->e, var_slot(G, a->var));
 	}
+	cse_reset(G);
 	/* variables the other branch introduces are zero in this one */
 	for (int i = 0; i < I->targets.n; i++) {
 		Var *v = I->targets.v[i];
@@ -246,6 +276,7 @@ static Vec assert_tab; /* of Inst*, in assertion index order */
 static void emit_inst(Gen *G, Inst *I, int sec)
 {
 	G->scratch = 0;
+	cse_reset(G);
 	add_line(G, (uint32_t)I->src);
 	if (I->isassert) {
 		uint32_t c = emit(G, I->cond);
