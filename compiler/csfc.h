@@ -86,7 +86,9 @@ void lex_next(Lexer *L, Token *t);
 int lex_keyword(const char *s, size_t n);
 
 /* ---- options ---- */
+enum { UNITS_MKS, UNITS_CGS, UNITS_FPS };
 typedef struct Options {
+	int units;          /* the unit system: UNITS_MKS, UNITS_CGS, UNITS_FPS */
 	Vec incdirs;        /* of char*, from -I */
 	const char *stdlib; /* the standard library directory */
 } Options;

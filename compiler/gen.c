@@ -397,7 +397,8 @@ int gen_program(Model *M, csf_prog *p)
 	p->cols = calloc(p->ncols + 1, sizeof *p->cols);
 	for (int i = 0; i < M->cols.n; i++) {
 		WatchCol *w = M->cols.v[i];
-		p->cols[i].name = str_intern(G, w->name);
+		const char *unit = w->var->dimk == DK_KNOWN ? dims_unit(w->var->dim) : "";
+		p->cols[i].name = str_intern(G, *unit ? xprintf("%s [%s]", w->name, unit) : w->name);
 		p->cols[i].slot = (w->var->kind == V_TIME ? p->tslot : var_slot(G, w->var)) + (uint32_t)w->comp;
 	}
 

@@ -19,6 +19,7 @@ static const char usage[] =
 	"Compiles a CSF model to bytecode (MODEL.csfb).\n"
 	"  -o FILE            write the bytecode to FILE\n"
 	"  -I DIR             add DIR to the search path of 'using'\n"
+	"  --units SYSTEM     mks (default), cgs or fps: the units of bare numbers and of the output\n"
 	"  --explain          print what every rule solves for, and what is left out\n"
 	"  --dump-bytecode    print the compiled code as a listing\n"
 	"  --emit-c           translate to C: with -o NAME.c write the source, otherwise\n"
@@ -76,6 +77,15 @@ static int run(int argc, char **argv)
 			vec_push(&opts.incdirs, argv[++i]);
 		} else if (!strncmp(a, "-I", 2) && a[2]) {
 			vec_push(&opts.incdirs, (void *)(a + 2));
+		} else if (!strcmp(a, "--units") && i + 1 < argc) {
+			const char *u = argv[++i];
+			if (!strcmp(u, "mks")) opts.units = UNITS_MKS;
+			else if (!strcmp(u, "cgs")) opts.units = UNITS_CGS;
+			else if (!strcmp(u, "fps")) opts.units = UNITS_FPS;
+			else {
+				fprintf(stderr, "csfc: unknown unit system '%s' (mks, cgs or fps)\n", u);
+				return 2;
+			}
 		} else if (!strcmp(a, "--explain")) {
 			explain = 1;
 		} else if (!strcmp(a, "--dump-bytecode")) {

@@ -78,6 +78,7 @@ static RExpr *rconst(double x, Loc l)
 {
 	RExpr *e = rnew(R_CONST, l);
 	e->c[0] = x;
+	e->dimk = DK_FREE;
 	return e;
 }
 
@@ -86,6 +87,18 @@ static RExpr *rvconst(const double *v, Loc l)
 	RExpr *e = rnew(R_CONST, l);
 	memcpy(e->c, v, sizeof e->c);
 	e->isvec = 1;
+	e->dimk = DK_FREE;
+	return e;
+}
+
+/* A constant standing for a variable's value (initial values): it has the variable's dimension. */
+static RExpr *rvarconst(Var *v, Loc l)
+{
+	RExpr *e = v->isvec ? rvconst(v->init, l) : rconst(v->init[0], l);
+	if (v->dimk == DK_KNOWN) {
+		e->dimk = DK_KNOWN;
+		memcpy(e->dim, v->dim, sizeof e->dim);
+	}
 	return e;
 }
 
@@ -112,6 +125,7 @@ static RExpr *rop(int op, int isvec, Loc l, RExpr *a, RExpr *b, RExpr *c)
 		RExpr *k = rnew(R_CONST, l);
 		memcpy(k->c, out, sizeof out);
 		k->isvec = isvec;
+		dims_fold(op, e->a, e->n, k, l);
 		return k;
 	}
 	return e;
@@ -199,7 +213,7 @@ static RExpr *var_ref(Ctx *C, Var *v, Loc l)
 			C->failed = 1;
 			return rconst(0, l);
 		}
-		return v->isvec ? rvconst(v->init, l) : rconst(v->init[0], l);
+		return rvarconst(v, l);
 	}
 	RExpr *e = rnew(R_VAR, l);
 	e->var = v;
@@ -458,8 +472,11 @@ static RExpr *build(Ctx *C, Expr *x)
 	case E_UNIT: {
 		RExpr *a = build(C, x->a);
 		if (a->isbool) return type_error(C, l, "a unit cannot follow a condition"), a;
-		if (x->unit.factor == 1) return a;
-		return rop(a->isvec ? CSF_OP_VMUL : CSF_OP_MUL, a->isvec, l, a, rconst(x->unit.factor, l), NULL);
+		double ud[3] = { x->unit.dim[DIM_L], x->unit.dim[DIM_M], x->unit.dim[DIM_T] };
+		RExpr *f = rconst(dims_to_system(x->unit.factor, ud), l);
+		f->dimk = DK_KNOWN;
+		memcpy(f->dim, ud, sizeof ud);
+		return rop(a->isvec ? CSF_OP_VMUL : CSF_OP_MUL, a->isvec, l, a, f, NULL);
 	}
 	case E_BIN: return build_bin(C, x);
 	case E_NEG: {
@@ -504,18 +521,33 @@ static Var *new_global(const char *name, int isvec, const double *v, Loc l)
 	return g;
 }
 
-static void predefine(void)
+static void set_dim(Var *v, int k, const double *d)
+{
+	v->dimk = k;
+	if (k == DK_KNOWN) memcpy(v->dim, d, sizeof v->dim);
+}
+
+/* A predefined constant: its SI value, converted to the unit system in use. */
+static void predefine_const(const char *name, int isvec, const double *si, double dl, double dm, double dt)
 {
 	Loc none = { 0, 0, 0 };
+	double d[3] = { dl, dm, dt }, v[3];
+	for (int i = 0; i < 3; i++) v[i] = dims_to_system(si[i], d);
+	set_dim(new_global(name, isvec, v, none), DK_KNOWN, d);
+}
+
+static void predefine(void)
+{
 	M->time = xalloc(sizeof *M->time);
 	M->time->kind = V_TIME;
 	M->time->name = "t";
 	M->time->slot = -1;
-	new_global("g", 1, (double[3]){ 0, 0, -GSL_CONST_MKSA_GRAV_ACCEL }, none);
-	new_global("G", 0, (double[3]){ GSL_CONST_MKSA_GRAVITATIONAL_CONSTANT, 0, 0 }, none);
-	new_global("c", 0, (double[3]){ GSL_CONST_MKSA_SPEED_OF_LIGHT, 0, 0 }, none);
-	new_global("e", 0, (double[3]){ M_E, 0, 0 }, none);
-	new_global("pi", 0, (double[3]){ M_PI, 0, 0 }, none);
+	set_dim(M->time, DK_KNOWN, (double[3]){ 0, 0, 1 });
+	predefine_const("g", 1, (double[3]){ 0, 0, -GSL_CONST_MKSA_GRAV_ACCEL }, 1, 0, -2);
+	predefine_const("G", 0, (double[3]){ GSL_CONST_MKSA_GRAVITATIONAL_CONSTANT, 0, 0 }, 3, -1, -2);
+	predefine_const("c", 0, (double[3]){ GSL_CONST_MKSA_SPEED_OF_LIGHT, 0, 0 }, 1, 0, -1);
+	predefine_const("e", 0, (double[3]){ M_E, 0, 0 }, 0, 0, 0);
+	predefine_const("pi", 0, (double[3]){ M_PI, 0, 0 }, 0, 0, 0);
 }
 
 static RExpr *const_value(Expr *x, Object *self, int *ok)
@@ -577,9 +609,15 @@ static void set_prop(Object *o, Stmt *s, int from_kind)
 			         r->isvec ? "vector" : "scalar");
 			return;
 		}
+		if (r->dimk == DK_KNOWN && p->dimk == DK_KNOWN && memcmp(r->dim, p->dim, sizeof p->dim) != 0) {
+			error_at(s->value->loc, "property '%s' is %s; this value is %s", s->prop, dims_describe(p->dim),
+			         dims_describe(r->dim));
+			return;
+		}
 		memcpy(p->init, r->c, sizeof p->init);
 		p->loc = s->prop_loc;
 		p->from_kind = from_kind;
+		if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
 		return;
 	}
 	p = xalloc(sizeof *p);
@@ -592,6 +630,7 @@ static void set_prop(Object *o, Stmt *s, int from_kind)
 	p->slot = -1;
 	p->order = def_counter++;
 	p->from_kind = from_kind;
+	if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
 	vec_push(&o->props, p);
 	map_put(&prop_names, p->name, p);
 }
@@ -612,12 +651,18 @@ static void build_objects(Stmt *stmts)
 					         g->isvec ? "vector" : "scalar", r->isvec ? "vector" : "scalar");
 					break;
 				}
+				if (r->dimk == DK_KNOWN && g->dimk == DK_KNOWN && memcmp(r->dim, g->dim, sizeof g->dim) != 0) {
+					error_at(s->value->loc, "'%s' is %s; this value is %s", s->name, dims_describe(g->dim),
+					         dims_describe(r->dim));
+					break;
+				}
 				memcpy(g->init, r->c, sizeof g->init);
 				g->loc = s->name_loc;
 			} else if (map_get(&objects_by_name, s->name) || map_get(&prop_names, s->name)) {
 				error_at(s->name_loc, "'%s' already names an object or a property", s->name);
 			} else {
-				new_global(s->name, r->isvec, r->c, s->name_loc);
+				Var *ng = new_global(s->name, r->isvec, r->c, s->name_loc);
+				set_dim(ng, r->dimk == DK_KNOWN ? DK_KNOWN : DK_UNKNOWN, r->dim);
 			}
 			break;
 		}
@@ -1064,6 +1109,10 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 	a->var = x;
 	a->e = sol;
 	a->src = src;
+	a->lhs = lhs;
+	a->rhs = rhs;
+	a->loc = q->loc;
+	a->text = q->text;
 	vec_push(branch, a);
 	for (int i = 0; i < reads.n; i++)
 		if (reads.v[i] != x) add_unique(&I->reads, reads.v[i]);
@@ -1199,6 +1248,9 @@ static void resolve_deriv(Inst *I)
 	a->var = v;
 	a->e = r;
 	a->src = I->src;
+	a->rhs = r;
+	a->loc = q->loc;
+	a->text = q->text;
 	vec_push(&I->then, a);
 }
 
@@ -1284,6 +1336,10 @@ static double const_time(Expr *x, double dflt, const char *what)
 	if (!ok) return dflt;
 	if (r->isvec || !isfinite(r->c[0]) || r->c[0] < 0) {
 		error_at(x->loc, "'%s' needs a finite, non-negative time", what);
+		return dflt;
+	}
+	if (r->dimk == DK_KNOWN && (r->dim[0] != 0 || r->dim[1] != 0 || r->dim[2] != 1)) {
+		error_at(x->loc, "'%s' needs a time, not %s", what, dims_describe(r->dim));
 		return dflt;
 	}
 	return r->c[0];
@@ -1389,6 +1445,7 @@ Model *sema_run(Stmt *stmts)
 			for_each_binding(s, inst_assert);
 		}
 	build_watch(start);
+	if (!diag_errors) dims_check(M);
 	return M;
 }
 

@@ -26,6 +26,8 @@ typedef struct Var {
 	int slot;        /* memory slot, -1 until allocated */
 	char *key;       /* temps: lookup key */
 	int from_kind;   /* props: the value is a kind's default, not yet set */
+	int dimk;        /* DK_UNKNOWN until known (dims.c) */
+	double dim[3];   /* exponents of length, mass, time */
 } Var;
 
 struct Object {
@@ -49,10 +51,21 @@ struct RExpr {
 	RExpr *a[3];
 	int n;
 	Loc loc;
+	int dimk;        /* R_CONST: DK_FREE (a bare number) or DK_KNOWN */
+	double dim[3];
 };
 
+enum { DK_UNKNOWN = 0, DK_FREE, DK_KNOWN };
+
 /* An assignment a rule instance performs: var := e. */
-typedef struct Assign { Var *var; RExpr *e; int src; } Assign;
+typedef struct Assign {
+	Var *var;
+	RExpr *e;
+	int src;
+	RExpr *lhs, *rhs; /* the equation as written (for the dimension check) */
+	Loc loc;
+	char *text;
+} Assign;
 
 struct Inst {
 	Stmt *st;
@@ -93,6 +106,17 @@ Model *sema_run(Stmt *stmts);
 
 /* Writes what each rule solves for and which rules were left out (csfc --explain). */
 void sema_explain(Model *M, FILE *f);
+
+/* Checks and infers the dimensions of the whole model (dims.c). Errors are reported. */
+void dims_check(Model *M);
+/* The dimension of constant op(args) (for the folder); reports a mismatch at l. */
+void dims_fold(int op, RExpr **args, int n, RExpr *out, Loc l);
+/* The unit of dimension d in the unit system in use, e.g. "kg*m/s^2"; "" if dimensionless. */
+const char *dims_unit(const double d[3]);
+/* "a length (m)", "dimensionless": a dimension for messages. */
+const char *dims_describe(const double d[3]);
+/* Converts an SI factor of dimension d to the unit system in use. */
+double dims_to_system(double si, const double d[3]);
 
 /* Evaluates an instruction on constant operands with the runtime's own functions.
  * in: operand values (3 doubles each); out: result (3 doubles). */

@@ -124,7 +124,7 @@ for m in tests/e2e/*.csf examples/*.csf tests/runtime/*.csf; do
 done
 
 # 5a. hostile bytecode: every byte flipped, every truncation (csfvm must exit 2, never crash)
-printf 'object p: x = 1\nobject p: v = 0\nrule: x'"'"' = v\nrule: v'"'"' = -x\nassert x < 2\ninc t till 1 by 0.5 watch x, v\n' >"$T/h.csf"
+printf 'object p: x = 1 m\nobject p: v = 0 m/s\nobject p: k = 1 s^-2\nrule: x'"'"' = v\nrule: v'"'"' = -k * x\nassert x < 2 m\ninc t till 1 by 0.5 watch x, v\n' >"$T/h.csf"
 "$CSFC" "$T/h.csf" -o "$T/h.csfb" 2>/dev/null
 if "$B/fuzz-bytecode" "$T/h.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode: $(tail -n 3 "$T/fuzz")"; fi
 # and through the real executable, on a sample of corruptions

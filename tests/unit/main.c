@@ -46,8 +46,11 @@ double *run_out(const csf_prog *p)
 
 int col_slot(const csf_prog *p, const char *name)
 {
-	for (uint32_t i = 0; i < p->ncols; i++)
-		if (strcmp(csf_str(p, p->cols[i].name), name) == 0) return (int)p->cols[i].slot;
+	size_t n = strlen(name);
+	for (uint32_t i = 0; i < p->ncols; i++) {
+		const char *c = csf_str(p, p->cols[i].name); /* "b.x" or "b.x [m]" */
+		if (strncmp(c, name, n) == 0 && (c[n] == '\0' || c[n] == ' ')) return (int)p->cols[i].slot;
+	}
 	return -1;
 }
 

@@ -48,8 +48,7 @@ END_TEST
 START_TEST(test_program_shape)
 {
 	csf_prog p;
-	ck_assert_int_eq(compile_string("object b: x = 1\nrule: x' = -x */ 1\ninc t till 1 by 1 watch x\n", &p, NULL), 1);
-	ck_assert_int_eq(compile_string("object b: x = 1\nrule: x' = -x\ninc t till 1 by 1 watch x\n", &p, NULL), 0);
+	ck_assert_int_eq(compile_string("object b: x = 1 m\nobject b: v = 2 m/s\nrule: x' = v\ninc t till 1 by 1 watch x\n", &p, NULL), 0);
 	unsigned char *img;
 	size_t len;
 	csf_encode(&p, &img, &len);
@@ -59,7 +58,7 @@ START_TEST(test_program_shape)
 	emit_c(&p, img, len, "t.csf", f);
 	fclose(f);
 	ck_assert_msg(strstr(buf, "#include \"csf.h\"") && strstr(buf, "CSF_CHUNK int csf_model_rhs_0(double *m)") && strstr(buf, "static int csf_model_rhs(double *m)") &&
-	              strstr(buf, "static int csf_model_out(double *m)") && strstr(buf, "/* t.csf:2: rule: x' = -x */") &&
+	              strstr(buf, "static int csf_model_out(double *m)") && strstr(buf, "/* t.csf:3: rule: x' = v */") &&
 	              strstr(buf, xprintf("csf_model_image[%zu]", len)) && strstr(buf, "return csf_main(argc, argv"),
 	              "%s", buf);
 	free(buf);

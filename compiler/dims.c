@@ -1,0 +1,370 @@
+/*
+ * dims.c - unit systems and the static dimension analysis.
+ *
+ * A dimension is a vector of exponents of length, mass and time (angles
+ * are dimensionless: rad and deg are plain factors). Every value in a model
+ * has one:
+ *  - a unit literal has its unit's; a bare number is "free": it takes the
+ *    dimension its place needs (`x + 1` adds metres to metres; `2 * x` is
+ *    a dimensionless factor);
+ *  - predefined constants and t have theirs; a property or global takes the
+ *    dimension of its initial value, or of its kind's default;
+ *  - the others (temporaries, and properties given bare numbers) are
+ *    inferred from the rules: each equation, sum, comparison and function
+ *    argument is a constraint, linear in the unknown exponents; constraints
+ *    with one unknown left are solved, repeatedly, until nothing changes.
+ * Then every constraint whose dimensions are all known is checked, and a
+ * mismatch is a compile error naming both dimensions in the units of the
+ * system the model is compiled for (csfc --units mks|cgs|fps).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "csfc.h"
+#include "sema.h"
+#include "csf.h"
+
+/* ---- unit systems ---- */
+
+static const struct system {
+	const char *name;
+	double base[3];          /* the system's unit of length, mass, time in SI */
+	const char *unit[3];     /* their names */
+	struct { double d[3]; const char *name; } named[4];
+} systems[] = {
+	[UNITS_MKS] = { "mks", { 1, 1, 1 }, { "m", "kg", "s" },
+	                { { { 1, 1, -2 }, "N" }, { { 2, 1, -2 }, "J" }, { { 2, 1, -3 }, "W" }, { { -1, 1, -2 }, "Pa" } } },
+	[UNITS_CGS] = { "cgs", { 1e-2, 1e-3, 1 }, { "cm", "g", "s" },
+	                { { { 1, 1, -2 }, "dyn" }, { { 2, 1, -2 }, "erg" }, { { 0, 0, 0 }, NULL }, { { 0, 0, 0 }, NULL } } },
+	[UNITS_FPS] = { "fps", { 0.3048, 0.45359237, 1 }, { "ft", "lb", "s" },
+	                { { { 1, 1, -2 }, "pdl" }, { { 0, 0, 0 }, NULL }, { { 0, 0, 0 }, NULL }, { { 0, 0, 0 }, NULL } } },
+};
+
+double dims_to_system(double si, const double d[3])
+{
+	const struct system *s = &systems[opts.units];
+	double v = si;
+	for (int i = 0; i < 3; i++) {
+		/* divide by base^d one factor at a time: exact for the common small exponents */
+		int n = (int)d[i];
+		if (n == d[i] && abs(n) <= 8) {
+			for (int k = 0; k < abs(n); k++) v = n > 0 ? v / s->base[i] : v * s->base[i];
+		} else {
+			v /= pow(s->base[i], d[i]);
+		}
+	}
+	return v;
+}
+
+static int dim_zero(const double d[3]) { return d[0] == 0 && d[1] == 0 && d[2] == 0; }
+
+const char *dims_unit(const double d[3])
+{
+	const struct system *s = &systems[opts.units];
+	if (dim_zero(d)) return "";
+	char *num = xstrdup(""), *den = xstrdup("");
+	int nden = 0;
+	/* the order physicists write: mass, length, time */
+	static const int order[3] = { 1, 0, 2 };
+	for (int k = 0; k < 3; k++) {
+		int i = order[k];
+		double e = d[i];
+		if (e == 0) continue;
+		double a = fabs(e);
+		char *part = a == 1 ? xstrdup(s->unit[i]) : xprintf("%s^%g", s->unit[i], a);
+		if (e > 0) num = xprintf("%s%s%s", num, *num ? "*" : "", part);
+		else den = xprintf("%s%s%s", den, *den ? "*" : "", part), nden++;
+	}
+	if (!*num) num = "1";
+	if (!*den) return num;
+	return nden > 1 ? xprintf("%s/(%s)", num, den) : xprintf("%s/%s", num, den);
+}
+
+const char *dims_describe(const double d[3])
+{
+	if (dim_zero(d)) return "dimensionless";
+	const struct system *s = &systems[opts.units];
+	const char *u = dims_unit(d);
+	for (int i = 0; i < 4; i++)
+		if (s->named[i].name && memcmp(s->named[i].d, d, sizeof s->named[i].d) == 0)
+			return xprintf("%s (%s)", s->named[i].name, u);
+	return u;
+}
+
+/* ---- affine dimensions: known part + sum of coefficient * unknown variable ---- */
+
+#define MAXU 6
+
+typedef struct Aff {
+	int free;        /* every leaf is a bare number: any dimension fits */
+	int overflow;    /* too many unknowns to track */
+	double c[3];
+	int nu;
+	Var *u[MAXU];
+	double k[MAXU];
+} Aff;
+
+static Aff known(double l, double m, double t)
+{
+	Aff a = { 0 };
+	a.c[0] = l;
+	a.c[1] = m;
+	a.c[2] = t;
+	return a;
+}
+
+static Aff lin(Aff a, double ka, Aff b, double kb)
+{
+	Aff r = { 0 };
+	r.overflow = a.overflow || b.overflow;
+	for (int i = 0; i < 3; i++) r.c[i] = ka * a.c[i] + kb * b.c[i];
+	for (int s = 0; s < 2; s++) {
+		Aff *x = s ? &b : &a;
+		double kx = s ? kb : ka;
+		for (int i = 0; i < x->nu; i++) {
+			int j = 0;
+			while (j < r.nu && r.u[j] != x->u[i]) j++;
+			if (j == r.nu) {
+				if (r.nu == MAXU) {
+					r.overflow = 1;
+					continue;
+				}
+				r.u[r.nu] = x->u[i];
+				r.k[r.nu++] = 0;
+			}
+			r.k[j] += kx * x->k[i];
+		}
+	}
+	/* drop cancelled unknowns */
+	int n = 0;
+	for (int i = 0; i < r.nu; i++)
+		if (r.k[i] != 0) r.u[n] = r.u[i], r.k[n++] = r.k[i];
+	r.nu = n;
+	return r;
+}
+
+/* ---- the constraint walk ---- */
+
+typedef struct Walk {
+	int report;      /* 0: infer, 1: report mismatches */
+	int progress;
+	Map reported;    /* locations already reported */
+} Walk;
+
+static void report(Walk *W, Loc l, const char *msg)
+{
+	char *key = xprintf("%d:%d:%d", l.file, l.line, l.col);
+	if (map_get(&W->reported, key)) return;
+	map_put(&W->reported, key, key);
+	error_at(l, "%s", msg);
+}
+
+/*
+ * The constraint a == b (both free of booleans). In infer mode solves it when
+ * one unknown is left; in report mode reports a mismatch of known dimensions
+ * with the message made by msg(da, db).
+ */
+typedef const char *(*MsgFn)(const char *da, const char *db, void *ctx);
+
+static void constrain(Walk *W, Aff a, Aff b, Loc l, MsgFn msg, void *ctx)
+{
+	if (a.free || b.free || a.overflow || b.overflow) return;
+	Aff d = lin(a, 1, b, -1);
+	if (d.nu == 1 && !W->report) {
+		Var *v = d.u[0];
+		double k = d.k[0];
+		v->dimk = DK_KNOWN;
+		for (int i = 0; i < 3; i++) {
+			double x = -d.c[i] / k;
+			v->dim[i] = fabs(x - round(x)) < 1e-9 ? round(x) : x;
+			if (v->dim[i] == 0) v->dim[i] = 0; /* no -0 */
+		}
+		W->progress = 1;
+		return;
+	}
+	if (d.nu == 0 && W->report && (fabs(d.c[0]) > 1e-9 || fabs(d.c[1]) > 1e-9 || fabs(d.c[2]) > 1e-9))
+		report(W, l, msg(dims_describe(a.c), dims_describe(b.c), ctx));
+}
+
+static const char *msg_add(const char *a, const char *b, void *ctx)
+{
+	return xprintf("cannot %s %s and %s", (const char *)ctx, a, b);
+}
+static const char *msg_vector(const char *a, const char *b, void *ctx)
+{
+	(void)ctx;
+	return xprintf("the components of a vector must have one dimension, not %s and %s", a, b);
+}
+static const char *msg_eq(const char *a, const char *b, void *ctx)
+{
+	return xprintf("the two sides of \"%s\" differ in dimension: %s and %s", (const char *)ctx, a, b);
+}
+static const char *msg_deriv(const char *a, const char *b, void *ctx)
+{
+	return xprintf("the derivative rule \"%s\" sets a rate of %s to %s", (const char *)ctx, a, b);
+}
+static const char *msg_dimless(const char *a, const char *b, void *ctx)
+{
+	(void)b;
+	return xprintf("%s must be dimensionless, not %s", (const char *)ctx, a);
+}
+static const char *msg_force(const char *a, const char *b, void *ctx)
+{
+	(void)b;
+	return xprintf("a rule with attribute F determines a force, but %s is %s", (const char *)ctx, a);
+}
+
+static Aff walk(Walk *W, RExpr *e);
+
+static Aff dimless(Walk *W, RExpr *arg, Aff a, const char *what)
+{
+	constrain(W, a, known(0, 0, 0), arg->loc, msg_dimless, (void *)what);
+	return known(0, 0, 0);
+}
+
+static Aff walk_op(Walk *W, RExpr *e, Aff *x)
+{
+	switch (e->op) {
+	case CSF_OP_MOV: case CSF_OP_VMOV: case CSF_OP_NEG: case CSF_OP_VNEG: case CSF_OP_ABS: case CSF_OP_VMAG:
+		return x[0];
+	case CSF_OP_ADD: case CSF_OP_VADD: case CSF_OP_SUB: case CSF_OP_VSUB: case CSF_OP_MIN: case CSF_OP_MAX: {
+		int sub = e->op == CSF_OP_SUB || e->op == CSF_OP_VSUB;
+		constrain(W, x[0], x[1], e->a[1]->loc, msg_add,
+		          (void *)(sub ? "subtract" : e->op == CSF_OP_MIN || e->op == CSF_OP_MAX ? "take min/max of" : "add"));
+		return x[0].free ? x[1] : x[0];
+	}
+	case CSF_OP_VPACK:
+		constrain(W, x[0], x[1], e->a[1]->loc, msg_vector, NULL);
+		constrain(W, x[0], x[2], e->a[2]->loc, msg_vector, NULL);
+		return !x[0].free ? x[0] : !x[1].free ? x[1] : x[2];
+	case CSF_OP_MUL: case CSF_OP_VMUL: case CSF_OP_VDOT: case CSF_OP_VCROSS: {
+		if (x[0].free && x[1].free) return x[0];
+		Aff a = x[0].free ? known(0, 0, 0) : x[0], b = x[1].free ? known(0, 0, 0) : x[1];
+		return lin(a, 1, b, 1);
+	}
+	case CSF_OP_DIV: case CSF_OP_VDIV: {
+		if (x[0].free && x[1].free) return x[0];
+		Aff a = x[0].free ? known(0, 0, 0) : x[0], b = x[1].free ? known(0, 0, 0) : x[1];
+		return lin(a, 1, b, -1);
+	}
+	case CSF_OP_SQRT:
+		if (x[0].free) return x[0];
+		return lin(x[0], 0.5, known(0, 0, 0), 0);
+	case CSF_OP_POW:
+		dimless(W, e->a[1], x[1], "an exponent");
+		if (x[0].free) return x[0];
+		if (e->a[1]->k == R_CONST) return lin(x[0], e->a[1]->c[0], known(0, 0, 0), 0);
+		return dimless(W, e->a[0], x[0], "a base raised to a variable power");
+	case CSF_OP_SIN: case CSF_OP_COS: case CSF_OP_TAN: case CSF_OP_ASIN: case CSF_OP_ACOS: case CSF_OP_ATAN:
+	case CSF_OP_SINH: case CSF_OP_COSH: case CSF_OP_TANH: case CSF_OP_EXP: case CSF_OP_LOG: case CSF_OP_LOG10: {
+		static const char *const names[] = {
+			[CSF_OP_SIN] = "sin", [CSF_OP_COS] = "cos", [CSF_OP_TAN] = "tan", [CSF_OP_ASIN] = "asin",
+			[CSF_OP_ACOS] = "acos", [CSF_OP_ATAN] = "atan", [CSF_OP_SINH] = "sinh", [CSF_OP_COSH] = "cosh",
+			[CSF_OP_TANH] = "tanh", [CSF_OP_EXP] = "exp", [CSF_OP_LOG] = "log", [CSF_OP_LOG10] = "log10",
+		};
+		return dimless(W, e->a[0], x[0], xprintf("the argument of %s", names[e->op]));
+	}
+	case CSF_OP_ATAN2:
+		constrain(W, x[0], x[1], e->a[1]->loc, msg_add, "compare (atan2)");
+		return known(0, 0, 0);
+	case CSF_OP_LT: case CSF_OP_LE: case CSF_OP_GT: case CSF_OP_GE: case CSF_OP_EQ: case CSF_OP_NE:
+		constrain(W, x[0], x[1], e->a[1]->loc, msg_add, "compare");
+		return known(0, 0, 0);
+	case CSF_OP_VPROJ:
+		return x[0];
+	default: /* VUNIT, VANGLE, AND, OR, NOT */
+		return known(0, 0, 0);
+	}
+}
+
+static Aff walk(Walk *W, RExpr *e)
+{
+	switch (e->k) {
+	case R_CONST: {
+		Aff a = { 0 };
+		if (e->dimk != DK_KNOWN) a.free = 1;
+		else memcpy(a.c, e->dim, sizeof a.c);
+		return a;
+	}
+	case R_VAR: {
+		Var *v = e->var;
+		if (v->dimk == DK_KNOWN) return known(v->dim[0], v->dim[1], v->dim[2]);
+		Aff a = { 0 };
+		a.nu = 1;
+		a.u[0] = v;
+		a.k[0] = 1;
+		return a;
+	}
+	case R_RF: return known(1, 1, -2);
+	case R_COMP: return walk(W, e->a[0]);
+	case R_OP: {
+		Aff x[3];
+		for (int i = 0; i < e->n; i++) x[i] = walk(W, e->a[i]);
+		return walk_op(W, e, x);
+	}
+	}
+	return known(0, 0, 0);
+}
+
+static Aff var_aff(Var *v)
+{
+	RExpr r = { 0 };
+	r.k = R_VAR;
+	r.var = v;
+	return walk(NULL, &r);
+}
+
+static void walk_inst(Walk *W, Inst *I)
+{
+	if (I->cond) walk(W, I->cond);
+	for (int b = 0; b < 2; b++) {
+		Vec *br = b ? &I->els : &I->then;
+		for (int i = 0; i < br->n; i++) {
+			Assign *a = br->v[i];
+			if (I->isderiv) {
+				Aff rate = lin(var_aff(a->var), 1, known(0, 0, 1), -1);
+				constrain(W, rate, walk(W, a->rhs), a->loc, msg_deriv, a->text);
+				continue;
+			}
+			Aff l = walk(W, a->lhs), r = walk(W, a->rhs);
+			constrain(W, l, r, a->rhs->loc, msg_eq, a->text);
+		}
+	}
+	if (I->isF)
+		for (int i = 0; i < I->targets.n; i++) {
+			Var *v = I->targets.v[i];
+			constrain(W, var_aff(v), known(1, 1, -2), I->st->loc, msg_force, v->name);
+		}
+}
+
+void dims_check(Model *M)
+{
+	Walk W = { 0 };
+	for (int iter = 0; iter < 64; iter++) {
+		W.progress = 0;
+		for (int i = 0; i < M->insts.n; i++) walk_inst(&W, M->insts.v[i]);
+		if (!W.progress) break;
+	}
+	W.report = 1;
+	for (int i = 0; i < M->insts.n; i++) walk_inst(&W, M->insts.v[i]);
+}
+
+void dims_fold(int op, RExpr **args, int n, RExpr *out, Loc l)
+{
+	Walk W = { 0 };
+	W.report = 1;
+	RExpr e = { 0 };
+	e.k = R_OP;
+	e.op = op;
+	e.n = n;
+	for (int i = 0; i < n; i++) e.a[i] = args[i];
+	e.loc = l;
+	Aff a = walk(&W, &e);
+	if (a.free || a.nu || a.overflow) {
+		out->dimk = DK_FREE;
+		return;
+	}
+	out->dimk = DK_KNOWN;
+	for (int i = 0; i < 3; i++) out->dim[i] = a.c[i] == 0 ? 0 : a.c[i];
+}
