@@ -368,6 +368,16 @@ int gen_program(Model *M, csf_prog *p)
 	}
 	p->ny = G->nmem - p->ystart;
 	p->dstart = alloc_mem(G, p->ny, NULL);
+	p->yscale = malloc((p->ny ? p->ny : 1) * sizeof *p->yscale);
+	if (!p->yscale) exit(2);
+	for (int i = 0; i < M->objects.n; i++) {
+		Object *o = M->objects.v[i];
+		for (int j = 0; j < o->props.n; j++) {
+			Var *v = o->props.v[j];
+			double one = v->dimk == DK_KNOWN ? dims_to_system(1.0, v->dim) : 1.0;
+			for (int k = 0; v->state && k < (v->isvec ? 3 : 1); k++) p->yscale[(uint32_t)v->slot - p->ystart + (uint32_t)k] = one;
+		}
+	}
 	M->time->slot = (int)p->tslot;
 
 	for (int sec = 0; sec < CSF_NSEC; sec++) {

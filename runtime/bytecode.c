@@ -97,6 +97,7 @@ int csf_encode(const csf_prog *p, unsigned char **out, size_t *len)
 	put_u32(&w, p->ystart);
 	put_u32(&w, p->dstart);
 	put_u32(&w, p->ny);
+	for (uint32_t i = 0; i < p->ny; i++) put_f64(&w, p->yscale[i]);
 	put_f64(&w, p->till);
 	put_f64(&w, p->by);
 	put_u32(&w, p->nfiles);
@@ -215,6 +216,12 @@ int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, siz
 	ARR(p->nstrs, p->strs, 1);
 	ARR(p->nmem, p->mem0, 8);
 	bad = bad || get_u32(&r, &p->tslot) || get_u32(&r, &p->ystart) || get_u32(&r, &p->dstart) || get_u32(&r, &p->ny);
+	if (!bad && (size_t)p->ny > r.left / 8) bad = 1;
+	if (!bad) {
+		p->yscale = malloc(p->ny ? p->ny * sizeof(double) : 1);
+		bad = !p->yscale;
+		for (uint32_t i = 0; !bad && i < p->ny; i++) get_f64(&r, &p->yscale[i]);
+	}
 	bad = bad || get_f64(&r, &p->till) || get_f64(&r, &p->by);
 	ARR(p->nfiles, p->files, 4);
 	ARR(p->nsrcs, p->srcs, sizeof(csf_src));
@@ -255,6 +262,9 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 		return fail(err, errlen, "state layout out of range");
 	if (p->ny && p->ystart < p->dstart + p->ny && p->dstart < p->ystart + p->ny)
 		return fail(err, errlen, "state and derivative regions overlap");
+	for (uint32_t i = 0; i < p->ny; i++)
+		if (!(p->yscale[i] > 0) || !isfinite(p->yscale[i]))
+			return fail(err, errlen, "tolerance scale %lu is not a positive number", (unsigned long)i);
 	if (!(p->by > 0) || !isfinite(p->by) || !(p->till >= 0) || !isfinite(p->till))
 		return fail(err, errlen, "invalid run range (till %g, by %g)", p->till, p->by);
 	if (p->till / p->by > 4e15) return fail(err, errlen, "too many output steps");
@@ -328,6 +338,7 @@ void csf_prog_free(csf_prog *p)
 {
 	free(p->strs);
 	free(p->mem0);
+	free(p->yscale);
 	free(p->files);
 	free(p->srcs);
 	free(p->cols);

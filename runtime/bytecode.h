@@ -19,6 +19,7 @@
  *   strings   u32 n, n bytes (NUL-terminated strings; last byte is NUL)
  *   memory    u32 nmem, nmem doubles (initial image)
  *   layout    u32 tslot, ystart, dstart, ny
+ *   yscale    ny doubles (tolerance scale of each state component, > 0)
  *   run       double till, by
  *   files     u32 n, n x {u32 name}
  *   sources   u32 n, n x {u32 file, line, text}

@@ -71,6 +71,8 @@ typedef struct csf_prog {
 	double *mem0;
 	uint32_t nmem;
 	uint32_t tslot, ystart, dstart, ny;
+	double *yscale; /* per state component: the absolute tolerance's scale (the unit system's
+	                   measure of one SI unit of that component), so accuracy is unit-independent */
 	double till, by;
 	uint32_t ncols, nfiles, nsrcs, nasserts;
 	csf_col *cols;

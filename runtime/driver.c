@@ -175,7 +175,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, FILE *out, F
 	memcpy(r.m, p->mem0, p->nmem * sizeof(double));
 	memcpy(y, p->mem0 + p->ystart, p->ny * sizeof(double));
 	if (p->ny) {
-		ode = csf_ode_new(o->method, p->ny, p->by, o->tol, rhs, &r, msg, sizeof msg);
+		ode = csf_ode_new(o->method, p->ny, p->by, o->tol, p->yscale, rhs, &r, msg, sizeof msg);
 		if (!ode) {
 			fprintf(err, "error: %s\n", msg);
 			status = 2;

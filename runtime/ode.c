@@ -44,8 +44,8 @@ static int gsl_rhs(double t, const double y[], double dydt[], void *params)
 	return o->f(t, y, dydt, o->ctx) ? GSL_EBADFUNC : GSL_SUCCESS;
 }
 
-csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, csf_rhs_fn f, void *ctx, char *err,
-                     size_t errlen)
+csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, const double *scale, csf_rhs_fn f,
+                     void *ctx, char *err, size_t errlen)
 {
 	gsl_set_error_handler_off();
 	const struct method *m = &methods[0];
@@ -67,7 +67,9 @@ csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, csf_
 	o->sys = (gsl_odeiv2_system){ gsl_rhs, NULL, n, o };
 	o->f = f;
 	o->ctx = ctx;
-	o->drv = gsl_odeiv2_driver_alloc_y_new(&o->sys, *m->type, hmax, tol, tol);
+	/* error control as driver_alloc_y_new (a_y = 1, a_dydt = 0), with the absolute
+	   tolerance of each component scaled to its unit */
+	o->drv = gsl_odeiv2_driver_alloc_scaled_new(&o->sys, *m->type, hmax, tol, tol, 1.0, 0.0, scale);
 	if (!o->drv || gsl_odeiv2_driver_set_hmax(o->drv, hmax) != GSL_SUCCESS) {
 		snprintf(err, errlen, "cannot set up the integrator");
 		csf_ode_free(o);

@@ -16,11 +16,12 @@ enum { CSF_ODE_OK = 0, CSF_ODE_STOPPED = 1, CSF_ODE_FAILED = 2 };
 /*
  * A new integrator for n state variables with the named method (NULL for the
  * default), internal steps never longer than hmax, local error bound tol
- * (absolute and relative; <= 0 for the default). Returns NULL and writes a
+ * (relative, and absolute times scale[i] for component i; <= 0 for the
+ * default). Returns NULL and writes a
  * reason to err for an unknown method or when memory runs out.
  */
-csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, csf_rhs_fn f, void *ctx, char *err,
-                     size_t errlen);
+csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, const double *scale, csf_rhs_fn f,
+                     void *ctx, char *err, size_t errlen);
 
 /*
  * Advances (*t, y) to exactly t1. Returns CSF_ODE_OK; CSF_ODE_STOPPED when f

@@ -123,6 +123,23 @@ for m in tests/e2e/*.csf examples/*.csf tests/runtime/*.csf; do
 	fi
 done
 
+# 4b. unit systems: one scene written in MKS, CGS and FPS literals, each
+#     compiled for each system: all nine outputs equal in SI to 1e-12.
+u=0
+for sys in mks cgs fps; do
+	for lit in mks cgs fps; do
+		if ! "$CSFC" --units $sys tests/units/bob_$lit.csf -o "$T/u.csfb" 2>"$T/err" ||
+			! "$CSFVM" "$T/u.csfb" 2>>"$T/err" | awk -f tests/units/to_si.awk >"$T/u_${sys}_$lit.csv"; then
+			u=1
+			bad "units: bob_$lit.csf under --units $sys: $(head -n 1 "$T/err")"
+		elif ! awk -f tests/units/compare.awk "$T/u_mks_mks.csv" "$T/u_${sys}_$lit.csv" >"$T/cmp" 2>&1; then
+			u=1
+			bad "units: bob_$lit.csf under --units $sys differs from MKS: $(head -n 1 "$T/cmp")"
+		fi
+	done
+done
+[ $u -eq 0 ] && ok
+
 # 5a. hostile bytecode: every byte flipped, every truncation (csfvm must exit 2, never crash)
 printf 'object p: x = 1 m\nobject p: v = 0 m/s\nobject p: k = 1 s^-2\nrule: x'"'"' = v\nrule: v'"'"' = -k * x\nassert x < 2 m\ninc t till 1 by 0.5 watch x, v\n' >"$T/h.csf"
 "$CSFC" "$T/h.csf" -o "$T/h.csfb" 2>/dev/null

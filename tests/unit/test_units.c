@@ -1,4 +1,5 @@
 /* Units table: factors against their definitions, dimensions. */
+#include <float.h>
 #include <math.h>
 
 #include <gsl/gsl_const_mksa.h>
@@ -62,6 +63,55 @@ START_TEST(test_unit_literals)
 }
 END_TEST
 
+/*
+ * Conversions at the extremes: a value from 1e-30 to 1e30 in every unit,
+ * converted to each unit system and back, keeps its relative accuracy to a
+ * few ulps.
+ */
+START_TEST(test_extremes)
+{
+	static const double base[3][3] = { { 1, 1, 1 }, { 1e-2, 1e-3, 1 }, { 0.3048, 0.45359237, 1 } };
+	for (const UnitInfo *u = unit_table; u->name; u++) {
+		double d[3] = { u->dim[DIM_L], u->dim[DIM_M], u->dim[DIM_T] };
+		for (int e = -30; e <= 30; e += 3) {
+			double x = 1.2345678901234567 * pow(10, e), si = x * u->factor;
+			opts.units = _i;
+			double sys = dims_to_system(si, d), back = sys;
+			for (int k = 0; k < 3; k++) back *= pow(base[_i][k], d[k]);
+			ck_assert_msg(fabs(back - si) <= 4 * DBL_EPSILON * fabs(si), "%s, %g, system %d: %.17g -> %.17g", u->name, x, _i,
+			              si, back);
+		}
+	}
+	opts.units = 0;
+}
+END_TEST
+
+/* Under CGS and FPS, bare numbers and constants are in that system's units. */
+START_TEST(test_systems)
+{
+	static const struct { int sys; const char *src; const char *col; double want; } c[] = {
+		{ UNITS_CGS, "object b: x = 100\ninc t till 1 by 1 watch x\n", "b.x", 100 },
+		{ UNITS_CGS, "object b: x = 2 m\ninc t till 1 by 1 watch x\n", "b.x", 200 },
+		{ UNITS_CGS, "object b: x = 1\nrule: y = g.z * x\ninc t till 1 by 1 watch y\n", "b.y", -980.665 },
+		{ UNITS_FPS, "object b: x = 3 ft\ninc t till 1 by 1 watch x\n", "b.x", 3 },
+		{ UNITS_FPS, "object b: x = 1 lbf\ninc t till 1 by 1 watch x\n", "b.x", 4.44822161526 / 0.45359237 / 0.3048 },
+		{ UNITS_MKS, "object b: x = 36 km/h\ninc t till 1 by 1 watch x\n", "b.x", 10 },
+	};
+	opts.units = c[_i].sys;
+	csf_prog p;
+	char *d;
+	ck_assert_msg(compile_string(c[_i].src, &p, &d) == 0, "%s", d);
+	free(d);
+	int s = col_slot(&p, c[_i].col);
+	ck_assert_int_ge(s, 0);
+	double *m = run_out(&p);
+	ck_assert_msg(fabs(m[s] - c[_i].want) <= 1e-14 * fabs(c[_i].want), "case %d: %.17g", _i, m[s]);
+	free(m);
+	csf_prog_free(&p);
+	opts.units = 0;
+}
+END_TEST
+
 Suite *units_suite(void)
 {
 	Suite *s = suite_create("units");
@@ -69,6 +119,8 @@ Suite *units_suite(void)
 	tcase_add_loop_test(tc, test_unit_table, 0, sizeof cases / sizeof cases[0]);
 	tcase_add_test(tc, test_not_units);
 	tcase_add_loop_test(tc, test_unit_literals, 0, sizeof literals / sizeof literals[0]);
+	tcase_add_loop_test(tc, test_extremes, 0, 3);
+	tcase_add_loop_test(tc, test_systems, 0, 6);
 	suite_add_tcase(s, tc);
 	return s;
 }
