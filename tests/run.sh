@@ -144,12 +144,13 @@ done
 printf 'object p: x = 1 m\nobject p: v = 0 m/s\nobject p: k = 1 s^-2\nrule: x'"'"' = v\nrule: v'"'"' = -k * x\nassert x < 2 m\ninc t till 1 by 0.5 watch x, v\n' >"$T/h.csf"
 "$CSFC" "$T/h.csf" -o "$T/h.csfb" 2>/dev/null
 if "$B/fuzz-bytecode" "$T/h.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode: $(tail -n 3 "$T/fuzz")"; fi
-# and through the real executable, on a sample of corruptions
+# and through the real executable, on a sample of corruptions (each byte inverted)
 size=$(wc -c <"$T/h.csfb")
 vmfail=0
 for off in 0 4 8 12 20 24 28 40 $((size / 2)) $((size - 1)); do
 	cp "$T/h.csfb" "$T/c.csfb"
-	printf '\377' | dd of="$T/c.csfb" bs=1 seek="$off" conv=notrunc 2>/dev/null
+	b=$(od -An -tu1 -j "$off" -N1 "$T/h.csfb" | tr -d ' ')
+	printf "\\$(printf '%03o' $((b ^ 255)))" | dd of="$T/c.csfb" bs=1 seek="$off" conv=notrunc 2>/dev/null
 	"$CSFVM" "$T/c.csfb" >/dev/null 2>"$T/err"
 	st=$?
 	if [ $st -ne 2 ] || ! grep -q "invalid bytecode" "$T/err"; then vmfail=1; bad "csfvm on a corrupted byte at $off: exit $st"; fi
