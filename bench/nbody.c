@@ -169,7 +169,7 @@ int main(int argc, char **argv)
 	gsl_odeiv2_driver *drv = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, by, 1e-10, 1e-10);
 	if (!drv || gsl_odeiv2_driver_set_hmax(drv, by) != GSL_SUCCESS) die("cannot set up the integrator");
 
-	static const char *const comp[] = { "pos.x", "pos.y", "pos.z", "v.x", "v.y", "v.z" };
+	static const char *const comp[] = { "pos.x [m]", "pos.y [m]", "pos.z [m]", "v.x [m/s]", "v.y [m/s]", "v.z [m/s]" }; /* csfvm's header: name [unit] */
 	fputs("t", stdout);
 	for (int k = 0; k < nw; k++)
 		for (int c = 0; c < 6; c++) printf(",p%zu.%s", w[k], comp[c]);

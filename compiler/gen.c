@@ -36,7 +36,8 @@ typedef struct Gen {
 	uint32_t nstrs, capstrs;
 	Vec *Finsts; /* per object index: its F instances */
 	Map strmap;  /* string -> offset + 1 */
-	Map cse;     /* within one equation: expression -> its scratch slot + 1 */
+	struct { RExpr *e; uint32_t slot; } cse[64]; /* within one equation: values computed so far */
+	int ncse;
 	uint32_t *ctab_slot;
 	uint64_t *ctab_key;
 	unsigned char *ctab_vec;
@@ -158,26 +159,26 @@ static void emit_op(Gen *G, int op, uint32_t a, uint32_t b, uint32_t c, uint32_t
 
 static uint32_t emit(Gen *G, RExpr *e);
 
-/* A key naming e's value structurally (operations and operand identities). */
-static char *expr_key(Gen *G, RExpr *e)
+/* Structural equality of two expressions (same operations on the same operands). */
+static int expr_same(const RExpr *a, const RExpr *b)
 {
-	switch (e->k) {
-	case R_CONST: return xprintf("k%016llx.%016llx.%016llx.%d", (unsigned long long)dbits(e->c[0]),
-		                          (unsigned long long)dbits(e->c[1]), (unsigned long long)dbits(e->c[2]), e->isvec);
-	case R_VAR: return xprintf("v%p", (void *)e->var);
-	case R_RF: return xprintf("F%p", (void *)e->obj);
-	case R_COMP: return xprintf("c%d(%s)", e->comp, expr_key(G, e->a[0]));
-	case R_OP: {
-		char *k = xprintf("o%d", e->op);
-		for (int i = 0; i < e->n; i++) k = xprintf("%s(%s)", k, expr_key(G, e->a[i]));
-		return k;
+	if (a == b) return 1;
+	if (a->k != b->k || a->isvec != b->isvec) return 0;
+	switch (a->k) {
+	case R_CONST: return memcmp(a->c, b->c, sizeof a->c) == 0;
+	case R_VAR: return a->var == b->var;
+	case R_RF: return a->obj == b->obj;
+	case R_COMP: return a->comp == b->comp && expr_same(a->a[0], b->a[0]);
+	case R_OP:
+		if (a->op != b->op || a->n != b->n) return 0;
+		for (int i = 0; i < a->n; i++)
+			if (!expr_same(a->a[i], b->a[i])) return 0;
+		return 1;
 	}
-	}
-	return "";
+	return 0;
 }
 
-/* Forgets the values computed so far (after an assignment, at a branch). */
-static void cse_reset(Gen *G) { G->cse = (Map){ 0 }; }
+static void cse_reset(Gen *G) { G->ncse = 0; }
 
 static void emit_into(Gen *G, RExpr *e, uint32_t dest)
 {
@@ -228,12 +229,14 @@ static uint32_t emit(Gen *G, RExpr *e)
 	case R_OP: {
 		/* the same operation on the same operands within one equation is computed once:
 		   the value is the same bits, so this never changes a result */
-		char *key = expr_key(G, e);
-		uintptr_t known = (uintptr_t)map_get(&G->cse, key);
-		if (known) return (uint32_t)(known - 1);
+		for (int i = 0; i < G->ncse; i++)
+			if (expr_same(G->cse[i].e, e)) return G->cse[i].slot;
 		uint32_t d = new_scratch(G, e->isvec ? 3 : 1);
 		emit_into(G, e, d);
-		map_put(&G->cse, key, (void *)(uintptr_t)(d + 1));
+		if (G->ncse < (int)(sizeof G->cse / sizeof G->cse[0])) {
+			G->cse[G->ncse].e = e;
+			G->cse[G->ncse++].slot = d;
+		}
 		return d;
 	}
 	}

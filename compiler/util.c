@@ -13,10 +13,14 @@
 #include "csfc.h"
 #include "ast.h"
 
+/* The arena: zeroed chunks of CHUNK bytes, handed out by bumping a pointer;
+ * a large request gets a block of its own. */
+#define CHUNK (256 * 1024)
 typedef struct Block { struct Block *next; max_align_t data[]; } Block;
 static Block *blocks;
+static char *bump, *bump_end;
 
-void *xalloc(size_t n)
+static void *new_block(size_t n)
 {
 	Block *b = calloc(1, sizeof(Block) + n);
 	if (!b) {
@@ -26,6 +30,20 @@ void *xalloc(size_t n)
 	b->next = blocks;
 	blocks = b;
 	return b->data;
+}
+
+void *xalloc(size_t n)
+{
+	size_t a = sizeof(max_align_t);
+	n = (n + a - 1) / a * a;
+	if (n > CHUNK / 8) return new_block(n);
+	if ((size_t)(bump_end - bump) < n) {
+		bump = new_block(CHUNK);
+		bump_end = bump + CHUNK;
+	}
+	void *p = bump;
+	bump += n;
+	return p;
 }
 
 void *xrealloc_arr(void *p, size_t n)
@@ -42,6 +60,7 @@ void arena_free(void)
 		free(blocks);
 		blocks = b;
 	}
+	bump = bump_end = NULL;
 }
 
 char *xstrndup(const char *s, size_t n)
