@@ -39,73 +39,212 @@ static void comment(FILE *f, const char *s)
 
 /* Instructions per generated function: C compilers slow down badly on huge functions. */
 #define CHUNK 1000
+/* Consecutive instances of one rule with the same instructions that become a loop. */
+#define MIN_GROUP 4
+/* Consecutive instructions with the same opcode that become a loop. */
+#define MIN_RUN 8
+
+typedef struct Emit {
+	const csf_prog *p;
+	int sec;
+	const char *fname;
+	FILE *f;          /* the functions */
+	FILE *tabs;       /* operand tables, written before the functions */
+	int ntabs;
+	int nchunks;
+	int count;        /* instructions in the current function */
+	const unsigned char *target;
+} Emit;
+
+static void open_chunk(Emit *E)
+{
+	fprintf(E->f, "CSF_CHUNK int %s_%d(double *m)\n{\n", E->fname, E->nchunks++);
+	E->count = 0;
+}
+
+static void close_chunk(Emit *E) { fputs("\treturn -1;\n}\n\n", E->f); }
+
+static void src_comment(Emit *E, uint32_t src, const char *more)
+{
+	const csf_src *s = &E->p->srcs[src];
+	fputc('\t', E->f);
+	comment(E->f, xprintf("%s:%lu: %s%s", csf_str(E->p, E->p->files[s->file]), (unsigned long)s->line,
+	                      csf_str(E->p, s->text), more));
+	fputc('\n', E->f);
+}
+
+static uint32_t insn_len(const uint32_t *code, uint32_t pc) { return 1u + csf_opinfo_table[code[pc]].nops; }
+
+/* One instruction as C; operands from o[] when o is given (inside a loop), else constants. */
+static void emit_insn(Emit *E, const uint32_t *code, uint32_t pc, const char *o, int base)
+{
+	const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
+	const uint32_t *a = code + pc + 1;
+	switch (code[pc]) {
+	case CSF_OP_JMP:
+		fprintf(E->f, "\tgoto L%lu;\n", (unsigned long)a[0]);
+		return;
+	case CSF_OP_JZ:
+		fprintf(E->f, "\tif (m[%lu] == 0.0) goto L%lu;\n", (unsigned long)a[0], (unsigned long)a[1]);
+		return;
+	case CSF_OP_ASSERT:
+		fprintf(E->f, "\tif (m[%lu] == 0.0) return %lu;\n", (unsigned long)a[0], (unsigned long)a[1]);
+		return;
+	}
+	fprintf(E->f, "%scsf_op_%s(m", o ? "\t\t" : "\t", oi->name);
+	for (int k = 0; k < oi->nops; k++) {
+		if (o) fprintf(E->f, ", %s[%d]", o, base + k);
+		else fprintf(E->f, ", %lu", (unsigned long)a[k]);
+	}
+	fputs(");\n", E->f);
+}
+
+/* Starts operand table csf_tN of n rows of w words (the caller writes the rows); returns N. */
+static int open_table(Emit *E, size_t n, int w)
+{
+	int t = E->ntabs++;
+	fprintf(E->tabs, "static const uint32_t csf_t%d[%zu][%d] = {\n", t, n, w);
+	return t;
+}
+
+static int no_control(const uint32_t *code, uint32_t from, uint32_t to)
+{
+	for (uint32_t pc = from; pc < to; pc += insn_len(code, pc))
+		if (code[pc] == CSF_OP_JMP || code[pc] == CSF_OP_JZ || code[pc] == CSF_OP_ASSERT) return 0;
+	return 1;
+}
+
+static int same_shape(const uint32_t *code, uint32_t a, uint32_t alen, uint32_t b, uint32_t blen)
+{
+	if (alen != blen) return 0;
+	for (uint32_t k = 0; k < alen; k += insn_len(code, a + k))
+		if (code[a + k] != code[b + k]) return 0;
+	return 1;
+}
+
+/* Straight code [from, to): runs of one opcode become loops over a table, the rest plain calls. */
+static void emit_straight(Emit *E, uint32_t from, uint32_t to)
+{
+	const uint32_t *code = E->p->code[E->sec];
+	for (uint32_t pc = from; pc < to;) {
+		if (E->target[pc]) fprintf(E->f, "L%lu:\n", (unsigned long)pc);
+		uint32_t len = insn_len(code, pc), n = 0, q = pc;
+		while (q < to && code[q] == code[pc] && !E->target[q] && code[q] != CSF_OP_JMP && code[q] != CSF_OP_JZ &&
+		       code[q] != CSF_OP_ASSERT)
+			q += len, n++;
+		if (n >= MIN_RUN) {
+			int w = (int)len - 1, t = open_table(E, n, w);
+			for (uint32_t r = pc; r < q; r += len) {
+				fputs("\t{", E->tabs);
+				for (int k = 0; k < w; k++) fprintf(E->tabs, "%s%lu", k ? ", " : " ", (unsigned long)code[r + 1 + k]);
+				fputs(" },\n", E->tabs);
+			}
+			fputs("};\n\n", E->tabs);
+			fprintf(E->f, "\tfor (size_t k = 0; k < %lu; k++) {\n\t\tconst uint32_t *o = csf_t%d[k];\n",
+			        (unsigned long)n, t);
+			emit_insn(E, code, pc, "o", 0);
+			fputs("\t}\n", E->f);
+			E->count += 4;
+			pc = q;
+			continue;
+		}
+		emit_insn(E, code, pc, NULL, 0);
+		E->count++;
+		pc += len;
+	}
+}
 
 /*
  * Writes section sec as functions fname_0, fname_1, ... of about CHUNK
  * instructions each, split only where a statement's code starts (jumps
- * never leave a statement), and fname calling them in order.
+ * never leave a statement), and fname calling them in order. Consecutive
+ * instances of one rule whose instructions differ only in their operands
+ * (a $n rule over every pair of objects) become one loop over a table of
+ * operands: the same calls in the same order, in a fraction of the code.
  */
-static void emit_section(const csf_prog *p, int sec, const char *fname, FILE *f)
+static void emit_section(const csf_prog *p, int sec, const char *fname, FILE *f, FILE *tabs, int *ntabs)
 {
 	uint32_t n = p->ncode[sec];
 	const uint32_t *code = p->code[sec];
 	unsigned char *target = calloc((size_t)n + 1, 1);
 	if (!target) exit(2);
-	for (uint32_t pc = 0; pc < n; pc += 1u + csf_opinfo_table[code[pc]].nops) {
+	for (uint32_t pc = 0; pc < n; pc += insn_len(code, pc)) {
 		if (code[pc] == CSF_OP_JMP) target[code[pc + 1]] = 1;
 		if (code[pc] == CSF_OP_JZ) target[code[pc + 2]] = 1;
 	}
-	int nchunks = 0, count = 0;
-	uint32_t li = 0;
-	fprintf(f, "CSF_CHUNK int %s_%d(double *m)\n{\n", fname, nchunks++);
-	for (uint32_t pc = 0; pc < n;) {
-		int starts = 0;
-		while (li < p->nlines[sec] && p->lines[sec][li].pc <= pc) {
-			if (p->lines[sec][li].pc == pc) {
-				if (!starts && count >= CHUNK) {
-					fprintf(f, "\treturn -1;\n}\n\nCSF_CHUNK int %s_%d(double *m)\n{\n", fname, nchunks++);
-					count = 0;
-				}
-				starts = 1;
-				const csf_src *s = &p->srcs[p->lines[sec][li].src];
-				fputc('\t', f);
-				comment(f, xprintf("%s:%lu: %s", csf_str(p, p->files[s->file]), (unsigned long)s->line, csf_str(p, s->text)));
-				fputc('\n', f);
+	Emit E = { p, sec, fname, f, tabs, *ntabs, 0, 0, target };
+	/* units: the code of one statement instance, from one line-table entry to the next */
+	uint32_t nl = p->nlines[sec];
+	open_chunk(&E);
+	if (nl == 0 || p->lines[sec][0].pc > 0) emit_straight(&E, 0, nl ? p->lines[sec][0].pc : n);
+	for (uint32_t i = 0; i < nl;) {
+		uint32_t from = p->lines[sec][i].pc, to = i + 1 < nl ? p->lines[sec][i + 1].pc : n;
+		uint32_t src = p->lines[sec][i].src, len = to - from;
+		/* how many following units repeat this one's shape */
+		uint32_t g = 1;
+		if (len && no_control(code, from, to) && !target[from])
+			while (i + g < nl && p->lines[sec][i + g].src == src) {
+				uint32_t f2 = p->lines[sec][i + g].pc, t2 = i + g + 1 < nl ? p->lines[sec][i + g + 1].pc : n;
+				if (target[f2] || !same_shape(code, from, len, f2, t2 - f2) || !no_control(code, f2, t2)) break;
+				g++;
 			}
-			li++;
+		if (E.count >= CHUNK) {
+			close_chunk(&E);
+			open_chunk(&E);
 		}
-		if (target[pc]) fprintf(f, "L%lu:\n", (unsigned long)pc);
-		const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
-		const uint32_t *a = code + pc + 1;
-		switch (code[pc]) {
-		case CSF_OP_JMP:
-			fprintf(f, "\tgoto L%lu;\n", (unsigned long)a[0]);
-			break;
-		case CSF_OP_JZ:
-			fprintf(f, "\tif (m[%lu] == 0.0) goto L%lu;\n", (unsigned long)a[0], (unsigned long)a[1]);
-			break;
-		case CSF_OP_ASSERT:
-			fprintf(f, "\tif (m[%lu] == 0.0) return %lu;\n", (unsigned long)a[0], (unsigned long)a[1]);
-			break;
-		default:
-			fprintf(f, "\tcsf_op_%s(m", oi->name);
-			for (int k = 0; k < oi->nops; k++) fprintf(f, ", %lu", (unsigned long)a[k]);
-			fputs(");\n", f);
-			break;
+		if (g >= MIN_GROUP) {
+			uint32_t w = 0;
+			for (uint32_t pc = from; pc < to; pc += insn_len(code, pc)) w += insn_len(code, pc) - 1;
+			int t = open_table(&E, g, (int)w);
+			for (uint32_t u = 0; u < g; u++) {
+				uint32_t f2 = p->lines[sec][i + u].pc;
+				fputs("\t{", tabs);
+				int first = 1;
+				for (uint32_t pc = f2; pc < f2 + len; pc += insn_len(code, pc))
+					for (uint32_t k = 1; k < insn_len(code, pc); k++, first = 0)
+						fprintf(tabs, "%s%lu", first ? " " : ", ", (unsigned long)code[pc + k]);
+				fputs(" },\n", tabs);
+			}
+			fputs("};\n\n", tabs);
+			src_comment(&E, src, xprintf(" (%lu instances)", (unsigned long)g));
+			fprintf(f, "\tfor (size_t k = 0; k < %lu; k++) {\n\t\tconst uint32_t *o = csf_t%d[k];\n", (unsigned long)g, t);
+			int base = 0;
+			for (uint32_t pc = from; pc < to;) {
+				uint32_t il = insn_len(code, pc), q = pc, r = 0;
+				while (q < to && code[q] == code[pc]) q += il, r++;
+				if (r >= MIN_RUN) { /* a run of one opcode inside the body: an inner loop */
+					const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
+					fprintf(f, "\t\tfor (size_t j = 0; j < %lu; j++)\n\t\t\tcsf_op_%s(m", (unsigned long)r, oi->name);
+					for (int k = 0; k < oi->nops; k++) fprintf(f, ", o[%d + %d * j]", base + k, oi->nops);
+					fputs(");\n", f);
+					base += (int)r * oi->nops;
+					pc = q;
+					continue;
+				}
+				emit_insn(&E, code, pc, "o", base);
+				base += (int)il - 1;
+				pc += il;
+			}
+			fputs("\t}\n", f);
+			E.count += (int)(len / 3) + 4;
+			i += g;
+			continue;
 		}
-		count++;
-		pc += 1u + oi->nops;
+		src_comment(&E, src, "");
+		emit_straight(&E, from, to);
+		i++;
 	}
 	if (target[n]) fprintf(f, "L%lu:\n", (unsigned long)n);
-	fputs("\treturn -1;\n}\n\n", f);
+	close_chunk(&E);
 	fprintf(f, "static int %s(double *m)\n{\n", fname);
-	if (nchunks == 1) {
+	if (E.nchunks == 1) {
 		fprintf(f, "\treturn %s_0(m);\n}\n\n", fname);
 	} else {
 		fputs("\tint r;\n", f);
-		for (int i = 0; i < nchunks; i++) fprintf(f, "\tif ((r = %s_%d(m)) >= 0) return r;\n", fname, i);
+		for (int i = 0; i < E.nchunks; i++) fprintf(f, "\tif ((r = %s_%d(m)) >= 0) return r;\n", fname, i);
 		fputs("\treturn -1;\n}\n\n", f);
 	}
+	*ntabs = E.ntabs;
 	free(target);
 }
 
@@ -123,8 +262,19 @@ void emit_c(const csf_prog *p, const unsigned char *image, size_t len, const cha
 	fprintf(f, "static const unsigned char csf_model_image[%zu] = {", len);
 	for (size_t i = 0; i < len; i++) fprintf(f, "%s%u,", i % 16 ? " " : "\n\t", image[i]);
 	fputs("\n};\n\n", f);
-	emit_section(p, CSF_SEC_RHS, "csf_model_rhs", f);
-	emit_section(p, CSF_SEC_OUT, "csf_model_out", f);
+	char *fbuf = NULL, *tbuf = NULL;
+	size_t flen = 0, tlen = 0;
+	FILE *fs = open_memstream(&fbuf, &flen), *ts = open_memstream(&tbuf, &tlen);
+	if (!fs || !ts) exit(2);
+	int ntabs = 0;
+	emit_section(p, CSF_SEC_RHS, "csf_model_rhs", fs, ts, &ntabs);
+	emit_section(p, CSF_SEC_OUT, "csf_model_out", fs, ts, &ntabs);
+	fclose(fs);
+	fclose(ts);
+	fwrite(tbuf, 1, tlen, f);
+	fwrite(fbuf, 1, flen, f);
+	free(fbuf);
+	free(tbuf);
 	fputs("static int csf_model_exec(const csf_prog *p, int sec, double *m)\n{\n"
 	      "\t(void)p;\n"
 	      "\treturn sec == CSF_SEC_RHS ? csf_model_rhs(m) : csf_model_out(m);\n}\n\n"
