@@ -269,6 +269,7 @@ void emit_c(const csf_prog *p, const unsigned char *image, size_t len, const cha
 	int ntabs = 0;
 	emit_section(p, CSF_SEC_RHS, "csf_model_rhs", fs, ts, &ntabs);
 	emit_section(p, CSF_SEC_OUT, "csf_model_out", fs, ts, &ntabs);
+	emit_section(p, CSF_SEC_JAC, "csf_model_jac", fs, ts, &ntabs);
 	fclose(fs);
 	fclose(ts);
 	fwrite(tbuf, 1, tlen, f);
@@ -277,7 +278,7 @@ void emit_c(const csf_prog *p, const unsigned char *image, size_t len, const cha
 	free(tbuf);
 	fputs("static int csf_model_exec(const csf_prog *p, int sec, double *m)\n{\n"
 	      "\t(void)p;\n"
-	      "\treturn sec == CSF_SEC_RHS ? csf_model_rhs(m) : csf_model_out(m);\n}\n\n"
+	      "\treturn sec == CSF_SEC_RHS ? csf_model_rhs(m) : sec == CSF_SEC_OUT ? csf_model_out(m) : csf_model_jac(m);\n}\n\n"
 	      "int main(int argc, char **argv)\n{\n"
 	      "\treturn csf_main(argc, argv, csf_model_image, sizeof csf_model_image, csf_model_exec);\n}\n",
 	      f);

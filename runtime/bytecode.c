@@ -97,6 +97,7 @@ int csf_encode(const csf_prog *p, unsigned char **out, size_t *len)
 	put_u32(&w, p->ystart);
 	put_u32(&w, p->dstart);
 	put_u32(&w, p->ny);
+	put_u32(&w, p->jtan);
 	for (uint32_t i = 0; i < p->ny; i++) put_f64(&w, p->yscale[i]);
 	put_f64(&w, p->till);
 	put_f64(&w, p->by);
@@ -215,7 +216,8 @@ int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, siz
 #define ARR(n, field, elem) (bad = bad || get_array(&r, &(n), &a, (elem)), (field) = bad ? (field) : a)
 	ARR(p->nstrs, p->strs, 1);
 	ARR(p->nmem, p->mem0, 8);
-	bad = bad || get_u32(&r, &p->tslot) || get_u32(&r, &p->ystart) || get_u32(&r, &p->dstart) || get_u32(&r, &p->ny);
+	bad = bad || get_u32(&r, &p->tslot) || get_u32(&r, &p->ystart) || get_u32(&r, &p->dstart) || get_u32(&r, &p->ny) ||
+	      get_u32(&r, &p->jtan);
 	if (!bad && (size_t)p->ny > r.left / 8) bad = 1;
 	if (!bad) {
 		p->yscale = malloc(p->ny ? p->ny * sizeof(double) : 1);
@@ -262,6 +264,11 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 		return fail(err, errlen, "state layout out of range");
 	if (p->ny && p->ystart < p->dstart + p->ny && p->dstart < p->ystart + p->ny)
 		return fail(err, errlen, "state and derivative regions overlap");
+	if (p->jtan) {
+		uint64_t jt = p->jtan, n = p->nmem;
+		if (p->tslot + jt >= n || p->ystart + jt + p->ny > n || p->dstart + jt + p->ny > n)
+			return fail(err, errlen, "tangent layout out of range");
+	}
 	for (uint32_t i = 0; i < p->ny; i++)
 		if (!(p->yscale[i] > 0) || !isfinite(p->yscale[i]))
 			return fail(err, errlen, "tolerance scale %lu is not a positive number", (unsigned long)i);
@@ -353,7 +360,7 @@ void csf_prog_free(csf_prog *p)
 
 void csf_disassemble(const csf_prog *p, FILE *f)
 {
-	static const char *const secname[CSF_NSEC] = { "rhs", "out" };
+	static const char *const secname[CSF_NSEC] = { "rhs", "out", "jac" };
 	fprintf(f, "; memory %lu slots, t at %lu, state %lu..%lu, derivatives %lu..%lu\n", (unsigned long)p->nmem,
 	        (unsigned long)p->tslot, (unsigned long)p->ystart, (unsigned long)(p->ystart + p->ny),
 	        (unsigned long)p->dstart, (unsigned long)(p->dstart + p->ny));

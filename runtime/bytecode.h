@@ -18,14 +18,14 @@
  *
  *   strings   u32 n, n bytes (NUL-terminated strings; last byte is NUL)
  *   memory    u32 nmem, nmem doubles (initial image)
- *   layout    u32 tslot, ystart, dstart, ny
+ *   layout    u32 tslot, ystart, dstart, ny, jtan
  *   yscale    ny doubles (tolerance scale of each state component, > 0)
  *   run       double till, by
  *   files     u32 n, n x {u32 name}
  *   sources   u32 n, n x {u32 file, line, text}
  *   columns   u32 n, n x {u32 name, slot}
  *   asserts   u32 n, n x {u32 src, object}
- *   then for each code section (RHS, OUT):
+ *   then for each code section (RHS, OUT, JAC):
  *   targets   u32 n, n x {u32 slot, width, src, name, object}
  *   code      u32 n, n words (opcode, operands...)
  *   lines     u32 n, n x {u32 pc, src}
@@ -37,7 +37,7 @@
 #define CSF_BYTECODE_H
 
 #define CSFB_MAGIC "CSFB"
-#define CSFB_VERSION 1u
+#define CSFB_VERSION 2u
 #define CSFB_INT_PROBE 0x01020304u
 #define CSFB_FLOAT_PROBE 370.5
 #define CSFB_HEADER_SIZE 28u

@@ -24,7 +24,13 @@
 
 #define CSF_VERSION_STRING "0.1.0"
 
-enum { CSF_SEC_RHS = 0, CSF_SEC_OUT = 1, CSF_NSEC = 2 };
+/*
+ * Code sections: RHS computes the state derivatives; OUT what the watch list
+ * and the assertions need; JAC the derivatives' tangents (forward-mode
+ * differentiation of RHS, for the exact Jacobian; empty when the model has
+ * no state).
+ */
+enum { CSF_SEC_RHS = 0, CSF_SEC_OUT = 1, CSF_SEC_JAC = 2, CSF_NSEC = 3 };
 
 /* Opcodes, from opcodes.def. */
 enum csf_opcode {
@@ -71,6 +77,7 @@ typedef struct csf_prog {
 	double *mem0;
 	uint32_t nmem;
 	uint32_t tslot, ystart, dstart, ny;
+	uint32_t jtan;  /* JAC: the tangent of slot s is slot s + jtan (0: no Jacobian) */
 	double *yscale; /* per state component: the absolute tolerance's scale (the unit system's
 	                   measure of one SI unit of that component), so accuracy is unit-independent */
 	double till, by;

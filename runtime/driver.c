@@ -103,6 +103,32 @@ static int rhs(double t, const double *y, double *dydt, void *ctx)
 	return 0;
 }
 
+/*
+ * The exact Jacobian: JAC run once per state component with that
+ * component's tangent set to 1 (a column), then once with t's (dfdt).
+ */
+static int jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx)
+{
+	run *r = ctx;
+	const csf_prog *p = r->p;
+	double *m = r->m, *tan = r->m + p->jtan;
+	uint32_t n = p->ny;
+	m[p->tslot] = t;
+	memcpy(m + p->ystart, y, n * sizeof *y);
+	for (uint32_t j = 0; j <= n; j++) {
+		memset(tan + p->ystart, 0, n * sizeof *tan);
+		tan[p->tslot] = j == n ? 1.0 : 0.0;
+		if (j < n) tan[p->ystart + j] = 1.0;
+		r->exec(p, CSF_SEC_JAC, m);
+		for (uint32_t i = 0; i < n; i++) {
+			double d = tan[p->dstart + i];
+			if (j < n) dfdy[(size_t)i * n + j] = d;
+			else dfdt[i] = d;
+		}
+	}
+	return 0;
+}
+
 /* Index of the first non-finite target computed by section sec, or -1. */
 static long first_nonfinite(const csf_prog *p, int sec, const double *m)
 {
@@ -175,7 +201,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, FILE *out, F
 	memcpy(r.m, p->mem0, p->nmem * sizeof(double));
 	memcpy(y, p->mem0 + p->ystart, p->ny * sizeof(double));
 	if (p->ny) {
-		ode = csf_ode_new(o->method, p->ny, p->by, o->tol, p->yscale, rhs, &r, msg, sizeof msg);
+		ode = csf_ode_new(o->method, p->ny, p->by, o->tol, p->yscale, rhs, p->jtan ? jac : NULL, &r, msg, sizeof msg);
 		if (!ode) {
 			fprintf(err, "error: %s\n", msg);
 			status = 2;

@@ -20,21 +20,29 @@
 static const struct method {
 	const char *name;
 	const gsl_odeiv2_step_type *const *type;
+	int jacobian; /* the stepper uses the Jacobian */
 } methods[] = {
-	{ "rk8pd", &gsl_odeiv2_step_rk8pd },
-	{ "rk2", &gsl_odeiv2_step_rk2 },
-	{ "rk4", &gsl_odeiv2_step_rk4 },
-	{ "rkf45", &gsl_odeiv2_step_rkf45 },
-	{ "rkck", &gsl_odeiv2_step_rkck },
-	{ "msadams", &gsl_odeiv2_step_msadams },
+	{ "rk8pd", &gsl_odeiv2_step_rk8pd, 0 },
+	{ "rk2", &gsl_odeiv2_step_rk2, 0 },
+	{ "rk4", &gsl_odeiv2_step_rk4, 0 },
+	{ "rkf45", &gsl_odeiv2_step_rkf45, 0 },
+	{ "rkck", &gsl_odeiv2_step_rkck, 0 },
+	{ "rk1imp", &gsl_odeiv2_step_rk1imp, 1 },
+	{ "rk2imp", &gsl_odeiv2_step_rk2imp, 1 },
+	{ "rk4imp", &gsl_odeiv2_step_rk4imp, 1 },
+	{ "bsimp", &gsl_odeiv2_step_bsimp, 1 },
+	{ "msadams", &gsl_odeiv2_step_msadams, 0 },
+	{ "msbdf", &gsl_odeiv2_step_msbdf, 1 },
 };
 
-const char *const csf_method_names[] = { "rk8pd", "rk2", "rk4", "rkf45", "rkck", "msadams", NULL };
+const char *const csf_method_names[] = { "rk8pd", "rk2", "rk4", "rkf45", "rkck", "rk1imp", "rk2imp",
+	                                     "rk4imp", "bsimp", "msadams", "msbdf", NULL };
 
 struct csf_ode {
 	gsl_odeiv2_system sys;
 	gsl_odeiv2_driver *drv;
 	csf_rhs_fn f;
+	csf_jac_fn jac;
 	void *ctx;
 };
 
@@ -44,8 +52,14 @@ static int gsl_rhs(double t, const double y[], double dydt[], void *params)
 	return o->f(t, y, dydt, o->ctx) ? GSL_EBADFUNC : GSL_SUCCESS;
 }
 
+static int gsl_jac(double t, const double y[], double *dfdy, double dfdt[], void *params)
+{
+	csf_ode *o = params;
+	return o->jac(t, y, dfdy, dfdt, o->ctx) ? GSL_EBADFUNC : GSL_SUCCESS;
+}
+
 csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, const double *scale, csf_rhs_fn f,
-                     void *ctx, char *err, size_t errlen)
+                     csf_jac_fn jac, void *ctx, char *err, size_t errlen)
 {
 	gsl_set_error_handler_off();
 	const struct method *m = &methods[0];
@@ -58,14 +72,19 @@ csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, cons
 			return NULL;
 		}
 	}
+	if (m->jacobian && !jac) {
+		snprintf(err, errlen, "method '%s' needs a Jacobian, and this program has none", m->name);
+		return NULL;
+	}
 	if (tol <= 0) tol = CSF_DEFAULT_TOL;
 	csf_ode *o = calloc(1, sizeof *o);
 	if (!o) {
 		snprintf(err, errlen, "out of memory");
 		return NULL;
 	}
-	o->sys = (gsl_odeiv2_system){ gsl_rhs, NULL, n, o };
+	o->sys = (gsl_odeiv2_system){ gsl_rhs, jac ? gsl_jac : NULL, n, o };
 	o->f = f;
+	o->jac = jac;
 	o->ctx = ctx;
 	/* error control as driver_alloc_y_new (a_y = 1, a_dydt = 0), with the absolute
 	   tolerance of each component scaled to its unit */

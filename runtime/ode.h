@@ -9,6 +9,9 @@
 /* Right-hand side: dydt = f(t, y). Returns 0, or non-zero to stop the integration. */
 typedef int (*csf_rhs_fn)(double t, const double *y, double *dydt, void *ctx);
 
+/* Jacobian: dfdy[i*n + j] = df_i/dy_j, dfdt[i] = df_i/dt. Returns 0, or non-zero to stop. */
+typedef int (*csf_jac_fn)(double t, const double *y, double *dfdy, double *dfdt, void *ctx);
+
 typedef struct csf_ode csf_ode;
 
 enum { CSF_ODE_OK = 0, CSF_ODE_STOPPED = 1, CSF_ODE_FAILED = 2 };
@@ -21,7 +24,7 @@ enum { CSF_ODE_OK = 0, CSF_ODE_STOPPED = 1, CSF_ODE_FAILED = 2 };
  * reason to err for an unknown method or when memory runs out.
  */
 csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, const double *scale, csf_rhs_fn f,
-                     void *ctx, char *err, size_t errlen);
+                     csf_jac_fn jac, void *ctx, char *err, size_t errlen);
 
 /*
  * Advances (*t, y) to exactly t1. Returns CSF_ODE_OK; CSF_ODE_STOPPED when f

@@ -5,7 +5,8 @@
 #
 #  1. exact answers: every tests/e2e/X.csf and examples/X.csf is compiled and
 #     run; X.check, an awk program, compares each CSV row with the exact or
-#     analytic solution and exits non-zero on the first row that misses.
+#     analytic solution and exits non-zero on the first row that misses;
+#     X.args, if present, holds csfvm options (--method ...).
 #  2. diagnostics: every tests/diag/X.csf must fail to compile with exit 1 and
 #     print each line of X.err exactly (file:line:col: error: ...).
 #  3. run-time failures: every tests/runtime/X.csf is run; X.expect gives the
@@ -34,7 +35,9 @@ for m in tests/e2e/*.csf examples/*.csf; do
 		bad "$m: does not compile: $(head -n 1 "$T/err")"
 		continue
 	fi
-	if ! "$CSFVM" "$T/m.csfb" >"$T/out.csv" 2>"$T/err"; then
+	args=$(cat "${m%.csf}.args" 2>/dev/null || true)
+	# shellcheck disable=SC2086 # args holds csfvm options
+	if ! "$CSFVM" $args "$T/m.csfb" >"$T/out.csv" 2>"$T/err"; then
 		bad "$m: csfvm failed: $(head -n 1 "$T/err")"
 		continue
 	fi
@@ -108,9 +111,12 @@ for m in tests/e2e/*.csf examples/*.csf tests/runtime/*.csf; do
 		bad "$m: --emit-c: $(head -n 3 "$T/cerr")"
 		continue
 	fi
-	(cd "$d" && "$CSFVM" "$T/v.csfb") >"$T/v.out" 2>"$T/v.err"
+	args=$(cat "${m%.csf}.args" 2>/dev/null || true)
+	# shellcheck disable=SC2086
+	(cd "$d" && "$CSFVM" $args "$T/v.csfb") >"$T/v.out" 2>"$T/v.err"
 	vs=$?
-	(cd "$d" && "$T/exe") >"$T/c.out" 2>"$T/c.err"
+	# shellcheck disable=SC2086
+	(cd "$d" && "$T/exe" $args) >"$T/c.out" 2>"$T/c.err"
 	cs=$?
 	if [ $vs -ne $cs ]; then
 		bad "$m: exit status csfvm $vs, generated executable $cs"

@@ -20,6 +20,7 @@ Suite *sema_suite(void);
 Suite *bytecode_suite(void);
 Suite *vm_suite(void);
 Suite *emit_c_suite(void);
+Suite *jac_suite(void);
 
 /*
  * Compiles source text (file name "t.csf") to a verified program in *p.
