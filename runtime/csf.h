@@ -131,7 +131,9 @@ int csf_vm_exec(const csf_prog *p, int sec, double *m);
 typedef struct csf_opts {
 	const char *method; /* ODE stepper name, NULL for the default */
 	double tol;         /* local error bound, <= 0 for the default */
-	int header_units;   /* reserved */
+	int fixed;          /* --fixed: no error control, constant internal steps */
+	double step;        /* --step H: the fixed step (<= 0: by) */
+	int stats;          /* --stats: a summary on stderr at the end */
 } csf_opts;
 
 /*

@@ -11,6 +11,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "csf.h"
 #include "ode.h"
@@ -63,6 +64,19 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 				fprintf(stderr, "%s: --tol needs a positive number, not '%s'\n", argv[0], argv[i]);
 				return 2;
 			}
+		} else if (strcmp(a, "--step") == 0 && i + 1 < argc) {
+			char *end;
+			errno = 0;
+			o->step = strtod(argv[++i], &end);
+			o->fixed = 1;
+			if (*end || errno || !(o->step > 0) || !isfinite(o->step)) {
+				fprintf(stderr, "%s: --step needs a positive number of seconds, not '%s'\n", argv[0], argv[i]);
+				return 2;
+			}
+		} else if (strcmp(a, "--fixed") == 0) {
+			o->fixed = 1;
+		} else if (strcmp(a, "--stats") == 0) {
+			o->stats = 1;
 		} else if (a[0] == '-' && a[1] != '\0') {
 			fprintf(stderr, "%s: unknown or incomplete option '%s'\n%s", argv[0], a, usage);
 			return 2;
@@ -83,6 +97,7 @@ typedef struct run {
 	double *m;
 	double fail_t; /* time of a non-finite derivative */
 	int fail;
+	unsigned long nrhs, njac; /* evaluations, for --stats */
 } run;
 
 static int rhs(double t, const double *y, double *dydt, void *ctx)
@@ -93,6 +108,7 @@ static int rhs(double t, const double *y, double *dydt, void *ctx)
 	m[p->tslot] = t;
 	memcpy(m + p->ystart, y, p->ny * sizeof *y);
 	r->exec(p, CSF_SEC_RHS, m);
+	r->nrhs++;
 	memcpy(dydt, m + p->dstart, p->ny * sizeof *y);
 	for (uint32_t i = 0; i < p->ny; i++)
 		if (!isfinite(dydt[i])) {
@@ -115,6 +131,7 @@ static int jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx)
 	uint32_t n = p->ny;
 	m[p->tslot] = t;
 	memcpy(m + p->ystart, y, n * sizeof *y);
+	r->njac++;
 	for (uint32_t j = 0; j <= n; j++) {
 		memset(tan + p->ystart, 0, n * sizeof *tan);
 		tan[p->tslot] = j == n ? 1.0 : 0.0;
@@ -185,8 +202,11 @@ static int finish(FILE *out, FILE *err, int status)
 
 int csf_run(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, FILE *out, FILE *err)
 {
-	run r = { p, exec, NULL, 0, 0 };
+	run r = { p, exec, NULL, 0, 0, 0, 0 };
 	double *y = NULL;
+	int warned = 0;
+	struct timespec t0, t1;
+	clock_gettime(CLOCK_MONOTONIC, &t0);
 	csf_ode *ode = NULL;
 	int status = 0;
 	char msg[256];
@@ -221,7 +241,29 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, FILE *out, F
 	for (double k = 0; k <= kmax; k++) {
 		double tk = k * p->by;
 		if (ode && tk > t) {
-			int st = csf_ode_advance(ode, &t, tk, y, msg, sizeof msg);
+			unsigned long before, rej;
+			csf_ode_stats(ode, &before, &rej);
+			int st = o->fixed ? csf_ode_advance_fixed(ode, &t, tk, o->step > 0 && o->step < p->by ? o->step : p->by, y,
+			                                          msg, sizeof msg)
+			                  : csf_ode_advance(ode, &t, tk, y, msg, sizeof msg);
+			unsigned long after;
+			csf_ode_stats(ode, &after, &rej);
+			if (!o->fixed && !warned && csf_ode_explicit(ode) && after - before > 10000) {
+				char tb[32];
+				csf_fmt_double(tb, tk);
+				fprintf(err,
+				        "warning: %lu steps of the explicit method %s to reach t=%s: the problem looks stiff; "
+				        "try --method msbdf or --method bsimp\n",
+				        after - before, csf_ode_method(ode), tb);
+				warned = 1;
+			}
+			if (st == CSF_ODE_STOPPED && o->fixed) {
+				report_nonfinite(p, CSF_SEC_RHS, r.m, r.fail_t, "a state derivative", err);
+				fprintf(err, "note: with --fixed, the step is probably too large for the method to be stable: "
+				             "try a smaller --step, or leave out --fixed\n");
+				status = 1;
+				goto done;
+			}
 			if (st == CSF_ODE_STOPPED) {
 				report_nonfinite(p, CSF_SEC_RHS, r.m, r.fail_t, "a state derivative", err);
 				status = 1;
@@ -256,12 +298,25 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, FILE *out, F
 		for (uint32_t i = 0; i < p->ncols; i++) bad |= !isfinite(r.m[p->cols[i].slot]);
 		if (bad) {
 			report_nonfinite(p, CSF_SEC_OUT, r.m, tk, "a watched or state value", err);
+			if (o->fixed)
+				fprintf(err, "note: with --fixed, the step is probably too large for the method to be stable: "
+				             "try a smaller --step, or leave out --fixed\n");
 			status = 1;
 			goto done;
 		}
 		if (write_row(p, r.m, tk, out)) break;
 	}
 done:
+	if (o->stats) {
+		unsigned long steps = 0, rejected = 0;
+		if (ode) csf_ode_stats(ode, &steps, &rejected);
+		clock_gettime(CLOCK_MONOTONIC, &t1);
+		fprintf(err,
+		        "stats: method %s%s, %lu steps (%lu rejected), %lu right-hand side and %lu Jacobian evaluations, "
+		        "0 events, %.6f s\n",
+		        ode ? csf_ode_method(ode) : "none", o->fixed ? " (fixed steps)" : "", steps, rejected, r.nrhs, r.njac,
+		        (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
+	}
 	csf_ode_free(ode);
 	free(y);
 	free(r.m);

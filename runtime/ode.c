@@ -7,6 +7,7 @@
  */
 #include <stdio.h>
 #include <stdlib.h>
+#include <math.h>
 #include <string.h>
 
 #include <gsl/gsl_errno.h>
@@ -41,6 +42,10 @@ const char *const csf_method_names[] = { "rk8pd", "rk2", "rk4", "rkf45", "rkck",
 struct csf_ode {
 	gsl_odeiv2_system sys;
 	gsl_odeiv2_driver *drv;
+	const struct method *m;
+	size_t n;
+	double *k;                 /* fixed steps: 5 work vectors of n */
+	unsigned long fixed_steps;
 	csf_rhs_fn f;
 	csf_jac_fn jac;
 	void *ctx;
@@ -82,6 +87,8 @@ csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, cons
 		snprintf(err, errlen, "out of memory");
 		return NULL;
 	}
+	o->m = m;
+	o->n = n;
 	o->sys = (gsl_odeiv2_system){ gsl_rhs, jac ? gsl_jac : NULL, n, o };
 	o->f = f;
 	o->jac = jac;
@@ -106,9 +113,73 @@ int csf_ode_advance(csf_ode *o, double *t, double t1, double *y, char *err, size
 	return CSF_ODE_FAILED;
 }
 
+/* One classical Runge-Kutta step of size h (four evaluations). */
+static int rk4_step(csf_ode *o, double t, double h, double *y)
+{
+	size_t n = o->n;
+	double *k1 = o->k, *k2 = k1 + n, *k3 = k2 + n, *k4 = k3 + n, *yt = k4 + n;
+	if (o->f(t, y, k1, o->ctx)) return 1;
+	for (size_t i = 0; i < n; i++) yt[i] = y[i] + h / 2 * k1[i];
+	if (o->f(t + h / 2, yt, k2, o->ctx)) return 1;
+	for (size_t i = 0; i < n; i++) yt[i] = y[i] + h / 2 * k2[i];
+	if (o->f(t + h / 2, yt, k3, o->ctx)) return 1;
+	for (size_t i = 0; i < n; i++) yt[i] = y[i] + h * k3[i];
+	if (o->f(t + h, yt, k4, o->ctx)) return 1;
+	for (size_t i = 0; i < n; i++) y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+	return 0;
+}
+
+int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y, char *err, size_t errlen)
+{
+	if (!strcmp(o->m->name, "msadams") || !strcmp(o->m->name, "msbdf")) {
+		snprintf(err, errlen, "--fixed needs a one-step method, not the multistep %s", o->m->name);
+		return CSF_ODE_FAILED;
+	}
+	if (!o->k && !(o->k = malloc(5 * (o->n ? o->n : 1) * sizeof *o->k))) {
+		snprintf(err, errlen, "out of memory");
+		return CSF_ODE_FAILED;
+	}
+	double t0 = *t, span = t1 - t0;
+	double steps = ceil(span / h * (1 - 1e-12));
+	if (steps < 1) steps = 1;
+	for (double i = 0; i < steps; i++) {
+		double ta = t0 + span * (i / steps), tb = i + 1 == steps ? t1 : t0 + span * ((i + 1) / steps);
+		int bad;
+		if (!strcmp(o->m->name, "rk4")) {
+			bad = rk4_step(o, ta, tb - ta, y);
+		} else {
+			int st = gsl_odeiv2_step_apply(o->drv->s, ta, tb - ta, y, o->k, NULL, NULL, &o->sys);
+			if (st != GSL_SUCCESS && st != GSL_EBADFUNC) {
+				snprintf(err, errlen, "%s", gsl_strerror(st));
+				*t = ta;
+				return CSF_ODE_FAILED;
+			}
+			bad = st == GSL_EBADFUNC;
+		}
+		if (bad) {
+			*t = ta;
+			return CSF_ODE_STOPPED;
+		}
+		o->fixed_steps++;
+		*t = tb;
+	}
+	return CSF_ODE_OK;
+}
+
+void csf_ode_stats(const csf_ode *o, unsigned long *steps, unsigned long *rejected)
+{
+	*steps = o->fixed_steps + o->drv->e->count;
+	*rejected = o->drv->e->failed_steps;
+}
+
+int csf_ode_explicit(const csf_ode *o) { return !o->m->jacobian; }
+
+const char *csf_ode_method(const csf_ode *o) { return o->m->name; }
+
 void csf_ode_free(csf_ode *o)
 {
 	if (!o) return;
+	free(o->k);
 	if (o->drv) gsl_odeiv2_driver_free(o->drv);
 	free(o);
 }

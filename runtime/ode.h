@@ -33,6 +33,23 @@ csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, cons
  */
 int csf_ode_advance(csf_ode *o, double *t, double t1, double *y, char *err, size_t errlen);
 
+/*
+ * Advances (*t, y) to exactly t1 in equal steps of at most h, without error
+ * control (rk4 is the classical four-stage method; the other one-step
+ * methods take GSL's step without using its error estimate). Returns as
+ * csf_ode_advance; a multistep method is CSF_ODE_FAILED.
+ */
+int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y, char *err, size_t errlen);
+
+/* Steps taken and rejected so far. */
+void csf_ode_stats(const csf_ode *o, unsigned long *steps, unsigned long *rejected);
+
+/* Is the method explicit (no Jacobian)? */
+int csf_ode_explicit(const csf_ode *o);
+
+/* The method's name. */
+const char *csf_ode_method(const csf_ode *o);
+
 void csf_ode_free(csf_ode *o);
 
 #endif

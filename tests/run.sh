@@ -78,7 +78,9 @@ for m in tests/runtime/*.csf; do
 		bad "$m: does not compile: $(head -n 1 "$T/err")"
 		continue
 	fi
-	(cd tests/runtime && "$CSFVM" "$T/r.csfb") >"$T/out.csv" 2>"$T/err"
+	args=$(cat "${m%.csf}.args" 2>/dev/null || true)
+	# shellcheck disable=SC2086
+	(cd tests/runtime && "$CSFVM" $args "$T/r.csfb") >"$T/out.csv" 2>"$T/err"
 	st=$?
 	want_st=$(awk '$1 == "exit" { print $2 }' "$exp")
 	want_rows=$(awk '$1 == "rows" { print $2 }' "$exp")
