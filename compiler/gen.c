@@ -669,7 +669,11 @@ int gen_program(Model *M, csf_prog *p)
 		Object *o = M->objects.v[i];
 		for (int j = 0; j < o->props.n; j++) {
 			Var *v = o->props.v[j];
+			/* one SI unit of v, in the system's units; smaller when v starts smaller
+			   (so that a 1e-20 m orbit keeps the relative accuracy of a 1 m one) */
 			double one = v->dimk == DK_KNOWN ? dims_to_system(1.0, v->dim) : 1.0;
+			double mag = v->isvec ? csf_vmag3(v->init[0], v->init[1], v->init[2]) : fabs(v->init[0]);
+			if (mag > 0 && mag < one && isfinite(mag)) one = mag;
 			for (int k = 0; v->state && k < (v->isvec ? 3 : 1); k++) p->yscale[(uint32_t)v->slot - p->ystart + (uint32_t)k] = one;
 		}
 	}
