@@ -14,7 +14,7 @@ CC ?= cc
 CFLAGS ?= -O2 -g
 SAN ?=
 
-DEB_PACKAGES = gcc make libgsl-dev check re2c bison pkg-config
+DEB_PACKAGES = gcc make libgsl-dev check re2c bison pkg-config gnuplot-nox
 , := ,
 SANFLAGS = $(if $(SAN),-fsanitize=address$(,)undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
 CSF_CFLAGS = -std=c11 -Wall -Wextra -ffp-contract=off -D_DEFAULT_SOURCE $(SANFLAGS)

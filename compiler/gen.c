@@ -527,6 +527,64 @@ static int differentiable(int op)
 	return !(op >= CSF_OP_LT && op <= CSF_OP_NOT);
 }
 
+/*
+ * Marks in act every slot whose value code computes from a marked slot, to a
+ * fixed point (slots are reused). smooth: only through differentiable
+ * operations. Returns 1 if a branch condition depends on a marked slot.
+ */
+static int depends(const uint32_t *code, uint32_t n, unsigned char *act, int smooth)
+{
+	int branch = 0;
+	for (int changed = 1; changed;) {
+		changed = 0;
+		for (uint32_t pc = 0; pc < n; pc += 1u + csf_opinfo_table[code[pc]].nops) {
+			const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
+			if (code[pc] == CSF_OP_JZ && act[code[pc + 1]]) branch = 1;
+			if (oi->kind[0] != CSF_K_DS && oi->kind[0] != CSF_K_DV) continue;
+			if (smooth && !differentiable((int)code[pc])) continue;
+			int any = 0;
+			for (int k = 1; k < oi->nops; k++) {
+				uint32_t x = code[pc + 1 + k];
+				any |= act[x] || ((oi->kind[k] == CSF_K_V || oi->kind[k] == CSF_K_DV) && (act[x + 1] || act[x + 2]));
+			}
+			uint32_t d = code[pc + 1];
+			int w = oi->kind[0] == CSF_K_DV ? 3 : 1;
+			for (int k = 0; any && k < w; k++)
+				if (!act[d + k]) act[d + k] = 1, changed = 1;
+		}
+	}
+	return branch;
+}
+
+/*
+ * Position/velocity pairs for velocity Verlet: a state variable x whose
+ * derivative rule is x' = v, with v a state variable whose own derivative
+ * does not depend on v. vpair[i] = 1 + the index of i's velocity component.
+ */
+static void gen_pairs(Gen *G, Model *M, csf_prog *p)
+{
+	p->vpair = calloc(p->ny ? p->ny : 1, sizeof *p->vpair);
+	unsigned char *act = malloc(G->nmem);
+	if (!p->vpair || !act) exit(2);
+	for (int i = 0; i < M->insts.n; i++) {
+		Inst *I = M->insts.v[i];
+		if (!I->isderiv) continue;
+		Assign *a = I->then.v[0];
+		Var *x = a->var, *v = a->e->k == R_VAR ? a->e->var : NULL;
+		if (!v || !v->state || v == x || v->isvec != x->isvec) continue;
+		memset(act, 0, G->nmem);
+		int w = v->isvec ? 3 : 1;
+		for (int k = 0; k < w; k++) act[v->slot + k] = 1;
+		int branch = depends(p->code[CSF_SEC_RHS], p->ncode[CSF_SEC_RHS], act, 0);
+		uint32_t vd = p->dstart + ((uint32_t)v->slot - p->ystart);
+		int dep = branch;
+		for (int k = 0; k < w; k++) dep |= act[vd + k];
+		if (dep) continue;
+		for (int k = 0; k < w; k++) p->vpair[(uint32_t)x->slot - p->ystart + k] = (uint32_t)v->slot - p->ystart + k + 1;
+	}
+	free(act);
+}
+
 static void gen_jacobian(Gen *G, csf_prog *p)
 {
 	const uint32_t *rc = p->code[CSF_SEC_RHS];
@@ -544,21 +602,7 @@ static void gen_jacobian(Gen *G, csf_prog *p)
 	if (!J->act) exit(2);
 	J->act[p->tslot] = 1;
 	for (uint32_t i = 0; i < p->ny; i++) J->act[p->ystart + i] = 1;
-	/* activity: a result is active if an operand is; to a fixed point (slots are reused) */
-	for (int changed = 1; changed;) {
-		changed = 0;
-		for (uint32_t pc = 0; pc < rn; pc += 1u + csf_opinfo_table[rc[pc]].nops) {
-			const csf_opinfo *oi = &csf_opinfo_table[rc[pc]];
-			if (oi->kind[0] != CSF_K_DS && oi->kind[0] != CSF_K_DV) continue;
-			if (!differentiable((int)rc[pc])) continue;
-			int any = 0;
-			for (int k = 1; k < oi->nops; k++) any |= jact(J, oi->kind[k], rc[pc + 1 + k]);
-			uint32_t d = rc[pc + 1];
-			int w = oi->kind[0] == CSF_K_DV ? 3 : 1;
-			for (int k = 0; any && k < w; k++)
-				if (!J->act[d + k]) J->act[d + k] = 1, changed = 1;
-		}
-	}
+	depends(rc, rn, J->act, 1);
 	J->P = nprimal;
 	alloc_mem(G, nprimal, NULL); /* the tangents */
 	J->W = alloc_mem(G, JAC_WORK, NULL);
@@ -724,6 +768,7 @@ int gen_program(Model *M, csf_prog *p)
 			i += 1u + oi->nops;
 		}
 
+	gen_pairs(G, M, p);
 	gen_jacobian(G, p);
 
 	/* Source tables. */

@@ -99,6 +99,7 @@ int csf_encode(const csf_prog *p, unsigned char **out, size_t *len)
 	put_u32(&w, p->ny);
 	put_u32(&w, p->jtan);
 	for (uint32_t i = 0; i < p->ny; i++) put_f64(&w, p->yscale[i]);
+	put_u32s(&w, p->vpair, p->ny);
 	put_f64(&w, p->till);
 	put_f64(&w, p->by);
 	put_u32(&w, p->nfiles);
@@ -224,6 +225,12 @@ int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, siz
 		bad = !p->yscale;
 		for (uint32_t i = 0; !bad && i < p->ny; i++) get_f64(&r, &p->yscale[i]);
 	}
+	if (!bad && (size_t)p->ny > r.left / 4) bad = 1;
+	if (!bad) {
+		p->vpair = malloc(p->ny ? p->ny * sizeof(uint32_t) : 1);
+		bad = !p->vpair;
+		for (uint32_t i = 0; !bad && i < p->ny; i++) get_u32(&r, &p->vpair[i]);
+	}
 	bad = bad || get_f64(&r, &p->till) || get_f64(&r, &p->by);
 	ARR(p->nfiles, p->files, 4);
 	ARR(p->nsrcs, p->srcs, sizeof(csf_src));
@@ -269,6 +276,9 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 		if (p->tslot + jt >= n || p->ystart + jt + p->ny > n || p->dstart + jt + p->ny > n)
 			return fail(err, errlen, "tangent layout out of range");
 	}
+	for (uint32_t i = 0; i < p->ny; i++)
+		if (p->vpair[i] > p->ny || p->vpair[i] == i + 1)
+			return fail(err, errlen, "position/velocity pair %lu out of range", (unsigned long)i);
 	for (uint32_t i = 0; i < p->ny; i++)
 		if (!(p->yscale[i] > 0) || !isfinite(p->yscale[i]))
 			return fail(err, errlen, "tolerance scale %lu is not a positive number", (unsigned long)i);
@@ -346,6 +356,7 @@ void csf_prog_free(csf_prog *p)
 	free(p->strs);
 	free(p->mem0);
 	free(p->yscale);
+	free(p->vpair);
 	free(p->files);
 	free(p->srcs);
 	free(p->cols);

@@ -20,6 +20,7 @@
  *   memory    u32 nmem, nmem doubles (initial image)
  *   layout    u32 tslot, ystart, dstart, ny, jtan
  *   yscale    ny doubles (tolerance scale of each state component, > 0)
+ *   vpair     ny u32 (1 + velocity index of a position component, else 0)
  *   run       double till, by
  *   files     u32 n, n x {u32 name}
  *   sources   u32 n, n x {u32 file, line, text}
@@ -37,7 +38,7 @@
 #define CSF_BYTECODE_H
 
 #define CSFB_MAGIC "CSFB"
-#define CSFB_VERSION 2u
+#define CSFB_VERSION 3u
 #define CSFB_INT_PROBE 0x01020304u
 #define CSFB_FLOAT_PROBE 370.5
 #define CSFB_HEADER_SIZE 28u

@@ -78,6 +78,7 @@ typedef struct csf_prog {
 	uint32_t nmem;
 	uint32_t tslot, ystart, dstart, ny;
 	uint32_t jtan;  /* JAC: the tangent of slot s is slot s + jtan (0: no Jacobian) */
+	uint32_t *vpair; /* per state component: 1 + its velocity's index if it is a position (Verlet), else 0 */
 	double *yscale; /* per state component: the absolute tolerance's scale (the unit system's
 	                   measure of one SI unit of that component), so accuracy is unit-independent */
 	double till, by;

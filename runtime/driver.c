@@ -221,7 +221,8 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, FILE *out, F
 	memcpy(r.m, p->mem0, p->nmem * sizeof(double));
 	memcpy(y, p->mem0 + p->ystart, p->ny * sizeof(double));
 	if (p->ny) {
-		ode = csf_ode_new(o->method, p->ny, p->by, o->tol, p->yscale, rhs, p->jtan ? jac : NULL, &r, msg, sizeof msg);
+		ode = csf_ode_new(o->method, p->ny, p->by, o->tol, p->yscale, p->vpair, rhs, p->jtan ? jac : NULL, &r, msg,
+		                  sizeof msg);
 		if (!ode) {
 			fprintf(err, "error: %s\n", msg);
 			status = 2;
@@ -243,7 +244,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, FILE *out, F
 		if (ode && tk > t) {
 			unsigned long before, rej;
 			csf_ode_stats(ode, &before, &rej);
-			int st = o->fixed ? csf_ode_advance_fixed(ode, &t, tk, o->step > 0 && o->step < p->by ? o->step : p->by, y,
+			int st = o->fixed || csf_ode_fixed_only(ode) ? csf_ode_advance_fixed(ode, &t, tk, o->step > 0 && o->step < p->by ? o->step : p->by, y,
 			                                          msg, sizeof msg)
 			                  : csf_ode_advance(ode, &t, tk, y, msg, sizeof msg);
 			unsigned long after;
@@ -314,7 +315,7 @@ done:
 		fprintf(err,
 		        "stats: method %s%s, %lu steps (%lu rejected), %lu right-hand side and %lu Jacobian evaluations, "
 		        "0 events, %.6f s\n",
-		        ode ? csf_ode_method(ode) : "none", o->fixed ? " (fixed steps)" : "", steps, rejected, r.nrhs, r.njac,
+		        ode ? csf_ode_method(ode) : "none", o->fixed || (ode && csf_ode_fixed_only(ode)) ? " (fixed steps)" : "", steps, rejected, r.nrhs, r.njac,
 		        (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
 	}
 	csf_ode_free(ode);

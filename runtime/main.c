@@ -17,7 +17,8 @@ static const char vm_usage[] =
 	"usage: csfvm [--method NAME] [--tol EPS] MODEL.csfb\n"
 	"Runs a compiled CSF model and writes its watched variables as CSV on stdout.\n"
 	"  --method NAME  ODE stepper: rk8pd (default), rk2, rk4, rkf45, rkck,\n"
-	"                 msadams; implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp, bsimp, msbdf\n"
+	"                 msadams; implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp,\n"
+	"                 bsimp, msbdf; symplectic, fixed steps (--step): verlet\n"
 	"  --tol EPS      local error bound per internal step (default 1e-10)\n"
 	"  --help, --version\n";
 
@@ -25,7 +26,8 @@ static const char exe_usage[] =
 	"usage: %s [--method NAME] [--tol EPS]\n"
 	"Runs the CSF model compiled into this program and writes its watched variables as CSV on stdout.\n"
 	"  --method NAME  ODE stepper: rk8pd (default), rk2, rk4, rkf45, rkck,\n"
-	"                 msadams; implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp, bsimp, msbdf\n"
+	"                 msadams; implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp,\n"
+	"                 bsimp, msbdf; symplectic, fixed steps (--step): verlet\n"
 	"  --tol EPS      local error bound per internal step (default 1e-10)\n"
 	"  --help, --version\n";
 

@@ -34,10 +34,11 @@ static const struct method {
 	{ "bsimp", &gsl_odeiv2_step_bsimp, 1 },
 	{ "msadams", &gsl_odeiv2_step_msadams, 0 },
 	{ "msbdf", &gsl_odeiv2_step_msbdf, 1 },
+	{ "verlet", NULL, 0 }, /* velocity Verlet, written here: symplectic, fixed steps */
 };
 
 const char *const csf_method_names[] = { "rk8pd", "rk2", "rk4", "rkf45", "rkck", "rk1imp", "rk2imp",
-	                                     "rk4imp", "bsimp", "msadams", "msbdf", NULL };
+	                                     "rk4imp", "bsimp", "msadams", "msbdf", "verlet", NULL };
 
 struct csf_ode {
 	gsl_odeiv2_system sys;
@@ -46,6 +47,10 @@ struct csf_ode {
 	size_t n;
 	double *k;                 /* fixed steps: 5 work vectors of n */
 	unsigned long fixed_steps;
+	const uint32_t *vpair;     /* verlet: 1 + velocity index of each position component */
+	double *acc;               /* verlet: the derivative at the current point */
+	double acc_t;
+	int acc_ok;
 	csf_rhs_fn f;
 	csf_jac_fn jac;
 	void *ctx;
@@ -63,8 +68,8 @@ static int gsl_jac(double t, const double y[], double *dfdy, double dfdt[], void
 	return o->jac(t, y, dfdy, dfdt, o->ctx) ? GSL_EBADFUNC : GSL_SUCCESS;
 }
 
-csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, const double *scale, csf_rhs_fn f,
-                     csf_jac_fn jac, void *ctx, char *err, size_t errlen)
+csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, const double *scale, const uint32_t *vpair,
+                     csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err, size_t errlen)
 {
 	gsl_set_error_handler_off();
 	const struct method *m = &methods[0];
@@ -93,6 +98,23 @@ csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, cons
 	o->f = f;
 	o->jac = jac;
 	o->ctx = ctx;
+	if (!m->type) { /* verlet: every component a position with a velocity, or that velocity */
+		unsigned char *isvel = calloc(n ? n : 1, 1);
+		int ok = isvel != NULL;
+		for (size_t i = 0; ok && i < n; i++)
+			if (vpair[i]) ok = !isvel[vpair[i] - 1]++ && !vpair[vpair[i] - 1];
+		for (size_t i = 0; ok && i < n; i++) ok = vpair[i] || isvel[i];
+		free(isvel);
+		if (!ok) {
+			snprintf(err, errlen,
+			         "verlet needs every state variable in a position/velocity pair (x' = v, where v' does not "
+			         "depend on v); this model's are not");
+			free(o);
+			return NULL;
+		}
+		o->vpair = vpair;
+		return o;
+	}
 	/* error control as driver_alloc_y_new (a_y = 1, a_dydt = 0), with the absolute
 	   tolerance of each component scaled to its unit */
 	o->drv = gsl_odeiv2_driver_alloc_scaled_new(&o->sys, *m->type, hmax, tol, tol, 1.0, 0.0, scale);
@@ -111,6 +133,33 @@ int csf_ode_advance(csf_ode *o, double *t, double t1, double *y, char *err, size
 	if (st == GSL_EBADFUNC) return CSF_ODE_STOPPED;
 	snprintf(err, errlen, "%s", gsl_strerror(st));
 	return CSF_ODE_FAILED;
+}
+
+/* One velocity Verlet step: x += h v + h^2/2 a(x); v += h/2 (a(x) + a(x')); one evaluation. */
+static int verlet_step(csf_ode *o, double t, double h, double *y)
+{
+	size_t n = o->n;
+	double *a1 = o->k;
+	if (!o->acc_ok || o->acc_t != t) {
+		if (o->f(t, y, o->acc, o->ctx)) return 1;
+		o->acc_t = t;
+	}
+	for (size_t i = 0; i < n; i++)
+		if (o->vpair[i]) {
+			size_t v = o->vpair[i] - 1;
+			y[i] += h * y[v] + h * h / 2 * o->acc[v];
+		}
+	o->acc_ok = 0;
+	if (o->f(t + h, y, a1, o->ctx)) return 1;
+	for (size_t i = 0; i < n; i++)
+		if (o->vpair[i]) {
+			size_t v = o->vpair[i] - 1;
+			y[v] += h / 2 * (o->acc[v] + a1[v]);
+		}
+	memcpy(o->acc, a1, n * sizeof *a1);
+	o->acc_t = t + h;
+	o->acc_ok = 1;
+	return 0;
 }
 
 /* One classical Runge-Kutta step of size h (four evaluations). */
@@ -135,7 +184,8 @@ int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y,
 		snprintf(err, errlen, "--fixed needs a one-step method, not the multistep %s", o->m->name);
 		return CSF_ODE_FAILED;
 	}
-	if (!o->k && !(o->k = malloc(5 * (o->n ? o->n : 1) * sizeof *o->k))) {
+	if (!o->k && (!(o->k = malloc(5 * (o->n ? o->n : 1) * sizeof *o->k)) ||
+	              !(o->acc = malloc((o->n ? o->n : 1) * sizeof *o->acc)))) {
 		snprintf(err, errlen, "out of memory");
 		return CSF_ODE_FAILED;
 	}
@@ -145,7 +195,9 @@ int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y,
 	for (double i = 0; i < steps; i++) {
 		double ta = t0 + span * (i / steps), tb = i + 1 == steps ? t1 : t0 + span * ((i + 1) / steps);
 		int bad;
-		if (!strcmp(o->m->name, "rk4")) {
+		if (!o->m->type) {
+			bad = verlet_step(o, ta, tb - ta, y);
+		} else if (!strcmp(o->m->name, "rk4")) {
 			bad = rk4_step(o, ta, tb - ta, y);
 		} else {
 			int st = gsl_odeiv2_step_apply(o->drv->s, ta, tb - ta, y, o->k, NULL, NULL, &o->sys);
@@ -168,11 +220,13 @@ int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y,
 
 void csf_ode_stats(const csf_ode *o, unsigned long *steps, unsigned long *rejected)
 {
-	*steps = o->fixed_steps + o->drv->e->count;
-	*rejected = o->drv->e->failed_steps;
+	*steps = o->fixed_steps + (o->drv ? o->drv->e->count : 0);
+	*rejected = o->drv ? o->drv->e->failed_steps : 0;
 }
 
 int csf_ode_explicit(const csf_ode *o) { return !o->m->jacobian; }
+
+int csf_ode_fixed_only(const csf_ode *o) { return !o->m->type; }
 
 const char *csf_ode_method(const csf_ode *o) { return o->m->name; }
 
@@ -180,6 +234,7 @@ void csf_ode_free(csf_ode *o)
 {
 	if (!o) return;
 	free(o->k);
+	free(o->acc);
 	if (o->drv) gsl_odeiv2_driver_free(o->drv);
 	free(o);
 }

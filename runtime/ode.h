@@ -5,6 +5,7 @@
 #define CSF_ODE_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 /* Right-hand side: dydt = f(t, y). Returns 0, or non-zero to stop the integration. */
 typedef int (*csf_rhs_fn)(double t, const double *y, double *dydt, void *ctx);
@@ -23,8 +24,8 @@ enum { CSF_ODE_OK = 0, CSF_ODE_STOPPED = 1, CSF_ODE_FAILED = 2 };
  * default). Returns NULL and writes a
  * reason to err for an unknown method or when memory runs out.
  */
-csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, const double *scale, csf_rhs_fn f,
-                     csf_jac_fn jac, void *ctx, char *err, size_t errlen);
+csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, const double *scale, const uint32_t *vpair,
+                     csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err, size_t errlen);
 
 /*
  * Advances (*t, y) to exactly t1. Returns CSF_ODE_OK; CSF_ODE_STOPPED when f
@@ -43,6 +44,9 @@ int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y,
 
 /* Steps taken and rejected so far. */
 void csf_ode_stats(const csf_ode *o, unsigned long *steps, unsigned long *rejected);
+
+/* Does the method take only fixed steps (verlet)? */
+int csf_ode_fixed_only(const csf_ode *o);
 
 /* Is the method explicit (no Jacobian)? */
 int csf_ode_explicit(const csf_ode *o);
