@@ -135,6 +135,10 @@ typedef struct csf_opts {
 	int fixed;          /* --fixed: no error control, constant internal steps */
 	double step;        /* --step H: the fixed step (<= 0: by) */
 	int stats;          /* --stats: a summary on stderr at the end */
+	int compare;        /* --compare-methods */
+	/* filled in by csf_run: */
+	unsigned long run_steps, run_rhs;
+	double run_seconds;
 } csf_opts;
 
 /*
@@ -149,10 +153,11 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 /*
  * Simulates p: integrates the state from t = 0 to till, evaluating OUT at
  * t_k = k*by and writing one CSV row each to out (diagnostics to err).
+ * Fills o->run_steps, run_rhs and run_seconds.
  * Returns the process exit status: 0 done, 1 the model failed (assertion,
  * non-finite value, integrator failure), 2 bad options or an output error.
  */
-int csf_run(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, FILE *out, FILE *err);
+int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *err);
 
 /*
  * The whole command line of csfvm (image NULL: the bytecode file is the
@@ -160,6 +165,14 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, FILE *out, F
  * exec: its compiled code). Returns the process exit status.
  */
 int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len, csf_exec_fn exec);
+
+/*
+ * csfvm --compare-methods: runs p with a range of methods and tolerances,
+ * compares each run's output with the most accurate run's, and prints a
+ * table (method, tolerance, seconds, steps, evaluations, largest
+ * difference) to out. Returns an exit status.
+ */
+int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *err);
 
 /* Formats x so that it reads back to the same double (shortest of %.15g..%.17g). */
 void csf_fmt_double(char buf[32], double x);

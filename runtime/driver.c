@@ -77,6 +77,8 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 			o->fixed = 1;
 		} else if (strcmp(a, "--stats") == 0) {
 			o->stats = 1;
+		} else if (strcmp(a, "--compare-methods") == 0) {
+			o->compare = 1;
 		} else if (a[0] == '-' && a[1] != '\0') {
 			fprintf(stderr, "%s: unknown or incomplete option '%s'\n%s", argv[0], a, usage);
 			return 2;
@@ -200,7 +202,7 @@ static int finish(FILE *out, FILE *err, int status)
 	return status;
 }
 
-int csf_run(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, FILE *out, FILE *err)
+int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *err)
 {
 	run r = { p, exec, NULL, 0, 0, 0, 0 };
 	double *y = NULL;
@@ -308,10 +310,17 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, FILE *out, F
 		if (write_row(p, r.m, tk, out)) break;
 	}
 done:
+	clock_gettime(CLOCK_MONOTONIC, &t1);
+	{
+		unsigned long steps = 0, rejected = 0;
+		if (ode) csf_ode_stats(ode, &steps, &rejected);
+		o->run_steps = steps;
+		o->run_rhs = r.nrhs;
+		o->run_seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+	}
 	if (o->stats) {
 		unsigned long steps = 0, rejected = 0;
 		if (ode) csf_ode_stats(ode, &steps, &rejected);
-		clock_gettime(CLOCK_MONOTONIC, &t1);
 		fprintf(err,
 		        "stats: method %s%s, %lu steps (%lu rejected), %lu right-hand side and %lu Jacobian evaluations, "
 		        "0 events, %.6f s\n",

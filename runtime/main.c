@@ -20,6 +20,11 @@ static const char vm_usage[] =
 	"                 msadams; implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp,\n"
 	"                 bsimp, msbdf; symplectic, fixed steps (--step): verlet\n"
 	"  --tol EPS      local error bound per internal step (default 1e-10)\n"
+	"  --fixed        no error control: internal steps of 'by' (or --step H)\n"
+	"  --step H       fixed internal steps of at most H seconds\n"
+	"  --stats        steps, evaluations and time on stderr at the end\n"
+	"  --compare-methods  run the scene with every method and several tolerances;\n"
+	"                 print time and the difference from the most accurate run\n"
 	"  --help, --version\n";
 
 static const char exe_usage[] =
@@ -29,6 +34,7 @@ static const char exe_usage[] =
 	"                 msadams; implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp,\n"
 	"                 bsimp, msbdf; symplectic, fixed steps (--step): verlet\n"
 	"  --tol EPS      local error bound per internal step (default 1e-10)\n"
+	"  --fixed, --step H, --stats, --compare-methods: as csfvm(1)\n"
 	"  --help, --version\n";
 
 /* Reads all of path into a malloc'd buffer. Returns NULL with errno set on failure. */
@@ -89,7 +95,7 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 	}
 	free(buf);
 	signal(SIGPIPE, SIG_IGN);
-	st = csf_run(&p, exec, &o, stdout, stderr);
+	st = o.compare ? csf_compare_methods(&p, exec, stdout, stderr) : csf_run(&p, exec, &o, stdout, stderr);
 	csf_prog_free(&p);
 	return st;
 }

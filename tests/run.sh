@@ -205,6 +205,12 @@ awk 'BEGIN {
 if "$CSFC" "$T/n300.csf" -o "$T/n300.csfb" 2>"$T/err" && "$CSFVM" "$T/n300.csfb" >"$T/out.csv" 2>>"$T/err" &&
 	[ "$(wc -l <"$T/out.csv")" -eq 4 ]; then ok; else bad "300-body scene: $(head -n 1 "$T/err")"; fi
 
+# 5f. --compare-methods on the Kepler orbit: a table; rk8pd at 1e-12 agrees
+#     with the reference to 1e-6; the bad row of a too-loose tolerance shows.
+if "$CSFC" tests/e2e/kepler.csf -o "$T/k.csfb" 2>"$T/err" && "$CSFVM" --compare-methods "$T/k.csfb" >"$T/cmp" 2>>"$T/err" &&
+	awk '$1 == "rk8pd" && $2 == "1e-12" { ok = $6 + 0 < 1e-6 } $1 == "msadams" && $2 == "0.0001" { loose = $6 + 0 > 1e-3 }
+		END { exit !(ok && loose) }' "$T/cmp"; then ok; else bad "--compare-methods: $(head -n 3 "$T/cmp" "$T/err")"; fi
+
 # 5e. make install into a staging directory; the installed csfc finds the standard library
 if make -s install BUILD="${CSF_BUILD:-build}" PREFIX=/usr DESTDIR="$T/stage" >/dev/null 2>"$T/err" &&
 	(cd "$T" && "$T/stage/usr/bin/csfc" "$TOP/examples/projectile.csf" -o "$T/p.csfb") 2>"$T/err" &&
