@@ -359,7 +359,8 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, Parser *P)
 	int wants_name = 0;
 	for (int i = 0; i < n && i < 6; i++) wants_name |= exp[i] == YYSYMBOL_IDENT;
 	const char *text = layout_token_text(P);
-	if (wants_name && (got == YYSYMBOL_PROTECTED || (got >= YYSYMBOL_USING && got <= YYSYMBOL_NOT))) {
+	int inf_nan = got == YYSYMBOL_NUMBER && text && (!strcmp(text, "Inf") || !strcmp(text, "NaN"));
+	if (wants_name && (inf_nan || got == YYSYMBOL_PROTECTED || (got >= YYSYMBOL_USING && got <= YYSYMBOL_NOT))) {
 		error_at(l, "'%s' is a protected name and cannot be used as a name", text);
 		return 0;
 	}
