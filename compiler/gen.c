@@ -755,6 +755,25 @@ int gen_program(Model *M, csf_prog *p)
 		p->cols[i].slot = (w->var->kind == V_TIME ? p->tslot : var_slot(G, w->var)) + (uint32_t)w->comp;
 	}
 
+	/* The object table: every object and the properties the program keeps in memory. */
+	p->nobjects = (uint32_t)M->objects.n;
+	p->objects = calloc(p->nobjects + 1, sizeof *p->objects);
+	if (!p->objects) exit(2);
+	Vec props = { 0 };
+	for (int i = 0; i < M->objects.n; i++) {
+		Object *o = M->objects.v[i];
+		p->objects[i] = str_intern(G, o->name);
+		for (int j = 0; j < o->props.n; j++)
+			if (((Var *)o->props.v[j])->slot >= 0) vec_push(&props, o->props.v[j]);
+	}
+	p->nprops = (uint32_t)props.n;
+	p->props = calloc(p->nprops + 1, sizeof *p->props);
+	if (!p->props) exit(2);
+	for (int i = 0; i < props.n; i++) {
+		Var *v = props.v[i];
+		p->props[i] = (csf_prop){ (uint32_t)v->obj->index, str_intern(G, v->name), (uint32_t)v->slot, v->isvec ? 3u : 1u };
+	}
+
 	/* Scratch goes last; relocate scratch operands. */
 	uint32_t base = alloc_mem(G, G->max_scratch, NULL);
 	for (int sec = 0; sec < CSF_NSEC; sec++)

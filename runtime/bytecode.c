@@ -18,7 +18,7 @@
 #include "csf.h"
 #include "bytecode.h"
 
-_Static_assert(sizeof(csf_src) == 12 && sizeof(csf_col) == 8 && sizeof(csf_assert) == 8 &&
+_Static_assert(sizeof(csf_src) == 12 && sizeof(csf_col) == 8 && sizeof(csf_assert) == 8 && sizeof(csf_prop) == 16 &&
                sizeof(csf_target) == 20 && sizeof(csf_line) == 8, "tables are arrays of u32");
 
 const csf_opinfo csf_opinfo_table[CSF_NOPCODES] = {
@@ -110,6 +110,10 @@ int csf_encode(const csf_prog *p, unsigned char **out, size_t *len)
 	put_u32s(&w, (const uint32_t *)p->cols, 2 * (size_t)p->ncols);
 	put_u32(&w, p->nasserts);
 	put_u32s(&w, (const uint32_t *)p->asserts, 2 * (size_t)p->nasserts);
+	put_u32(&w, p->nobjects);
+	put_u32s(&w, p->objects, p->nobjects);
+	put_u32(&w, p->nprops);
+	put_u32s(&w, (const uint32_t *)p->props, 4 * (size_t)p->nprops);
 	for (int s = 0; s < CSF_NSEC; s++) {
 		put_u32(&w, p->ntargets[s]);
 		put_u32s(&w, (const uint32_t *)p->targets[s], 5 * (size_t)p->ntargets[s]);
@@ -236,6 +240,8 @@ int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, siz
 	ARR(p->nsrcs, p->srcs, sizeof(csf_src));
 	ARR(p->ncols, p->cols, sizeof(csf_col));
 	ARR(p->nasserts, p->asserts, sizeof(csf_assert));
+	ARR(p->nobjects, p->objects, 4);
+	ARR(p->nprops, p->props, sizeof(csf_prop));
 	for (int s = 0; s < CSF_NSEC; s++) {
 		ARR(p->ntargets[s], p->targets[s], sizeof(csf_target));
 		ARR(p->ncode[s], p->code[s], 4);
@@ -296,6 +302,13 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 	for (uint32_t i = 0; i < p->nasserts; i++)
 		if (p->asserts[i].src >= p->nsrcs || !STR_OK(p->asserts[i].object))
 			return fail(err, errlen, "assertion %lu out of range", (unsigned long)i);
+	for (uint32_t i = 0; i < p->nobjects; i++)
+		if (!STR_OK(p->objects[i])) return fail(err, errlen, "object %lu out of range", (unsigned long)i);
+	for (uint32_t i = 0; i < p->nprops; i++) {
+		const csf_prop *q = &p->props[i];
+		if (q->object >= p->nobjects || !STR_OK(q->name) || (q->width != 1 && q->width != 3) || !slot_ok(p, q->slot, q->width))
+			return fail(err, errlen, "property %lu out of range", (unsigned long)i);
+	}
 	for (int s = 0; s < CSF_NSEC; s++) {
 		for (uint32_t i = 0; i < p->ntargets[s]; i++) {
 			const csf_target *t = &p->targets[s][i];
@@ -361,6 +374,8 @@ void csf_prog_free(csf_prog *p)
 	free(p->srcs);
 	free(p->cols);
 	free(p->asserts);
+	free(p->objects);
+	free(p->props);
 	for (int s = 0; s < CSF_NSEC; s++) {
 		free(p->targets[s]);
 		free(p->code[s]);
@@ -375,6 +390,13 @@ void csf_disassemble(const csf_prog *p, FILE *f)
 	fprintf(f, "; memory %lu slots, t at %lu, state %lu..%lu, derivatives %lu..%lu\n", (unsigned long)p->nmem,
 	        (unsigned long)p->tslot, (unsigned long)p->ystart, (unsigned long)(p->ystart + p->ny),
 	        (unsigned long)p->dstart, (unsigned long)(p->dstart + p->ny));
+	for (uint32_t i = 0; i < p->nobjects; i++) {
+		fprintf(f, "; object %lu %s:", (unsigned long)i, csf_str(p, p->objects[i]));
+		for (uint32_t k = 0; k < p->nprops; k++)
+			if (p->props[k].object == i)
+				fprintf(f, " %s@%lu", csf_str(p, p->props[k].name), (unsigned long)p->props[k].slot);
+		fputc('\n', f);
+	}
 	for (int s = 0; s < CSF_NSEC; s++) {
 		fprintf(f, "section %s (%lu words)\n", secname[s], (unsigned long)p->ncode[s]);
 		uint32_t li = 0;

@@ -26,6 +26,8 @@
  *   sources   u32 n, n x {u32 file, line, text}
  *   columns   u32 n, n x {u32 name, slot}
  *   asserts   u32 n, n x {u32 src, object}
+ *   objects   u32 n, n x {u32 name}
+ *   props     u32 n, n x {u32 object, name, slot, width}
  *   then for each code section (RHS, OUT, JAC):
  *   targets   u32 n, n x {u32 slot, width, src, name, object}
  *   code      u32 n, n words (opcode, operands...)
@@ -38,7 +40,7 @@
 #define CSF_BYTECODE_H
 
 #define CSFB_MAGIC "CSFB"
-#define CSFB_VERSION 3u
+#define CSFB_VERSION 4u
 #define CSFB_INT_PROBE 0x01020304u
 #define CSFB_FLOAT_PROBE 370.5
 #define CSFB_HEADER_SIZE 28u

@@ -59,6 +59,8 @@ extern const csf_opinfo csf_opinfo_table[CSF_NOPCODES];
 typedef struct csf_col { uint32_t name, slot; } csf_col;
 /* A source statement: file (index into files), line, its text. */
 typedef struct csf_src { uint32_t file, line, text; } csf_src;
+/* An object property in memory: its object (index into objects), name, slot, width (1 or 3). */
+typedef struct csf_prop { uint32_t object, name, slot, width; } csf_prop;
 /* A value a code section computes, in the order it computes them. */
 typedef struct csf_target { uint32_t slot, width, src, name, object; } csf_target;
 /* An assertion: its statement and the object it was checked for. */
@@ -82,8 +84,10 @@ typedef struct csf_prog {
 	double *yscale; /* per state component: the absolute tolerance's scale (the unit system's
 	                   measure of one SI unit of that component), so accuracy is unit-independent */
 	double till, by;
-	uint32_t ncols, nfiles, nsrcs, nasserts;
+	uint32_t ncols, nfiles, nsrcs, nasserts, nobjects, nprops;
 	csf_col *cols;
+	uint32_t *objects; /* object names, in definition order */
+	csf_prop *props;
 	uint32_t *files;
 	csf_src *srcs;
 	csf_assert *asserts;

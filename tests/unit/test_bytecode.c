@@ -85,6 +85,11 @@ START_TEST(test_verifier)
 		{ &p.cols[0].slot, p.nmem + 5, "column" },
 		{ &p.srcs[0].file, 99, "source entry" },
 		{ &p.targets[CSF_SEC_RHS][0].width, 2, "target" },
+		{ &p.props[0].slot, p.nmem, "property" },
+		{ &p.props[0].object, 99, "property" },
+		{ &p.objects[0], p.nstrs, "object" },
+		{ &p.vpair[0], 1, "pair" },
+		{ &p.jtan, p.nmem, "tangent" },
 	};
 	for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
 		uint32_t keep = *c[i].w;
