@@ -236,6 +236,18 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	for (uint32_t i = 0; i < p->ncols; i++) fprintf(out, ",%s", csf_str(p, p->cols[i].name));
 	putc('\n', out);
 
+	/*
+	 * Fixed steps: --step H (at most by), else by; verlet, which has no error
+	 * estimate, derives its step from the tolerance instead: its global error
+	 * goes as h^2, so h = by * sqrt(tol / 1e-4) (by / 1000 at the default 1e-10).
+	 */
+	double fixed_h = o->step > 0 && o->step < p->by ? o->step : p->by;
+	if (ode && csf_ode_fixed_only(ode) && !(o->step > 0)) {
+		double tol = o->tol > 0 ? o->tol : 1e-10;
+		double f = sqrt(tol / 1e-4);
+		fixed_h = f < 1 ? p->by * f : p->by;
+	}
+
 	/* The last k with k*by <= till, allowing for till/by's rounding. */
 	double kmax = floor(p->till / p->by);
 	if ((kmax + 1) * p->by <= p->till * (1 + 1e-12)) kmax += 1;
@@ -246,9 +258,8 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		if (ode && tk > t) {
 			unsigned long before, rej;
 			csf_ode_stats(ode, &before, &rej);
-			int st = o->fixed || csf_ode_fixed_only(ode) ? csf_ode_advance_fixed(ode, &t, tk, o->step > 0 && o->step < p->by ? o->step : p->by, y,
-			                                          msg, sizeof msg)
-			                  : csf_ode_advance(ode, &t, tk, y, msg, sizeof msg);
+			int st = o->fixed || csf_ode_fixed_only(ode) ? csf_ode_advance_fixed(ode, &t, tk, fixed_h, y, msg, sizeof msg)
+			                                             : csf_ode_advance(ode, &t, tk, y, msg, sizeof msg);
 			unsigned long after;
 			csf_ode_stats(ode, &after, &rej);
 			if (!o->fixed && !warned && csf_ode_explicit(ode) && after - before > 10000) {
