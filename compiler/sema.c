@@ -582,6 +582,20 @@ static Object *get_object(const char *name, Loc l)
 	return o;
 }
 
+/* May constant r replace the value of v (a kind's default, a predefined constant)? Same type, same dimension. */
+static int override_ok(Loc l, const char *what, Var *v, RExpr *r)
+{
+	if (v->isvec != r->isvec) {
+		error_at(l, "%s is a %s; it cannot take a %s", what, v->isvec ? "vector" : "scalar", r->isvec ? "vector" : "scalar");
+		return 0;
+	}
+	if (r->dimk == DK_KNOWN && v->dimk == DK_KNOWN && memcmp(r->dim, v->dim, sizeof v->dim) != 0) {
+		error_at(l, "%s is %s; this value is %s", what, dims_describe(v->dim), dims_describe(r->dim));
+		return 0;
+	}
+	return 1;
+}
+
 /* Defines or overrides property p of o from a property statement. */
 static void set_prop(Object *o, Stmt *s, int from_kind)
 {
@@ -604,16 +618,7 @@ static void set_prop(Object *o, Stmt *s, int from_kind)
 			note_at(p->loc, "defined here");
 			return;
 		}
-		if (p->isvec != r->isvec) {
-			error_at(s->value->loc, "property '%s' is a %s; this value is a %s", s->prop, p->isvec ? "vector" : "scalar",
-			         r->isvec ? "vector" : "scalar");
-			return;
-		}
-		if (r->dimk == DK_KNOWN && p->dimk == DK_KNOWN && memcmp(r->dim, p->dim, sizeof p->dim) != 0) {
-			error_at(s->value->loc, "property '%s' is %s; this value is %s", s->prop, dims_describe(p->dim),
-			         dims_describe(r->dim));
-			return;
-		}
+		if (!override_ok(s->value->loc, xprintf("property '%s'", s->prop), p, r)) return;
 		memcpy(p->init, r->c, sizeof p->init);
 		p->loc = s->prop_loc;
 		p->from_kind = from_kind;
@@ -646,16 +651,7 @@ static void build_objects(Stmt *stmts)
 			if (!ok) break;
 			Var *g = map_get(&globals_by_name, s->name);
 			if (g) {
-				if (g->isvec != r->isvec) {
-					error_at(s->value->loc, "'%s' is a %s; it cannot be overridden by a %s", s->name,
-					         g->isvec ? "vector" : "scalar", r->isvec ? "vector" : "scalar");
-					break;
-				}
-				if (r->dimk == DK_KNOWN && g->dimk == DK_KNOWN && memcmp(r->dim, g->dim, sizeof g->dim) != 0) {
-					error_at(s->value->loc, "'%s' is %s; this value is %s", s->name, dims_describe(g->dim),
-					         dims_describe(r->dim));
-					break;
-				}
+				if (!override_ok(s->value->loc, xprintf("'%s'", s->name), g, r)) break;
 				memcpy(g->init, r->c, sizeof g->init);
 				g->loc = s->name_loc;
 			} else if (map_get(&objects_by_name, s->name) || map_get(&prop_names, s->name)) {
