@@ -300,11 +300,11 @@ BEGIN {
 	printf "| chain of %d masses, till %s by %s | csfvm | %.3f | %d | %.3e |\n", chn, chtill, chby, hv, chsteps, hv / chsteps
 	printf "| chain of %d masses, till %s by %s | emit-c | %.3f | %d | %.3e |\n", chn, chtill, chby, hg, chsteps, hg / chsteps
 	printf "| chain of %d masses, till %s by %s | chain.c | %.3f | %d | %.3e |\n\n", chn, chtill, chby, hc, chsteps, hc / chsteps
-	printf "Ratios (targets: emit-c / hand-written C at most 1.25, csfvm / emit-c at least 8):\n\n"
+	printf "Ratios (targets: emit-c / hand-written C at most 1.25, csfvm / emit-c at most 8):\n\n"
 	printf "| scene | csfvm / hand-written C | emit-c / hand-written C | csfvm / emit-c |\n"
 	printf "|---|---:|---:|---:|\n"
-	printf "| %d-body gravity | %.2f | %.2f (%s) | %.2f (%s) |\n", nb, vs / cs, gs / cs, verdict(gs / cs, 1.25, 1), vs / gs, verdict(vs / gs, 8, 0)
-	printf "| chain of %d masses | %.2f | %.2f (%s) | %.2f (%s) |\n\n", chn, hv / hc, hg / hc, verdict(hg / hc, 1.25, 1), hv / hg, verdict(hv / hg, 8, 0)
+	printf "| %d-body gravity | %.2f | %.2f (%s) | %.2f (%s) |\n", nb, vs / cs, gs / cs, verdict(gs / cs, 1.25, 1), vs / gs, verdict(vs / gs, 8, 1)
+	printf "| chain of %d masses | %.2f | %.2f (%s) | %.2f (%s) |\n\n", chn, hv / hc, hg / hc, verdict(hg / hc, 1.25, 1), hv / hg, verdict(hv / hg, 8, 1)
 	printf "- %d-body gravity, csfvm / nbody.c without start-up (each run minus its till-0 run): %.2f\n", nb, (vs - v0) / (cs - c0)
 	printf "  - without start-up and pow (taking nbody.c - nbody.c-cube as the time of pow, the same in both): %.2f\n", \
 		(vs - v0 - (cs - qs)) / (qs - c0)
