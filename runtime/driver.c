@@ -165,6 +165,14 @@ static void report_nonfinite(const csf_prog *p, int sec, const double *m, double
 	csf_fmt_double(tb, t);
 	long i = first_nonfinite(p, sec, m);
 	if (i < 0) {
+		/* no rule computed it: an initial value or a constant; name the column */
+		for (uint32_t c = 0; c < p->ncols; c++)
+			if (!isfinite(m[p->cols[c].slot])) {
+				csf_fmt_double(vb, m[p->cols[c].slot]);
+				fprintf(err, "error: non-finite value at t=%s: %s = %s, set by no rule (an initial value or a constant)\n",
+				        tb, csf_str(p, p->cols[c].name), vb);
+				return;
+			}
 		fprintf(err, "error: non-finite value at t=%s: %s\n", tb, what);
 		return;
 	}
