@@ -6,7 +6,8 @@
 #  1. exact answers: every tests/e2e/X.csf and examples/X.csf is compiled and
 #     run; X.check, an awk program, compares each CSV row with the exact or
 #     analytic solution and exits non-zero on the first row that misses;
-#     X.args, if present, holds csfvm options (--method ...).
+#     X.args, if present, holds csfvm options (--method ...); a checker whose
+#     first line is "# uses: FILE" is run together with FILE (shared logic).
 #  2. diagnostics: every tests/diag/X.csf must fail to compile with exit 1 and
 #     print each line of X.err exactly (file:line:col: error: ...).
 #  3. run-time failures: every tests/runtime/X.csf is run; X.expect gives the
@@ -42,7 +43,9 @@ for m in tests/e2e/*.csf examples/*.csf; do
 		continue
 	fi
 	if [ -f "$chk" ]; then
-		if ! awk -F, -f "$chk" "$T/out.csv" >"$T/chk" 2>&1; then
+		# a checker may load a shared one from its directory: "# uses: FILE" on its first line
+		uses=$(sed -n '1s/^# uses: //p' "$chk")
+		if ! awk -F, -f "$chk" ${uses:+-f "$(dirname "$chk")/$uses"} "$T/out.csv" >"$T/chk" 2>&1; then
 			bad "$m: $(head -n 3 "$T/chk")"
 			continue
 		fi
