@@ -39,10 +39,7 @@ typedef struct Gen {
 	Map strmap;  /* string -> offset + 1 */
 	struct { RExpr *e; uint32_t slot; } cse[64]; /* within one equation: values computed so far */
 	int ncse;
-	uint32_t *ctab_slot;
-	uint64_t *ctab_key;
-	unsigned char *ctab_vec;
-	size_t ctab_cap, ctab_n;
+	Map consts;  /* constant bits -> slot + 1 */
 } Gen;
 
 static void *grow(void *p, uint32_t *cap, uint32_t need, size_t elem)
@@ -92,45 +89,16 @@ static uint64_t dbits(double d)
 	return u;
 }
 
+/* The slot of a constant, shared by every use of the same bits. */
 static uint32_t const_slot(Gen *G, const double *c, int isvec)
 {
-	uint64_t key = dbits(c[0]) * 31 + (isvec ? dbits(c[1]) * 17 + dbits(c[2]) * 7 + 1 : 0);
-	if (2 * (G->ctab_n + 1) > G->ctab_cap) {
-		size_t oc = G->ctab_cap;
-		uint32_t *os = G->ctab_slot;
-		uint64_t *ok = G->ctab_key;
-		unsigned char *ov = G->ctab_vec;
-		G->ctab_cap = oc ? 2 * oc : 256;
-		G->ctab_slot = calloc(G->ctab_cap, sizeof *G->ctab_slot);
-		G->ctab_key = calloc(G->ctab_cap, sizeof *G->ctab_key);
-		G->ctab_vec = calloc(G->ctab_cap, 1);
-		if (!G->ctab_slot || !G->ctab_key || !G->ctab_vec) exit(2);
-		G->ctab_n = 0;
-		for (size_t i = 0; i < oc; i++)
-			if (ov[i]) {
-				size_t j = (size_t)(ok[i] % G->ctab_cap);
-				while (G->ctab_vec[j]) j = (j + 1) % G->ctab_cap;
-				G->ctab_key[j] = ok[i];
-				G->ctab_slot[j] = os[i];
-				G->ctab_vec[j] = ov[i];
-				G->ctab_n++;
-			}
-		free(os);
-		free(ok);
-		free(ov);
-	}
-	size_t j = (size_t)(key % G->ctab_cap);
-	for (; G->ctab_vec[j]; j = (j + 1) % G->ctab_cap) {
-		if (G->ctab_key[j] != key || G->ctab_vec[j] != 1 + isvec) continue;
-		const double *m = G->mem + G->ctab_slot[j];
-		if (dbits(m[0]) == dbits(c[0]) && (!isvec || (dbits(m[1]) == dbits(c[1]) && dbits(m[2]) == dbits(c[2]))))
-			return G->ctab_slot[j];
-	}
+	char key[64];
+	snprintf(key, sizeof key, "%d:%016llx:%016llx:%016llx", isvec, (unsigned long long)dbits(c[0]),
+	         isvec ? (unsigned long long)dbits(c[1]) : 0ull, isvec ? (unsigned long long)dbits(c[2]) : 0ull);
+	uintptr_t known = (uintptr_t)map_get(&G->consts, key);
+	if (known) return (uint32_t)(known - 1);
 	uint32_t s = alloc_mem(G, isvec ? 3 : 1, c);
-	G->ctab_key[j] = key;
-	G->ctab_slot[j] = s;
-	G->ctab_vec[j] = (unsigned char)(1 + isvec);
-	G->ctab_n++;
+	map_put(&G->consts, xstrdup(key), (void *)(uintptr_t)(s + 1));
 	return s;
 }
 
@@ -277,7 +245,7 @@ static void emit_assigns(Gen *G, Inst *I, Vec *br)
 
 static Vec assert_tab; /* of Inst*, in assertion index order */
 
-static void emit_inst(Gen *G, Inst *I, int sec)
+static void emit_inst(Gen *G, Inst *I)
 {
 	G->scratch = 0;
 	cse_reset(G);
@@ -296,7 +264,6 @@ static void emit_inst(Gen *G, Inst *I, int sec)
 		add_target(G, d, a->var, (uint32_t)I->src, xprintf("%s'", a->var->name));
 		return;
 	}
-	(void)sec;
 	if (!I->cond) {
 		emit_assigns(G, I, &I->then);
 	} else {
@@ -735,7 +702,7 @@ int gen_program(Model *M, csf_prog *p)
 			if (!I->needed[sec]) continue;
 			if (sec == CSF_SEC_RHS && I->isassert) continue;
 			if (sec == CSF_SEC_OUT && I->isderiv) continue;
-			emit_inst(G, I, sec);
+			emit_inst(G, I);
 		}
 		p->code[sec] = G->code;
 		p->ncode[sec] = G->ncode;
@@ -813,8 +780,5 @@ int gen_program(Model *M, csf_prog *p)
 	p->nmem = G->nmem;
 	p->till = M->till;
 	p->by = M->by;
-	free(G->ctab_slot);
-	free(G->ctab_key);
-	free(G->ctab_vec);
 	return 0;
 }

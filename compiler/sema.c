@@ -162,7 +162,6 @@ typedef struct Ctx {
 	Vec *rf;           /* Object* whose RF is read */
 	Vec *pending;      /* Var* temporaries read but not yet existing */
 	int failed;
-	int rule_ctx;      /* names may be temporaries */
 	int key_nbind;     /* how much of the binding keys a temporary: 1 for `for` rules, all for $n tuples */
 } Ctx;
 
@@ -1048,7 +1047,6 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 	C.reads = &reads;
 	C.rf = &rf;
 	C.pending = &pending;
-	C.rule_ctx = 1;
 	C.key_nbind = I->st->has_for ? 1 : I->nbind;
 	RExpr *lhs = build(&C, q->lhs), *rhs = build(&C, q->rhs);
 	if (C.failed) return NULL;
@@ -1130,7 +1128,6 @@ static RExpr *build_cond(Inst *I, Expr *cond, const char *what)
 	C.reads = &I->reads;
 	C.rf = &rf;
 	C.pending = &pending;
-	C.rule_ctx = 1;
 	C.key_nbind = I->st->has_for ? 1 : I->nbind;
 	RExpr *r = build(&C, cond);
 	if (C.failed) return NULL;
@@ -1223,7 +1220,6 @@ static void resolve_deriv(Inst *I)
 	C.reads = &I->reads;
 	C.rf = &rf;
 	C.pending = &pending;
-	C.rule_ctx = 1;
 	C.key_nbind = I->st->has_for ? 1 : I->nbind;
 	RExpr *r = build(&C, q->rhs);
 	if (C.failed) return;
