@@ -181,7 +181,7 @@ int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *er
 /* Formats x so that it reads back to the same double (shortest of %.15g..%.17g). */
 void csf_fmt_double(char buf[32], double x);
 
-/* Names of the available ODE methods, NULL-terminated; default first. */
-extern const char *const csf_method_names[];
+/* Name of the i-th available ODE method (the default is 0), NULL past the last. */
+const char *csf_method_name(size_t i);
 
 #endif

@@ -49,10 +49,10 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 		} else if (strcmp(a, "--method") == 0 && i + 1 < argc) {
 			o->method = argv[++i];
 			int known = 0;
-			for (int k = 0; csf_method_names[k]; k++) known |= strcmp(csf_method_names[k], o->method) == 0;
+			for (size_t k = 0; csf_method_name(k); k++) known |= strcmp(csf_method_name(k), o->method) == 0;
 			if (!known) {
 				fprintf(stderr, "%s: unknown method '%s' (one of:", argv[0], o->method);
-				for (int k = 0; csf_method_names[k]; k++) fprintf(stderr, " %s", csf_method_names[k]);
+				for (size_t k = 0; csf_method_name(k); k++) fprintf(stderr, " %s", csf_method_name(k));
 				fprintf(stderr, ")\n");
 				return 2;
 			}
@@ -159,7 +159,19 @@ static long first_nonfinite(const csf_prog *p, int sec, const double *m)
 	return -1;
 }
 
-static void report_nonfinite(const csf_prog *p, int sec, const double *m, double t, const char *what, FILE *err)
+static void report_nonfinite_value(const csf_prog *p, int sec, const double *m, double t, const char *what, FILE *err);
+
+/* Reports a non-finite value; with fixed steps, adds that the step is the likely cause. */
+static void report_nonfinite(const csf_prog *p, int sec, const double *m, double t, const char *what, int fixed,
+                             FILE *err)
+{
+	report_nonfinite_value(p, sec, m, t, what, err);
+	if (fixed)
+		fprintf(err, "note: with --fixed, the step is probably too large for the method to be stable: "
+		             "try a smaller --step, or leave out --fixed\n");
+}
+
+static void report_nonfinite_value(const csf_prog *p, int sec, const double *m, double t, const char *what, FILE *err)
 {
 	char tb[32], vb[32];
 	csf_fmt_double(tb, t);
@@ -214,7 +226,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 {
 	run r = { p, exec, NULL, 0, 0, 0, 0 };
 	double *y = NULL;
-	int warned = 0;
+	int warned = 0, fixed = 0;
 	struct timespec t0, t1;
 	clock_gettime(CLOCK_MONOTONIC, &t0);
 	csf_ode *ode = NULL;
@@ -244,17 +256,8 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	for (uint32_t i = 0; i < p->ncols; i++) fprintf(out, ",%s", csf_str(p, p->cols[i].name));
 	putc('\n', out);
 
-	/*
-	 * Fixed steps: --step H (at most by), else by; verlet, which has no error
-	 * estimate, derives its step from the tolerance instead: its global error
-	 * goes as h^2, so h = by * sqrt(tol / 1e-4) (by / 1000 at the default 1e-10).
-	 */
-	double fixed_h = o->step > 0 && o->step < p->by ? o->step : p->by;
-	if (ode && csf_ode_fixed_only(ode) && !(o->step > 0)) {
-		double tol = o->tol > 0 ? o->tol : 1e-10;
-		double f = sqrt(tol / 1e-4);
-		fixed_h = f < 1 ? p->by * f : p->by;
-	}
+	fixed = ode && (o->fixed || csf_ode_fixed_only(ode));
+	double fixed_h = ode ? csf_ode_fixed_step(ode, p->by, o->step) : p->by;
 
 	/* The last k with k*by <= till, allowing for till/by's rounding. */
 	double kmax = floor(p->till / p->by);
@@ -266,11 +269,11 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		if (ode && tk > t) {
 			unsigned long before, rej;
 			csf_ode_stats(ode, &before, &rej);
-			int st = o->fixed || csf_ode_fixed_only(ode) ? csf_ode_advance_fixed(ode, &t, tk, fixed_h, y, msg, sizeof msg)
-			                                             : csf_ode_advance(ode, &t, tk, y, msg, sizeof msg);
+			int st = fixed ? csf_ode_advance_fixed(ode, &t, tk, fixed_h, y, msg, sizeof msg)
+			               : csf_ode_advance(ode, &t, tk, y, msg, sizeof msg);
 			unsigned long after;
 			csf_ode_stats(ode, &after, &rej);
-			if (!o->fixed && !warned && csf_ode_explicit(ode) && after - before > 10000) {
+			if (!fixed && !warned && csf_ode_explicit(ode) && after - before > 10000) {
 				char tb[32];
 				csf_fmt_double(tb, tk);
 				fprintf(err,
@@ -279,15 +282,8 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 				        after - before, csf_ode_method(ode), tb);
 				warned = 1;
 			}
-			if (st == CSF_ODE_STOPPED && o->fixed) {
-				report_nonfinite(p, CSF_SEC_RHS, r.m, r.fail_t, "a state derivative", err);
-				fprintf(err, "note: with --fixed, the step is probably too large for the method to be stable: "
-				             "try a smaller --step, or leave out --fixed\n");
-				status = 1;
-				goto done;
-			}
 			if (st == CSF_ODE_STOPPED) {
-				report_nonfinite(p, CSF_SEC_RHS, r.m, r.fail_t, "a state derivative", err);
+				report_nonfinite(p, CSF_SEC_RHS, r.m, r.fail_t, "a state derivative", o->fixed, err);
 				status = 1;
 				goto done;
 			}
@@ -319,10 +315,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		for (uint32_t i = 0; i < p->ny; i++) bad |= !isfinite(r.m[p->ystart + i]);
 		for (uint32_t i = 0; i < p->ncols; i++) bad |= !isfinite(r.m[p->cols[i].slot]);
 		if (bad) {
-			report_nonfinite(p, CSF_SEC_OUT, r.m, tk, "a watched or state value", err);
-			if (o->fixed)
-				fprintf(err, "note: with --fixed, the step is probably too large for the method to be stable: "
-				             "try a smaller --step, or leave out --fixed\n");
+			report_nonfinite(p, CSF_SEC_OUT, r.m, tk, "a watched or state value", o->fixed, err);
 			status = 1;
 			goto done;
 		}
@@ -343,7 +336,7 @@ done:
 		fprintf(err,
 		        "stats: method %s%s, %lu steps (%lu rejected), %lu right-hand side and %lu Jacobian evaluations, "
 		        "0 events, %.6f s\n",
-		        ode ? csf_ode_method(ode) : "none", o->fixed || (ode && csf_ode_fixed_only(ode)) ? " (fixed steps)" : "", steps, rejected, r.nrhs, r.njac,
+		        ode ? csf_ode_method(ode) : "none", fixed ? " (fixed steps)" : "", steps, rejected, r.nrhs, r.njac,
 		        (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
 	}
 	csf_ode_free(ode);

@@ -16,35 +16,35 @@
 #include "csf.h"
 #include "ode.h"
 
-#define CSF_DEFAULT_TOL 1e-10
 
 static const struct method {
 	const char *name;
 	const gsl_odeiv2_step_type *const *type;
-	int jacobian; /* the stepper uses the Jacobian */
+	int jacobian;  /* the stepper uses the Jacobian */
+	int multistep; /* cannot take fixed steps */
 } methods[] = {
-	{ "rk8pd", &gsl_odeiv2_step_rk8pd, 0 },
-	{ "rk2", &gsl_odeiv2_step_rk2, 0 },
-	{ "rk4", &gsl_odeiv2_step_rk4, 0 },
-	{ "rkf45", &gsl_odeiv2_step_rkf45, 0 },
-	{ "rkck", &gsl_odeiv2_step_rkck, 0 },
-	{ "rk1imp", &gsl_odeiv2_step_rk1imp, 1 },
-	{ "rk2imp", &gsl_odeiv2_step_rk2imp, 1 },
-	{ "rk4imp", &gsl_odeiv2_step_rk4imp, 1 },
-	{ "bsimp", &gsl_odeiv2_step_bsimp, 1 },
-	{ "msadams", &gsl_odeiv2_step_msadams, 0 },
-	{ "msbdf", &gsl_odeiv2_step_msbdf, 1 },
-	{ "verlet", NULL, 0 }, /* velocity Verlet, written here: symplectic, fixed steps */
+	{ "rk8pd", &gsl_odeiv2_step_rk8pd, 0, 0 },
+	{ "rk2", &gsl_odeiv2_step_rk2, 0, 0 },
+	{ "rk4", &gsl_odeiv2_step_rk4, 0, 0 },
+	{ "rkf45", &gsl_odeiv2_step_rkf45, 0, 0 },
+	{ "rkck", &gsl_odeiv2_step_rkck, 0, 0 },
+	{ "rk1imp", &gsl_odeiv2_step_rk1imp, 1, 0 },
+	{ "rk2imp", &gsl_odeiv2_step_rk2imp, 1, 0 },
+	{ "rk4imp", &gsl_odeiv2_step_rk4imp, 1, 0 },
+	{ "bsimp", &gsl_odeiv2_step_bsimp, 1, 0 },
+	{ "msadams", &gsl_odeiv2_step_msadams, 0, 1 },
+	{ "msbdf", &gsl_odeiv2_step_msbdf, 1, 1 },
+	{ "verlet", NULL, 0, 0 }, /* velocity Verlet, written here: symplectic, fixed steps */
 };
 
-const char *const csf_method_names[] = { "rk8pd", "rk2", "rk4", "rkf45", "rkck", "rk1imp", "rk2imp",
-	                                     "rk4imp", "bsimp", "msadams", "msbdf", "verlet", NULL };
+const char *csf_method_name(size_t i) { return i < sizeof methods / sizeof methods[0] ? methods[i].name : NULL; }
 
 struct csf_ode {
 	gsl_odeiv2_system sys;
 	gsl_odeiv2_driver *drv;
 	const struct method *m;
 	size_t n;
+	double tol;
 	double *k;                 /* fixed steps: 5 work vectors of n */
 	unsigned long fixed_steps;
 	const uint32_t *vpair;     /* verlet: 1 + velocity index of each position component */
@@ -92,6 +92,7 @@ csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, cons
 		snprintf(err, errlen, "out of memory");
 		return NULL;
 	}
+	o->tol = tol;
 	o->m = m;
 	o->n = n;
 	o->sys = (gsl_odeiv2_system){ gsl_rhs, jac ? gsl_jac : NULL, n, o };
@@ -180,7 +181,7 @@ static int rk4_step(csf_ode *o, double t, double h, double *y)
 
 int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y, char *err, size_t errlen)
 {
-	if (!strcmp(o->m->name, "msadams") || !strcmp(o->m->name, "msbdf")) {
+	if (o->m->multistep) {
 		snprintf(err, errlen, "--fixed needs a one-step method, not the multistep %s", o->m->name);
 		return CSF_ODE_FAILED;
 	}
@@ -197,7 +198,7 @@ int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y,
 		int bad;
 		if (!o->m->type) {
 			bad = verlet_step(o, ta, tb - ta, y);
-		} else if (!strcmp(o->m->name, "rk4")) {
+		} else if (*o->m->type == gsl_odeiv2_step_rk4) {
 			bad = rk4_step(o, ta, tb - ta, y);
 		} else {
 			int st = gsl_odeiv2_step_apply(o->drv->s, ta, tb - ta, y, o->k, NULL, NULL, &o->sys);
@@ -227,6 +228,16 @@ void csf_ode_stats(const csf_ode *o, unsigned long *steps, unsigned long *reject
 int csf_ode_explicit(const csf_ode *o) { return !o->m->jacobian; }
 
 int csf_ode_fixed_only(const csf_ode *o) { return !o->m->type; }
+
+double csf_ode_fixed_step(const csf_ode *o, double by, double step)
+{
+	if (step > 0) return step < by ? step : by;
+	if (o->m->type) return by;
+	/* verlet has no error estimate: its global error goes as h^2, so the step comes
+	   from the tolerance, h = by sqrt(tol / 1e-4) (by / 1000 at the default 1e-10) */
+	double f = sqrt(o->tol / 1e-4);
+	return f < 1 ? by * f : by;
+}
 
 const char *csf_ode_method(const csf_ode *o) { return o->m->name; }
 

@@ -45,6 +45,15 @@ int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y,
 /* Steps taken and rejected so far. */
 void csf_ode_stats(const csf_ode *o, unsigned long *steps, unsigned long *rejected);
 
+/* The default local error bound. */
+#define CSF_DEFAULT_TOL 1e-10
+
+/*
+ * The fixed step to take for outputs every by: --step (step > 0, at most by),
+ * else by, except for verlet, whose step is derived from the tolerance.
+ */
+double csf_ode_fixed_step(const csf_ode *o, double by, double step);
+
 /* Does the method take only fixed steps (verlet)? */
 int csf_ode_fixed_only(const csf_ode *o);
 
