@@ -243,7 +243,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	memcpy(r.m, p->mem0, p->nmem * sizeof(double));
 	memcpy(y, p->mem0 + p->ystart, p->ny * sizeof(double));
 	if (p->ny) {
-		ode = csf_ode_new(o->method, p->ny, p->by, o->tol, p->yscale, p->vpair, rhs, p->jtan ? jac : NULL, &r, msg,
+		ode = csf_ode_new(o->method, o->fixed, p->ny, p->by, o->tol, p->yscale, p->vpair, rhs, p->jtan ? jac : NULL, &r, msg,
 		                  sizeof msg);
 		if (!ode) {
 			fprintf(err, "error: %s\n", msg);

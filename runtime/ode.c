@@ -68,8 +68,8 @@ static int gsl_jac(double t, const double y[], double *dfdy, double dfdt[], void
 	return o->jac(t, y, dfdy, dfdt, o->ctx) ? GSL_EBADFUNC : GSL_SUCCESS;
 }
 
-csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, const double *scale, const uint32_t *vpair,
-                     csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err, size_t errlen)
+csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double hmax, double tol, const double *scale,
+                     const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err, size_t errlen)
 {
 	gsl_set_error_handler_off();
 	const struct method *m = &methods[0];
@@ -81,6 +81,10 @@ csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, cons
 			snprintf(err, errlen, "unknown method '%s'", method);
 			return NULL;
 		}
+	}
+	if (fixed && m->multistep) {
+		snprintf(err, errlen, "--fixed needs a one-step method, not the multistep %s", m->name);
+		return NULL;
 	}
 	if (m->jacobian && !jac) {
 		snprintf(err, errlen, "method '%s' needs a Jacobian, and this program has none", m->name);
@@ -181,10 +185,6 @@ static int rk4_step(csf_ode *o, double t, double h, double *y)
 
 int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y, char *err, size_t errlen)
 {
-	if (o->m->multistep) {
-		snprintf(err, errlen, "--fixed needs a one-step method, not the multistep %s", o->m->name);
-		return CSF_ODE_FAILED;
-	}
 	if (!o->k && (!(o->k = malloc(5 * (o->n ? o->n : 1) * sizeof *o->k)) ||
 	              !(o->acc = malloc((o->n ? o->n : 1) * sizeof *o->acc)))) {
 		snprintf(err, errlen, "out of memory");

@@ -19,13 +19,13 @@ enum { CSF_ODE_OK = 0, CSF_ODE_STOPPED = 1, CSF_ODE_FAILED = 2 };
 
 /*
  * A new integrator for n state variables with the named method (NULL for the
- * default), internal steps never longer than hmax, local error bound tol
+ * default; with fixed, a method that can take fixed steps), internal steps never longer than hmax, local error bound tol
  * (relative, and absolute times scale[i] for component i; <= 0 for the
  * default). Returns NULL and writes a
  * reason to err for an unknown method or when memory runs out.
  */
-csf_ode *csf_ode_new(const char *method, size_t n, double hmax, double tol, const double *scale, const uint32_t *vpair,
-                     csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err, size_t errlen);
+csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double hmax, double tol, const double *scale,
+                     const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err, size_t errlen);
 
 /*
  * Advances (*t, y) to exactly t1. Returns CSF_ODE_OK; CSF_ODE_STOPPED when f
@@ -38,7 +38,7 @@ int csf_ode_advance(csf_ode *o, double *t, double t1, double *y, char *err, size
  * Advances (*t, y) to exactly t1 in equal steps of at most h, without error
  * control (rk4 is the classical four-stage method; the other one-step
  * methods take GSL's step without using its error estimate). Returns as
- * csf_ode_advance; a multistep method is CSF_ODE_FAILED.
+ * csf_ode_advance.
  */
 int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y, char *err, size_t errlen);
 

@@ -181,6 +181,8 @@ u=0
 "$CSFVM" "$T/does-not-exist.csfb" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm on a missing file: not exit 2"; }
 "$CSFVM" --method nosuch "$T/h.csfb" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm --method nosuch: not exit 2"; }
 "$CSFVM" --tol -1 "$T/h.csfb" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm --tol -1: not exit 2"; }
+"$CSFVM" --fixed --method msbdf "$T/h.csfb" >/dev/null 2>"$T/err"; [ $? -eq 2 ] && grep -q "one-step method" "$T/err" ||
+	{ u=1; bad "csfvm --fixed --method msbdf: not exit 2 with a reason"; }
 [ $u -eq 0 ] && ok
 
 # 5c. output errors are reported: a full disk, a closed pipe
