@@ -12,6 +12,7 @@
 
 #include "csfc.h"
 #include "ast.h"
+#include "csf.h"
 
 /* The arena: zeroed chunks of CHUNK bytes, handed out by bumping a pointer;
  * a large request gets a block of its own. */
@@ -112,27 +113,12 @@ FILE *diag_out;
 
 int src_load(const char *path)
 {
-	FILE *f = fopen(path, "rb");
-	if (!f) return -1;
-	size_t cap = 4096, n = 0;
-	char *buf = malloc(cap);
-	while (buf) {
-		n += fread(buf + n, 1, cap - n - 1, f);
-		if (n < cap - 1) break;
-		char *b = realloc(buf, cap *= 2);
-		if (!b) free(buf);
-		buf = b;
-	}
-	int bad = !buf || ferror(f);
-	fclose(f);
-	if (bad) {
-		free(buf);
-		errno = EIO;
-		return -1;
-	}
+	size_t n;
+	unsigned char *buf = csf_read_file(path, &n);
+	if (!buf) return -1;
 	Source *s = xalloc(sizeof *s);
 	s->path = xstrdup(path);
-	s->text = xstrndup(buf, n); /* NUL-terminated copy in the arena */
+	s->text = xstrndup((char *)buf, n); /* NUL-terminated copy in the arena */
 	s->len = n;
 	free(buf);
 	vec_push(&sources, s);

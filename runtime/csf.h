@@ -178,6 +178,12 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
  */
 int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *err);
 
+/*
+ * Reads all of path into a malloc'd buffer (the caller frees it) with one
+ * spare byte after the *len bytes read. Returns NULL with errno set on failure.
+ */
+unsigned char *csf_read_file(const char *path, size_t *len);
+
 /* Formats x so that it reads back to the same double (shortest of %.15g..%.17g). */
 void csf_fmt_double(char buf[32], double x);
 

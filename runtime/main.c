@@ -37,8 +37,7 @@ static const char exe_usage[] =
 	"  --fixed, --step H, --stats, --compare-methods: as csfvm(1)\n"
 	"  --help, --version\n";
 
-/* Reads all of path into a malloc'd buffer. Returns NULL with errno set on failure. */
-static unsigned char *slurp(const char *path, size_t *len)
+unsigned char *csf_read_file(const char *path, size_t *len)
 {
 	FILE *f = fopen(path, "rb");
 	if (!f) return NULL;
@@ -80,7 +79,7 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 	size_t len = image_len;
 	unsigned char *buf = NULL;
 	if (!image) {
-		buf = slurp(path, &len);
+		buf = csf_read_file(path, &len);
 		if (!buf) {
 			fprintf(stderr, "csfvm: cannot read %s: %s\n", path, strerror(errno));
 			return 2;
