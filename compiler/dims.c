@@ -217,6 +217,17 @@ static const char *msg_force(const char *a, const char *b, void *ctx)
 
 static Aff walk(Walk *W, RExpr *e);
 
+/* A variable's dimension: known, or itself as the one unknown. */
+static Aff var_aff(Var *v)
+{
+	if (v->dimk == DK_KNOWN) return known(v->dim[0], v->dim[1], v->dim[2]);
+	Aff a = { 0 };
+	a.nu = 1;
+	a.u[0] = v;
+	a.k[0] = 1;
+	return a;
+}
+
 static Aff dimless(Walk *W, RExpr *arg, Aff a, const char *what)
 {
 	constrain(W, a, known(0, 0, 0), arg->loc, msg_dimless, (void *)what);
@@ -287,15 +298,7 @@ static Aff walk(Walk *W, RExpr *e)
 		else memcpy(a.c, e->dim, sizeof a.c);
 		return a;
 	}
-	case R_VAR: {
-		Var *v = e->var;
-		if (v->dimk == DK_KNOWN) return known(v->dim[0], v->dim[1], v->dim[2]);
-		Aff a = { 0 };
-		a.nu = 1;
-		a.u[0] = v;
-		a.k[0] = 1;
-		return a;
-	}
+	case R_VAR: return var_aff(e->var);
 	case R_RF: return known(1, 1, -2);
 	case R_COMP: return walk(W, e->a[0]);
 	case R_OP: {
@@ -305,14 +308,6 @@ static Aff walk(Walk *W, RExpr *e)
 	}
 	}
 	return known(0, 0, 0);
-}
-
-static Aff var_aff(Var *v)
-{
-	RExpr r = { 0 };
-	r.k = R_VAR;
-	r.var = v;
-	return walk(NULL, &r);
 }
 
 static void walk_inst(Walk *W, Inst *I)
