@@ -177,8 +177,8 @@ static void constrain(Walk *W, Aff a, Aff b, Loc l, MsgFn msg, void *ctx)
 		v->dimk = DK_KNOWN;
 		for (int i = 0; i < 3; i++) {
 			double x = -d.c[i] / k;
-			v->dim[i] = fabs(x - round(x)) < 1e-9 ? round(x) : x;
-			if (v->dim[i] == 0) v->dim[i] = 0; /* no -0 */
+			x = fabs(x - round(x)) < 1e-9 ? round(x) : x;
+			v->dim[i] = x == 0 ? 0.0 : x; /* never -0, which would print as "^-0" */
 		}
 		W->progress = 1;
 		return;

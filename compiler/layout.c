@@ -93,15 +93,15 @@ static Token take(Parser *P)
 	return t;
 }
 
-static int is_unit_name(Token *t, Unit *u)
+static int is_unit_name(Token *t)
 {
-	Unit dummy;
-	return t->kind == IDENT && !t->bol && unit_lookup(t->text, u ? u : &dummy);
+	Unit u;
+	return t->kind == IDENT && !t->bol && unit_lookup(t->text, &u);
 }
 
 static int starts_factor(Parser *P, int k)
 {
-	return is_unit_name(peek(P, k), NULL) || (peek(P, k)->kind == '(' && is_unit_name(peek(P, k + 1), NULL));
+	return is_unit_name(peek(P, k)) || (peek(P, k)->kind == '(' && is_unit_name(peek(P, k + 1)));
 }
 
 static void unit_expr(Parser *P, Unit *u, char **text);
@@ -290,7 +290,7 @@ static Token next_token(Parser *P)
 int yylex(YYSTYPE *lval, YYLoc *lloc, Parser *P)
 {
 	Token t = next_token(P);
-	if ((P->last == NUMBER || P->last == ')') && is_unit_name(&t, NULL)) {
+	if ((P->last == NUMBER || P->last == ')') && is_unit_name(&t)) {
 		/* t starts a unit expression: put it back and read the whole unit. */
 		memmove(P->q + 1, P->q, (size_t)P->qn * sizeof(Token));
 		P->q[0] = t;
