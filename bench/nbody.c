@@ -4,9 +4,8 @@
  *   nbody [--stats] IC_FILE TILL BY WATCH...
  *
  * Integrates the model that gen_nbody.sh writes as CSF, the way csfvm does:
- * GSL rk8pd under gsl_odeiv2_driver_alloc_y_new with h0 = BY, epsabs =
- * epsrel = 1e-10, hmax = BY, and gsl_odeiv2_driver_apply to every output
- * time t_k = k*BY (the same k range as runtime/driver.c). It prints the same
+ * the integrator, output loop and number format of ref.h (as runtime/ode.c
+ * and runtime/driver.c set them up). It prints the same
  * CSV as csfvm for the watched bodies (pos and v of each WATCH index, in the
  * order given), formatted as csfvm formats numbers, so the two outputs can
  * be compared value by value.
@@ -43,14 +42,9 @@
  * the smallest distance between two bodies seen at the output times (a
  * check that the run has no close encounter).
  */
-#include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-
 #include <gsl/gsl_const_mksa.h>
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_odeiv2.h>
+
+#include "ref.h"
 
 static size_t n;  /* bodies */
 static double *m; /* masses */
@@ -98,23 +92,6 @@ static int rhs(double t, const double *y, double *dydt, void *ctx)
 	return GSL_SUCCESS;
 }
 
-/* As runtime/driver.c's csf_fmt_double: the shortest of %.15g..%.17g that reads back exactly. */
-static void fmt(char buf[32], double x)
-{
-	if (isnan(x)) {
-		strcpy(buf, "nan");
-		return;
-	}
-	if (isinf(x)) {
-		strcpy(buf, x > 0 ? "inf" : "-inf");
-		return;
-	}
-	for (int prec = 15; prec <= 17; prec++) {
-		snprintf(buf, 32, "%.*g", prec, x);
-		if (strtod(buf, NULL) == x) return;
-	}
-}
-
 static double min_dist(const double *y)
 {
 	double best = INFINITY;
@@ -127,91 +104,41 @@ static double min_dist(const double *y)
 	return best;
 }
 
-static void die(const char *msg)
+static double dmin = INFINITY;
+
+static void closest(const double *y)
 {
-	fprintf(stderr, "nbody: %s\n", msg);
-	exit(2);
+	double d = min_dist(y);
+	if (d < dmin) dmin = d;
 }
 
 int main(int argc, char **argv)
 {
-	int check = 0, a = 1;
-	if (a < argc && strcmp(argv[a], "--stats") == 0) check = 1, a++;
-	if (argc - a < 3) die("usage: nbody [--stats] IC_FILE TILL BY WATCH...");
-	FILE *f = fopen(argv[a], "r");
-	if (!f) die("cannot open the initial conditions");
-	double till = strtod(argv[a + 1], NULL), by = strtod(argv[a + 2], NULL);
-	if (!(by > 0) || !(till >= 0)) die("TILL and BY must be positive numbers");
-	int nw = argc - a - 3;
-	size_t *w = malloc((nw ? nw : 1) * sizeof *w);
-
-	if (fscanf(f, "%zu", &n) != 1 || n < 2) die("bad initial conditions: body count");
+	int check, first, nw;
+	double till, by;
+	ref_name = "nbody";
+	FILE *f = ref_args(argc, argv, &check, &till, &by, &first);
+	if (fscanf(f, "%zu", &n) != 1 || n < 2) ref_die("bad initial conditions: body count");
 	m = malloc(n * sizeof *m);
 	double *y = malloc(6 * n * sizeof *y);
-	if (!w || !m || !y) die("out of memory");
+	if (!m || !y) ref_die("out of memory");
 	for (size_t i = 0; i < n; i++) {
 		/* strtod on the very strings csfc reads, so the doubles are the same */
 		char s[7][64];
 		if (fscanf(f, "%63s %63s %63s %63s %63s %63s %63s", s[0], s[1], s[2], s[3], s[4], s[5], s[6]) != 7)
-			die("bad initial conditions: short file");
+			ref_die("bad initial conditions: short file");
 		m[i] = strtod(s[0], NULL);
 		for (int k = 0; k < 6; k++) y[6 * i + k] = strtod(s[k + 1], NULL);
 	}
 	fclose(f);
-	for (int k = 0; k < nw; k++) {
-		long v = strtol(argv[a + 3 + k], NULL, 10);
-		if (v < 0 || (size_t)v >= n) die("watch index out of range");
-		w[k] = (size_t)v;
-	}
-
-	gsl_set_error_handler_off();
-	gsl_odeiv2_system sys = { rhs, NULL, 6 * n, NULL };
-	gsl_odeiv2_driver *drv = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, by, 1e-10, 1e-10);
-	if (!drv || gsl_odeiv2_driver_set_hmax(drv, by) != GSL_SUCCESS) die("cannot set up the integrator");
-
-	static const char *const comp[] = { "pos.x [m]", "pos.y [m]", "pos.z [m]", "v.x [m/s]", "v.y [m/s]", "v.z [m/s]" }; /* csfvm's header: name [unit] */
-	fputs("t", stdout);
-	for (int k = 0; k < nw; k++)
-		for (int c = 0; c < 6; c++) printf(",p%zu.%s", w[k], comp[c]);
-	putchar('\n');
-
-	/* The last k with k*by <= till, allowing for till/by's rounding (as driver.c). */
-	double kmax = floor(till / by);
-	if ((kmax + 1) * by <= till * (1 + 1e-12)) kmax += 1;
-
-	double t = 0, dmin = INFINITY;
-	char b[32];
-	for (double k = 0; k <= kmax; k++) {
-		double tk = k * by;
-		if (tk > t) {
-			int st = gsl_odeiv2_driver_apply(drv, &t, tk, y);
-			if (st != GSL_SUCCESS) {
-				fprintf(stderr, "nbody: integration failed at t=%g: %s\n", t, gsl_strerror(st));
-				return 1;
-			}
-		}
-		t = tk;
-		fmt(b, tk);
-		fputs(b, stdout);
-		for (int q = 0; q < nw; q++)
-			for (int c = 0; c < 6; c++) {
-				fmt(b, y[6 * w[q] + c]);
-				putchar(',');
-				fputs(b, stdout);
-			}
-		putchar('\n');
-		if (check) {
-			double d = min_dist(y);
-			if (d < dmin) dmin = d;
-		}
-	}
+	size_t *w = ref_watch(argc, argv, first, n, &nw);
+	static const int off[] = { 0, 1, 2, 3, 4, 5 }; /* pos then v for each body */
+	double steps = ref_run(rhs, 6 * n, y, till, by, w, nw, off, check ? closest : NULL);
 	if (check)
 		fprintf(stderr, "nbody: %lu right-hand side evaluations, %.0f output steps, closest approach %.6g m\n",
-		        nevals, kmax, dmin);
-	gsl_odeiv2_driver_free(drv);
+		        nevals, steps, dmin);
 	free(y);
 	free(m);
 	free(w);
-	if (fflush(stdout) != 0 || ferror(stdout)) die("cannot write output");
 	return 0;
 }
