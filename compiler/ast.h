@@ -69,6 +69,7 @@ struct Stmt {
 	int has_for;
 	Expr *cond;   /* conditional rule or assertion */
 	Eqn *eqns;    /* plain rule: one; conditional: the if branch */
+	Expr *call;   /* a rule that calls a runtime routine: contact(...) */
 	Eqn *else_eqns;
 	int has_else;
 	/* S_START */

@@ -58,7 +58,7 @@ typedef struct Emit {
 
 static void open_chunk(Emit *E)
 {
-	fprintf(E->f, "CSF_CHUNK int %s_%d(double *m)\n{\n", E->fname, E->nchunks++);
+	fprintf(E->f, "CSF_CHUNK int %s_%d(const csf_prog *p, double *m)\n{\n\t(void)p;\n", E->fname, E->nchunks++);
 	E->count = 0;
 }
 
@@ -90,6 +90,9 @@ static void emit_insn(Emit *E, const uint32_t *code, uint32_t pc, const char *o,
 	case CSF_OP_ASSERT:
 		fprintf(E->f, "\tif (m[%lu] == 0.0) return %lu;\n", (unsigned long)a[0], (unsigned long)a[1]);
 		return;
+	case CSF_OP_CONTACT:
+		fputs("\tcsf_contact_apply(p, m);\n", E->f);
+		return;
 	}
 	fprintf(E->f, "%scsf_op_%s(m", o ? "\t\t" : "\t", oi->name);
 	for (int k = 0; k < oi->nops; k++) {
@@ -110,7 +113,7 @@ static int open_table(Emit *E, size_t n, int w)
 static int no_control(const uint32_t *code, uint32_t from, uint32_t to)
 {
 	for (uint32_t pc = from; pc < to; pc += insn_len(code, pc))
-		if (code[pc] == CSF_OP_JMP || code[pc] == CSF_OP_JZ || code[pc] == CSF_OP_ASSERT) return 0;
+		if (code[pc] == CSF_OP_JMP || code[pc] == CSF_OP_JZ || code[pc] == CSF_OP_ASSERT || code[pc] == CSF_OP_CONTACT) return 0;
 	return 1;
 }
 
@@ -130,7 +133,7 @@ static void emit_straight(Emit *E, uint32_t from, uint32_t to)
 		if (E->target[pc]) fprintf(E->f, "L%lu:\n", (unsigned long)pc);
 		uint32_t len = insn_len(code, pc), n = 0, q = pc;
 		while (q < to && code[q] == code[pc] && !E->target[q] && code[q] != CSF_OP_JMP && code[q] != CSF_OP_JZ &&
-		       code[q] != CSF_OP_ASSERT)
+		       code[q] != CSF_OP_ASSERT && code[q] != CSF_OP_CONTACT)
 			q += len, n++;
 		if (n >= MIN_RUN) {
 			int w = (int)len - 1, t = open_table(E, n, w);
@@ -236,12 +239,12 @@ static void emit_section(const csf_prog *p, int sec, const char *fname, FILE *f,
 	}
 	if (target[n]) fprintf(f, "L%lu:\n", (unsigned long)n);
 	close_chunk(&E);
-	fprintf(f, "static int %s(double *m)\n{\n", fname);
+	fprintf(f, "static int %s(const csf_prog *p, double *m)\n{\n", fname);
 	if (E.nchunks == 1) {
-		fprintf(f, "\treturn %s_0(m);\n}\n\n", fname);
+		fprintf(f, "\treturn %s_0(p, m);\n}\n\n", fname);
 	} else {
 		fputs("\tint r;\n", f);
-		for (int i = 0; i < E.nchunks; i++) fprintf(f, "\tif ((r = %s_%d(m)) >= 0) return r;\n", fname, i);
+		for (int i = 0; i < E.nchunks; i++) fprintf(f, "\tif ((r = %s_%d(p, m)) >= 0) return r;\n", fname, i);
 		fputs("\treturn -1;\n}\n\n", f);
 	}
 	*ntabs = E.ntabs;
@@ -277,8 +280,7 @@ void emit_c(const csf_prog *p, const unsigned char *image, size_t len, const cha
 	free(fbuf);
 	free(tbuf);
 	fputs("static int csf_model_exec(const csf_prog *p, int sec, double *m)\n{\n"
-	      "\t(void)p;\n"
-	      "\treturn sec == CSF_SEC_RHS ? csf_model_rhs(m) : sec == CSF_SEC_OUT ? csf_model_out(m) : csf_model_jac(m);\n}\n\n"
+	      "\treturn sec == CSF_SEC_RHS ? csf_model_rhs(p, m) : sec == CSF_SEC_OUT ? csf_model_out(p, m) : csf_model_jac(p, m);\n}\n\n"
 	      "int main(int argc, char **argv)\n{\n"
 	      "\treturn csf_main(argc, argv, csf_model_image, sizeof csf_model_image, csf_model_exec);\n}\n",
 	      f);

@@ -40,6 +40,10 @@ typedef struct Gen {
 	struct { RExpr *e; uint32_t slot; } cse[64]; /* within one equation: values computed so far */
 	int ncse;
 	Map consts;  /* constant bits -> slot + 1 */
+	Inst *evinst; /* emitting the condition of this conditional rule, located as events */
+	Map evmap;    /* comparison (by address) -> event index + 1 */
+	csf_event *events;
+	uint32_t nevents, capevents;
 } Gen;
 
 static void *grow(void *p, uint32_t *cap, uint32_t need, size_t elem)
@@ -149,8 +153,39 @@ static int expr_same(const RExpr *a, const RExpr *b)
 
 static void cse_reset(Gen *G) { G->ncse = 0; }
 
+/*
+ * A comparison in the condition of a conditional rule that the RHS needs is
+ * an event: its value (the difference of its sides, positive when true)
+ * goes to a slot of its own, and EVGT/EVGE give the side the runtime froze
+ * at the last located crossing. Both sections share the event.
+ */
+static int emit_event(Gen *G, RExpr *e, uint32_t dest)
+{
+	int op = e->op;
+	if (!G->evinst || !(op == CSF_OP_LT || op == CSF_OP_LE || op == CSF_OP_GT || op == CSF_OP_GE)) return 0;
+	char key[32];
+	snprintf(key, sizeof key, "%p", (void *)e);
+	uintptr_t known = (uintptr_t)map_get(&G->evmap, key);
+	if (!known) {
+		G->events = grow(G->events, &G->capevents, G->nevents + 1, sizeof *G->events);
+		double unset = -1;
+		uint32_t value = alloc_mem(G, 1, NULL), mode = alloc_mem(G, 1, &unset);
+		int strict = op == CSF_OP_LT || op == CSF_OP_GT;
+		G->events[G->nevents++] = (csf_event){ strict ? 0u : 1u, value, mode, (uint32_t)G->evinst->src };
+		known = G->nevents;
+		map_put(&G->evmap, xstrdup(key), (void *)known);
+	}
+	const csf_event *ev = &G->events[known - 1];
+	uint32_t x = emit(G, e->a[0]), y = emit(G, e->a[1]);
+	if (op == CSF_OP_LT || op == CSF_OP_LE) emit_op(G, CSF_OP_SUB, ev->value, y, x, 0);
+	else emit_op(G, CSF_OP_SUB, ev->value, x, y, 0);
+	emit_op(G, ev->kind ? CSF_OP_EVGE : CSF_OP_EVGT, dest, ev->value, ev->mode, 0);
+	return 1;
+}
+
 static void emit_into(Gen *G, RExpr *e, uint32_t dest)
 {
+	if (e->k == R_OP && emit_event(G, e, dest)) return;
 	if (e->k == R_OP) {
 		uint32_t o[3] = { 0, 0, 0 };
 		for (int i = 0; i < e->n; i++) o[i] = emit(G, e->a[i]);
@@ -267,7 +302,9 @@ static void emit_inst(Gen *G, Inst *I)
 	if (!I->cond) {
 		emit_assigns(G, I, &I->then);
 	} else {
+		G->evinst = I->needed[CSF_SEC_RHS] ? I : NULL;
 		uint32_t c = emit(G, I->cond);
+		G->evinst = NULL;
 		uint32_t jz = pc(G);
 		emit_op(G, CSF_OP_JZ, c, 0, 0, 0);
 		emit_assigns(G, I, &I->then);
@@ -491,7 +528,7 @@ static void tangent(Jac *J, int op, const uint32_t *o, const int *in)
 /* Is op's result a smooth function of its operands (comparisons and logic are not)? */
 static int differentiable(int op)
 {
-	return !(op >= CSF_OP_LT && op <= CSF_OP_NOT);
+	return !(op >= CSF_OP_LT && op <= CSF_OP_EVGE);
 }
 
 /*
@@ -662,6 +699,19 @@ int gen_program(Model *M, csf_prog *p)
 		if (w->var->det) mark(G, w->var->det, CSF_SEC_OUT);
 	}
 
+	/* Contacts need every body's acceleration, in OUT too (a, FN and Ff are watchable). */
+	int last_a = -1;
+	for (int i = 0; i < M->contacts.n; i++) {
+		Contact *c = M->contacts.v[i];
+		for (int k = 0; k < 2; k++) {
+			Var *a = c->f[k ? CSF_CF_A2 : CSF_CF_A];
+			if (!a || !a->det) continue;
+			mark(G, a->det, CSF_SEC_OUT);
+			for (int j = 0; j < M->insts.n; j++)
+				if (M->insts.v[j] == a->det && j > last_a) last_a = j;
+		}
+	}
+
 	/* Layout: t, state, derivatives. */
 	p->tslot = alloc_mem(G, 1, NULL);
 	p->ystart = G->nmem;
@@ -690,6 +740,22 @@ int gen_program(Model *M, csf_prog *p)
 	}
 	M->time->slot = (int)p->tslot;
 
+	/* The contact table: the bodies' property slots and each pair's work slots. */
+	p->ncontacts = (uint32_t)M->contacts.n;
+	p->contacts = calloc(p->ncontacts + 1, sizeof *p->contacts);
+	if (!p->contacts) exit(2);
+	for (int i = 0; i < M->contacts.n; i++) {
+		Contact *c = M->contacts.v[i];
+		csf_contact *pc = &p->contacts[i];
+		pc->plane = (uint32_t)c->plane;
+		pc->src = (uint32_t)c->src;
+		for (int f = 0; f < CSF_CF_WORK; f++)
+			pc->s[f] = c->f[f] ? var_slot(G, c->f[f]) : p->tslot;
+		double w[CSF_CW_N] = { 0 };
+		memcpy(w + CSF_CW_DIR, c->dir, sizeof c->dir);
+		pc->s[CSF_CF_WORK] = alloc_mem(G, CSF_CW_N, w);
+	}
+
 	for (int sec = CSF_SEC_RHS; sec <= CSF_SEC_OUT; sec++) {
 		G->code = NULL;
 		G->ncode = G->capcode = 0;
@@ -703,6 +769,10 @@ int gen_program(Model *M, csf_prog *p)
 			if (sec == CSF_SEC_RHS && I->isassert) continue;
 			if (sec == CSF_SEC_OUT && I->isderiv) continue;
 			emit_inst(G, I);
+			if (i == last_a) {
+				add_line(G, p->contacts[0].src);
+				emit_op(G, CSF_OP_CONTACT, 0, 0, 0, 0);
+			}
 		}
 		p->code[sec] = G->code;
 		p->ncode[sec] = G->ncode;
@@ -754,7 +824,8 @@ int gen_program(Model *M, csf_prog *p)
 			i += 1u + oi->nops;
 		}
 
-	gen_pairs(G, M, p);
+	if (!p->ncontacts) gen_pairs(G, M, p); /* the contact routine's forces depend on v */
+	else if (!(p->vpair = calloc(p->ny ? p->ny : 1, sizeof *p->vpair))) exit(2);
 	gen_jacobian(G, p);
 
 	/* Source tables. */
@@ -780,5 +851,7 @@ int gen_program(Model *M, csf_prog *p)
 	p->nmem = G->nmem;
 	p->till = M->till;
 	p->by = M->by;
+	p->nevents = G->nevents;
+	p->events = G->events ? G->events : calloc(1, sizeof *p->events);
 	return 0;
 }

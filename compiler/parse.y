@@ -189,6 +189,12 @@ stmt:
 	| RULE attr FOR objrefs ':' eqn {
 		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->fors = $4; $$->has_for = 1; $$->eqns = $6;
 	}
+	| RULE attr ':' expr {
+		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->call = $4;
+	}
+	| RULE attr FOR objrefs ':' expr {
+		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->fors = $4; $$->has_for = 1; $$->call = $6;
+	}
 	| ASSERT expr {
 		$$ = stmt(S_ASSERT, @$); $$->cond = $2; $$->text = text_from(LOC(@2));
 	}

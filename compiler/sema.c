@@ -720,6 +720,7 @@ static int reads_rf(Expr *x)
 static int stmt_max_dollar(Stmt *s)
 {
 	int m = max_dollar(s->cond);
+	if (max_dollar(s->call) > m) m = max_dollar(s->call);
 	for (int b = 0; b < 2; b++)
 		for (Eqn *q = b ? s->else_eqns : s->eqns; q; q = q->next) {
 			int k = max_dollar(q->lhs), r = max_dollar(q->rhs);
@@ -763,7 +764,7 @@ static int names_apply(Expr *x, Object **bind, int nbind, const char **missing)
 
 static int stmt_applies(Stmt *s, Object **bind, int nbind, const char **missing)
 {
-	if (!names_apply(s->cond, bind, nbind, missing)) return 0;
+	if (!names_apply(s->cond, bind, nbind, missing) || !names_apply(s->call, bind, nbind, missing)) return 0;
 	for (int b = 0; b < 2; b++)
 		for (Eqn *q = b ? s->else_eqns : s->eqns; q; q = q->next)
 			if (!names_apply(q->lhs, bind, nbind, missing) || !names_apply(q->rhs, bind, nbind, missing)) return 0;
@@ -830,7 +831,7 @@ static int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 			for (int q = j + 1; q < k; q++) idx[q] = idx[q - 1] + 1;
 		}
 	}
-	if (count == 0) {
+	if (count == 0 && !s->call) { /* contact rules: a scene may have no pair that can touch */
 		if (missing) error_at(s->loc, "this %s applies to no object: none has '%s'", s->kind == S_ASSERT ? "assertion" : "rule", missing);
 		else error_at(s->loc, "this %s applies to no object", s->kind == S_ASSERT ? "assertion" : "rule");
 		return -1;
@@ -1185,6 +1186,80 @@ static void inst_rule(Stmt *s, Object **bind, int nbind)
 	vec_push(cur_insts, I);
 }
 
+/*
+ * contact(pos, radius, pos$1, radius$1) or contact(pos, radius, point$1,
+ * normal$1): a pair of mass points or a mass point and a plane, for the
+ * runtime's contact routine, which reads the bodies' other properties by
+ * their mechanics/mass_point names. Kept only if the pair can touch.
+ */
+static void inst_contact(Stmt *s, Object **bind, int nbind)
+{
+	Expr *x = s->call;
+	if (x->kind != E_CALL || strcmp(x->name, "contact") != 0 || x->nargs != 4) {
+		error_at(x->loc, "a rule is an equation, or the contact routine 'contact(pos, radius, pos$1, radius$1)'");
+		return;
+	}
+	for (int i = 0; i < 4; i++) {
+		Expr *a = x->args[i];
+		int want = i < 2 ? 0 : 1;
+		if (!((a->kind == E_NAME && want == 0) || (a->kind == E_DOLLAR && a->n == want))) {
+			error_at(a->loc, "argument %d of contact() must be a property of %s", i + 1, want ? "$1" : "$0");
+			return;
+		}
+	}
+	if (nbind < 2) return;
+	Object *A = bind[0], *B = bind[1];
+	Var *geo[4];
+	for (int i = 0; i < 4; i++)
+		if (!(geo[i] = prop_of(bind[i < 2 ? 0 : 1], x->args[i]->name))) return; /* not this geometry */
+	int plane = geo[3]->isvec;
+	if (!plane && A->index > B->index && !s->has_for) return; /* the pair (B, A) is the same */
+	Contact *c = xalloc(sizeof *c);
+	c->a = A, c->b = B, c->plane = plane, c->src = cur_src, c->st = s;
+	static const char *const body[10] = { NULL, "v", "a", "m", NULL, "cr", "mu_s", "mu_k", "FN", "Ff" };
+	static const char *const plane_props[10] = { NULL, NULL, NULL, NULL, NULL, "cr", "mu_s", "mu_k", NULL, NULL };
+	for (int k = 0; k < 2; k++) {
+		Object *o = k ? B : A;
+		const char *const *names = k && plane ? plane_props : body;
+		c->f[10 * k + CSF_CF_POS] = geo[2 * k];
+		c->f[10 * k + CSF_CF_R] = geo[2 * k + 1];
+		for (int f = 0; f < 10; f++) {
+			if (!names[f]) continue;
+			Var *v = prop_of(o, names[f]);
+			if (!v || v->isvec != (f == CSF_CF_V || f == CSF_CF_A || f == CSF_CF_FN || f == CSF_CF_FF)) {
+				error_at(s->loc, "contact of %s and %s: object '%s' needs %s property '%s' (mechanics/mass_point's "
+				                 "kinds have it)",
+				         A->name, B->name, o->name, v && v->isvec ? "a scalar" : v ? "a vector" : "the", names[f]);
+				return;
+			}
+			c->f[10 * k + f] = v;
+		}
+	}
+	if (!c->f[CSF_CF_POS]->state || !c->f[CSF_CF_V]->state || (!plane && (!c->f[CSF_CF_POS2]->state || !c->f[CSF_CF_V2]->state))) {
+		error_at(s->loc, "contact of %s and %s: positions and velocities must be integrated (pos' = v, v' = a)",
+		         A->name, B->name);
+		return;
+	}
+	if (!plane) {
+		const double *pa = c->f[CSF_CF_POS]->init, *pb = c->f[CSF_CF_POS2]->init;
+		const double *va = c->f[CSF_CF_V]->init, *vb = c->f[CSF_CF_V2]->init;
+		double d[3] = { pa[0] - pb[0], pa[1] - pb[1], pa[2] - pb[2] }, dv[3] = { va[0] - vb[0], va[1] - vb[1], va[2] - vb[2] };
+		double dist = csf_vmag3(d[0], d[1], d[2]);
+		if (c->f[CSF_CF_R]->init[0] + c->f[CSF_CF_R2]->init[0] <= 0) {
+			/* two points meet only when they move on the line through them */
+			double cx[3] = { d[1] * dv[2] - d[2] * dv[1], d[2] * dv[0] - d[0] * dv[2], d[0] * dv[1] - d[1] * dv[0] };
+			if (!s->has_for && (dist == 0 || cx[0] != 0 || cx[1] != 0 || cx[2] != 0 || d[0] * dv[0] + d[1] * dv[1] + d[2] * dv[2] >= 0))
+				return;
+			if (dist == 0) {
+				error_at(s->loc, "contact of %s and %s: two points at the same place have no line of contact", A->name, B->name);
+				return;
+			}
+		}
+		for (int k = 0; k < 3; k++) c->dir[k] = dist > 0 ? d[k] / dist : 0;
+	}
+	vec_push(&M->contacts, c);
+}
+
 static Vec deriv_insts;
 
 static void inst_deriv(Stmt *s, Object **bind, int nbind)
@@ -1397,7 +1472,7 @@ Model *sema_run(Stmt *stmts)
 	/* Derivative rules first: their targets are state, determined from the start. */
 	for (int i = 0; i < rules.n; i++) {
 		Stmt *s = rules.v[i];
-		if (!s->cond && s->eqns->deriv) {
+		if (s->eqns && !s->cond && s->eqns->deriv) {
 			cur_src = stmt_src(s);
 			for_each_binding(s, inst_deriv);
 		}
@@ -1411,7 +1486,7 @@ Model *sema_run(Stmt *stmts)
 	Vec order = { 0 }, deferred = { 0 };
 	for (int i = 0; i < rules.n; i++) {
 		Stmt *s = rules.v[i];
-		if (!s->cond && s->eqns->deriv) continue;
+		if (s->eqns && !s->cond && s->eqns->deriv) continue;
 		if (i < lastF && stmt_reads_rf(s) && !(s->attr && strcmp(s->attr, "F") == 0)) vec_push(&deferred, s);
 		else vec_push(&order, s);
 		if (i == lastF)
@@ -1425,7 +1500,17 @@ Model *sema_run(Stmt *stmts)
 			continue;
 		}
 		cur_src = stmt_src(s);
-		for_each_binding(s, inst_rule);
+		for_each_binding(s, s->call ? inst_contact : inst_rule);
+	}
+	for (int i = 0; i < M->contacts.n; i++) {
+		Contact *c = M->contacts.v[i];
+		for (int k = 0; k < 2; k++) {
+			Var *a = c->f[k ? CSF_CF_A2 : CSF_CF_A];
+			if (a && !a->det)
+				error_at(c->st->loc, "contact of %s and %s: no rule determines %s.a (Newton's second law, "
+				                     "'rule: RF = a.mul(m)' of mechanics/rules, does)",
+				         c->a->name, c->b->name, (k ? c->b : c->a)->name);
+		}
 	}
 	for (int i = 0; i < deriv_insts.n; i++) {
 		resolve_deriv(deriv_insts.v[i]);

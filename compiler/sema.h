@@ -83,6 +83,16 @@ struct Inst {
 	char *why;       /* for --explain: what it solves for and why */
 };
 
+/* A contact pair (mechanics/rules 1-4), handled by the runtime's contact routine. */
+typedef struct Contact {
+	Object *a, *b;
+	int plane;       /* b is a plane */
+	int src;
+	Stmt *st;
+	Var *f[20];      /* properties, in the order of enum csf_contact_field */
+	double dir[3];   /* two points: the unit vector from b to a */
+} Contact;
+
 typedef struct WatchCol { char *name; Var *var; int comp; } WatchCol;
 
 typedef struct Model {
@@ -91,6 +101,7 @@ typedef struct Model {
 	Var *time;
 	Vec insts;       /* of Inst*: algebraic rules in resolution order, then derivatives, then assertions */
 	Vec temps;       /* of Var* */
+	Vec contacts;    /* of Contact*: pairs that can touch */
 	Vec cols;        /* of WatchCol* */
 	Vec stmts;       /* of Stmt*: rules and assertions in source order (for --explain) */
 	Vec srcs;        /* of Stmt* or Eqn* text: see gen.c */

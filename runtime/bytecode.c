@@ -114,6 +114,10 @@ int csf_encode(const csf_prog *p, unsigned char **out, size_t *len)
 	put_u32s(&w, p->objects, p->nobjects);
 	put_u32(&w, p->nprops);
 	put_u32s(&w, (const uint32_t *)p->props, 4 * (size_t)p->nprops);
+	put_u32(&w, p->nevents);
+	put_u32s(&w, (const uint32_t *)p->events, 4 * (size_t)p->nevents);
+	put_u32(&w, p->ncontacts);
+	put_u32s(&w, (const uint32_t *)p->contacts, (2 + CSF_CF_N) * (size_t)p->ncontacts);
 	for (int s = 0; s < CSF_NSEC; s++) {
 		put_u32(&w, p->ntargets[s]);
 		put_u32s(&w, (const uint32_t *)p->targets[s], 5 * (size_t)p->ntargets[s]);
@@ -242,6 +246,8 @@ int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, siz
 	ARR(p->nasserts, p->asserts, sizeof(csf_assert));
 	ARR(p->nobjects, p->objects, 4);
 	ARR(p->nprops, p->props, sizeof(csf_prop));
+	ARR(p->nevents, p->events, sizeof(csf_event));
+	ARR(p->ncontacts, p->contacts, sizeof(csf_contact));
 	for (int s = 0; s < CSF_NSEC; s++) {
 		ARR(p->ntargets[s], p->targets[s], sizeof(csf_target));
 		ARR(p->ncode[s], p->code[s], 4);
@@ -308,6 +314,23 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 		const csf_prop *q = &p->props[i];
 		if (q->object >= p->nobjects || !STR_OK(q->name) || (q->width != 1 && q->width != 3) || !slot_ok(p, q->slot, q->width))
 			return fail(err, errlen, "property %lu out of range", (unsigned long)i);
+	}
+	for (uint32_t i = 0; i < p->nevents; i++) {
+		const csf_event *e = &p->events[i];
+		if (e->kind > 1 || !slot_ok(p, e->value, 1) || !slot_ok(p, e->mode, 1) || e->src >= p->nsrcs)
+			return fail(err, errlen, "event %lu out of range", (unsigned long)i);
+	}
+	for (uint32_t i = 0; i < p->ncontacts; i++) {
+		const csf_contact *c = &p->contacts[i];
+		static const unsigned char width[CSF_CF_N] = { 3, 3, 3, 1, 1, 1, 1, 1, 3, 3, 3, 3, 3, 1, 1, 1, 1, 1, 3, 3, CSF_CW_N };
+		int ok = c->plane <= 1 && c->src < p->nsrcs;
+		for (int f = 0; ok && f < CSF_CF_N; f++) {
+			uint32_t w = width[f];
+			if (c->plane && f == CSF_CF_R2) w = 3; /* a plane's normal */
+			if (c->plane && (f == CSF_CF_V2 || f == CSF_CF_A2 || f == CSF_CF_M2 || f == CSF_CF_FN2 || f == CSF_CF_FF2)) continue;
+			ok = slot_ok(p, c->s[f], w);
+		}
+		if (!ok) return fail(err, errlen, "contact %lu out of range", (unsigned long)i);
 	}
 	for (int s = 0; s < CSF_NSEC; s++) {
 		for (uint32_t i = 0; i < p->ntargets[s]; i++) {
@@ -376,6 +399,8 @@ void csf_prog_free(csf_prog *p)
 	free(p->asserts);
 	free(p->objects);
 	free(p->props);
+	free(p->events);
+	free(p->contacts);
 	for (int s = 0; s < CSF_NSEC; s++) {
 		free(p->targets[s]);
 		free(p->code[s]);

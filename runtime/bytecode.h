@@ -28,6 +28,8 @@
  *   asserts   u32 n, n x {u32 src, object}
  *   objects   u32 n, n x {u32 name}
  *   props     u32 n, n x {u32 object, name, slot, width}
+ *   events    u32 n, n x {u32 kind, value, mode, src}
+ *   contacts  u32 n, n x {u32 plane, src, CSF_CF_N slots} (csf.h)
  *   then for each code section (RHS, OUT, JAC):
  *   targets   u32 n, n x {u32 slot, width, src, name, object}
  *   code      u32 n, n words (opcode, operands...)
@@ -40,7 +42,7 @@
 #define CSF_BYTECODE_H
 
 #define CSFB_MAGIC "CSFB"
-#define CSFB_VERSION 4u
+#define CSFB_VERSION 5u
 #define CSFB_INT_PROBE 0x01020304u
 #define CSFB_FLOAT_PROBE 370.5
 #define CSFB_HEADER_SIZE 28u

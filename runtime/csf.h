@@ -69,6 +69,30 @@ typedef struct csf_assert { uint32_t src, object; } csf_assert;
 typedef struct csf_line { uint32_t pc, src; } csf_line;
 
 /*
+ * An event of a conditional rule: a comparison in its condition, compiled as
+ * value = lhs - rhs (or rhs - lhs) and EVGT/EVGE. kind 0: true when value > 0;
+ * 1: when value >= 0. The runtime keeps the side in slot mode (0 or 1; -1
+ * before the first evaluation) and switches it only at the located crossing.
+ */
+typedef struct csf_event { uint32_t kind, value, mode, src; } csf_event;
+
+/*
+ * A contact pair (mechanics/rules, rules 1 to 4): slots of body i's
+ * properties, of body j's (or of a plane's: its point in POS2, its normal in
+ * R2), and CSF_CW_N work slots of the pair's own state. See contact.c.
+ */
+enum csf_contact_field {
+	CSF_CF_POS, CSF_CF_V, CSF_CF_A, CSF_CF_M, CSF_CF_R, CSF_CF_CR, CSF_CF_MUS, CSF_CF_MUK, CSF_CF_FN, CSF_CF_FF,
+	CSF_CF_POS2, CSF_CF_V2, CSF_CF_A2, CSF_CF_M2, CSF_CF_R2, CSF_CF_CR2, CSF_CF_MUS2, CSF_CF_MUK2, CSF_CF_FN2,
+	CSF_CF_FF2, CSF_CF_WORK, CSF_CF_N
+};
+/* Work slots, from s[CSF_CF_WORK]: mode (0 apart, 1 sliding, 2 sticking), the two guards,
+   the normal force's size, the friction force, the fixed normal of two points, the sliding direction. */
+enum { CSF_CW_MODE = 0, CSF_CW_G0 = 1, CSF_CW_G1 = 2, CSF_CW_LAM = 3, CSF_CW_F = 4, CSF_CW_DIR = 7, CSF_CW_DS = 10,
+       CSF_CW_N = 13 };
+typedef struct csf_contact { uint32_t plane, src, s[CSF_CF_N]; } csf_contact;
+
+/*
  * A program. Strings are offsets into strs (every one NUL-terminated).
  * Memory: slot tslot holds t; slots [ystart, ystart+ny) the state vector;
  * [dstart, dstart+ny) its derivative, written by the RHS section.
@@ -84,8 +108,10 @@ typedef struct csf_prog {
 	double *yscale; /* per state component: the absolute tolerance's scale (the unit system's
 	                   measure of one SI unit of that component), so accuracy is unit-independent */
 	double till, by;
-	uint32_t ncols, nfiles, nsrcs, nasserts, nobjects, nprops;
+	uint32_t ncols, nfiles, nsrcs, nasserts, nobjects, nprops, nevents, ncontacts;
 	csf_col *cols;
+	csf_event *events;
+	csf_contact *contacts;
 	uint32_t *objects; /* object names, in definition order */
 	csf_prop *props;
 	uint32_t *files;
@@ -131,6 +157,27 @@ typedef int (*csf_exec_fn)(const csf_prog *p, int sec, double *m);
 
 /* The interpreter: a csf_exec_fn for verified programs. */
 int csf_vm_exec(const csf_prog *p, int sec, double *m);
+
+/*
+ * The contact routine (the CONTACT instruction; contact.c): for every pair
+ * in contact, the normal force that keeps the relative normal acceleration
+ * zero and the friction force of its mode, added to both bodies' a, FN and
+ * Ff; and each pair's two guards (an event when one becomes negative).
+ */
+void csf_contact_apply(const csf_prog *p, double *m);
+
+/* Evaluates the RHS section on m (the current state): for csf_contact_settle. */
+typedef int (*csf_eval_fn)(void *ctx);
+
+/*
+ * Makes every contact's mode consistent at the current instant, changing
+ * the velocities (and positions, by rounding-size amounts) in m: impacts
+ * (restitution), the contacts that come to rest, lift-off, stick and slip.
+ * guard: the guard that went negative (2 * contact + 0 or 1), or -1 at t = 0.
+ * zeno: the time below which a train of bounces counts as at rest.
+ * Returns 0, or -1 if eval failed.
+ */
+int csf_contact_settle(const csf_prog *p, double *m, long guard, double zeno, csf_eval_fn eval, void *ctx);
 
 /* Run-time options, parsed identically by csfvm and generated executables. */
 typedef struct csf_opts {

@@ -82,6 +82,10 @@ CSF_OP2(NE, csf_bool(x != y))
 CSF_OP2(AND, csf_bool(x != 0.0 && y != 0.0))
 CSF_OP2(OR, csf_bool(x != 0.0 || y != 0.0))
 CSF_OP1(NOT, csf_bool(x == 0.0))
+/* A located comparison (an event of a conditional rule): while the runtime
+   integrates, the side is the mode it froze at the last event, R[c]. */
+CSF_OP2(EVGT, y >= 0.0 ? y : csf_bool(x > 0.0))
+CSF_OP2(EVGE, y >= 0.0 ? y : csf_bool(x >= 0.0))
 
 #define CSF_VOP2(name, ex, ey, ez) \
 	static inline void csf_op_##name(double *m, csf_u32 a, csf_u32 b, csf_u32 c) \

@@ -100,6 +100,10 @@ typedef struct run {
 	double fail_t; /* time of a non-finite derivative */
 	int fail;
 	unsigned long nrhs, njac; /* evaluations, for --stats */
+	unsigned long nevents;
+	/* events: guards (conditional rules' comparisons, then two per contact), work vectors */
+	uint32_t ng;
+	double *ga, *gb, *gs, *ya, *fa, *fb, *ys, *fs, *ye;
 } run;
 
 static int rhs(double t, const double *y, double *dydt, void *ctx)
@@ -222,9 +226,244 @@ static int finish(FILE *out, FILE *err, int status)
 	return status;
 }
 
+
+/* ---- events ---- */
+
+enum { CHATTER = 10 }; /* advance_events: modes switch back and forth at one instant */
+
+/*
+ * A guard is a continuous function of t and the state that is >= 0 while
+ * the current mode holds: for a conditional rule's comparison, its value
+ * on the side it was last found on; for a contact, see contact.c. After
+ * each step the guards are checked at its end and at three points of the
+ * step's cubic Hermite interpolant (so that a guard which dips below zero
+ * and back within one step is seen). A guard that was >= 0 at the step's
+ * start and is negative at one of them is an event: its crossing is
+ * bracketed and narrowed by the Illinois method on states computed by one
+ * step of the method from the step's start, to 1e-13 s. The earliest
+ * crossing ends the step there; the modes are brought up to date (and
+ * impacts applied), the integrator restarts, and integration goes on.
+ */
+
+/* The guards of the last RHS evaluation of r->m into g. */
+static void read_guards(run *r, double *g)
+{
+	const csf_prog *p = r->p;
+	const double *m = r->m;
+	for (uint32_t i = 0; i < p->nevents; i++) {
+		const csf_event *e = &p->events[i];
+		g[i] = m[e->mode] > 0 ? m[e->value] : -m[e->value];
+	}
+	for (uint32_t i = 0; i < p->ncontacts; i++) {
+		uint32_t w = p->contacts[i].s[CSF_CF_WORK];
+		g[p->nevents + 2 * i] = m[w + CSF_CW_G0];
+		g[p->nevents + 2 * i + 1] = m[w + CSF_CW_G1];
+	}
+}
+
+/* Guards g at (t, y), and the derivative in r->fs. 0, or 1 if a derivative is not finite. */
+static int guards_at(run *r, double t, const double *y, double *g)
+{
+	if (rhs(t, y, r->fs, r)) return 1;
+	read_guards(r, g);
+	return 0;
+}
+
+/* Sets each comparison's side from its value at the state in r->m (after an RHS evaluation). */
+static void free_modes(run *r, double t, const double *y)
+{
+	const csf_prog *p = r->p;
+	for (uint32_t i = 0; i < p->nevents; i++) r->m[p->events[i].mode] = -1;
+	(void)rhs(t, y, r->fs, r);
+	for (uint32_t i = 0; i < p->nevents; i++) {
+		const csf_event *e = &p->events[i];
+		double v = r->m[e->value];
+		r->m[e->mode] = (e->kind ? v >= 0 : v > 0) ? 1 : 0;
+	}
+}
+
+typedef struct settle_ctx { run *r; double t; double *y; } settle_ctx;
+
+/* RHS on the state in r->m (which csf_contact_settle changes), keeping y in step with it. */
+static int settle_eval(void *ctx)
+{
+	settle_ctx *s = ctx;
+	const csf_prog *p = s->r->p;
+	memcpy(s->y, s->r->m + p->ystart, p->ny * sizeof *s->y);
+	return rhs(s->t, s->y, s->r->fs, s->r);
+}
+
+/* Brings every mode up to date at (t, y) after the guard `which` went negative (-1: at the start). */
+static int update_modes(run *r, double t, double *y, long which, double zeno)
+{
+	const csf_prog *p = r->p;
+	free_modes(r, t, y);
+	if (p->ncontacts) {
+		long guard = which >= (long)p->nevents ? which - (long)p->nevents : -1;
+		settle_ctx s = { r, t, y };
+		memcpy(r->m + p->ystart, y, p->ny * sizeof *y);
+		if (csf_contact_settle(p, r->m, guard, zeno, settle_eval, &s)) return 1;
+		memcpy(y, r->m + p->ystart, p->ny * sizeof *y);
+		free_modes(r, t, y);
+	}
+	return r->fail;
+}
+
+/*
+ * The time of guard k's crossing in (lo, hi], where g(lo) >= 0 > g(hi), on
+ * states stepped from the step's start (ta, r->ya) that ended at (tb, yb);
+ * leaves the state at that time in r->ys. NAN if a derivative was not finite.
+ */
+static double locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const double *yb, double lo, double glo,
+                     double hi, double ghi)
+{
+	const double tol = 1e-13;
+	int side = 0;
+	while (hi - lo > tol && hi - lo > 4e-16 * fabs(hi)) {
+		double c = hi - ghi * (hi - lo) / (ghi - glo);
+		if (!(c > lo && c < hi)) c = lo + (hi - lo) / 2;
+		if (c - lo < tol / 4) c = lo + tol / 4; /* shrink the bracket from both ends */
+		if (hi - c < tol / 4) c = hi - tol / 4;
+		if (csf_ode_substep(ode, ta, r->ya, c - ta, r->ys, r->fa, yb, r->fb, tb - ta) ||
+		    guards_at(r, c, r->ys, r->gs))
+			return NAN;
+		double gc = r->gs[k];
+		if (gc < 0) {
+			hi = c, ghi = gc;
+			if (side < 0) glo /= 2;
+			side = -1;
+		} else {
+			lo = c, glo = gc;
+			if (side > 0) ghi /= 2;
+			side = 1;
+		}
+	}
+	if (hi == tb) {
+		memcpy(r->ys, yb, r->p->ny * sizeof *yb);
+		return hi;
+	}
+	if (csf_ode_substep(ode, ta, r->ya, hi - ta, r->ys, r->fa, yb, r->fb, tb - ta)) return NAN;
+	return hi;
+}
+
+/*
+ * Advances (*t, y) to t1 as csf_ode_step does, stopping at events. On entry
+ * r->ga and r->fa hold the guards and derivative at (*t, y).
+ */
+static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed, double h, double *y, double zeno,
+                          char *msg, size_t msglen)
+{
+	const csf_prog *p = r->p;
+	size_t n = p->ny, ng = r->ng;
+	unsigned long same = 0;
+	while (*t < t1) {
+		double ta = *t;
+		memcpy(r->ya, y, n * sizeof *y);
+		int st = csf_ode_step(ode, t, t1, fixed, h, y, msg, msglen);
+		if (st != CSF_ODE_OK) return st;
+		double tb = *t;
+		if (guards_at(r, tb, y, r->gb)) return CSF_ODE_STOPPED;
+		memcpy(r->fb, r->fs, n * sizeof *y);
+		/* the first of the sample points (3 interpolated, then the step's end) where an armed guard is negative */
+		double lo = ta, hi = tb;
+		double *ghi = r->gb;
+		int found = 0;
+		for (int j = 1; j <= 4 && !found; j++) {
+			double s = j / 4.0, s2 = s * s, s3 = s2 * s, dt = tb - ta;
+			double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
+			double *gj = r->gb;
+			if (j < 4) {
+				for (size_t i = 0; i < n; i++)
+					r->ys[i] = h00 * r->ya[i] + h10 * dt * r->fa[i] + h01 * y[i] + h11 * dt * r->fb[i];
+				if (guards_at(r, ta + s * dt, r->ys, r->gs)) return CSF_ODE_STOPPED;
+				gj = r->gs;
+			}
+			for (size_t k = 0; k < ng; k++)
+				if (r->ga[k] >= 0 && gj[k] < 0) found = 1;
+			if (found) {
+				hi = j < 4 ? ta + s * dt : tb;
+				lo = ta + (j - 1) / 4.0 * dt;
+				if (j < 4) memcpy(r->gs + ng, r->gs, ng * sizeof *r->gs); /* keep hi's guards */
+				ghi = j < 4 ? r->gs + ng : r->gb;
+			}
+		}
+		if (!found) {
+			memcpy(r->ga, r->gb, ng * sizeof *r->ga);
+			memcpy(r->fa, r->fb, n * sizeof *r->fa);
+			same = 0;
+			continue;
+		}
+		/* the earliest crossing among the guards negative at hi, each bracketed on exact states */
+		double best = tb, *gh = malloc(2 * ng * sizeof *gh);
+		long which = -1;
+		if (!gh) {
+			snprintf(msg, msglen, "out of memory");
+			return CSF_ODE_FAILED;
+		}
+		memcpy(gh, ghi, ng * sizeof *gh);
+		for (size_t k = 0; k < ng; k++) {
+			if (!(r->ga[k] >= 0 && gh[k] < 0)) continue;
+			/* the exact state's guards at lo and hi (the interpolant only pointed here) */
+			double l = lo, gl = r->ga[k], u = hi, gu = gh[k];
+			if (lo > ta) {
+				if (csf_ode_substep(ode, ta, r->ya, lo - ta, r->ys, r->fa, y, r->fb, tb - ta) ||
+				    guards_at(r, lo, r->ys, r->gs)) {
+					free(gh);
+					return CSF_ODE_STOPPED;
+				}
+				if (r->gs[k] < 0) l = ta; /* already below at lo: the crossing is earlier */
+				else gl = r->gs[k];
+			}
+			if (hi < tb) {
+				if (csf_ode_substep(ode, ta, r->ya, hi - ta, r->ys, r->fa, y, r->fb, tb - ta) ||
+				    guards_at(r, hi, r->ys, r->gs)) {
+					free(gh);
+					return CSF_ODE_STOPPED;
+				}
+				gu = r->gs[k];
+				if (gu >= 0) { /* not below on the exact state: try the step's end */
+					u = tb, gu = r->gb[k];
+					if (gu >= 0) continue;
+				}
+			}
+			double tk = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu);
+			if (isnan(tk)) {
+				free(gh);
+				return CSF_ODE_STOPPED;
+			}
+			if (tk < best || which < 0) {
+				best = tk, which = (long)k;
+				memcpy(r->ye, r->ys, n * sizeof *r->ye);
+			}
+		}
+		free(gh);
+		if (which < 0) { /* the interpolant's alarm was false */
+			memcpy(r->ga, r->gb, ng * sizeof *r->ga);
+			memcpy(r->fa, r->fb, n * sizeof *r->fa);
+			continue;
+		}
+		memcpy(y, r->ye, n * sizeof *y);
+		*t = best;
+		r->nevents++;
+		if (update_modes(r, best, y, which, zeno)) return CSF_ODE_STOPPED;
+		csf_ode_restart(ode);
+		if (guards_at(r, best, y, r->ga)) return CSF_ODE_STOPPED;
+		memcpy(r->fa, r->fs, n * sizeof *r->fa);
+		if (best - ta <= 1e-12 * (1 + fabs(best))) {
+			if (++same > 1000) {
+				snprintf(msg, msglen, "%lu events without time advancing", same);
+				return CHATTER;
+			}
+		} else {
+			same = 0;
+		}
+	}
+	return CSF_ODE_OK;
+}
+
 int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *err)
 {
-	run r = { p, exec, NULL, 0, 0, 0, 0 };
+	run r = { .p = p, .exec = exec };
 	double *y = NULL;
 	int warned = 0, fixed = 0;
 	struct timespec t0, t1;
@@ -235,7 +474,17 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 
 	r.m = malloc((p->nmem ? p->nmem : 1) * sizeof(double));
 	y = malloc((p->ny ? p->ny : 1) * sizeof(double));
-	if (!r.m || !y) {
+	r.ng = p->nevents + 2 * p->ncontacts;
+	double *work = NULL;
+	if (r.ng) {
+		size_t n = p->ny ? p->ny : 1, g = r.ng;
+		work = malloc((4 * g + 7 * n) * sizeof *work);
+		if (work) {
+			r.ga = work, r.gb = r.ga + g, r.gs = r.gb + g; /* gs: 2g */
+			r.ya = r.gs + 2 * g, r.fa = r.ya + n, r.fb = r.fa + n, r.ys = r.fb + n, r.fs = r.ys + n, r.ye = r.fs + n;
+		}
+	}
+	if (!r.m || !y || (r.ng && !work)) {
 		fprintf(err, "error: out of memory\n");
 		status = 2;
 		goto done;
@@ -258,6 +507,17 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 
 	fixed = ode && (o->fixed || csf_ode_fixed_only(ode));
 	double fixed_h = ode ? csf_ode_fixed_step(ode, p->by, o->step) : p->by;
+	/* a train of bounces whose rest would last less than this is at rest (contact.c) */
+	double zeno = 1e-6 * p->by;
+	if (r.ng) {
+		/* the modes at t = 0: each comparison's side, contacts at rest or colliding */
+		if (update_modes(&r, 0, y, -1, zeno) || (p->ny && guards_at(&r, 0, y, r.ga))) {
+			report_nonfinite(p, CSF_SEC_RHS, r.m, 0, "a state derivative", o->fixed, err);
+			status = 1;
+			goto done;
+		}
+		memcpy(r.fa, r.fs, p->ny * sizeof *r.fa);
+	}
 
 	/* The last k with k*by <= till, allowing for till/by's rounding. */
 	double kmax = floor(p->till / p->by);
@@ -269,7 +529,8 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		if (ode && tk > t) {
 			unsigned long before, rej;
 			csf_ode_stats(ode, &before, &rej);
-			int st = fixed ? csf_ode_advance_fixed(ode, &t, tk, fixed_h, y, msg, sizeof msg)
+			int st = r.ng ? advance_events(&r, ode, &t, tk, fixed, fixed_h, y, zeno, msg, sizeof msg)
+			         : fixed ? csf_ode_advance_fixed(ode, &t, tk, fixed_h, y, msg, sizeof msg)
 			               : csf_ode_advance(ode, &t, tk, y, msg, sizeof msg);
 			unsigned long after;
 			csf_ode_stats(ode, &after, &rej);
@@ -287,6 +548,17 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 				status = 1;
 				goto done;
 			}
+			if (st == CHATTER) {
+				char tb[32];
+				csf_fmt_double(tb, t);
+				fprintf(err,
+				        "error: at t=%s the conditions switch back and forth without time advancing (%s): "
+				        "the model has no solution past this point (a sliding mode; make the switching "
+				        "condition depend on the mode, or smooth the force)\n",
+				        tb, msg);
+				status = 1;
+				goto done;
+			}
 			if (st == CSF_ODE_FAILED) {
 				char tb[32];
 				csf_fmt_double(tb, t);
@@ -299,6 +571,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			}
 		}
 		t = tk;
+		if (r.ng && !ode) free_modes(&r, tk, y); /* no state: the conditions depend on t alone */
 		r.m[p->tslot] = tk;
 		memcpy(r.m + p->ystart, y, p->ny * sizeof(double));
 		int a = exec(p, CSF_SEC_OUT, r.m);
@@ -335,11 +608,13 @@ done:
 		if (ode) csf_ode_stats(ode, &steps, &rejected);
 		fprintf(err,
 		        "stats: method %s%s, %lu steps (%lu rejected), %lu right-hand side and %lu Jacobian evaluations, "
-		        "0 events, %.6f s\n",
+		        "%lu events, %.6f s\n",
 		        ode ? csf_ode_method(ode) : "none", fixed ? " (fixed steps)" : "", steps, rejected, r.nrhs, r.njac,
+		        r.nevents,
 		        (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
 	}
 	csf_ode_free(ode);
+	free(work);
 	free(y);
 	free(r.m);
 	return finish(out, err, status);

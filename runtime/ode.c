@@ -46,7 +46,10 @@ struct csf_ode {
 	size_t n;
 	double tol;
 	double *k;                 /* fixed steps: 5 work vectors of n */
+	gsl_odeiv2_step *sub;      /* events: a second stepper of the same method, for substeps */
+	double *yerr;
 	unsigned long fixed_steps;
+	unsigned long past_steps, past_rejected; /* GSL's counts before the last restart */
 	const uint32_t *vpair;     /* verlet: 1 + velocity index of each position component */
 	double *acc;               /* verlet: the derivative at the current point */
 	double acc_t;
@@ -140,6 +143,14 @@ int csf_ode_advance(csf_ode *o, double *t, double t1, double *y, char *err, size
 	return CSF_ODE_FAILED;
 }
 
+static int work(csf_ode *o)
+{
+	if (!o->k && (!(o->k = malloc(5 * (o->n ? o->n : 1) * sizeof *o->k)) ||
+	              !(o->acc = malloc((o->n ? o->n : 1) * sizeof *o->acc))))
+		return -1;
+	return 0;
+}
+
 /* One velocity Verlet step: x += h v + h^2/2 a(x); v += h/2 (a(x) + a(x')); one evaluation. */
 static int verlet_step(csf_ode *o, double t, double h, double *y)
 {
@@ -185,8 +196,7 @@ static int rk4_step(csf_ode *o, double t, double h, double *y)
 
 int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y, char *err, size_t errlen)
 {
-	if (!o->k && (!(o->k = malloc(5 * (o->n ? o->n : 1) * sizeof *o->k)) ||
-	              !(o->acc = malloc((o->n ? o->n : 1) * sizeof *o->acc)))) {
+	if (work(o)) {
 		snprintf(err, errlen, "out of memory");
 		return CSF_ODE_FAILED;
 	}
@@ -219,10 +229,65 @@ int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y,
 	return CSF_ODE_OK;
 }
 
+int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *y, char *err, size_t errlen)
+{
+	if (fixed || !o->m->type) {
+		double tb = *t + h < t1 ? *t + h : t1;
+		return csf_ode_advance_fixed(o, t, tb, h, y, err, errlen);
+	}
+	gsl_odeiv2_driver *d = o->drv;
+	if (d->h > d->hmax) d->h = d->hmax;
+	int st = gsl_odeiv2_evolve_apply(d->e, d->c, d->s, &o->sys, t, t1, &d->h, y);
+	if (st == GSL_SUCCESS) return CSF_ODE_OK;
+	if (st == GSL_EBADFUNC) return CSF_ODE_STOPPED;
+	snprintf(err, errlen, "%s", gsl_strerror(st));
+	return CSF_ODE_FAILED;
+}
+
+int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out, const double *f0,
+                    const double *y1, const double *f1, double hstep)
+{
+	size_t n = o->n;
+	if (o->m->multistep) {
+		double s = h / hstep, s2 = s * s, s3 = s2 * s;
+		double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
+		for (size_t i = 0; i < n; i++)
+			out[i] = h00 * y[i] + h10 * hstep * f0[i] + h01 * y1[i] + h11 * hstep * f1[i];
+		return 0;
+	}
+	memcpy(out, y, n * sizeof *y);
+	if (work(o)) return 1;
+	if (!o->m->type) {
+		o->acc_ok = 0;
+		int bad = verlet_step(o, t, h, out);
+		o->acc_ok = 0;
+		return bad;
+	}
+	if (*o->m->type == gsl_odeiv2_step_rk4) return rk4_step(o, t, h, out);
+	if (!o->sub) {
+		o->sub = gsl_odeiv2_step_alloc(*o->m->type, n);
+		o->yerr = malloc((n ? n : 1) * sizeof *o->yerr);
+		if (!o->sub || !o->yerr) return 1;
+	}
+	gsl_odeiv2_step_reset(o->sub);
+	return gsl_odeiv2_step_apply(o->sub, t, h, out, o->yerr, NULL, NULL, &o->sys) != GSL_SUCCESS;
+}
+
+void csf_ode_restart(csf_ode *o)
+{
+	o->acc_ok = 0;
+	if (o->drv) {
+		o->past_steps += o->drv->e->count;
+		o->past_rejected += o->drv->e->failed_steps;
+		gsl_odeiv2_evolve_reset(o->drv->e);
+		gsl_odeiv2_step_reset(o->drv->s);
+	}
+}
+
 void csf_ode_stats(const csf_ode *o, unsigned long *steps, unsigned long *rejected)
 {
-	*steps = o->fixed_steps + (o->drv ? o->drv->e->count : 0);
-	*rejected = o->drv ? o->drv->e->failed_steps : 0;
+	*steps = o->fixed_steps + o->past_steps + (o->drv ? o->drv->e->count : 0);
+	*rejected = o->past_rejected + (o->drv ? o->drv->e->failed_steps : 0);
 }
 
 int csf_ode_explicit(const csf_ode *o) { return !o->m->jacobian; }
@@ -246,6 +311,8 @@ void csf_ode_free(csf_ode *o)
 	if (!o) return;
 	free(o->k);
 	free(o->acc);
+	free(o->yerr);
+	if (o->sub) gsl_odeiv2_step_free(o->sub);
 	if (o->drv) gsl_odeiv2_driver_free(o->drv);
 	free(o);
 }

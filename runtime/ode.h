@@ -42,6 +42,26 @@ int csf_ode_advance(csf_ode *o, double *t, double t1, double *y, char *err, size
  */
 int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y, char *err, size_t errlen);
 
+/*
+ * One step from (*t, y) towards t1, never past it: an accepted adaptive step
+ * (error control, steps no longer than hmax), or with fixed, one step of h.
+ * Returns as csf_ode_advance.
+ */
+int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *y, char *err, size_t errlen);
+
+/*
+ * The state at t + h (0 < h <= the last step) from (t, y), by one step of
+ * the method without error control (to locate an event inside a step just
+ * taken). The multistep methods, which cannot start a step from anywhere,
+ * interpolate instead: the cubic Hermite interpolant of the last step
+ * (y0, f0 at its start t, y1, f1 at its end t + hstep). 0, or 1 if f stopped.
+ */
+int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out, const double *f0,
+                    const double *y1, const double *f1, double hstep);
+
+/* Forgets the history of the integration: the state jumped (an event). */
+void csf_ode_restart(csf_ode *o);
+
 /* Steps taken and rejected so far. */
 void csf_ode_stats(const csf_ode *o, unsigned long *steps, unsigned long *rejected);
 

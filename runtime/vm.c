@@ -31,6 +31,10 @@ int csf_vm_exec(const csf_prog *p, int sec, double *m)
 			}
 			pc += 3;
 			continue;
+		case CSF_OP_CONTACT:
+			csf_contact_apply(p, m);
+			pc += 1;
+			continue;
 		case CSF_OP_ASSERT:
 			if (m[pc[1]] == 0.0) return (int)pc[2];
 			pc += 3;

@@ -1,0 +1,298 @@
+/*
+ * contact.c - mechanics/rules 1 to 4: normal force, collision, static and
+ * dynamic friction between a mass point and another mass point or a plane.
+ *
+ * A pair is apart (mode 0) or in contact, sliding (1) or sticking (2). The
+ * mode changes only at events, which the driver locates in time:
+ *
+ *   apart:    guard 0 is the gap; when it closes the bodies collide (an
+ *             impulse along the normal with restitution min(cr_i, cr_j); a
+ *             plane has infinite mass), or come to rest in contact when
+ *             the bounces that remain would last less than the Zeno time.
+ *   contact:  the normal force N n is the constraint force that keeps the
+ *             relative normal acceleration zero; guard 0 is N, and the
+ *             bodies separate when it would pull (N < 0).
+ *   sliding:  friction -mu_k |N| v_t/|v_t|; guard 1 is v_t . d, with d the
+ *             direction of sliding at its start: sticking begins when the
+ *             relative tangential velocity reaches zero.
+ *   sticking: friction is the force that keeps the relative tangential
+ *             acceleration zero; guard 1 is mu_s |N| - |f|, and sliding
+ *             begins when static friction cannot hold.
+ *
+ * Materials combine as mu = max(mu_i, mu_j) (the rougher surface) and
+ * restitution e = min(cr_i, cr_j) (the less elastic one), so the defaults
+ * (cr 1, mu 0) leave the other body's coefficient as it is. Several
+ * simultaneous contacts are solved together by Gauss-Seidel sweeps.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "csf.h"
+
+#define F(c, f) ((c)->s[CSF_CF_##f])
+#define W(c, k) ((c)->s[CSF_CF_WORK] + CSF_CW_##k)
+
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double mag3(const double *a) { return csf_vmag3(a[0], a[1], a[2]); }
+
+static double inv_mass_i(const csf_contact *c, const double *m) { return 1.0 / m[F(c, M)]; }
+static double inv_mass_j(const csf_contact *c, const double *m) { return c->plane ? 0.0 : 1.0 / m[F(c, M2)]; }
+
+/* Relative value of vector property field fi of i and fj of j (j a plane: 0). */
+static void rel(const csf_contact *c, const double *m, uint32_t fi, uint32_t fj, double out[3])
+{
+	for (int k = 0; k < 3; k++) out[k] = m[fi + k] - (c->plane ? 0.0 : m[fj + k]);
+}
+
+/*
+ * The pair's unit normal n (from j towards i), its gap (returned) and the
+ * centripetal term of the gap's second derivative (spheres moving round
+ * each other): gap'' = (a_i - a_j) . n + curv.
+ */
+static double geometry(const csf_contact *c, const double *m, double n[3], double *curv)
+{
+	const double *pi = m + F(c, POS);
+	*curv = 0;
+	if (c->plane) {
+		const double *q = m + F(c, POS2), *nn = m + F(c, R2);
+		double k = mag3(nn), d[3];
+		for (int i = 0; i < 3; i++) n[i] = nn[i] / k, d[i] = pi[i] - q[i];
+		return dot3(d, n) - m[F(c, R)];
+	}
+	const double *pj = m + F(c, POS2);
+	double d[3] = { pi[0] - pj[0], pi[1] - pj[1], pi[2] - pj[2] };
+	double R = m[F(c, R)] + m[F(c, R2)], dist = mag3(d);
+	if (R > 0 && dist > 0) {
+		double vr[3];
+		for (int i = 0; i < 3; i++) n[i] = d[i] / dist;
+		rel(c, m, F(c, V), F(c, V2), vr);
+		double vn = dot3(vr, n);
+		*curv = (dot3(vr, vr) - vn * vn) / dist;
+		return dist - R;
+	}
+	/* two points: the line they move on, fixed when the program was compiled */
+	memcpy(n, m + W(c, DIR), 3 * sizeof *n);
+	return dot3(d, n) - R;
+}
+
+static int has_friction(const csf_contact *c, const double *m)
+{
+	return m[F(c, MUS)] > 0 || m[F(c, MUK)] > 0 || (m[F(c, MUS2)] > 0 || m[F(c, MUK2)] > 0);
+}
+static double mu_s(const csf_contact *c, const double *m) { return csf_max(m[F(c, MUS)], m[F(c, MUS2)]); }
+static double mu_k(const csf_contact *c, const double *m) { return csf_max(m[F(c, MUK)], m[F(c, MUK2)]); }
+static double restitution(const csf_contact *c, const double *m) { return csf_min(m[F(c, CR)], m[F(c, CR2)]); }
+
+/* Adds force f (on i; -f on j) to both accelerations and to force property fi/fj. */
+static void add_force(const csf_contact *c, double *m, const double f[3], uint32_t fi, uint32_t fj)
+{
+	double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m);
+	for (int k = 0; k < 3; k++) {
+		m[F(c, A) + k] += f[k] * wi;
+		m[fi + k] += f[k];
+		if (!c->plane) {
+			m[F(c, A2) + k] -= f[k] * wj;
+			m[fj + k] -= f[k];
+		}
+	}
+}
+
+/* Tangential part of x: x - (x . n) n. */
+static void tangential(const double x[3], const double n[3], double out[3])
+{
+	double xn = dot3(x, n);
+	for (int k = 0; k < 3; k++) out[k] = x[k] - xn * n[k];
+}
+
+void csf_contact_apply(const csf_prog *p, double *m)
+{
+	for (uint32_t i = 0; i < p->ncontacts; i++) {
+		const csf_contact *c = &p->contacts[i];
+		for (int k = 0; k < 3; k++) {
+			m[F(c, FN) + k] = m[F(c, FF) + k] = m[W(c, F) + k] = 0;
+			if (!c->plane) m[F(c, FN2) + k] = m[F(c, FF2) + k] = 0;
+		}
+		m[W(c, LAM)] = 0;
+	}
+	/* Gauss-Seidel sweeps: with one contact the second sweep changes nothing */
+	for (int sweep = 0; sweep < 100; sweep++) {
+		double change = 0, size = 0;
+		for (uint32_t i = 0; i < p->ncontacts; i++) {
+			const csf_contact *c = &p->contacts[i];
+			if (m[W(c, MODE)] < 1) continue;
+			double n[3], curv, ar[3], f[3];
+			geometry(c, m, n, &curv);
+			double w = inv_mass_i(c, m) + inv_mass_j(c, m);
+			rel(c, m, F(c, A), F(c, A2), ar);
+			double dl = -(dot3(ar, n) + curv) / w, dn[3] = { dl * n[0], dl * n[1], dl * n[2] };
+			m[W(c, LAM)] += dl;
+			add_force(c, m, dn, F(c, FN), F(c, FN2));
+			change = csf_max(change, fabs(dl));
+			size = csf_max(size, fabs(m[W(c, LAM)]));
+			if (!has_friction(c, m)) continue;
+			double *fc = m + W(c, F);
+			if (m[W(c, MODE)] == 1) { /* sliding */
+				double vr[3], vt[3];
+				rel(c, m, F(c, V), F(c, V2), vr);
+				tangential(vr, n, vt);
+				double s = mag3(vt), k = mu_k(c, m) * fabs(m[W(c, LAM)]);
+				for (int j = 0; j < 3; j++) f[j] = -k * (s > 0 ? vt[j] / s : m[W(c, DS) + j]);
+			} else { /* sticking: cancel the relative tangential acceleration */
+				double at[3];
+				rel(c, m, F(c, A), F(c, A2), ar);
+				tangential(ar, n, at);
+				for (int j = 0; j < 3; j++) f[j] = fc[j] - at[j] / w;
+			}
+			double df[3] = { f[0] - fc[0], f[1] - fc[1], f[2] - fc[2] };
+			memcpy(fc, f, sizeof f);
+			add_force(c, m, df, F(c, FF), F(c, FF2));
+			change = csf_max(change, mag3(df));
+			size = csf_max(size, mag3(f));
+		}
+		if (change <= 1e-15 * size) break;
+	}
+	for (uint32_t i = 0; i < p->ncontacts; i++) {
+		const csf_contact *c = &p->contacts[i];
+		double n[3], curv;
+		double gap = geometry(c, m, n, &curv);
+		double *g = m + W(c, G0);
+		if (m[W(c, MODE)] < 1) {
+			g[0] = gap;
+			g[1] = 1;
+			continue;
+		}
+		g[0] = m[W(c, LAM)];
+		if (!has_friction(c, m)) {
+			g[1] = 1;
+		} else if (m[W(c, MODE)] == 1) {
+			double vr[3], vt[3];
+			rel(c, m, F(c, V), F(c, V2), vr);
+			tangential(vr, n, vt);
+			g[1] = dot3(vt, m + W(c, DS));
+		} else {
+			g[1] = mu_s(c, m) * fabs(m[W(c, LAM)]) - mag3(m + W(c, F));
+		}
+	}
+}
+
+/* Changes the relative velocity of the pair by dv (along any direction), conserving momentum. */
+static void add_impulse(const csf_contact *c, double *m, const double dv[3])
+{
+	double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), w = wi + wj;
+	for (int k = 0; k < 3; k++) {
+		double j = dv[k] / w; /* the impulse on i */
+		m[F(c, V) + k] += j * wi;
+		if (!c->plane) m[F(c, V2) + k] -= j * wj;
+	}
+}
+
+/* Moves the bodies along n so that the gap is exactly zero (by the event's location error). */
+static void close_gap(const csf_contact *c, double *m, const double n[3], double gap)
+{
+	double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), w = wi + wj;
+	for (int k = 0; k < 3; k++) {
+		m[F(c, POS) + k] -= gap * n[k] * (wi / w);
+		if (!c->plane) m[F(c, POS2) + k] += gap * n[k] * (wj / w);
+	}
+}
+
+/* Enters contact: the relative normal velocity is zero; sticks if the tangential one is too. */
+static void enter_contact(const csf_contact *c, double *m, const double n[3])
+{
+	double vr[3], vt[3];
+	rel(c, m, F(c, V), F(c, V2), vr);
+	tangential(vr, n, vt);
+	double s = mag3(vt);
+	m[W(c, MODE)] = s == 0 && has_friction(c, m) ? 2 : 1;
+	for (int k = 0; k < 3; k++) m[W(c, DS) + k] = s > 0 ? vt[k] / s : 0;
+}
+
+/* Is the pair touching: the gap closed, up to the rounding of its positions? */
+static int touching(const csf_contact *c, const double *m, double gap)
+{
+	double scale = mag3(m + F(c, POS)) + mag3(m + F(c, POS2)) + m[F(c, R)] + (c->plane ? 0 : m[F(c, R2)]);
+	return gap <= 1e-12 * scale;
+}
+
+int csf_contact_settle(const csf_prog *p, double *m, long guard, double zeno, csf_eval_fn eval, void *ctx)
+{
+	if (guard >= 0) {
+		const csf_contact *c = &p->contacts[guard / 2];
+		double n[3], curv, gap = geometry(c, m, n, &curv);
+		if (guard % 2 == 0 && m[W(c, MODE)] >= 1) { /* the normal force would pull: lift-off */
+			m[W(c, MODE)] = 0;
+			close_gap(c, m, n, gap);
+		} else if (guard % 2 == 1 && m[W(c, MODE)] == 1) { /* sliding stopped: stick */
+			double vr[3], vt[3];
+			rel(c, m, F(c, V), F(c, V2), vr);
+			tangential(vr, n, vt);
+			for (int k = 0; k < 3; k++) vt[k] = -vt[k];
+			add_impulse(c, m, vt);
+			m[W(c, MODE)] = 2;
+		} else if (guard % 2 == 1 && m[W(c, MODE)] == 2) { /* static friction cannot hold: slide */
+			double *f = m + W(c, F), s = mag3(f);
+			for (int k = 0; k < 3; k++) m[W(c, DS) + k] = s > 0 ? -f[k] / s : 0;
+			m[W(c, MODE)] = 1;
+		}
+		/* a closing gap is an impact, handled below with every other one */
+	}
+	for (uint32_t iter = 0; iter < 100 + 10 * p->ncontacts; iter++) {
+		if (eval(ctx)) return -1;
+		/* the most violent impact first; each changes velocities, so look again */
+		long hit = -1;
+		double worst = 0;
+		int changed = 0;
+		for (uint32_t i = 0; i < p->ncontacts; i++) {
+			const csf_contact *c = &p->contacts[i];
+			if (m[W(c, MODE)] >= 1) continue;
+			double n[3], curv, vr[3], ar[3];
+			double gap = geometry(c, m, n, &curv);
+			if (!touching(c, m, gap)) continue;
+			rel(c, m, F(c, V), F(c, V2), vr);
+			rel(c, m, F(c, A), F(c, A2), ar);
+			double vn = dot3(vr, n), an = dot3(ar, n) + curv;
+			if (vn < worst) worst = vn, hit = (long)i;
+			else if (vn <= 0 && an < 0 && hit < 0) { /* at rest and pressed together: contact */
+				close_gap(c, m, n, gap);
+				for (int k = 0; k < 3; k++) vr[k] = -vn * n[k];
+				add_impulse(c, m, vr);
+				enter_contact(c, m, n);
+				changed = 1;
+			}
+		}
+		if (hit >= 0) {
+			const csf_contact *c = &p->contacts[hit];
+			double n[3], curv, vr[3], ar[3], dv[3];
+			double gap = geometry(c, m, n, &curv);
+			rel(c, m, F(c, V), F(c, V2), vr);
+			rel(c, m, F(c, A), F(c, A2), ar);
+			double vn = dot3(vr, n), an = dot3(ar, n) + curv, e = restitution(c, m);
+			double sep = -e * vn;
+			/* the bounces that follow last 2 sep/|an| (1 + e + e^2 + ...): at rest if that is below zeno */
+			int rest = sep == 0 || (e < 1 && an < 0 && 2 * sep / (-an * (1 - e)) <= zeno);
+			double target = rest ? 0 : sep;
+			for (int k = 0; k < 3; k++) dv[k] = (target - vn) * n[k];
+			add_impulse(c, m, dv);
+			close_gap(c, m, n, gap);
+			if (rest) enter_contact(c, m, n);
+			continue;
+		}
+		for (uint32_t i = 0; i < p->ncontacts; i++) {
+			const csf_contact *c = &p->contacts[i];
+			if (m[W(c, MODE)] < 1) continue;
+			if (m[W(c, G0)] < 0) { /* pulls: the bodies separate */
+				double n[3], curv, gap = geometry(c, m, n, &curv);
+				m[W(c, MODE)] = 0;
+				close_gap(c, m, n, gap);
+				changed = 1;
+			} else if (m[W(c, MODE)] == 2 && m[W(c, G1)] < 0) {
+				double *f = m + W(c, F), s = mag3(f);
+				for (int k = 0; k < 3; k++) m[W(c, DS) + k] = s > 0 ? -f[k] / s : 0;
+				m[W(c, MODE)] = 1;
+				changed = 1;
+			}
+		}
+		if (!changed) return 0;
+	}
+	return 0;
+}
