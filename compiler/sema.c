@@ -1217,7 +1217,7 @@ static void inst_contact(Stmt *s, Object **bind, int nbind)
 	Contact *c = xalloc(sizeof *c);
 	c->a = A, c->b = B, c->plane = plane, c->src = cur_src, c->st = s;
 	static const char *const body[10] = { NULL, "v", "a", "m", NULL, "cr", "mu_s", "mu_k", "FN", "Ff" };
-	static const char *const plane_props[10] = { NULL, NULL, NULL, NULL, NULL, "cr", "mu_s", "mu_k", NULL, NULL };
+	static const char *const plane_props[10] = { NULL, "edge", NULL, NULL, NULL, "cr", "mu_s", "mu_k", NULL, NULL };
 	for (int k = 0; k < 2; k++) {
 		Object *o = k ? B : A;
 		const char *const *names = k && plane ? plane_props : body;

@@ -327,7 +327,7 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 		for (int f = 0; ok && f < CSF_CF_N; f++) {
 			uint32_t w = width[f];
 			if (c->plane && f == CSF_CF_R2) w = 3; /* a plane's normal */
-			if (c->plane && (f == CSF_CF_V2 || f == CSF_CF_A2 || f == CSF_CF_M2 || f == CSF_CF_FN2 || f == CSF_CF_FF2)) continue;
+			if (c->plane && (f == CSF_CF_A2 || f == CSF_CF_M2 || f == CSF_CF_FN2 || f == CSF_CF_FF2)) continue;
 			ok = slot_ok(p, c->s[f], w);
 		}
 		if (!ok) return fail(err, errlen, "contact %lu out of range", (unsigned long)i);

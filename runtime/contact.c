@@ -75,6 +75,21 @@ static double geometry(const csf_contact *c, const double *m, double n[3], doubl
 	return dot3(d, n) - R;
 }
 
+/*
+ * A plane with an edge (V2 holds the vector from its point to the edge line,
+ * perpendicular to it; zero: no edge) ends there: how far inside body i is
+ * (negative past the edge). HUGE_VAL without an edge.
+ */
+static double inside(const csf_contact *c, const double *m)
+{
+	if (!c->plane) return HUGE_VAL;
+	const double *e = m + F(c, V2), *pi = m + F(c, POS), *q = m + F(c, POS2);
+	double len = mag3(e);
+	if (!(len > 0)) return HUGE_VAL;
+	double d[3] = { pi[0] - q[0], pi[1] - q[1], pi[2] - q[2] };
+	return len - dot3(d, e) / len;
+}
+
 static int has_friction(const csf_contact *c, const double *m)
 {
 	return m[F(c, MUS)] > 0 || m[F(c, MUK)] > 0 || (m[F(c, MUS2)] > 0 || m[F(c, MUK2)] > 0);
@@ -156,12 +171,13 @@ void csf_contact_apply(const csf_prog *p, double *m)
 		double n[3], curv;
 		double gap = geometry(c, m, n, &curv);
 		double *g = m + W(c, G0);
-		if (m[W(c, MODE)] < 1) {
-			g[0] = gap;
+		double in = inside(c, m);
+		if (m[W(c, MODE)] < 1) { /* the gap closes over the plane (not past its edge) */
+			g[0] = csf_max(gap, -in);
 			g[1] = 1;
 			continue;
 		}
-		g[0] = m[W(c, LAM)];
+		g[0] = csf_min(m[W(c, LAM)], in); /* the normal force would pull, or the body left the edge */
 		if (!has_friction(c, m)) {
 			g[1] = 1;
 		} else if (m[W(c, MODE)] == 1) {
@@ -211,7 +227,7 @@ static void enter_contact(const csf_contact *c, double *m, const double n[3])
 static int touching(const csf_contact *c, const double *m, double gap)
 {
 	double scale = mag3(m + F(c, POS)) + mag3(m + F(c, POS2)) + m[F(c, R)] + (c->plane ? 0 : m[F(c, R2)]);
-	return gap <= 1e-12 * scale;
+	return gap <= 1e-12 * scale && inside(c, m) >= 0;
 }
 
 int csf_contact_settle(const csf_prog *p, double *m, long guard, double zeno, csf_eval_fn eval, void *ctx)

@@ -79,7 +79,7 @@ typedef struct csf_event { uint32_t kind, value, mode, src; } csf_event;
 /*
  * A contact pair (mechanics/rules, rules 1 to 4): slots of body i's
  * properties, of body j's (or of a plane's: its point in POS2, its normal in
- * R2), and CSF_CW_N work slots of the pair's own state. See contact.c.
+ * R2, its edge in V2), and CSF_CW_N work slots of the pair's own state. See contact.c.
  */
 enum csf_contact_field {
 	CSF_CF_POS, CSF_CF_V, CSF_CF_A, CSF_CF_M, CSF_CF_R, CSF_CF_CR, CSF_CF_MUS, CSF_CF_MUK, CSF_CF_FN, CSF_CF_FF,
