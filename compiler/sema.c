@@ -1186,6 +1186,25 @@ static void inst_rule(Stmt *s, Object **bind, int nbind)
 	vec_push(cur_insts, I);
 }
 
+/* Is the rule's call the contact routine, with properties for arguments? Reports if not. */
+static int check_call(Stmt *s)
+{
+	Expr *x = s->call;
+	if (x->kind != E_CALL || strcmp(x->name, "contact") != 0 || x->nargs != 4) {
+		error_at(x->loc, "a rule is an equation, or the contact routine 'contact(pos, radius, pos$1, radius$1)'");
+		return 0;
+	}
+	for (int i = 0; i < 4; i++) {
+		Expr *a = x->args[i];
+		int want = i < 2 ? 0 : 1;
+		if (!((a->kind == E_NAME && want == 0) || (a->kind == E_DOLLAR && a->n == want))) {
+			error_at(a->loc, "argument %d of contact() must be a property of %s", i + 1, want ? "$1" : "$0");
+			return 0;
+		}
+	}
+	return 1;
+}
+
 /*
  * contact(pos, radius, pos$1, radius$1) or contact(pos, radius, point$1,
  * normal$1): a pair of mass points or a mass point and a plane, for the
@@ -1195,18 +1214,6 @@ static void inst_rule(Stmt *s, Object **bind, int nbind)
 static void inst_contact(Stmt *s, Object **bind, int nbind)
 {
 	Expr *x = s->call;
-	if (x->kind != E_CALL || strcmp(x->name, "contact") != 0 || x->nargs != 4) {
-		error_at(x->loc, "a rule is an equation, or the contact routine 'contact(pos, radius, pos$1, radius$1)'");
-		return;
-	}
-	for (int i = 0; i < 4; i++) {
-		Expr *a = x->args[i];
-		int want = i < 2 ? 0 : 1;
-		if (!((a->kind == E_NAME && want == 0) || (a->kind == E_DOLLAR && a->n == want))) {
-			error_at(a->loc, "argument %d of contact() must be a property of %s", i + 1, want ? "$1" : "$0");
-			return;
-		}
-	}
 	if (nbind < 2) return;
 	Object *A = bind[0], *B = bind[1];
 	Var *geo[4];
@@ -1500,7 +1507,8 @@ Model *sema_run(Stmt *stmts)
 			continue;
 		}
 		cur_src = stmt_src(s);
-		for_each_binding(s, s->call ? inst_contact : inst_rule);
+		if (!s->call) for_each_binding(s, inst_rule);
+		else if (check_call(s)) for_each_binding(s, inst_contact);
 	}
 	for (int i = 0; i < M->contacts.n; i++) {
 		Contact *c = M->contacts.v[i];
@@ -1548,7 +1556,14 @@ void sema_explain(Model *Mo, FILE *f)
 				fprintf(f, "; computed in %s", I->needed[0] && I->needed[1] ? "rhs and out" : I->needed[0] ? "rhs" : "out");
 			fputc('\n', f);
 		}
-		if (!n) fprintf(f, "  applies to no object\n");
+		for (int k = 0; k < Mo->contacts.n; k++) {
+			Contact *c = Mo->contacts.v[k];
+			if (c->st != s) continue;
+			n++;
+			fprintf(f, "  for %s with %s: the contact routine (%s); computed in rhs and out\n", c->a->name, c->b->name,
+			        c->plane ? "a mass point and a plane" : "two mass points");
+		}
+		if (!n) fprintf(f, "  applies to no %s\n", s->call ? "pair that can touch" : "object");
 	}
 	for (int i = 0; i < Mo->objects.n; i++) {
 		Object *o = Mo->objects.v[i];

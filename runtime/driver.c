@@ -101,6 +101,7 @@ typedef struct run {
 	int fail;
 	unsigned long nrhs, njac; /* evaluations, for --stats */
 	unsigned long nevents;
+	long last; /* the guard of the last event */
 	/* events: guards (conditional rules' comparisons, then two per contact), work vectors */
 	uint32_t ng;
 	double *ga, *gb, *gs, *ya, *fa, *fb, *ys, *fs, *ye;
@@ -445,6 +446,7 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 		memcpy(y, r->ye, n * sizeof *y);
 		*t = best;
 		r->nevents++;
+		r->last = which;
 		if (update_modes(r, best, y, which, zeno)) return CSF_ODE_STOPPED;
 		csf_ode_restart(ode);
 		if (guards_at(r, best, y, r->ga)) return CSF_ODE_STOPPED;
@@ -551,6 +553,10 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			if (st == CHATTER) {
 				char tb[32];
 				csf_fmt_double(tb, t);
+				uint32_t src = r.last < (long)p->nevents ? p->events[r.last].src
+				                                         : p->contacts[(r.last - p->nevents) / 2].src;
+				const csf_src *sr = &p->srcs[src];
+				fprintf(err, "%s:%lu: ", csf_str(p, p->files[sr->file]), (unsigned long)sr->line);
 				fprintf(err,
 				        "error: at t=%s the conditions switch back and forth without time advancing (%s): "
 				        "the model has no solution past this point (a sliding mode; make the switching "
