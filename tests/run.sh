@@ -155,6 +155,10 @@ done
 printf 'object p: x = 1 m\nobject p: v = 0 m/s\nobject p: k = 1 s^-2\nrule: x'"'"' = v\nrule: v'"'"' = -k * x\nassert x < 2 m\ninc t till 1 by 0.5 watch x, v\n' >"$T/h.csf"
 "$CSFC" "$T/h.csf" -o "$T/h.csfb" 2>/dev/null
 if "$B/fuzz-bytecode" "$T/h.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode: $(tail -n 3 "$T/fuzz")"; fi
+# the same for a program with events and contacts (their tables, EVGT, CONTACT)
+printf 'using mechanics/mass_point\nobject b: mass_point\nobject b: pos = (0, 0, 0.1) m\nobject b: cr = 0.5\nobject f: plane\nusing mechanics/rules\nrule F: if t < 0.2 s:\n    W = g.mul(m)\nelse:\n    W = g.mul(-m)\ninc t till 0.4 s by 0.2 s watch pos\n' >"$T/hc.csf"
+"$CSFC" -I stdlib "$T/hc.csf" -o "$T/hc.csfb" 2>"$T/err" || bad "hostile bytecode: the contact model does not compile: $(head -n 1 "$T/err")"
+if "$B/fuzz-bytecode" "$T/hc.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode with contacts: $(tail -n 3 "$T/fuzz")"; fi
 # and through the real executable, on a sample of corruptions (each byte inverted)
 size=$(wc -c <"$T/h.csfb")
 vmfail=0
