@@ -248,13 +248,7 @@ int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out
                     const double *y1, const double *f1, double hstep)
 {
 	size_t n = o->n;
-	if (o->m->multistep) {
-		double s = h / hstep, s2 = s * s, s3 = s2 * s;
-		double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
-		for (size_t i = 0; i < n; i++)
-			out[i] = h00 * y[i] + h10 * hstep * f0[i] + h01 * y1[i] + h11 * hstep * f1[i];
-		return 0;
-	}
+	(void)f0, (void)y1, (void)f1, (void)hstep;
 	memcpy(out, y, n * sizeof *y);
 	if (work(o)) return 1;
 	if (!o->m->type) {
@@ -265,9 +259,14 @@ int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out
 	}
 	if (*o->m->type == gsl_odeiv2_step_rk4) return rk4_step(o, t, h, out);
 	if (!o->sub) {
-		o->sub = gsl_odeiv2_step_alloc(*o->m->type, n);
+		/* a multistep method cannot start from anywhere: a one-step method of high order
+		   takes its place (implicit where the method is, for stiff problems) */
+		const gsl_odeiv2_step_type *T = !o->m->multistep ? *o->m->type
+		                                : o->m->jacobian ? gsl_odeiv2_step_rk4imp : gsl_odeiv2_step_rk8pd;
+		o->sub = gsl_odeiv2_step_alloc(T, n);
 		o->yerr = malloc((n ? n : 1) * sizeof *o->yerr);
 		if (!o->sub || !o->yerr) return 1;
+		gsl_odeiv2_step_set_driver(o->sub, o->drv); /* the implicit methods read its tolerance */
 	}
 	gsl_odeiv2_step_reset(o->sub);
 	return gsl_odeiv2_step_apply(o->sub, t, h, out, o->yerr, NULL, NULL, &o->sys) != GSL_SUCCESS;

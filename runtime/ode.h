@@ -53,8 +53,9 @@ int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *
  * The state at t + h (0 < h <= the last step) from (t, y), by one step of
  * the method without error control (to locate an event inside a step just
  * taken). The multistep methods, which cannot start a step from anywhere,
- * interpolate instead: the cubic Hermite interpolant of the last step
- * (y0, f0 at its start t, y1, f1 at its end t + hstep). 0, or 1 if f stopped.
+ * take one step of rk8pd (msadams) or rk4imp (msbdf) instead. The last
+ * step's ends (f0 at t, y1 and f1 at t + hstep) are not used at present.
+ * 0, or 1 if f stopped.
  */
 int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out, const double *f0,
                     const double *y1, const double *f1, double hstep);
