@@ -1,4 +1,5 @@
 /* The bytecode writer, reader and verifier. */
+#include <math.h>
 #include <string.h>
 
 #include "suites.h"
@@ -109,6 +110,69 @@ START_TEST(test_verifier)
 }
 END_TEST
 
+/* A block on a 30 degree ramp, held by static friction; and a conditional force. */
+static const char *contact_model =
+	"object ramp: vector point = (0, 0, 0) m\n"
+	"object ramp: vector normal = (-0.5, 0, 0.8660254037844386)\n"
+	"object ramp: vector edge = (0, 0, 0) m\n"
+	"object ramp: cr = 1\nobject ramp: mu_s = 0\nobject ramp: mu_k = 0\n"
+	"object b: m = 2 kg\nobject b: vector v = (0, 0, 0) m/s\nobject b: vector a = (0, 0, 0) m/s^2\n"
+	"object b: vector pos = (0, 0, 0) m\nobject b: radius = 0 m\nobject b: cr = 1\n"
+	"object b: mu_s = 1\nobject b: mu_k = 0.5\n"
+	"object b: vector FN = (0, 0, 0) N\nobject b: vector Ff = (0, 0, 0) N\n"
+	"rule: contact(pos, radius, point$1, normal$1)\n"
+	"rule: if t < 1 s:\n    a = g\nelse:\n    a = g.mul(2)\n"
+	"rule: v' = a\nrule: pos' = v\n"
+	"inc t till 1 s by 0.5 s watch b.a, b.FN, b.Ff\n";
+
+/* The contact routine on a resting, sticking block: a = 0, FN = m g cos30 n, Ff = m g sin30 up the slope. */
+START_TEST(test_contact_routine)
+{
+	csf_prog p;
+	ck_assert_int_eq(compile_string(contact_model, &p, NULL), 0);
+	ck_assert_uint_eq(p.ncontacts, 1);
+	ck_assert_uint_eq(p.nevents, 1);
+	double *m = malloc(p.nmem * sizeof *m);
+	memcpy(m, p.mem0, p.nmem * sizeof *m);
+	const csf_contact *c = &p.contacts[0];
+	m[c->s[CSF_CF_WORK] + CSF_CW_MODE] = 2; /* in contact, sticking */
+	m[p.events[0].mode] = 1;                 /* t < 1 s */
+	ck_assert_int_eq(csf_vm_exec(&p, CSF_SEC_RHS, m), -1);
+	double g = 9.80665, mg = 2 * g, s30 = 0.5, c30 = 0.8660254037844386;
+	const double *a = m + c->s[CSF_CF_A], *fn = m + c->s[CSF_CF_FN], *ff = m + c->s[CSF_CF_FF];
+	double want_fn[3] = { -mg * c30 * s30, 0, mg * c30 * c30 }, want_ff[3] = { mg * s30 * c30, 0, mg * s30 * s30 };
+	for (int k = 0; k < 3; k++) {
+		ck_assert_msg(fabs(a[k]) < 1e-14, "a[%d] = %g", k, a[k]);
+		ck_assert_msg(fabs(fn[k] - want_fn[k]) < 1e-13, "FN[%d] = %.17g, want %.17g", k, fn[k], want_fn[k]);
+		ck_assert_msg(fabs(ff[k] - want_ff[k]) < 1e-13, "Ff[%d] = %.17g, want %.17g", k, ff[k], want_ff[k]);
+	}
+	/* guards: the normal force pushes (m g cos30 > 0); static friction holds (mu_s N - |f| > 0) */
+	ck_assert(fabs(m[c->s[CSF_CF_WORK] + CSF_CW_G0] - mg * c30) < 1e-13);
+	ck_assert(fabs(m[c->s[CSF_CF_WORK] + CSF_CW_G1] - mg * (c30 - s30)) < 1e-13);
+	/* the verifier checks both tables */
+	char err[256];
+	csf_contact keepc = p.contacts[0];
+	csf_event keepe = p.events[0];
+	p.contacts[0].s[CSF_CF_V] = p.nmem - 1;
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
+	ck_assert(strstr(err, "contact") != NULL);
+	p.contacts[0] = keepc;
+	p.contacts[0].plane = 2;
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
+	p.contacts[0] = keepc;
+	p.events[0].mode = p.nmem;
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
+	ck_assert(strstr(err, "event") != NULL);
+	p.events[0] = keepe;
+	p.events[0].kind = 2;
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
+	p.events[0] = keepe;
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), 0);
+	free(m);
+	csf_prog_free(&p);
+}
+END_TEST
+
 START_TEST(test_disassembler)
 {
 	csf_prog p;
@@ -132,6 +196,7 @@ Suite *bytecode_suite(void)
 	tcase_add_test(tc, test_roundtrip);
 	tcase_add_test(tc, test_header_checks);
 	tcase_add_test(tc, test_verifier);
+	tcase_add_test(tc, test_contact_routine);
 	tcase_add_test(tc, test_disassembler);
 	suite_add_tcase(s, tc);
 	return s;
