@@ -318,7 +318,7 @@ static int update_modes(run *r, double t, double *y, long which, double zeno)
 static double locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const double *yb, double lo, double glo,
                      double hi, double ghi)
 {
-	const double tol = 1e-13;
+	const double tol = csf_min(1e-13, 1e-10 * r->p->by); /* seconds; finer for scenes on tiny time scales */
 	int side = 0;
 	while (hi - lo > tol && hi - lo > 4e-16 * fabs(hi)) {
 		double c = hi - ghi * (hi - lo) / (ghi - glo);
