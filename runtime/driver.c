@@ -325,7 +325,7 @@ static double locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, con
 		if (!(c > lo && c < hi)) c = lo + (hi - lo) / 2;
 		if (c - lo < tol / 4) c = lo + tol / 4; /* shrink the bracket from both ends */
 		if (hi - c < tol / 4) c = hi - tol / 4;
-		if (csf_ode_substep(ode, ta, r->ya, c - ta, r->ys, r->fa, yb, r->fb, tb - ta) ||
+		if (csf_ode_substep(ode, ta, r->ya, c - ta, r->ys) ||
 		    guards_at(r, c, r->ys, r->gs))
 			return NAN;
 		double gc = r->gs[k];
@@ -343,7 +343,7 @@ static double locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, con
 		memcpy(r->ys, yb, r->p->ny * sizeof *yb);
 		return hi;
 	}
-	if (csf_ode_substep(ode, ta, r->ya, hi - ta, r->ys, r->fa, yb, r->fb, tb - ta)) return NAN;
+	if (csf_ode_substep(ode, ta, r->ya, hi - ta, r->ys)) return NAN;
 	return hi;
 }
 
@@ -407,7 +407,7 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 			/* the exact state's guards at lo and hi (the interpolant only pointed here) */
 			double l = lo, gl = r->ga[k], u = hi, gu = gh[k];
 			if (lo > ta) {
-				if (csf_ode_substep(ode, ta, r->ya, lo - ta, r->ys, r->fa, y, r->fb, tb - ta) ||
+				if (csf_ode_substep(ode, ta, r->ya, lo - ta, r->ys) ||
 				    guards_at(r, lo, r->ys, r->gs)) {
 					free(gh);
 					return CSF_ODE_STOPPED;
@@ -416,7 +416,7 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 				else gl = r->gs[k];
 			}
 			if (hi < tb) {
-				if (csf_ode_substep(ode, ta, r->ya, hi - ta, r->ys, r->fa, y, r->fb, tb - ta) ||
+				if (csf_ode_substep(ode, ta, r->ya, hi - ta, r->ys) ||
 				    guards_at(r, hi, r->ys, r->gs)) {
 					free(gh);
 					return CSF_ODE_STOPPED;

@@ -244,11 +244,9 @@ int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *
 	return CSF_ODE_FAILED;
 }
 
-int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out, const double *f0,
-                    const double *y1, const double *f1, double hstep)
+int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out)
 {
 	size_t n = o->n;
-	(void)f0, (void)y1, (void)f1, (void)hstep;
 	memcpy(out, y, n * sizeof *y);
 	if (work(o)) return 1;
 	if (!o->m->type) {

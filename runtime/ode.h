@@ -53,12 +53,10 @@ int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *
  * The state at t + h (0 < h <= the last step) from (t, y), by one step of
  * the method without error control (to locate an event inside a step just
  * taken). The multistep methods, which cannot start a step from anywhere,
- * take one step of rk8pd (msadams) or rk4imp (msbdf) instead. The last
- * step's ends (f0 at t, y1 and f1 at t + hstep) are not used at present.
+ * take one step of rk8pd (msadams) or rk4imp (msbdf) instead.
  * 0, or 1 if f stopped.
  */
-int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out, const double *f0,
-                    const double *y1, const double *f1, double hstep);
+int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out);
 
 /* Forgets the history of the integration: the state jumped (an event). */
 void csf_ode_restart(csf_ode *o);
