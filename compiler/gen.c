@@ -163,8 +163,7 @@ static int emit_event(Gen *G, RExpr *e, uint32_t dest)
 {
 	int op = e->op;
 	if (!G->evinst || !(op == CSF_OP_LT || op == CSF_OP_LE || op == CSF_OP_GT || op == CSF_OP_GE)) return 0;
-	char key[32];
-	snprintf(key, sizeof key, "%p", (void *)e);
+	char *key = xprintf("%p", (void *)e);
 	uintptr_t known = (uintptr_t)map_get(&G->evmap, key);
 	if (!known) {
 		G->events = grow(G->events, &G->capevents, G->nevents + 1, sizeof *G->events);
@@ -173,7 +172,7 @@ static int emit_event(Gen *G, RExpr *e, uint32_t dest)
 		int strict = op == CSF_OP_LT || op == CSF_OP_GT;
 		G->events[G->nevents++] = (csf_event){ strict ? 0u : 1u, value, mode, (uint32_t)G->evinst->src };
 		known = G->nevents;
-		map_put(&G->evmap, xstrdup(key), (void *)known);
+		map_put(&G->evmap, key, (void *)known);
 	}
 	const csf_event *ev = &G->events[known - 1];
 	uint32_t x = emit(G, e->a[0]), y = emit(G, e->a[1]);
@@ -700,17 +699,20 @@ int gen_program(Model *M, csf_prog *p)
 	}
 
 	/* Contacts need every body's acceleration, in OUT too (a, FN and Ff are watchable). */
+	/* The contact routine runs after the last of them: last_a, an index into M->insts. */
 	int last_a = -1;
+	Map dets = { 0 }; /* the instances that determine a body's a, by address */
 	for (int i = 0; i < M->contacts.n; i++) {
 		Contact *c = M->contacts.v[i];
 		for (int k = 0; k < 2; k++) {
 			Var *a = c->f[k ? CSF_CF_A2 : CSF_CF_A];
 			if (!a || !a->det) continue;
 			mark(G, a->det, CSF_SEC_OUT);
-			for (int j = 0; j < M->insts.n; j++)
-				if (M->insts.v[j] == a->det && j > last_a) last_a = j;
+			map_put(&dets, xprintf("%p", (void *)a->det), a->det);
 		}
 	}
+	for (int j = 0; j < M->insts.n && M->contacts.n; j++)
+		if (map_get(&dets, xprintf("%p", M->insts.v[j]))) last_a = j;
 
 	/* Layout: t, state, derivatives. */
 	p->tslot = alloc_mem(G, 1, NULL);

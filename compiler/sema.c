@@ -1223,14 +1223,15 @@ static void inst_contact(Stmt *s, Object **bind, int nbind)
 	if (!plane && A->index > B->index && !s->has_for) return; /* the pair (B, A) is the same */
 	Contact *c = xalloc(sizeof *c);
 	c->a = A, c->b = B, c->plane = plane, c->src = cur_src, c->st = s;
-	static const char *const body[10] = { NULL, "v", "a", "m", NULL, "cr", "mu_s", "mu_k", "FN", "Ff" };
-	static const char *const plane_props[10] = { NULL, "edge", NULL, NULL, NULL, "cr", "mu_s", "mu_k", NULL, NULL };
+	static const char *const body[CSF_CF_POS2] = { NULL, "v", "a", "m", NULL, "cr", "mu_s", "mu_k", "FN", "Ff" };
+	static const char *const plane_props[CSF_CF_POS2] = { NULL, "edge", NULL, NULL, NULL, "cr", "mu_s", "mu_k", NULL, NULL };
 	for (int k = 0; k < 2; k++) {
 		Object *o = k ? B : A;
 		const char *const *names = k && plane ? plane_props : body;
-		c->f[10 * k + CSF_CF_POS] = geo[2 * k];
-		c->f[10 * k + CSF_CF_R] = geo[2 * k + 1];
-		for (int f = 0; f < 10; f++) {
+		int base = k ? CSF_CF_POS2 : CSF_CF_POS; /* body j's fields follow body i's, in the same order */
+		c->f[base + CSF_CF_POS] = geo[2 * k];
+		c->f[base + CSF_CF_R] = geo[2 * k + 1];
+		for (int f = 0; f < CSF_CF_POS2; f++) {
 			if (!names[f]) continue;
 			Var *v = prop_of(o, names[f]);
 			if (!v || v->isvec != (f == CSF_CF_V || f == CSF_CF_A || f == CSF_CF_FN || f == CSF_CF_FF)) {
@@ -1239,7 +1240,7 @@ static void inst_contact(Stmt *s, Object **bind, int nbind)
 				         A->name, B->name, o->name, v && v->isvec ? "a scalar" : v ? "a vector" : "the", names[f]);
 				return;
 			}
-			c->f[10 * k + f] = v;
+			c->f[base + f] = v;
 		}
 	}
 	if (!c->f[CSF_CF_POS]->state || !c->f[CSF_CF_V]->state || (!plane && (!c->f[CSF_CF_POS2]->state || !c->f[CSF_CF_V2]->state))) {

@@ -6,6 +6,7 @@
 
 #include "csfc.h"
 #include "ast.h"
+#include "csf.h"
 
 typedef struct Object Object;
 typedef struct Inst Inst;
@@ -89,7 +90,7 @@ typedef struct Contact {
 	int plane;       /* b is a plane */
 	int src;
 	Stmt *st;
-	Var *f[20];      /* properties, in the order of enum csf_contact_field */
+	Var *f[CSF_CF_WORK]; /* properties, in the order of enum csf_contact_field (csf.h) */
 	double dir[3];   /* two points: the unit vector from b to a */
 } Contact;
 

@@ -119,6 +119,14 @@ static void tangential(const double x[3], const double n[3], double out[3])
 	for (int k = 0; k < 3; k++) out[k] = x[k] - xn * n[k];
 }
 
+/* The relative tangential velocity of the pair (normal n). */
+static void slip_velocity(const csf_contact *c, const double *m, const double n[3], double vt[3])
+{
+	double vr[3];
+	rel(c, m, F(c, V), F(c, V2), vr);
+	tangential(vr, n, vt);
+}
+
 void csf_contact_apply(const csf_prog *p, double *m)
 {
 	for (uint32_t i = 0; i < p->ncontacts; i++) {
@@ -147,9 +155,8 @@ void csf_contact_apply(const csf_prog *p, double *m)
 			if (!has_friction(c, m)) continue;
 			double *fc = m + W(c, F);
 			if (m[W(c, MODE)] == 1) { /* sliding */
-				double vr[3], vt[3];
-				rel(c, m, F(c, V), F(c, V2), vr);
-				tangential(vr, n, vt);
+				double vt[3];
+				slip_velocity(c, m, n, vt);
 				double s = mag3(vt), k = mu_k(c, m) * fabs(m[W(c, LAM)]);
 				for (int j = 0; j < 3; j++) f[j] = -k * (s > 0 ? vt[j] / s : m[W(c, DS) + j]);
 			} else { /* sticking: cancel the relative tangential acceleration */
@@ -181,9 +188,8 @@ void csf_contact_apply(const csf_prog *p, double *m)
 		if (!has_friction(c, m)) {
 			g[1] = 1;
 		} else if (m[W(c, MODE)] == 1) {
-			double vr[3], vt[3];
-			rel(c, m, F(c, V), F(c, V2), vr);
-			tangential(vr, n, vt);
+			double vt[3];
+			slip_velocity(c, m, n, vt);
 			g[1] = dot3(vt, m + W(c, DS));
 		} else {
 			g[1] = mu_s(c, m) * fabs(m[W(c, LAM)]) - mag3(m + W(c, F));
@@ -215,9 +221,8 @@ static void close_gap(const csf_contact *c, double *m, const double n[3], double
 /* Enters contact: the relative normal velocity is zero; sticks if the tangential one is too. */
 static void enter_contact(const csf_contact *c, double *m, const double n[3])
 {
-	double vr[3], vt[3];
-	rel(c, m, F(c, V), F(c, V2), vr);
-	tangential(vr, n, vt);
+	double vt[3];
+	slip_velocity(c, m, n, vt);
 	double s = mag3(vt);
 	m[W(c, MODE)] = s == 0 && has_friction(c, m) ? 2 : 1;
 	for (int k = 0; k < 3; k++) m[W(c, DS) + k] = s > 0 ? vt[k] / s : 0;
@@ -230,28 +235,36 @@ static int touching(const csf_contact *c, const double *m, double gap)
 	return gap <= 1e-12 * scale && inside(c, m) >= 0;
 }
 
-int csf_contact_settle(const csf_prog *p, double *m, long guard, double zeno, csf_eval_fn eval, void *ctx)
+/* Lift-off: apart, exactly touching. */
+static void separate(const csf_contact *c, double *m)
 {
-	if (guard >= 0) {
-		const csf_contact *c = &p->contacts[guard / 2];
-		double n[3], curv, gap = geometry(c, m, n, &curv);
-		if (guard % 2 == 0 && m[W(c, MODE)] >= 1) { /* the normal force would pull: lift-off */
-			m[W(c, MODE)] = 0;
-			close_gap(c, m, n, gap);
-		} else if (guard % 2 == 1 && m[W(c, MODE)] == 1) { /* sliding stopped: stick */
-			double vr[3], vt[3];
-			rel(c, m, F(c, V), F(c, V2), vr);
-			tangential(vr, n, vt);
-			for (int k = 0; k < 3; k++) vt[k] = -vt[k];
-			add_impulse(c, m, vt);
-			m[W(c, MODE)] = 2;
-		} else if (guard % 2 == 1 && m[W(c, MODE)] == 2) { /* static friction cannot hold: slide */
-			double *f = m + W(c, F), s = mag3(f);
-			for (int k = 0; k < 3; k++) m[W(c, DS) + k] = s > 0 ? -f[k] / s : 0;
-			m[W(c, MODE)] = 1;
-		}
-		/* a closing gap is an impact, handled below with every other one */
-	}
+	double n[3], curv, gap = geometry(c, m, n, &curv);
+	m[W(c, MODE)] = 0;
+	close_gap(c, m, n, gap);
+}
+
+/* Sliding has stopped: the relative tangential velocity becomes exactly zero, and the pair sticks. */
+static void stick(const csf_contact *c, double *m)
+{
+	double n[3], curv, vt[3];
+	geometry(c, m, n, &curv);
+	slip_velocity(c, m, n, vt);
+	for (int k = 0; k < 3; k++) vt[k] = -vt[k];
+	add_impulse(c, m, vt);
+	m[W(c, MODE)] = 2;
+}
+
+/* Static friction cannot hold: the pair slides, the way the friction force held it back from. */
+static void slide(const csf_contact *c, double *m)
+{
+	double *f = m + W(c, F), s = mag3(f);
+	for (int k = 0; k < 3; k++) m[W(c, DS) + k] = s > 0 ? -f[k] / s : 0;
+	m[W(c, MODE)] = 1;
+}
+
+int csf_contact_settle(const csf_prog *p, double *m, double zeno, csf_eval_fn eval, void *ctx)
+{
+	/* each pass evaluates the forces and guards of the current modes, then acts on what they say */
 	for (uint32_t iter = 0; iter < 100 + 10 * p->ncontacts; iter++) {
 		if (eval(ctx)) return -1;
 		/* the most violent impact first; each changes velocities, so look again */
@@ -293,20 +306,13 @@ int csf_contact_settle(const csf_prog *p, double *m, long guard, double zeno, cs
 			if (rest) enter_contact(c, m, n);
 			continue;
 		}
+		/* a guard of a pair in contact that is negative: its transition (contact.c's header) */
 		for (uint32_t i = 0; i < p->ncontacts; i++) {
 			const csf_contact *c = &p->contacts[i];
-			if (m[W(c, MODE)] < 1) continue;
-			if (m[W(c, G0)] < 0) { /* pulls: the bodies separate */
-				double n[3], curv, gap = geometry(c, m, n, &curv);
-				m[W(c, MODE)] = 0;
-				close_gap(c, m, n, gap);
-				changed = 1;
-			} else if (m[W(c, MODE)] == 2 && m[W(c, G1)] < 0) {
-				double *f = m + W(c, F), s = mag3(f);
-				for (int k = 0; k < 3; k++) m[W(c, DS) + k] = s > 0 ? -f[k] / s : 0;
-				m[W(c, MODE)] = 1;
-				changed = 1;
-			}
+			double mode = m[W(c, MODE)];
+			if (mode < 1) continue;
+			if (m[W(c, G0)] < 0) separate(c, m), changed = 1;
+			else if (m[W(c, G1)] < 0) (mode == 1 ? stick : slide)(c, m), changed = 1;
 		}
 		if (!changed) return 0;
 	}

@@ -172,12 +172,11 @@ typedef int (*csf_eval_fn)(void *ctx);
 /*
  * Makes every contact's mode consistent at the current instant, changing
  * the velocities (and positions, by rounding-size amounts) in m: impacts
- * (restitution), the contacts that come to rest, lift-off, stick and slip.
- * guard: the guard that went negative (2 * contact + 0 or 1), or -1 at t = 0.
- * zeno: the time below which a train of bounces counts as at rest.
- * Returns 0, or -1 if eval failed.
+ * (restitution), the contacts that come to rest, lift-off, stick and slip,
+ * as the guards of the current modes call for. zeno: the time below which
+ * a train of bounces counts as at rest. Returns 0, or -1 if eval failed.
  */
-int csf_contact_settle(const csf_prog *p, double *m, long guard, double zeno, csf_eval_fn eval, void *ctx);
+int csf_contact_settle(const csf_prog *p, double *m, double zeno, csf_eval_fn eval, void *ctx);
 
 /* Run-time options, parsed identically by csfvm and generated executables. */
 typedef struct csf_opts {

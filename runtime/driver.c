@@ -104,7 +104,7 @@ typedef struct run {
 	long last; /* the guard of the last event */
 	/* events: guards (conditional rules' comparisons, then two per contact), work vectors */
 	uint32_t ng;
-	double *ga, *gb, *gs, *ya, *fa, *fb, *ys, *fs, *ye;
+	double *ga, *gb, *gs, *gh, *ya, *fa, *fb, *ys, *fs, *ye;
 } run;
 
 static int rhs(double t, const double *y, double *dydt, void *ctx)
@@ -294,16 +294,15 @@ static int settle_eval(void *ctx)
 	return rhs(s->t, s->y, s->r->fs, s->r);
 }
 
-/* Brings every mode up to date at (t, y) after the guard `which` went negative (-1: at the start). */
-static int update_modes(run *r, double t, double *y, long which, double zeno)
+/* Brings every mode up to date at (t, y): at the start, and after an event. */
+static int update_modes(run *r, double t, double *y, double zeno)
 {
 	const csf_prog *p = r->p;
 	free_modes(r, t, y);
 	if (p->ncontacts) {
-		long guard = which >= (long)p->nevents ? which - (long)p->nevents : -1;
 		settle_ctx s = { r, t, y };
 		memcpy(r->m + p->ystart, y, p->ny * sizeof *y);
-		if (csf_contact_settle(p, r->m, guard, zeno, settle_eval, &s)) return 1;
+		if (csf_contact_settle(p, r->m, zeno, settle_eval, &s)) return 1;
 		memcpy(y, r->m + p->ystart, p->ny * sizeof *y);
 		free_modes(r, t, y);
 	}
@@ -365,28 +364,24 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 		double tb = *t;
 		if (guards_at(r, tb, y, r->gb)) return CSF_ODE_STOPPED;
 		memcpy(r->fb, r->fs, n * sizeof *y);
-		/* the first of the sample points (3 interpolated, then the step's end) where an armed guard is negative */
-		double lo = ta, hi = tb;
-		double *ghi = r->gb;
+		/* the first of the sample points (3 interpolated, then the step's end) where an armed
+		   guard is negative: [lo, hi], with hi's guards in r->gh */
+		double lo = ta, hi = tb, dt = tb - ta;
 		int found = 0;
 		for (int j = 1; j <= 4 && !found; j++) {
-			double s = j / 4.0, s2 = s * s, s3 = s2 * s, dt = tb - ta;
-			double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
-			double *gj = r->gb;
 			if (j < 4) {
+				double s = j / 4.0, s2 = s * s, s3 = s2 * s;
+				double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
 				for (size_t i = 0; i < n; i++)
 					r->ys[i] = h00 * r->ya[i] + h10 * dt * r->fa[i] + h01 * y[i] + h11 * dt * r->fb[i];
-				if (guards_at(r, ta + s * dt, r->ys, r->gs)) return CSF_ODE_STOPPED;
-				gj = r->gs;
+				hi = ta + s * dt;
+				if (guards_at(r, hi, r->ys, r->gh)) return CSF_ODE_STOPPED;
+			} else {
+				hi = tb;
+				memcpy(r->gh, r->gb, ng * sizeof *r->gh);
 			}
-			for (size_t k = 0; k < ng; k++)
-				if (r->ga[k] >= 0 && gj[k] < 0) found = 1;
-			if (found) {
-				hi = j < 4 ? ta + s * dt : tb;
-				lo = ta + (j - 1) / 4.0 * dt;
-				if (j < 4) memcpy(r->gs + ng, r->gs, ng * sizeof *r->gs); /* keep hi's guards */
-				ghi = j < 4 ? r->gs + ng : r->gb;
-			}
+			for (size_t k = 0; k < ng; k++) found |= r->ga[k] >= 0 && r->gh[k] < 0;
+			if (!found) lo = hi;
 		}
 		if (!found) {
 			memcpy(r->ga, r->gb, ng * sizeof *r->ga);
@@ -395,32 +390,21 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 			continue;
 		}
 		/* the earliest crossing among the guards negative at hi, each bracketed on exact states */
-		double best = tb, *gh = malloc(2 * ng * sizeof *gh);
+		double best = tb;
 		long which = -1;
-		if (!gh) {
-			snprintf(msg, msglen, "out of memory");
-			return CSF_ODE_FAILED;
-		}
-		memcpy(gh, ghi, ng * sizeof *gh);
 		for (size_t k = 0; k < ng; k++) {
-			if (!(r->ga[k] >= 0 && gh[k] < 0)) continue;
+			if (!(r->ga[k] >= 0 && r->gh[k] < 0)) continue;
 			/* the exact state's guards at lo and hi (the interpolant only pointed here) */
-			double l = lo, gl = r->ga[k], u = hi, gu = gh[k];
+			double l = lo, gl = r->ga[k], u = hi, gu = r->gh[k];
 			if (lo > ta) {
-				if (csf_ode_substep(ode, ta, r->ya, lo - ta, r->ys) ||
-				    guards_at(r, lo, r->ys, r->gs)) {
-					free(gh);
+				if (csf_ode_substep(ode, ta, r->ya, lo - ta, r->ys) || guards_at(r, lo, r->ys, r->gs))
 					return CSF_ODE_STOPPED;
-				}
 				if (r->gs[k] < 0) l = ta; /* already below at lo: the crossing is earlier */
 				else gl = r->gs[k];
 			}
 			if (hi < tb) {
-				if (csf_ode_substep(ode, ta, r->ya, hi - ta, r->ys) ||
-				    guards_at(r, hi, r->ys, r->gs)) {
-					free(gh);
+				if (csf_ode_substep(ode, ta, r->ya, hi - ta, r->ys) || guards_at(r, hi, r->ys, r->gs))
 					return CSF_ODE_STOPPED;
-				}
 				gu = r->gs[k];
 				if (gu >= 0) { /* not below on the exact state: try the step's end */
 					u = tb, gu = r->gb[k];
@@ -428,16 +412,12 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 				}
 			}
 			double tk = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu);
-			if (isnan(tk)) {
-				free(gh);
-				return CSF_ODE_STOPPED;
-			}
+			if (isnan(tk)) return CSF_ODE_STOPPED;
 			if (tk < best || which < 0) {
 				best = tk, which = (long)k;
 				memcpy(r->ye, r->ys, n * sizeof *r->ye);
 			}
 		}
-		free(gh);
 		if (which < 0) { /* the interpolant's alarm was false */
 			memcpy(r->ga, r->gb, ng * sizeof *r->ga);
 			memcpy(r->fa, r->fb, n * sizeof *r->fa);
@@ -447,7 +427,7 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 		*t = best;
 		r->nevents++;
 		r->last = which;
-		if (update_modes(r, best, y, which, zeno)) return CSF_ODE_STOPPED;
+		if (update_modes(r, best, y, zeno)) return CSF_ODE_STOPPED;
 		csf_ode_restart(ode);
 		if (guards_at(r, best, y, r->ga)) return CSF_ODE_STOPPED;
 		memcpy(r->fa, r->fs, n * sizeof *r->fa);
@@ -480,10 +460,10 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	double *work = NULL;
 	if (r.ng) {
 		size_t n = p->ny ? p->ny : 1, g = r.ng;
-		work = malloc((4 * g + 7 * n) * sizeof *work);
+		work = malloc((4 * g + 6 * n) * sizeof *work);
 		if (work) {
-			r.ga = work, r.gb = r.ga + g, r.gs = r.gb + g; /* gs: 2g */
-			r.ya = r.gs + 2 * g, r.fa = r.ya + n, r.fb = r.fa + n, r.ys = r.fb + n, r.fs = r.ys + n, r.ye = r.fs + n;
+			r.ga = work, r.gb = r.ga + g, r.gs = r.gb + g, r.gh = r.gs + g;
+			r.ya = r.gh + g, r.fa = r.ya + n, r.fb = r.fa + n, r.ys = r.fb + n, r.fs = r.ys + n, r.ye = r.fs + n;
 		}
 	}
 	if (!r.m || !y || (r.ng && !work)) {
@@ -513,7 +493,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	double zeno = 1e-6 * p->by;
 	if (r.ng) {
 		/* the modes at t = 0: each comparison's side, contacts at rest or colliding */
-		if (update_modes(&r, 0, y, -1, zeno) || (p->ny && guards_at(&r, 0, y, r.ga))) {
+		if (update_modes(&r, 0, y, zeno) || (p->ny && guards_at(&r, 0, y, r.ga))) {
 			report_nonfinite(p, CSF_SEC_RHS, r.m, 0, "a state derivative", o->fixed, err);
 			status = 1;
 			goto done;

@@ -59,6 +59,22 @@ START_TEST(test_header_checks)
 }
 END_TEST
 
+typedef struct defect { uint32_t *w; uint32_t bad; const char *why; } defect;
+
+/* Plants each defect in turn in the valid program p: csf_verify must reject it, giving the reason. */
+static void expect_defects(csf_prog *p, const defect *c, size_t n)
+{
+	char err[256];
+	for (size_t i = 0; i < n; i++) {
+		uint32_t keep = *c[i].w;
+		*c[i].w = c[i].bad;
+		ck_assert_msg(csf_verify(p, err, sizeof err) == -1, "defect %zu accepted", i);
+		ck_assert_msg(strstr(err, c[i].why) != NULL, "defect %zu: %s", i, err);
+		*c[i].w = keep;
+	}
+	ck_assert_int_eq(csf_verify(p, err, sizeof err), 0);
+}
+
 /* Each defect planted in a valid program must be caught by csf_verify. */
 START_TEST(test_verifier)
 {
@@ -74,7 +90,7 @@ START_TEST(test_verifier)
 		if (code[i] == CSF_OP_ASSERT) as = i;
 	}
 	ck_assert(code[jz] == CSF_OP_JZ && code[as] == CSF_OP_ASSERT);
-	struct { uint32_t *w; uint32_t bad; const char *why; } c[] = {
+	defect c[] = {
 		{ &code[0], CSF_NOPCODES, "invalid opcode" },
 		{ &code[jz + 1], p.nmem, "out of range" },         /* read past memory */
 		{ &code[jz + 2], jz, "out of range" },             /* backward jump (a loop) */
@@ -92,13 +108,7 @@ START_TEST(test_verifier)
 		{ &p.vpair[0], 1, "pair" },
 		{ &p.jtan, p.nmem, "tangent" },
 	};
-	for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
-		uint32_t keep = *c[i].w;
-		*c[i].w = c[i].bad;
-		ck_assert_msg(csf_verify(&p, err, sizeof err) == -1, "defect %zu accepted", i);
-		ck_assert_msg(strstr(err, c[i].why) != NULL, "defect %zu: %s", i, err);
-		*c[i].w = keep;
-	}
+	expect_defects(&p, c, sizeof c / sizeof c[0]);
 	p.strs[p.nstrs - 1] = 'x';
 	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
 	p.strs[p.nstrs - 1] = '\0';
@@ -150,24 +160,15 @@ START_TEST(test_contact_routine)
 	ck_assert(fabs(m[c->s[CSF_CF_WORK] + CSF_CW_G0] - mg * c30) < 1e-13);
 	ck_assert(fabs(m[c->s[CSF_CF_WORK] + CSF_CW_G1] - mg * (c30 - s30)) < 1e-13);
 	/* the verifier checks both tables */
-	char err[256];
-	csf_contact keepc = p.contacts[0];
-	csf_event keepe = p.events[0];
-	p.contacts[0].s[CSF_CF_V] = p.nmem - 1;
-	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
-	ck_assert(strstr(err, "contact") != NULL);
-	p.contacts[0] = keepc;
-	p.contacts[0].plane = 2;
-	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
-	p.contacts[0] = keepc;
-	p.events[0].mode = p.nmem;
-	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
-	ck_assert(strstr(err, "event") != NULL);
-	p.events[0] = keepe;
-	p.events[0].kind = 2;
-	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
-	p.events[0] = keepe;
-	ck_assert_int_eq(csf_verify(&p, err, sizeof err), 0);
+	defect d[] = {
+		{ &p.contacts[0].s[CSF_CF_V], p.nmem - 1, "contact" }, /* a vector past the end of memory */
+		{ &p.contacts[0].s[CSF_CF_WORK], p.nmem - 2, "contact" },
+		{ &p.contacts[0].plane, 2, "contact" },
+		{ &p.contacts[0].src, p.nsrcs, "contact" },
+		{ &p.events[0].mode, p.nmem, "event" },
+		{ &p.events[0].kind, 2, "event" },
+	};
+	expect_defects(&p, d, sizeof d / sizeof d[0]);
 	free(m);
 	csf_prog_free(&p);
 }
