@@ -8,7 +8,8 @@
  *    dimension its place needs (`x + 1` adds metres to metres; `2 * x` is
  *    a dimensionless factor);
  *  - predefined constants and t have theirs; a property or global takes the
- *    dimension of its initial value, or of its kind's default;
+ *    dimension of its initial value, or of its kind's default; local
+ *    coordinates (sph, cyl, cart) that of their lengths, like a vector literal;
  *  - the others (temporaries, and properties given bare numbers) are
  *    inferred from the rules: each equation, sum, comparison and function
  *    argument is a constraint, linear in the unknown exponents; constraints
@@ -234,6 +235,17 @@ static Aff dimless(Walk *W, RExpr *arg, Aff a, const char *what)
 	return known(0, 0, 0);
 }
 
+/* Values that must share one dimension (a vector's components): the first that is not a bare number sets it. */
+static Aff one_dim(Walk *W, const Aff *x, RExpr *const *args, int n)
+{
+	Aff d = x[0];
+	for (int i = 1; i < n; i++) {
+		constrain(W, d, x[i], args[i]->loc, msg_vector, NULL);
+		if (d.free) d = x[i];
+	}
+	return d;
+}
+
 static Aff walk_op(Walk *W, RExpr *e, Aff *x)
 {
 	switch (e->op) {
@@ -246,9 +258,7 @@ static Aff walk_op(Walk *W, RExpr *e, Aff *x)
 		return x[0].free ? x[1] : x[0];
 	}
 	case CSF_OP_VPACK:
-		constrain(W, x[0], x[1], e->a[1]->loc, msg_vector, NULL);
-		constrain(W, x[0], x[2], e->a[2]->loc, msg_vector, NULL);
-		return !x[0].free ? x[0] : !x[1].free ? x[1] : x[2];
+		return one_dim(W, x, e->a, 3);
 	case CSF_OP_MUL: case CSF_OP_VMUL: case CSF_OP_VDOT: case CSF_OP_VCROSS: {
 		if (x[0].free && x[1].free) return x[0];
 		Aff a = x[0].free ? known(0, 0, 0) : x[0], b = x[1].free ? known(0, 0, 0) : x[1];
@@ -345,6 +355,17 @@ void dims_check(Model *M)
 	for (int i = 0; i < M->insts.n; i++) walk_inst(&W, M->insts.v[i]);
 }
 
+/* Gives constant out dimension a: known, or free when a is not fully known. */
+static void set_const_dim(RExpr *out, Aff a)
+{
+	if (a.free || a.nu || a.overflow) {
+		out->dimk = DK_FREE;
+		return;
+	}
+	out->dimk = DK_KNOWN;
+	for (int i = 0; i < 3; i++) out->dim[i] = a.c[i] == 0 ? 0 : a.c[i];
+}
+
 void dims_fold(int op, RExpr **args, int n, RExpr *out, Loc l)
 {
 	Walk W = { 0 };
@@ -355,11 +376,33 @@ void dims_fold(int op, RExpr **args, int n, RExpr *out, Loc l)
 	e.n = n;
 	for (int i = 0; i < n; i++) e.a[i] = args[i];
 	e.loc = l;
-	Aff a = walk(&W, &e);
-	if (a.free || a.nu || a.overflow) {
-		out->dimk = DK_FREE;
-		return;
+	set_const_dim(out, walk(&W, &e));
+}
+
+void dims_coords(const char *sys, RExpr **args, RExpr *out)
+{
+	/* the names of the angles among the arguments; cart(x, y, z) has none */
+	static const struct { const char *sys, *angle[3]; } coords[] = {
+		{ "sph", { NULL, "theta", "phi" } }, /* sph(r, theta, phi) */
+		{ "cyl", { NULL, "phi", NULL } },    /* cyl(rho, phi, z) */
+	};
+	static const char *const none[3] = { NULL, NULL, NULL };
+	const char *const *angle = none;
+	for (size_t i = 0; i < sizeof coords / sizeof coords[0]; i++)
+		if (strcmp(sys, coords[i].sys) == 0) angle = coords[i].angle;
+	Walk W = { 0 };
+	W.report = 1;
+	Aff len[3];
+	RExpr *len_args[3];
+	int n = 0;
+	for (int i = 0; i < 3; i++) {
+		Aff a = walk(&W, args[i]);
+		if (angle[i]) {
+			dimless(&W, args[i], a, xprintf("the angle %s of %s", angle[i], sys));
+		} else {
+			len[n] = a;
+			len_args[n++] = args[i];
+		}
 	}
-	out->dimk = DK_KNOWN;
-	for (int i = 0; i < 3; i++) out->dim[i] = a.c[i] == 0 ? 0 : a.c[i];
+	set_const_dim(out, one_dim(&W, len, len_args, n));
 }

@@ -161,6 +161,12 @@ void lex_next(Lexer *L, Token *t)
 			}
 			goto done;
 		}
+		"\xCF\x80" { /* U+03C0, the spec's spelling of the constant pi (spec 1.1) */
+			set_loc(L, t, tok);
+			t->kind = IDENT;
+			t->text = xstrdup("pi");
+			goto done;
+		}
 		"$" digits {
 			set_loc(L, t, tok);
 			t->kind = DOLLAR;

@@ -16,8 +16,10 @@
  *    first); none left is "overdetermined", an undetermined temporary read
  *    is "unresolvable". The equation is then solved for the target
  *    symbolically: it must be linear in it.
- * 5. Assertions and the watch list are resolved; then gen.c keeps only the
- *    instances that the derivatives, the watches and the assertions need.
+ * 5. Assertions and the watch list are resolved, and the dimensions checked
+ *    (dims.c) over every instance that resolved, also after errors; then
+ *    gen.c keeps only the instances that the derivatives, the watches and
+ *    the assertions need.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -407,7 +409,9 @@ static RExpr *build_coords(Ctx *C, Expr *x)
 		v[1] = b;
 		v[2] = c;
 	}
-	return rvconst(v, x->loc);
+	RExpr *e = rvconst(v, x->loc);
+	dims_coords(x->name, r, e);
+	return e;
 }
 
 static RExpr *build(Ctx *C, Expr *x)
@@ -430,7 +434,12 @@ static RExpr *build(Ctx *C, Expr *x)
 		const char *n = x->name;
 		if ((n[0] == 'x' || n[0] == 'y' || n[0] == 'z') && n[1] == '\0') {
 			if (!r->isvec) return type_error(C, l, "a component (.x .y .z) needs a vector"), rconst(0, l);
-			if (r->k == R_CONST) return rconst(r->c[n[0] - 'x'], l);
+			if (r->k == R_CONST) {
+				RExpr *k = rconst(r->c[n[0] - 'x'], l);
+				k->dimk = r->dimk;
+				memcpy(k->dim, r->dim, sizeof k->dim);
+				return k;
+			}
 			RExpr *e = rnew(R_COMP, l);
 			e->a[0] = r;
 			e->n = 1;
@@ -1531,7 +1540,9 @@ Model *sema_run(Stmt *stmts)
 			for_each_binding(s, inst_assert);
 		}
 	build_watch(start);
-	if (!diag_errors) dims_check(M);
+	/* Also after errors: the instances that failed are left out, and the dimensions of the
+	 * others are checked all the same, so one run reports both kinds of error. */
+	dims_check(M);
 	return M;
 }
 

@@ -123,6 +123,10 @@ void sema_explain(Model *M, FILE *f);
 void dims_check(Model *M);
 /* The dimension of constant op(args) (for the folder); reports a mismatch at l. */
 void dims_fold(int op, RExpr **args, int n, RExpr *out, Loc l);
+/* The dimension of local coordinates sys(args) (sys: "sph", "cyl" or "cart"), into constant out:
+ * that of the lengths (r; rho and z; x, y and z), which must agree; reports a mismatch, or an
+ * angle that is not dimensionless, at the argument. */
+void dims_coords(const char *sys, RExpr **args, RExpr *out);
 /* The unit of dimension d in the unit system in use, e.g. "kg*m/s^2"; "" if dimensionless. */
 const char *dims_unit(const double d[3]);
 /* "a length (m)", "dimensionless": a dimension for messages. */

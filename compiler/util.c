@@ -170,7 +170,9 @@ static void vdiag(Loc l, const char *kind, const char *fmt, va_list ap)
 	fputc('\n', out);
 	char *line = src_line(l.file, l.line);
 	fprintf(out, "  %s\n  ", line);
-	for (int i = 1; i < l.col && line[i - 1]; i++) fputc(line[i - 1] == '\t' ? '\t' : ' ', out);
+	/* the caret under the column: one space per character (l.col counts bytes; skip UTF-8 continuation bytes) */
+	for (int i = 1; i < l.col && line[i - 1]; i++)
+		if (((unsigned char)line[i - 1] & 0xC0) != 0x80) fputc(line[i - 1] == '\t' ? '\t' : ' ', out);
 	fputs("^\n", out);
 }
 

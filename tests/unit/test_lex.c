@@ -46,6 +46,27 @@ START_TEST(test_numbers)
 }
 END_TEST
 
+/* π (U+03C0 in UTF-8, spec 1.1) is the name pi; columns count bytes, the caret characters */
+START_TEST(test_pi)
+{
+	Token t[8];
+	int n = lex_all("x = 2 * \xCF\x80\n", t, 8);
+	ck_assert_int_eq(n, 6);
+	ck_assert_int_eq(t[4].kind, IDENT);
+	ck_assert_str_eq(t[4].text, "pi");
+	ck_assert_int_eq(t[4].loc.col, 9);
+	ck_assert_int_eq(t[4].end_col, 11);
+	char *buf;
+	size_t len;
+	diag_out = open_memstream(&buf, &len);
+	lex_all("\xCF\x80 @\n", t, 8);
+	fclose(diag_out);
+	diag_out = NULL;
+	ck_assert_msg(strstr(buf, "l.csf:1:4: error: unexpected character '@'\n  \xCF\x80 @\n    ^\n") != NULL, "%s", buf);
+	free(buf);
+}
+END_TEST
+
 START_TEST(test_operators)
 {
 	Token t[16];
@@ -109,6 +130,7 @@ Suite *lex_suite(void)
 	TCase *tc = tcase_create("scanner");
 	tcase_add_test(tc, test_tokens);
 	tcase_add_test(tc, test_numbers);
+	tcase_add_test(tc, test_pi);
 	tcase_add_test(tc, test_operators);
 	tcase_add_test(tc, test_indent_and_blank_lines);
 	tcase_add_test(tc, test_tab_rejected);
