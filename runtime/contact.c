@@ -24,10 +24,13 @@
  * (cr 1, mu 0) leave the other body's coefficient as it is. Several
  * simultaneous contacts are solved together by Gauss-Seidel sweeps.
  */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
 #include "csf.h"
+
+enum { APART, SLIDING, STICKING, HOPPING }; /* the modes of a pair */
 
 #define F(c, f) ((c)->s[CSF_CF_##f])
 #define W(c, k) ((c)->s[CSF_CF_WORK] + CSF_CW_##k)
@@ -90,6 +93,28 @@ static double inside(const csf_contact *c, const double *m)
 	return len - dot3(d, e) / len;
 }
 
+/* The pair's length scale: the magnitudes its gap is computed from. */
+static double scale(const csf_contact *c, const double *m)
+{
+	return mag3(m + F(c, POS)) + mag3(m + F(c, POS2)) + m[F(c, R)] + (c->plane ? 0 : m[F(c, R2)]);
+}
+
+/*
+ * The smallest gap the pair's positions resolve: a few units in the last
+ * place of the magnitudes the gap is computed from. A gap within it of zero
+ * is zero, and a hop no higher than it cannot be followed.
+ */
+static double resolution(const csf_contact *c, const double *m)
+{
+	return 2 * DBL_EPSILON * scale(c, m);
+}
+
+/* Sliding or sticking: pressed together by a normal force. */
+static int in_contact(const csf_contact *c, const double *m)
+{
+	return m[W(c, MODE)] == SLIDING || m[W(c, MODE)] == STICKING;
+}
+
 static int has_friction(const csf_contact *c, const double *m)
 {
 	return m[F(c, MUS)] > 0 || m[F(c, MUK)] > 0 || (m[F(c, MUS2)] > 0 || m[F(c, MUK2)] > 0);
@@ -142,7 +167,7 @@ void csf_contact_apply(const csf_prog *p, double *m)
 		double change = 0, size = 0;
 		for (uint32_t i = 0; i < p->ncontacts; i++) {
 			const csf_contact *c = &p->contacts[i];
-			if (m[W(c, MODE)] < 1) continue;
+			if (!in_contact(c, m)) continue;
 			double n[3], curv, ar[3], f[3];
 			geometry(c, m, n, &curv);
 			double w = inv_mass_i(c, m) + inv_mass_j(c, m);
@@ -154,11 +179,15 @@ void csf_contact_apply(const csf_prog *p, double *m)
 			size = csf_max(size, fabs(m[W(c, LAM)]));
 			if (!has_friction(c, m)) continue;
 			double *fc = m + W(c, F);
-			if (m[W(c, MODE)] == 1) { /* sliding */
+			if (m[W(c, MODE)] == SLIDING) {
 				double vt[3];
 				slip_velocity(c, m, n, vt);
+				/* against the sliding; once it has turned back (past the guard's zero, before the
+				   event is located) against its direction at the start, so that the force is smooth
+				   up to the crossing and the integrator sees no switching */
 				double s = mag3(vt), k = mu_k(c, m) * fabs(m[W(c, LAM)]);
-				for (int j = 0; j < 3; j++) f[j] = -k * (s > 0 ? vt[j] / s : m[W(c, DS) + j]);
+				int ahead = dot3(vt, m + W(c, DS)) > 0;
+				for (int j = 0; j < 3; j++) f[j] = -k * (ahead ? vt[j] / s : m[W(c, DS) + j]);
 			} else { /* sticking: cancel the relative tangential acceleration */
 				double at[3];
 				rel(c, m, F(c, A), F(c, A2), ar);
@@ -179,7 +208,12 @@ void csf_contact_apply(const csf_prog *p, double *m)
 		double gap = geometry(c, m, n, &curv);
 		double *g = m + W(c, G0);
 		double in = inside(c, m);
-		if (m[W(c, MODE)] < 1) { /* the gap closes over the plane (not past its edge) */
+		if (m[W(c, MODE)] == HOPPING) { /* the hop lands */
+			g[0] = m[W(c, TL)] - m[p->tslot];
+			g[1] = 1;
+			continue;
+		}
+		if (!in_contact(c, m)) { /* the gap closes over the plane (not past its edge) */
 			g[0] = csf_max(gap, -in);
 			g[1] = 1;
 			continue;
@@ -187,7 +221,7 @@ void csf_contact_apply(const csf_prog *p, double *m)
 		g[0] = csf_min(m[W(c, LAM)], in); /* the normal force would pull, or the body left the edge */
 		if (!has_friction(c, m)) {
 			g[1] = 1;
-		} else if (m[W(c, MODE)] == 1) {
+		} else if (m[W(c, MODE)] == SLIDING) {
 			double vt[3];
 			slip_velocity(c, m, n, vt);
 			g[1] = dot3(vt, m + W(c, DS));
@@ -208,14 +242,21 @@ static void add_impulse(const csf_contact *c, double *m, const double dv[3])
 	}
 }
 
-/* Moves the bodies along n so that the gap is exactly zero (by the event's location error). */
+/*
+ * Moves the bodies along n so that the gap is zero (they move by the event's
+ * location error): then, if rounding left it negative, body i outward by the
+ * least amount that makes it non-negative, so that the gap's guard is armed.
+ */
 static void close_gap(const csf_contact *c, double *m, const double n[3], double gap)
 {
-	double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), w = wi + wj;
+	double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), w = wi + wj, nn[3], curv;
 	for (int k = 0; k < 3; k++) {
 		m[F(c, POS) + k] -= gap * n[k] * (wi / w);
 		if (!c->plane) m[F(c, POS2) + k] += gap * n[k] * (wj / w);
 	}
+	double push = DBL_EPSILON * scale(c, m) / 8;
+	for (int i = 0; i < 64 && (gap = geometry(c, m, nn, &curv)) < 0; i++, push *= 2)
+		for (int k = 0; k < 3; k++) m[F(c, POS) + k] += csf_max(push, -gap) * n[k];
 }
 
 /* Enters contact: the relative normal velocity is zero; sticks if the tangential one is too. */
@@ -224,22 +265,21 @@ static void enter_contact(const csf_contact *c, double *m, const double n[3])
 	double vt[3];
 	slip_velocity(c, m, n, vt);
 	double s = mag3(vt);
-	m[W(c, MODE)] = s == 0 && has_friction(c, m) ? 2 : 1;
+	m[W(c, MODE)] = s == 0 && has_friction(c, m) ? STICKING : SLIDING;
 	for (int k = 0; k < 3; k++) m[W(c, DS) + k] = s > 0 ? vt[k] / s : 0;
 }
 
-/* Is the pair touching: the gap closed, up to the rounding of its positions? */
+/* Is the pair touching: the gap closed, up to the event's location error? */
 static int touching(const csf_contact *c, const double *m, double gap)
 {
-	double scale = mag3(m + F(c, POS)) + mag3(m + F(c, POS2)) + m[F(c, R)] + (c->plane ? 0 : m[F(c, R2)]);
-	return gap <= 1e-12 * scale && inside(c, m) >= 0;
+	return gap <= csf_max(1e-12 * scale(c, m), resolution(c, m)) && inside(c, m) >= 0;
 }
 
 /* Lift-off: apart, exactly touching. */
 static void separate(const csf_contact *c, double *m)
 {
 	double n[3], curv, gap = geometry(c, m, n, &curv);
-	m[W(c, MODE)] = 0;
+	m[W(c, MODE)] = APART;
 	close_gap(c, m, n, gap);
 }
 
@@ -251,7 +291,7 @@ static void stick(const csf_contact *c, double *m)
 	slip_velocity(c, m, n, vt);
 	for (int k = 0; k < 3; k++) vt[k] = -vt[k];
 	add_impulse(c, m, vt);
-	m[W(c, MODE)] = 2;
+	m[W(c, MODE)] = STICKING;
 }
 
 /* Static friction cannot hold: the pair slides, the way the friction force held it back from. */
@@ -259,7 +299,32 @@ static void slide(const csf_contact *c, double *m)
 {
 	double *f = m + W(c, F), s = mag3(f);
 	for (int k = 0; k < 3; k++) m[W(c, DS) + k] = s > 0 ? -f[k] / s : 0;
-	m[W(c, MODE)] = 1;
+	m[W(c, MODE)] = SLIDING;
+}
+
+/*
+ * A touching pair pressed together (relative normal acceleration an < 0)
+ * that separates at normal speed vn >= 0 hops for 2 vn/|an|, to the height
+ * vn^2/(2|an|); with restitution e < 1 the hops that follow shrink by e and
+ * end (Zeno's accumulation of bounces) after 2 vn/(|an| (1 - e)).
+ *
+ * At rest: that train ends within zeno seconds (a single hop, with e = 1).
+ */
+static int at_rest(const csf_contact *c, const double *m, double vn, double an, double zeno)
+{
+	double e = restitution(c, m);
+	return an < 0 && 2 * vn / -an <= zeno * (e < 1 ? 1 - e : 1);
+}
+
+/*
+ * Hopping: the hop is too low for the positions to follow (within 1024
+ * times the gap's resolution, where the rounding of positions far from the
+ * origin would misplace its landing); it lands at the time its flight
+ * takes, 2 vn/|an|, found from the velocity alone.
+ */
+static int hops(const csf_contact *c, const double *m, double vn, double an)
+{
+	return an < 0 && vn * vn / (-2 * an) <= 1024 * resolution(c, m);
 }
 
 int csf_contact_settle(const csf_prog *p, double *m, double zeno, csf_eval_fn eval, void *ctx)
@@ -273,15 +338,26 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, csf_eval_fn ev
 		int changed = 0;
 		for (uint32_t i = 0; i < p->ncontacts; i++) {
 			const csf_contact *c = &p->contacts[i];
-			if (m[W(c, MODE)] >= 1) continue;
+			if (in_contact(c, m)) continue;
 			double n[3], curv, vr[3], ar[3];
 			double gap = geometry(c, m, n, &curv);
-			if (!touching(c, m, gap)) continue;
+			int landing = 0;
+			if (m[W(c, MODE)] == HOPPING) { /* nothing until it lands (it may have been knocked away) */
+				if (m[W(c, G0)] >= 0) continue;
+				m[W(c, MODE)] = APART;
+				changed = 1;
+				landing = gap <= 2048 * resolution(c, m);
+			}
+			if (!landing && !touching(c, m, gap)) continue;
 			rel(c, m, F(c, V), F(c, V2), vr);
 			rel(c, m, F(c, A), F(c, A2), ar);
 			double vn = dot3(vr, n), an = dot3(ar, n) + curv;
-			if (vn < worst) worst = vn, hit = (long)i;
-			else if (vn <= 0 && an < 0 && hit < 0) { /* at rest and pressed together: contact */
+			if (vn < 0) {
+				if (vn < worst) worst = vn, hit = (long)i;
+				continue;
+			}
+			if (gap < 0) close_gap(c, m, n, gap), gap = 0; /* apart by rounding: arm its guard */
+			if (hit < 0 && at_rest(c, m, vn, an, zeno)) { /* pressed together, at rest: contact */
 				close_gap(c, m, n, gap);
 				for (int k = 0; k < 3; k++) vr[k] = -vn * n[k];
 				add_impulse(c, m, vr);
@@ -295,15 +371,18 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, csf_eval_fn ev
 			double gap = geometry(c, m, n, &curv);
 			rel(c, m, F(c, V), F(c, V2), vr);
 			rel(c, m, F(c, A), F(c, A2), ar);
-			double vn = dot3(vr, n), an = dot3(ar, n) + curv, e = restitution(c, m);
-			double sep = -e * vn;
-			/* the bounces that follow last 2 sep/|an| (1 + e + e^2 + ...): at rest if that is below zeno */
-			int rest = sep == 0 || (e < 1 && an < 0 && 2 * sep / (-an * (1 - e)) <= zeno);
+			double vn = dot3(vr, n), an = dot3(ar, n) + curv, sep = -restitution(c, m) * vn;
+			int rest = sep == 0 || at_rest(c, m, sep, an, zeno);
 			double target = rest ? 0 : sep;
 			for (int k = 0; k < 3; k++) dv[k] = (target - vn) * n[k];
 			add_impulse(c, m, dv);
 			close_gap(c, m, n, gap);
-			if (rest) enter_contact(c, m, n);
+			if (rest) {
+				enter_contact(c, m, n);
+			} else if (hops(c, m, sep, an)) {
+				m[W(c, MODE)] = HOPPING;
+				m[W(c, TL)] = m[p->tslot] + 2 * sep / -an;
+			}
 			continue;
 		}
 		/* a guard of a pair in contact that is negative: its transition (contact.c's header) */

@@ -86,10 +86,11 @@ enum csf_contact_field {
 	CSF_CF_POS2, CSF_CF_V2, CSF_CF_A2, CSF_CF_M2, CSF_CF_R2, CSF_CF_CR2, CSF_CF_MUS2, CSF_CF_MUK2, CSF_CF_FN2,
 	CSF_CF_FF2, CSF_CF_WORK, CSF_CF_N
 };
-/* Work slots, from s[CSF_CF_WORK]: mode (0 apart, 1 sliding, 2 sticking), the two guards,
-   the normal force's size, the friction force, the fixed normal of two points, the sliding direction. */
+/* Work slots, from s[CSF_CF_WORK]: mode (0 apart, 1 sliding, 2 sticking, 3 hopping), the two
+   guards, the normal force's size, the friction force, the fixed normal of two points, the
+   sliding direction, the time a hop lands. */
 enum { CSF_CW_MODE = 0, CSF_CW_G0 = 1, CSF_CW_G1 = 2, CSF_CW_LAM = 3, CSF_CW_F = 4, CSF_CW_DIR = 7, CSF_CW_DS = 10,
-       CSF_CW_N = 13 };
+       CSF_CW_TL = 13, CSF_CW_N = 14 };
 typedef struct csf_contact { uint32_t plane, src, s[CSF_CF_N]; } csf_contact;
 
 /*

@@ -8,6 +8,7 @@
  * and flushed on every exit path; a write error is reported, never ignored.
  */
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -102,9 +103,12 @@ typedef struct run {
 	unsigned long nrhs, njac; /* evaluations, for --stats */
 	unsigned long nevents;
 	long last; /* the guard of the last event */
+	int pending; /* it was located at an output time and happens after that row */
+	double last_h; /* the last step's length */
 	/* events: guards (conditional rules' comparisons, then two per contact), work vectors */
 	uint32_t ng;
 	double *ga, *gb, *gs, *gh, *ya, *fa, *fb, *ys, *fs, *ye;
+	double *jw; /* with contacts: 3 work vectors for the Jacobian by differences */
 } run;
 
 static int rhs(double t, const double *y, double *dydt, void *ctx)
@@ -127,6 +131,37 @@ static int rhs(double t, const double *y, double *dydt, void *ctx)
 }
 
 /*
+ * With contacts, the Jacobian by central differences of the RHS: the
+ * contact routine's forces have no tangent code, and they are smooth while
+ * the modes are frozen, as they are between events. The step for component
+ * j is cbrt(eps) times its size (at least its unit), which balances the
+ * truncation and rounding errors of the difference.
+ */
+static int jac_differences(run *r, double t, const double *y, double *dfdy, double *dfdt)
+{
+	const csf_prog *p = r->p;
+	uint32_t n = p->ny;
+	double *yd = r->jw, *fp = yd + n, *fm = fp + n, c = cbrt(DBL_EPSILON);
+	memcpy(yd, y, n * sizeof *y);
+	for (uint32_t j = 0; j <= n; j++) {
+		double x = j < n ? y[j] : t;
+		double h = c * csf_max(fabs(x), j < n ? p->yscale[j] : p->by);
+		volatile double xp = x + h, xm = x - h; /* the steps actually taken */
+		if (j < n) yd[j] = xp;
+		if (rhs(j < n ? t : xp, yd, fp, r)) return 1;
+		if (j < n) yd[j] = xm;
+		if (rhs(j < n ? t : xm, yd, fm, r)) return 1;
+		if (j < n) yd[j] = y[j];
+		for (uint32_t i = 0; i < n; i++) {
+			double d = (fp[i] - fm[i]) / (xp - xm);
+			if (j < n) dfdy[(size_t)i * n + j] = d;
+			else dfdt[i] = d;
+		}
+	}
+	return 0;
+}
+
+/*
  * The exact Jacobian: JAC run once per state component with that
  * component's tangent set to 1 (a column), then once with t's (dfdt).
  */
@@ -136,6 +171,10 @@ static int jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx)
 	const csf_prog *p = r->p;
 	double *m = r->m, *tan = r->m + p->jtan;
 	uint32_t n = p->ny;
+	if (p->ncontacts) {
+		r->njac++;
+		return jac_differences(r, t, y, dfdy, dfdt);
+	}
 	m[p->tslot] = t;
 	memcpy(m + p->ystart, y, n * sizeof *y);
 	r->njac++;
@@ -204,6 +243,14 @@ static void report_nonfinite_value(const csf_prog *p, int sec, const double *m, 
 	        csf_str(p, tg->object), vb, csf_str(p, s->text));
 }
 
+/* "file:line: " of the rule whose guard had the event k (a comparison, or a contact's). */
+static void report_event_src(const csf_prog *p, long k, FILE *err)
+{
+	uint32_t src = k < (long)p->nevents ? p->events[k].src : p->contacts[(k - p->nevents) / 2].src;
+	const csf_src *sr = &p->srcs[src];
+	fprintf(err, "%s:%lu: ", csf_str(p, p->files[sr->file]), (unsigned long)sr->line);
+}
+
 static int write_row(const csf_prog *p, const double *m, double t, FILE *out)
 {
 	char b[32];
@@ -230,7 +277,12 @@ static int finish(FILE *out, FILE *err, int status)
 
 /* ---- events ---- */
 
-enum { CHATTER = 10 }; /* advance_events: modes switch back and forth at one instant */
+/*
+ * advance_events: modes switch back and forth at one instant (CHATTER);
+ * both advances: more than MAX_WORK steps (and events) in one output
+ * interval (TOO_MUCH), a run that cannot get on, halted instead of hanging.
+ */
+enum { CHATTER = 10, TOO_MUCH = 11, MAX_WORK = 1000000 };
 
 /*
  * A guard is a continuous function of t and the state that is >= 0 while
@@ -309,24 +361,41 @@ static int update_modes(run *r, double t, double *y, double zeno)
 	return r->fail;
 }
 
+/* How closely events are located in time: 1e-13 s, finer for scenes on tiny time scales. */
+static double location_tol(const csf_prog *p) { return csf_min(1e-13, 1e-10 * p->by); }
+
 /*
- * The time of guard k's crossing in (lo, hi], where g(lo) >= 0 > g(hi), on
- * states stepped from the step's start (ta, r->ya) that ended at (tb, yb);
- * leaves the state at that time in r->ys. NAN if a derivative was not finite.
+ * The guards at time tc on the state stepped exactly from the step's start
+ * (ta, r->ya), into r->gs, the state left in r->ys. CSF_ODE_OK, STOPPED if
+ * a derivative was not finite, FAILED (with msg) if the step failed.
  */
-static double locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const double *yb, double lo, double glo,
-                     double hi, double ghi)
+static int substep_guards(run *r, csf_ode *ode, double ta, double tc, char *msg, size_t msglen)
 {
-	const double tol = csf_min(1e-13, 1e-10 * r->p->by); /* seconds; finer for scenes on tiny time scales */
-	int side = 0;
+	if (csf_ode_substep(ode, ta, r->ya, tc - ta, r->ys)) {
+		if (r->fail) return CSF_ODE_STOPPED;
+		snprintf(msg, msglen, "the %s step from t=%.17g to locate an event at t=%.17g failed", csf_ode_method(ode),
+		         ta, tc);
+		return CSF_ODE_FAILED;
+	}
+	return guards_at(r, tc, r->ys, r->gs) ? CSF_ODE_STOPPED : CSF_ODE_OK;
+}
+
+/*
+ * The time *tk of guard k's crossing in (lo, hi], where g(lo) >= 0 > g(hi),
+ * on states stepped from the step's start (ta, r->ya) that ended at
+ * (tb, yb); leaves the state at that time in r->ys. Returns as substep_guards.
+ */
+static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const double *yb, double lo, double glo,
+                  double hi, double ghi, double *tk, char *msg, size_t msglen)
+{
+	const double tol = location_tol(r->p);
+	int side = 0, st;
 	while (hi - lo > tol && hi - lo > 4e-16 * fabs(hi)) {
 		double c = hi - ghi * (hi - lo) / (ghi - glo);
 		if (!(c > lo && c < hi)) c = lo + (hi - lo) / 2;
 		if (c - lo < tol / 4) c = lo + tol / 4; /* shrink the bracket from both ends */
 		if (hi - c < tol / 4) c = hi - tol / 4;
-		if (csf_ode_substep(ode, ta, r->ya, c - ta, r->ys) ||
-		    guards_at(r, c, r->ys, r->gs))
-			return NAN;
+		if ((st = substep_guards(r, ode, ta, c, msg, msglen))) return st;
 		double gc = r->gs[k];
 		if (gc < 0) {
 			hi = c, ghi = gc;
@@ -338,30 +407,63 @@ static double locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, con
 			side = 1;
 		}
 	}
+	*tk = hi;
 	if (hi == tb) {
 		memcpy(r->ys, yb, r->p->ny * sizeof *yb);
-		return hi;
+		return CSF_ODE_OK;
 	}
-	if (csf_ode_substep(ode, ta, r->ya, hi - ta, r->ys)) return NAN;
-	return hi;
+	return substep_guards(r, ode, ta, hi, msg, msglen);
+}
+
+/*
+ * The event r->last happened at (t, y): the modes are brought up to date
+ * (impacts change y), the integrator restarts, and r->ga and r->fa hold the
+ * guards and derivative there. 0, or 1 if a derivative was not finite.
+ */
+static int take_event(run *r, csf_ode *ode, double t, double *y, double zeno)
+{
+	r->nevents++;
+	r->pending = 0;
+	if (update_modes(r, t, y, zeno)) return 1;
+	csf_ode_restart(ode);
+	if (guards_at(r, t, y, r->ga)) return 1;
+	memcpy(r->fa, r->fs, r->p->ny * sizeof *r->fa);
+	return 0;
+}
+
+/* Advances (*t, y) to t1 by adaptive steps, at most MAX_WORK of them. */
+static int advance_plain(run *r, csf_ode *ode, double *t, double t1, double *y, char *msg, size_t msglen)
+{
+	for (unsigned long work = 0; *t < t1; work++) {
+		double ta = *t;
+		if (work == MAX_WORK) return TOO_MUCH;
+		int st = csf_ode_step(ode, t, t1, 0, 0, y, msg, msglen);
+		if (st != CSF_ODE_OK) return st;
+		r->last_h = *t - ta;
+	}
+	return CSF_ODE_OK;
 }
 
 /*
  * Advances (*t, y) to t1 as csf_ode_step does, stopping at events. On entry
- * r->ga and r->fa hold the guards and derivative at (*t, y).
+ * r->ga and r->fa hold the guards and derivative at (*t, y), unless an event
+ * located at the last output time is pending: it happens first.
  */
 static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed, double h, double *y, double zeno,
                           char *msg, size_t msglen)
 {
 	const csf_prog *p = r->p;
 	size_t n = p->ny, ng = r->ng;
-	unsigned long same = 0;
+	unsigned long same = 0, work = 0;
+	if (r->pending && take_event(r, ode, *t, y, zeno)) return CSF_ODE_STOPPED;
 	while (*t < t1) {
 		double ta = *t;
+		if (++work > MAX_WORK) return TOO_MUCH;
 		memcpy(r->ya, y, n * sizeof *y);
 		int st = csf_ode_step(ode, t, t1, fixed, h, y, msg, msglen);
 		if (st != CSF_ODE_OK) return st;
 		double tb = *t;
+		r->last_h = tb - ta;
 		if (guards_at(r, tb, y, r->gb)) return CSF_ODE_STOPPED;
 		memcpy(r->fb, r->fs, n * sizeof *y);
 		/* the first of the sample points (3 interpolated, then the step's end) where an armed
@@ -397,22 +499,20 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 			/* the exact state's guards at lo and hi (the interpolant only pointed here) */
 			double l = lo, gl = r->ga[k], u = hi, gu = r->gh[k];
 			if (lo > ta) {
-				if (csf_ode_substep(ode, ta, r->ya, lo - ta, r->ys) || guards_at(r, lo, r->ys, r->gs))
-					return CSF_ODE_STOPPED;
+				if ((st = substep_guards(r, ode, ta, lo, msg, msglen))) return st;
 				if (r->gs[k] < 0) l = ta; /* already below at lo: the crossing is earlier */
 				else gl = r->gs[k];
 			}
 			if (hi < tb) {
-				if (csf_ode_substep(ode, ta, r->ya, hi - ta, r->ys) || guards_at(r, hi, r->ys, r->gs))
-					return CSF_ODE_STOPPED;
+				if ((st = substep_guards(r, ode, ta, hi, msg, msglen))) return st;
 				gu = r->gs[k];
 				if (gu >= 0) { /* not below on the exact state: try the step's end */
 					u = tb, gu = r->gb[k];
 					if (gu >= 0) continue;
 				}
 			}
-			double tk = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu);
-			if (isnan(tk)) return CSF_ODE_STOPPED;
+			double tk;
+			if ((st = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, &tk, msg, msglen))) return st;
 			if (tk < best || which < 0) {
 				best = tk, which = (long)k;
 				memcpy(r->ye, r->ys, n * sizeof *r->ye);
@@ -425,12 +525,14 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 		}
 		memcpy(y, r->ye, n * sizeof *y);
 		*t = best;
-		r->nevents++;
 		r->last = which;
-		if (update_modes(r, best, y, zeno)) return CSF_ODE_STOPPED;
-		csf_ode_restart(ode);
-		if (guards_at(r, best, y, r->ga)) return CSF_ODE_STOPPED;
-		memcpy(r->fa, r->fs, n * sizeof *r->fa);
+		if (getenv("CSF_DEBUG")) fprintf(stderr, "event %ld at %.17g t1 %.17g ta %.17g\n", which, best, t1, ta);
+		if (t1 - best <= location_tol(p)) { /* at an output time: its row shows the state before the event */
+			*t = t1;
+			r->pending = 1;
+			return CSF_ODE_OK;
+		}
+		if (take_event(r, ode, best, y, zeno)) return CSF_ODE_STOPPED;
 		if (best - ta <= 1e-12 * (1 + fabs(best))) {
 			if (++same > 1000) {
 				snprintf(msg, msglen, "%lu events without time advancing", same);
@@ -460,10 +562,11 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	double *work = NULL;
 	if (r.ng) {
 		size_t n = p->ny ? p->ny : 1, g = r.ng;
-		work = malloc((4 * g + 6 * n) * sizeof *work);
+		work = malloc((4 * g + 9 * n) * sizeof *work);
 		if (work) {
 			r.ga = work, r.gb = r.ga + g, r.gs = r.gb + g, r.gh = r.gs + g;
 			r.ya = r.gh + g, r.fa = r.ya + n, r.fb = r.fa + n, r.ys = r.fb + n, r.fs = r.ys + n, r.ye = r.fs + n;
+			r.jw = r.ye + n;
 		}
 	}
 	if (!r.m || !y || (r.ng && !work)) {
@@ -513,10 +616,10 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			csf_ode_stats(ode, &before, &rej);
 			int st = r.ng ? advance_events(&r, ode, &t, tk, fixed, fixed_h, y, zeno, msg, sizeof msg)
 			         : fixed ? csf_ode_advance_fixed(ode, &t, tk, fixed_h, y, msg, sizeof msg)
-			               : csf_ode_advance(ode, &t, tk, y, msg, sizeof msg);
+			               : advance_plain(&r, ode, &t, tk, y, msg, sizeof msg);
 			unsigned long after;
 			csf_ode_stats(ode, &after, &rej);
-			if (!fixed && !warned && csf_ode_explicit(ode) && after - before > 10000) {
+			if (!fixed && !warned && csf_ode_explicit(ode) && after - before > 10000 && st != TOO_MUCH) {
 				char tb[32];
 				csf_fmt_double(tb, tk);
 				fprintf(err,
@@ -530,13 +633,27 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 				status = 1;
 				goto done;
 			}
+			if (st == TOO_MUCH) {
+				char tb[32], ta[32], hb[32];
+				csf_fmt_double(tb, t);
+				csf_fmt_double(ta, tk - p->by);
+				csf_fmt_double(hb, r.last_h);
+				if (r.nevents) report_event_src(p, r.last, err);
+				fprintf(err,
+				        "error: at t=%s, %d steps%s since the row at t=%s, the last of %s s: the run cannot get "
+				        "on (%s)\n",
+				        tb, MAX_WORK, r.ng ? " and events" : "", ta, hb,
+				        r.nevents ? "the last event was of the rule on this line: events that follow each other "
+				                    "ever faster, or a force that switches within each step"
+				        : csf_ode_explicit(ode) ? "the problem looks stiff: try --method msbdf or --method bsimp"
+				                                : "the solution may be singular there");
+				status = 1;
+				goto done;
+			}
 			if (st == CHATTER) {
 				char tb[32];
 				csf_fmt_double(tb, t);
-				uint32_t src = r.last < (long)p->nevents ? p->events[r.last].src
-				                                         : p->contacts[(r.last - p->nevents) / 2].src;
-				const csf_src *sr = &p->srcs[src];
-				fprintf(err, "%s:%lu: ", csf_str(p, p->files[sr->file]), (unsigned long)sr->line);
+				report_event_src(p, r.last, err);
 				fprintf(err,
 				        "error: at t=%s the conditions switch back and forth without time advancing (%s): "
 				        "the model has no solution past this point (a sliding mode; make the switching "
