@@ -327,6 +327,53 @@ static int hops(const csf_contact *c, const double *m, double vn, double an)
 	return an < 0 && vn * vn / (-2 * an) <= 1024 * resolution(c, m);
 }
 
+/*
+ * The impact of pair hit, whose relative normal velocity vn becomes target,
+ * together with the pairs in contact, which stay in contact (their normal
+ * velocities do not close): a ball landing on one that rests on the floor
+ * rebounds as from the floor. Their impulses are found by Gauss-Seidel
+ * sweeps, each pair's correcting its velocity in turn (the contacts' only
+ * pushing).
+ */
+static void collide(const csf_prog *p, double *m, const csf_contact *hit, double target, double vn)
+{
+	double scale = fabs(target) + fabs(vn);
+	for (int sweep = 0; sweep < 1000; sweep++) {
+		double change = 0;
+		for (uint32_t i = 0; i < p->ncontacts; i++) {
+			const csf_contact *c = &p->contacts[i];
+			if (c != hit && !in_contact(c, m)) continue;
+			double n[3], curv, vr[3], dv[3];
+			geometry(c, m, n, &curv);
+			rel(c, m, F(c, V), F(c, V2), vr);
+			double v = dot3(vr, n), d = c == hit ? target - v : csf_max(0, -v);
+			if (d == 0) continue;
+			for (int k = 0; k < 3; k++) dv[k] = d * n[k];
+			add_impulse(c, m, dv);
+			change = csf_max(change, fabs(d));
+		}
+		if (change <= 1e-15 * scale) break;
+	}
+}
+
+/* Do pairs c and d share a body (a plane is no body: it does not move)? */
+static int share_body(const csf_contact *c, const csf_contact *d)
+{
+	uint32_t ci = F(c, POS), cj = c->plane ? 0 : F(c, POS2), di = F(d, POS), dj = d->plane ? 0 : F(d, POS2);
+	return c != d && (ci == di || ci == dj || (cj && (cj == di || cj == dj)));
+}
+
+/* Is a body of pair c in contact with, or touching, a third one? */
+static int crowded(const csf_prog *p, const double *m, const csf_contact *c)
+{
+	for (uint32_t i = 0; i < p->ncontacts; i++) {
+		const csf_contact *d = &p->contacts[i];
+		double n[3], curv;
+		if (share_body(c, d) && (in_contact(d, m) || touching(d, m, geometry(d, m, n, &curv)))) return 1;
+	}
+	return 0;
+}
+
 int csf_contact_settle(const csf_prog *p, double *m, double zeno, csf_eval_fn eval, void *ctx)
 {
 	/* each pass evaluates the forces and guards of the current modes, then acts on what they say */
@@ -367,31 +414,35 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, csf_eval_fn ev
 		}
 		if (hit >= 0) {
 			const csf_contact *c = &p->contacts[hit];
-			double n[3], curv, vr[3], ar[3], dv[3];
+			double n[3], curv, vr[3], ar[3];
 			double gap = geometry(c, m, n, &curv);
 			rel(c, m, F(c, V), F(c, V2), vr);
 			rel(c, m, F(c, A), F(c, A2), ar);
 			double vn = dot3(vr, n), an = dot3(ar, n) + curv, sep = -restitution(c, m) * vn;
-			int rest = sep == 0 || at_rest(c, m, sep, an, zeno);
-			double target = rest ? 0 : sep;
-			for (int k = 0; k < 3; k++) dv[k] = (target - vn) * n[k];
-			add_impulse(c, m, dv);
+			/* a hop too low to follow by positions is followed by its flight time only when
+			   nothing else touches the bodies; among several (a ball on a ball on the floor)
+			   it is a rest: the impulses that follow are passed on within this instant */
+			int rest = sep == 0 || at_rest(c, m, sep, an, zeno), low = !rest && hops(c, m, sep, an);
+			if (low && crowded(p, m, c)) rest = 1, low = 0;
+			collide(p, m, c, rest ? 0 : sep, vn);
 			close_gap(c, m, n, gap);
 			if (rest) {
 				enter_contact(c, m, n);
-			} else if (hops(c, m, sep, an)) {
+			} else if (low) {
 				m[W(c, MODE)] = HOPPING;
 				m[W(c, TL)] = m[p->tslot] + 2 * sep / -an;
 			}
+			for (uint32_t i = 0; i < p->ncontacts; i++) /* flights whose velocities just changed */
+				if (share_body(c, &p->contacts[i]) && m[W(&p->contacts[i], MODE)] == HOPPING)
+					m[W(&p->contacts[i], MODE)] = APART;
 			continue;
 		}
 		/* a guard of a pair in contact that is negative: its transition (contact.c's header) */
 		for (uint32_t i = 0; i < p->ncontacts; i++) {
 			const csf_contact *c = &p->contacts[i];
-			double mode = m[W(c, MODE)];
-			if (mode < 1) continue;
+			if (!in_contact(c, m)) continue;
 			if (m[W(c, G0)] < 0) separate(c, m), changed = 1;
-			else if (m[W(c, G1)] < 0) (mode == 1 ? stick : slide)(c, m), changed = 1;
+			else if (m[W(c, G1)] < 0) (m[W(c, MODE)] == SLIDING ? stick : slide)(c, m), changed = 1;
 		}
 		if (!changed) return 0;
 	}

@@ -526,7 +526,6 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 		memcpy(y, r->ye, n * sizeof *y);
 		*t = best;
 		r->last = which;
-		if (getenv("CSF_DEBUG")) fprintf(stderr, "event %ld at %.17g t1 %.17g ta %.17g\n", which, best, t1, ta);
 		if (t1 - best <= location_tol(p)) { /* at an output time: its row shows the state before the event */
 			*t = t1;
 			r->pending = 1;
