@@ -1,11 +1,12 @@
 # Shared by the mechanics examples' checkers (each names it on its first line).
 # Columns by name (units stripped); cmp() fails the run on the first value
-# that differs from the exact one by more than tol absolutely and relatively.
+# that differs from the exact one by more than tol absolutely and relatively
+# (tol times tolscale, when awk is given -v tolscale=K: a low-order method).
 function abs(x) { return x < 0 ? -x : x }
-function cmp(name, got, want,   d) {
-	d = abs(got - want)
+function cmp(name, got, want,   d, e) {
+	d = abs(got - want); e = tol * (tolscale ? tolscale : 1)
 	if (d > maxerr) maxerr = d
-	if (d > tol && d > tol * abs(want)) {
+	if (d > e && d > e * abs(want)) {
 		printf "row %d (t=%s): %s = %.17g, exact %.17g, error %.3g\n", NR, $1, name, got, want, d
 		failed = 1; exit 1
 	}

@@ -2,13 +2,17 @@
  * contact.c - mechanics/rules 1 to 4: normal force, collision, static and
  * dynamic friction between a mass point and another mass point or a plane.
  *
- * A pair is apart (mode 0) or in contact, sliding (1) or sticking (2). The
- * mode changes only at events, which the driver locates in time:
+ * A pair is apart (mode 0), hopping (3), or in contact, sliding (1) or
+ * sticking (2). The mode changes only at events, which the driver locates
+ * in time:
  *
  *   apart:    guard 0 is the gap; when it closes the bodies collide (an
  *             impulse along the normal with restitution min(cr_i, cr_j); a
- *             plane has infinite mass), or come to rest in contact when
- *             the bounces that remain would last less than the Zeno time.
+ *             plane has infinite mass; the pairs in contact stay in
+ *             contact), or come to rest in contact when the train of
+ *             bounces that would follow ends within the Zeno time.
+ *   hopping:  apart, on a hop too low for the positions to follow; guard 0
+ *             is the time left until it lands, known from its flight time.
  *   contact:  the normal force N n is the constraint force that keeps the
  *             relative normal acceleration zero; guard 0 is N, and the
  *             bodies separate when it would pull (N < 0).
@@ -18,6 +22,10 @@
  *   sticking: friction is the force that keeps the relative tangential
  *             acceleration zero; guard 1 is mu_s |N| - |f|, and sliding
  *             begins when static friction cannot hold.
+ *
+ * No threshold is a length or a time of its own: the gap's resolution
+ * follows from the magnitudes of the positions, the Zeno time from the
+ * output interval (csf(5), Rest).
  *
  * Materials combine as mu = max(mu_i, mu_j) (the rougher surface) and
  * restitution e = min(cr_i, cr_j) (the less elastic one), so the defaults
