@@ -325,14 +325,16 @@ static int at_rest(const csf_contact *c, const double *m, double vn, double an, 
 }
 
 /*
- * Hopping: the hop is too low for the positions to follow (within 1024
- * times the gap's resolution, where the rounding of positions far from the
- * origin would misplace its landing); it lands at the time its flight
+ * Hopping: the hop is too low for the positions to follow: within 1024
+ * times the gap's resolution (where the rounding of positions far from the
+ * origin would misplace its landing), or 100 times the integrator's
+ * accuracy, tol times the pair's length scale (an implicit method's
+ * iteration leaves errors of that size). It lands at the time its flight
  * takes, 2 vn/|an|, found from the velocity alone.
  */
-static int hops(const csf_contact *c, const double *m, double vn, double an)
+static int hops(const csf_contact *c, const double *m, double vn, double an, double tol)
 {
-	return an < 0 && vn * vn / (-2 * an) <= 1024 * resolution(c, m);
+	return an < 0 && vn * vn / (-2 * an) <= csf_max(1024 * resolution(c, m), 100 * tol * scale(c, m));
 }
 
 /*
@@ -382,7 +384,7 @@ static int crowded(const csf_prog *p, const double *m, const csf_contact *c)
 	return 0;
 }
 
-int csf_contact_settle(const csf_prog *p, double *m, double zeno, csf_eval_fn eval, void *ctx)
+int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, csf_eval_fn eval, void *ctx)
 {
 	/* each pass evaluates the forces and guards of the current modes, then acts on what they say */
 	for (uint32_t iter = 0; iter < 100 + 10 * p->ncontacts; iter++) {
@@ -430,7 +432,7 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, csf_eval_fn ev
 			/* a hop too low to follow by positions is followed by its flight time only when
 			   nothing else touches the bodies; among several (a ball on a ball on the floor)
 			   it is a rest: the impulses that follow are passed on within this instant */
-			int rest = sep == 0 || at_rest(c, m, sep, an, zeno), low = !rest && hops(c, m, sep, an);
+			int rest = sep == 0 || at_rest(c, m, sep, an, zeno), low = !rest && hops(c, m, sep, an, tol);
 			if (low && crowded(p, m, c)) rest = 1, low = 0;
 			collide(p, m, c, rest ? 0 : sep, vn);
 			close_gap(c, m, n, gap);

@@ -175,9 +175,11 @@ typedef int (*csf_eval_fn)(void *ctx);
  * the velocities (and positions, by rounding-size amounts) in m: impacts
  * (restitution), the contacts that come to rest, lift-off, stick and slip,
  * as the guards of the current modes call for. zeno: the time below which
- * a train of bounces counts as at rest. Returns 0, or -1 if eval failed.
+ * a train of bounces counts as at rest; tol: the integrator's relative
+ * tolerance (the accuracy of the positions it computes). Returns 0, or -1
+ * if eval failed.
  */
-int csf_contact_settle(const csf_prog *p, double *m, double zeno, csf_eval_fn eval, void *ctx);
+int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, csf_eval_fn eval, void *ctx);
 
 /* Run-time options, parsed identically by csfvm and generated executables. */
 typedef struct csf_opts {

@@ -105,6 +105,7 @@ typedef struct run {
 	long last; /* the guard of the last event */
 	int pending; /* it was located at an output time and happens after that row */
 	double last_h; /* the last step's length */
+	double zeno, tol; /* for csf_contact_settle */
 	/* events: guards (conditional rules' comparisons, then two per contact), work vectors */
 	uint32_t ng;
 	double *ga, *gb, *gs, *gh, *ya, *fa, *fb, *ys, *fs, *ye;
@@ -347,14 +348,14 @@ static int settle_eval(void *ctx)
 }
 
 /* Brings every mode up to date at (t, y): at the start, and after an event. */
-static int update_modes(run *r, double t, double *y, double zeno)
+static int update_modes(run *r, double t, double *y)
 {
 	const csf_prog *p = r->p;
 	free_modes(r, t, y);
 	if (p->ncontacts) {
 		settle_ctx s = { r, t, y };
 		memcpy(r->m + p->ystart, y, p->ny * sizeof *y);
-		if (csf_contact_settle(p, r->m, zeno, settle_eval, &s)) return 1;
+		if (csf_contact_settle(p, r->m, r->zeno, r->tol, settle_eval, &s)) return 1;
 		memcpy(y, r->m + p->ystart, p->ny * sizeof *y);
 		free_modes(r, t, y);
 	}
@@ -365,13 +366,33 @@ static int update_modes(run *r, double t, double *y, double zeno)
 static double location_tol(const csf_prog *p) { return csf_min(1e-13, 1e-10 * p->by); }
 
 /*
- * The guards at time tc on the state stepped exactly from the step's start
- * (ta, r->ya), into r->gs, the state left in r->ys. CSF_ODE_OK, STOPPED if
- * a derivative was not finite, FAILED (with msg) if the step failed.
+ * The cubic Hermite interpolant of the step from (ta, r->ya), derivative
+ * r->fa, to (ta + dt, yb), derivative r->fb, at ta + s dt, into out.
  */
-static int substep_guards(run *r, csf_ode *ode, double ta, double tc, char *msg, size_t msglen)
+static void hermite(const run *r, double dt, const double *yb, double s, double *out)
 {
-	if (csf_ode_substep(ode, ta, r->ya, tc - ta, r->ys)) {
+	double s2 = s * s, s3 = s2 * s;
+	double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
+	for (size_t i = 0; i < r->p->ny; i++)
+		out[i] = h00 * r->ya[i] + h10 * dt * r->fa[i] + h01 * yb[i] + h11 * dt * r->fb[i];
+}
+
+/*
+ * The guards at time tc on the state stepped exactly from the step's start
+ * (ta, r->ya) of the step that ended at (tb, yb), into r->gs, the state left
+ * in r->ys. Within 1e-6 of the step from its start, the state is the step's
+ * interpolant (exact there to far below rounding), not a substep: a method's
+ * step that short can be off by many units in the last place (bsimp's
+ * extrapolation), enough to put a gap that has just opened below zero.
+ * CSF_ODE_OK, STOPPED if a derivative was not finite, FAILED (with msg) if
+ * the step failed.
+ */
+static int substep_guards(run *r, csf_ode *ode, double ta, double tb, const double *yb, double tc, char *msg,
+                          size_t msglen)
+{
+	if (tc - ta < 1e-6 * (tb - ta)) {
+		hermite(r, tb - ta, yb, (tc - ta) / (tb - ta), r->ys);
+	} else if (csf_ode_substep(ode, ta, r->ya, tc - ta, r->ys)) {
 		if (r->fail) return CSF_ODE_STOPPED;
 		snprintf(msg, msglen, "the %s step from t=%.17g to locate an event at t=%.17g failed", csf_ode_method(ode),
 		         ta, tc);
@@ -395,7 +416,7 @@ static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const 
 		if (!(c > lo && c < hi)) c = lo + (hi - lo) / 2;
 		if (c - lo < tol / 4) c = lo + tol / 4; /* shrink the bracket from both ends */
 		if (hi - c < tol / 4) c = hi - tol / 4;
-		if ((st = substep_guards(r, ode, ta, c, msg, msglen))) return st;
+		if ((st = substep_guards(r, ode, ta, tb, yb, c, msg, msglen))) return st;
 		double gc = r->gs[k];
 		if (gc < 0) {
 			hi = c, ghi = gc;
@@ -412,7 +433,7 @@ static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const 
 		memcpy(r->ys, yb, r->p->ny * sizeof *yb);
 		return CSF_ODE_OK;
 	}
-	return substep_guards(r, ode, ta, hi, msg, msglen);
+	return substep_guards(r, ode, ta, tb, yb, hi, msg, msglen);
 }
 
 /*
@@ -420,11 +441,11 @@ static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const 
  * (impacts change y), the integrator restarts, and r->ga and r->fa hold the
  * guards and derivative there. 0, or 1 if a derivative was not finite.
  */
-static int take_event(run *r, csf_ode *ode, double t, double *y, double zeno)
+static int take_event(run *r, csf_ode *ode, double t, double *y)
 {
 	r->nevents++;
 	r->pending = 0;
-	if (update_modes(r, t, y, zeno)) return 1;
+	if (update_modes(r, t, y)) return 1;
 	csf_ode_restart(ode);
 	if (guards_at(r, t, y, r->ga)) return 1;
 	memcpy(r->fa, r->fs, r->p->ny * sizeof *r->fa);
@@ -449,13 +470,13 @@ static int advance_plain(run *r, csf_ode *ode, double *t, double t1, double *y, 
  * r->ga and r->fa hold the guards and derivative at (*t, y), unless an event
  * located at the last output time is pending: it happens first.
  */
-static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed, double h, double *y, double zeno,
-                          char *msg, size_t msglen)
+static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed, double h, double *y, char *msg,
+                          size_t msglen)
 {
 	const csf_prog *p = r->p;
 	size_t n = p->ny, ng = r->ng;
 	unsigned long same = 0, work = 0;
-	if (r->pending && take_event(r, ode, *t, y, zeno)) return CSF_ODE_STOPPED;
+	if (r->pending && take_event(r, ode, *t, y)) return CSF_ODE_STOPPED;
 	while (*t < t1) {
 		double ta = *t;
 		if (++work > MAX_WORK) return TOO_MUCH;
@@ -472,11 +493,8 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 		int found = 0;
 		for (int j = 1; j <= 4 && !found; j++) {
 			if (j < 4) {
-				double s = j / 4.0, s2 = s * s, s3 = s2 * s;
-				double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
-				for (size_t i = 0; i < n; i++)
-					r->ys[i] = h00 * r->ya[i] + h10 * dt * r->fa[i] + h01 * y[i] + h11 * dt * r->fb[i];
-				hi = ta + s * dt;
+				hermite(r, dt, y, j / 4.0, r->ys);
+				hi = ta + j / 4.0 * dt;
 				if (guards_at(r, hi, r->ys, r->gh)) return CSF_ODE_STOPPED;
 			} else {
 				hi = tb;
@@ -499,12 +517,12 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 			/* the exact state's guards at lo and hi (the interpolant only pointed here) */
 			double l = lo, gl = r->ga[k], u = hi, gu = r->gh[k];
 			if (lo > ta) {
-				if ((st = substep_guards(r, ode, ta, lo, msg, msglen))) return st;
+				if ((st = substep_guards(r, ode, ta, tb, y, lo, msg, msglen))) return st;
 				if (r->gs[k] < 0) l = ta; /* already below at lo: the crossing is earlier */
 				else gl = r->gs[k];
 			}
 			if (hi < tb) {
-				if ((st = substep_guards(r, ode, ta, hi, msg, msglen))) return st;
+				if ((st = substep_guards(r, ode, ta, tb, y, hi, msg, msglen))) return st;
 				gu = r->gs[k];
 				if (gu >= 0) { /* not below on the exact state: try the step's end */
 					u = tb, gu = r->gb[k];
@@ -531,7 +549,7 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 			r->pending = 1;
 			return CSF_ODE_OK;
 		}
-		if (take_event(r, ode, best, y, zeno)) return CSF_ODE_STOPPED;
+		if (take_event(r, ode, best, y)) return CSF_ODE_STOPPED;
 		if (best - ta <= 1e-12 * (1 + fabs(best))) {
 			if (++same > 1000) {
 				snprintf(msg, msglen, "%lu events without time advancing", same);
@@ -575,6 +593,15 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	}
 	memcpy(r.m, p->mem0, p->nmem * sizeof(double));
 	memcpy(y, p->mem0 + p->ystart, p->ny * sizeof(double));
+	if (p->ncontacts && !csf_method_contacts(o->method)) {
+		fprintf(err, "error: method '%s' cannot run a model with contacts (mechanics/rules: their friction "
+		        "depends on v); one of:", o->method);
+		for (size_t k = 0; csf_method_name(k); k++)
+			if (csf_method_contacts(csf_method_name(k))) fprintf(err, " %s", csf_method_name(k));
+		fprintf(err, "\n");
+		status = 2;
+		goto done;
+	}
 	if (p->ny) {
 		ode = csf_ode_new(o->method, o->fixed, p->ny, p->by, o->tol, p->yscale, p->vpair, rhs, p->jtan ? jac : NULL, &r, msg,
 		                  sizeof msg);
@@ -591,11 +618,12 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 
 	fixed = ode && (o->fixed || csf_ode_fixed_only(ode));
 	double fixed_h = ode ? csf_ode_fixed_step(ode, p->by, o->step) : p->by;
-	/* a train of bounces whose rest would last less than this is at rest (contact.c) */
-	double zeno = 1e-6 * p->by;
+	/* a train of bounces that would end within zeno is at rest; the integrator's accuracy (contact.c) */
+	r.zeno = 1e-6 * p->by;
+	r.tol = o->tol > 0 ? o->tol : CSF_DEFAULT_TOL;
 	if (r.ng) {
 		/* the modes at t = 0: each comparison's side, contacts at rest or colliding */
-		if (update_modes(&r, 0, y, zeno) || (p->ny && guards_at(&r, 0, y, r.ga))) {
+		if (update_modes(&r, 0, y) || (p->ny && guards_at(&r, 0, y, r.ga))) {
 			report_nonfinite(p, CSF_SEC_RHS, r.m, 0, "a state derivative", o->fixed, err);
 			status = 1;
 			goto done;
@@ -613,7 +641,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		if (ode && tk > t) {
 			unsigned long before, rej;
 			csf_ode_stats(ode, &before, &rej);
-			int st = r.ng ? advance_events(&r, ode, &t, tk, fixed, fixed_h, y, zeno, msg, sizeof msg)
+			int st = r.ng ? advance_events(&r, ode, &t, tk, fixed, fixed_h, y, msg, sizeof msg)
 			         : fixed ? csf_ode_advance_fixed(ode, &t, tk, fixed_h, y, msg, sizeof msg)
 			               : advance_plain(&r, ode, &t, tk, y, msg, sizeof msg);
 			unsigned long after;

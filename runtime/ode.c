@@ -39,6 +39,19 @@ static const struct method {
 
 const char *csf_method_name(size_t i) { return i < sizeof methods / sizeof methods[0] ? methods[i].name : NULL; }
 
+static const struct method *find_method(const char *name)
+{
+	for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++)
+		if (strcmp(methods[i].name, name) == 0) return &methods[i];
+	return NULL;
+}
+
+int csf_method_contacts(const char *method)
+{
+	const struct method *m = method ? find_method(method) : &methods[0];
+	return m && m->type;
+}
+
 struct csf_ode {
 	gsl_odeiv2_system sys;
 	gsl_odeiv2_driver *drv;
@@ -75,15 +88,10 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double hmax, doubl
                      const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err, size_t errlen)
 {
 	gsl_set_error_handler_off();
-	const struct method *m = &methods[0];
-	if (method) {
-		m = NULL;
-		for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++)
-			if (strcmp(methods[i].name, method) == 0) m = &methods[i];
-		if (!m) {
-			snprintf(err, errlen, "unknown method '%s'", method);
-			return NULL;
-		}
+	const struct method *m = method ? find_method(method) : &methods[0];
+	if (!m) {
+		snprintf(err, errlen, "unknown method '%s'", method);
+		return NULL;
 	}
 	if (fixed && m->multistep) {
 		snprintf(err, errlen, "--fixed needs a one-step method, not the multistep %s", m->name);
@@ -132,15 +140,6 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double hmax, doubl
 		return NULL;
 	}
 	return o;
-}
-
-int csf_ode_advance(csf_ode *o, double *t, double t1, double *y, char *err, size_t errlen)
-{
-	int st = gsl_odeiv2_driver_apply(o->drv, t, t1, y);
-	if (st == GSL_SUCCESS) return CSF_ODE_OK;
-	if (st == GSL_EBADFUNC) return CSF_ODE_STOPPED;
-	snprintf(err, errlen, "%s", gsl_strerror(st));
-	return CSF_ODE_FAILED;
 }
 
 static int work(csf_ode *o)
@@ -237,6 +236,15 @@ int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *
 	}
 	gsl_odeiv2_driver *d = o->drv;
 	if (d->h > d->hmax) d->h = d->hmax;
+	/* A step that would end just short of t1 (by at most 1e-4 of its length, as
+	   in RADAU5) is stretched to end there. Otherwise what is left can be a
+	   sliver, as when t + hmax rounds to one ulp below t1 = t + by: a step too
+	   small to change y, on which the Newton iteration of the implicit
+	   Runge-Kutta methods (GSL's modnewton1) sees its correction repeat, takes
+	   that for divergence, and fails however often the step is halved. A step
+	   longer than what is left ends exactly at t1 (evolve_apply's last step). */
+	double left = t1 - *t;
+	if (d->h <= left && left <= d->h * (1 + 1e-4)) d->h = nextafter(left, INFINITY);
 	int st = gsl_odeiv2_evolve_apply(d->e, d->c, d->s, &o->sys, t, t1, &d->h, y);
 	if (st == GSL_SUCCESS) return CSF_ODE_OK;
 	if (st == GSL_EBADFUNC) return CSF_ODE_STOPPED;

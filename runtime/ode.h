@@ -19,33 +19,34 @@ enum { CSF_ODE_OK = 0, CSF_ODE_STOPPED = 1, CSF_ODE_FAILED = 2 };
 
 /*
  * A new integrator for n state variables with the named method (NULL for the
- * default; with fixed, a method that can take fixed steps), internal steps never longer than hmax, local error bound tol
- * (relative, and absolute times scale[i] for component i; <= 0 for the
- * default). Returns NULL and writes a
- * reason to err for an unknown method or when memory runs out.
+ * default; with fixed, a method that can take fixed steps), internal steps
+ * never longer than hmax (but for a step stretched by at most 1e-4 of its
+ * length to end at the time asked for), local error bound tol (relative, and
+ * absolute times scale[i] for component i; <= 0 for the default). Returns
+ * NULL and writes a reason to err for an unknown method or when memory runs
+ * out.
  */
 csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double hmax, double tol, const double *scale,
                      const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err, size_t errlen);
 
-/*
- * Advances (*t, y) to exactly t1. Returns CSF_ODE_OK; CSF_ODE_STOPPED when f
- * asked to stop (*t is then the time of the failing evaluation's step
- * start); CSF_ODE_FAILED with a reason in err for any other GSL failure.
- */
-int csf_ode_advance(csf_ode *o, double *t, double t1, double *y, char *err, size_t errlen);
+/* Can the named method run a model with contacts (a method with a step of its own: not verlet)? */
+int csf_method_contacts(const char *method);
 
 /*
  * Advances (*t, y) to exactly t1 in equal steps of at most h, without error
  * control (rk4 is the classical four-stage method; the other one-step
  * methods take GSL's step without using its error estimate). Returns as
- * csf_ode_advance.
+ * csf_ode_step.
  */
 int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y, char *err, size_t errlen);
 
 /*
  * One step from (*t, y) towards t1, never past it: an accepted adaptive step
- * (error control, steps no longer than hmax), or with fixed, one step of h.
- * Returns as csf_ode_advance.
+ * (error control, steps no longer than hmax, a step that would end just
+ * short of t1 stretched to end at it), or with fixed, one step of h.
+ * Returns CSF_ODE_OK; CSF_ODE_STOPPED when f asked to stop (*t is then the
+ * time of the failing evaluation's step start); CSF_ODE_FAILED with a
+ * reason in err for any other GSL failure.
  */
 int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *y, char *err, size_t errlen);
 

@@ -14,15 +14,23 @@
 #     exit status, the number of CSV data rows that must be on stdout, and
 #     lines that must appear on stderr.
 #  4. both execution paths give identical output: csfvm and `csfc --emit-c`.
-#  5. hostile bytecode, bad usage, output errors, install, a 300-body scene.
+#  5. hostile bytecode, bad usage, output errors, install, a 300-body scene,
+#     every method at every tolerance (tests/methods_tol.sh).
 # The last line is "N passed, N failed".
 set -u
 B=$(cd "${CSF_BUILD:-build}" && pwd)
-CSFC=$B/csfc
-CSFVM=$B/csfvm
 TOP=$(pwd)
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
+# every process a test starts has a time limit (a hang fails its test, exit 124)
+LIMIT=${CSF_TEST_LIMIT:-300}
+mkdir "$T/bin"
+for tool in csfc csfvm; do
+	printf '#!/bin/sh\nexec timeout %s "%s" "$@"\n' "$LIMIT" "$B/$tool" >"$T/bin/$tool"
+	chmod +x "$T/bin/$tool"
+done
+CSFC=$T/bin/csfc
+CSFVM=$T/bin/csfvm
 pass=0
 fail=0
 ok() { pass=$((pass + 1)); }
@@ -121,7 +129,7 @@ for m in tests/e2e/*.csf examples/*.csf tests/runtime/*.csf; do
 	(cd "$d" && "$CSFVM" $args "$T/v.csfb") >"$T/v.out" 2>"$T/v.err"
 	vs=$?
 	# shellcheck disable=SC2086
-	(cd "$d" && "$T/exe" $args) >"$T/c.out" 2>"$T/c.err"
+	(cd "$d" && timeout "$LIMIT" "$T/exe" $args) >"$T/c.out" 2>"$T/c.err"
 	cs=$?
 	if [ $vs -ne $cs ]; then
 		bad "$m: exit status csfvm $vs, generated executable $cs"
@@ -154,11 +162,11 @@ done
 # 5a. hostile bytecode: every byte flipped, every truncation (csfvm must exit 2, never crash)
 printf 'object p: x = 1 m\nobject p: v = 0 m/s\nobject p: k = 1 s^-2\nrule: x'"'"' = v\nrule: v'"'"' = -k * x\nassert x < 2 m\ninc t till 1 by 0.5 watch x, v\n' >"$T/h.csf"
 "$CSFC" "$T/h.csf" -o "$T/h.csfb" 2>/dev/null
-if "$B/fuzz-bytecode" "$T/h.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode: $(tail -n 3 "$T/fuzz")"; fi
+if timeout "$LIMIT" "$B/fuzz-bytecode" "$T/h.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode: $(tail -n 3 "$T/fuzz")"; fi
 # the same for a program with events and contacts (their tables, EVGT, CONTACT)
 printf 'using mechanics/mass_point\nobject b: mass_point\nobject b: pos = (0, 0, 0.1) m\nobject b: cr = 0.5\nobject f: plane\nusing mechanics/rules\nrule F: if t < 0.2 s:\n    W = g.mul(m)\nelse:\n    W = g.mul(-m)\ninc t till 0.4 s by 0.2 s watch pos\n' >"$T/hc.csf"
 "$CSFC" -I stdlib "$T/hc.csf" -o "$T/hc.csfb" 2>"$T/err" || bad "hostile bytecode: the contact model does not compile: $(head -n 1 "$T/err")"
-if "$B/fuzz-bytecode" "$T/hc.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode with contacts: $(tail -n 3 "$T/fuzz")"; fi
+if timeout "$LIMIT" "$B/fuzz-bytecode" "$T/hc.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode with contacts: $(tail -n 3 "$T/fuzz")"; fi
 # and through the real executable, on a sample of corruptions (each byte inverted)
 size=$(wc -c <"$T/h.csfb")
 vmfail=0
@@ -219,6 +227,16 @@ if "$CSFC" "$T/n300.csf" -o "$T/n300.csfb" 2>"$T/err" && "$CSFVM" "$T/n300.csfb"
 if "$CSFC" tests/e2e/kepler.csf -o "$T/k.csfb" 2>"$T/err" && "$CSFVM" --compare-methods "$T/k.csfb" >"$T/cmp" 2>>"$T/err" &&
 	awk '$1 == "rk8pd" && $2 == "1e-12" { ok = $6 + 0 < 1e-6 } $1 == "msadams" && $2 == "0.0001" { loose = $6 + 0 > 1e-3 }
 		END { exit !(ok && loose) }' "$T/cmp"; then ok; else bad "--compare-methods: $(head -n 3 "$T/cmp" "$T/err")"; fi
+
+# 5g. every method at every tolerance 1e-3 ... 1e-12 on a harmonic oscillator: each run
+#     finishes, and within a bound the tolerance implies of the exact solution
+if CSF_BUILD="$B" sh tests/methods_tol.sh >"$T/mt" 2>&1; then ok; else bad "methods and tolerances: $(grep FAIL "$T/mt" | head -n 3)"; fi
+
+# 5h. a ball dropped onto floors and inclines anywhere, at every output interval:
+#     every row against the exact motion (tests/contacts/drop.sh)
+if sh tests/contacts/drop.sh "$CSFC" "$CSFVM" "$T" >"$T/drop" 2>&1; then ok; else bad "contacts: $(grep FAIL "$T/drop" | head -n 3)"; fi
+# 5i. every contact scene under every method: each finishes, exact to 1e-6 (tests/contacts/methods.sh)
+if sh tests/contacts/methods.sh "$CSFC" "$CSFVM" "$T" >"$T/mm" 2>&1; then ok; else bad "contacts and methods: $(grep FAIL "$T/mm" | head -n 3)"; fi
 
 # 5e. make install into a staging directory; the installed csfc finds the standard library
 if make -s install BUILD="${CSF_BUILD:-build}" PREFIX=/usr DESTDIR="$T/stage" >/dev/null 2>"$T/err" &&
