@@ -1,7 +1,7 @@
 #!/bin/sh
 # tests/contacts/methods.sh CSFC CSFVM DIR - every scene of contacts under
-# every integration method: the mechanics examples and a ball dropped on a
-# resting ball. Each run must finish (exit 0, every row) and every row must
+# every integration method: the mechanics examples, a ball dropped on a
+# resting ball and a ball lifted off the floor. Each run must finish (exit 0, every row) and every row must
 # be within 1e-6 of the exact motion (the scene's checker), or 1e-4 for the
 # multistep msadams and msbdf, whose accuracy at the default tolerance is
 # lower on these scenes (restarted at first order at every event; csf(5),
@@ -13,7 +13,7 @@
 CSFC=$1 CSFVM=$2 T=$3
 pass=0 fail=0
 for m in examples/bouncing_ball examples/collision examples/incline examples/newtons_cradle examples/pushed_block \
-	examples/table_edge tests/e2e/stack_drop; do
+	examples/table_edge tests/e2e/stack_drop tests/e2e/liftoff; do
 	if ! "$CSFC" "$m.csf" -o "$T/mm.csfb" 2>"$T/mm.err"; then
 		fail=$((fail + 1)); echo "FAIL: $m: does not compile: $(head -n 1 "$T/mm.err")"; continue
 	fi
