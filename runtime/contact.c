@@ -332,9 +332,15 @@ static int at_rest(const csf_contact *c, const double *m, double vn, double an, 
  * iteration leaves errors of that size). It lands at the time its flight
  * takes, 2 vn/|an|, found from the velocity alone.
  */
+/* The height below which a hop is too low (as hops() says). */
+static double too_low(const csf_contact *c, const double *m, double tol)
+{
+	return csf_max(1024 * resolution(c, m), 100 * tol * scale(c, m));
+}
+
 static int hops(const csf_contact *c, const double *m, double vn, double an, double tol)
 {
-	return an < 0 && vn * vn / (-2 * an) <= csf_max(1024 * resolution(c, m), 100 * tol * scale(c, m));
+	return an < 0 && vn * vn / (-2 * an) <= too_low(c, m, tol);
 }
 
 /*
@@ -347,7 +353,7 @@ static int hops(const csf_contact *c, const double *m, double vn, double an, dou
  */
 static void collide(const csf_prog *p, double *m, const csf_contact *hit, double target, double vn)
 {
-	double scale = fabs(target) + fabs(vn);
+	double size = fabs(target) + fabs(vn);
 	for (int sweep = 0; sweep < 1000; sweep++) {
 		double change = 0;
 		for (uint32_t i = 0; i < p->ncontacts; i++) {
@@ -362,7 +368,7 @@ static void collide(const csf_prog *p, double *m, const csf_contact *hit, double
 			add_impulse(c, m, dv);
 			change = csf_max(change, fabs(d));
 		}
-		if (change <= 1e-15 * scale) break;
+		if (change <= 1e-15 * size) break;
 	}
 }
 
@@ -403,7 +409,7 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, cs
 				if (m[W(c, G0)] >= 0) continue;
 				m[W(c, MODE)] = APART;
 				changed = 1;
-				landing = gap <= 2048 * resolution(c, m);
+				landing = gap <= too_low(c, m, tol); /* its positions are no closer than that */
 			}
 			if (!landing && !touching(c, m, gap)) continue;
 			rel(c, m, F(c, V), F(c, V2), vr);

@@ -147,7 +147,7 @@ static int jac_differences(run *r, double t, const double *y, double *dfdy, doub
 	for (uint32_t j = 0; j <= n; j++) {
 		double x = j < n ? y[j] : t;
 		double h = c * csf_max(fabs(x), j < n ? p->yscale[j] : p->by);
-		volatile double xp = x + h, xm = x - h; /* the steps actually taken */
+		double xp = x + h, xm = x - h; /* divided by the steps actually taken */
 		if (j < n) yd[j] = xp;
 		if (rhs(j < n ? t : xp, yd, fp, r)) return 1;
 		if (j < n) yd[j] = xm;
