@@ -4,7 +4,8 @@
  * (GSL rk8pd, driver_alloc_scaled_new with h0 = by, epsabs = epsrel = 1e-10,
  * a_y = 1, a_dydt = 0 and the absolute tolerance of each vector scaled as
  * csfc scales it: by its initial magnitude when that is below one unit;
- * hmax = by, driver_apply to each t_k = k*by), and the output loop of
+ * hmax = by, evolve_apply up to each t_k = k*by, a step that would end
+ * just short of it stretched to end there, as csf_ode_step), and the output loop of
  * runtime/driver.c, numbers formatted by the runtime's own csf_fmt_double.
  * Each program supplies its right-hand side, where a watched object's pos
  * and v sit in the state, and a check run at every row under --stats.
@@ -96,8 +97,11 @@ static double ref_run(int (*rhs)(double, const double *, double *, void *), size
 	char b[32];
 	for (double k = 0; k <= kmax; k++) {
 		double tk = k * by;
-		if (tk > t) {
-			int st = gsl_odeiv2_driver_apply(drv, &t, tk, y);
+		while (t < tk) {
+			if (drv->h > drv->hmax) drv->h = drv->hmax;
+			double left = tk - t;
+			if (drv->h <= left && left <= drv->h * (1 + 1e-4)) drv->h = nextafter(left, INFINITY);
+			int st = gsl_odeiv2_evolve_apply(drv->e, drv->c, drv->s, &sys, &t, tk, &drv->h, y);
 			if (st != GSL_SUCCESS) {
 				fprintf(stderr, "%s: integration failed at t=%g: %s\n", ref_name, t, gsl_strerror(st));
 				exit(1);
