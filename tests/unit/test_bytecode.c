@@ -174,6 +174,69 @@ START_TEST(test_contact_routine)
 }
 END_TEST
 
+/* A sphere (radius 0.1 m, restitution 0.5) on a floor 1000 km up, under gravity. */
+static const char *floor_model =
+	"object floor: vector point = (0, 0, 1e6) m\n"
+	"object floor: vector normal = (0, 0, 1)\n"
+	"object floor: vector edge = (0, 0, 0) m\n"
+	"object floor: cr = 1\nobject floor: mu_s = 0\nobject floor: mu_k = 0\n"
+	"object b: m = 1 kg\nobject b: vector v = (0, 0, 0) m/s\nobject b: vector a = (0, 0, 0) m/s^2\n"
+	"object b: vector pos = (0, 0, 1000000.1) m\nobject b: radius = 0.1 m\nobject b: cr = 0.5\n"
+	"object b: mu_s = 0\nobject b: mu_k = 0\n"
+	"object b: vector FN = (0, 0, 0) N\nobject b: vector Ff = (0, 0, 0) N\n"
+	"rule: contact(pos, radius, point$1, normal$1)\n"
+	"rule: a = g\nrule: v' = a\nrule: pos' = v\n"
+	"inc t till 1 s by 0.5 s watch b.pos\n";
+
+typedef struct eval_ctx { const csf_prog *p; double *m; } eval_ctx;
+static int eval_rhs(void *ctx)
+{
+	eval_ctx *e = ctx;
+	csf_vm_exec(e->p, CSF_SEC_RHS, e->m);
+	return 0;
+}
+
+/*
+ * Impacts of the sphere landing at speed w at t = 2 s, settled by
+ * csf_contact_settle (Zeno time 5e-7 s, tolerance 1e-10): it rebounds at
+ * w/2 and is apart; on a hop lower than 100 tol times the scale (2e6 m, so
+ * 0.02 m) it is hopping, landing after the flight time 2 (w/2)/g; when the
+ * train of bounces would end within the Zeno time it rests, with FN = m g.
+ * The floor's distance from the origin changes none of this.
+ */
+START_TEST(test_contact_settle)
+{
+	csf_prog p;
+	ck_assert_int_eq(compile_string(floor_model, &p, NULL), 0);
+	ck_assert_uint_eq(p.ncontacts, 1);
+	double *m = malloc(p.nmem * sizeof *m), g = 9.80665;
+	const csf_contact *c = &p.contacts[0];
+	uint32_t w0 = c->s[CSF_CF_WORK];
+	eval_ctx e = { &p, m };
+	static const struct { double w, mode, v; } cases[] = {
+		{ 2, 0, 1 },         /* a hop of 0.051 m: apart */
+		{ 1, 3, 0.5 },       /* 0.0127 m: hopping */
+		{ 1e-6, 1, 0 },      /* bounces that end within 2e-7 s: at rest, sliding freely */
+	};
+	for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+		memcpy(m, p.mem0, p.nmem * sizeof *m);
+		m[p.tslot] = 2;
+		m[c->s[CSF_CF_V] + 2] = -cases[i].w;
+		ck_assert_int_eq(csf_contact_settle(&p, m, 5e-7, 1e-10, eval_rhs, &e), 0);
+		ck_assert_msg(m[w0 + CSF_CW_MODE] == cases[i].mode, "w=%g: mode %g", cases[i].w, m[w0 + CSF_CW_MODE]);
+		ck_assert_msg(m[c->s[CSF_CF_V] + 2] == cases[i].v, "w=%g: v %.17g", cases[i].w, m[c->s[CSF_CF_V] + 2]);
+		ck_assert(m[c->s[CSF_CF_POS] + 2] >= 1000000.1); /* not below the floor */
+		if (cases[i].mode == 3)
+			ck_assert_msg(fabs(m[w0 + CSF_CW_TL] - (2 + 2 * 0.5 / g)) < 1e-15, "landing %.17g", m[w0 + CSF_CW_TL]);
+		if (cases[i].mode == 1)
+			ck_assert_msg(fabs(m[c->s[CSF_CF_FN] + 2] - g) < 1e-12 && fabs(m[c->s[CSF_CF_A] + 2]) < 1e-12,
+			              "FN %.17g, a %.17g", m[c->s[CSF_CF_FN] + 2], m[c->s[CSF_CF_A] + 2]);
+	}
+	free(m);
+	csf_prog_free(&p);
+}
+END_TEST
+
 START_TEST(test_disassembler)
 {
 	csf_prog p;
@@ -198,6 +261,7 @@ Suite *bytecode_suite(void)
 	tcase_add_test(tc, test_header_checks);
 	tcase_add_test(tc, test_verifier);
 	tcase_add_test(tc, test_contact_routine);
+	tcase_add_test(tc, test_contact_settle);
 	tcase_add_test(tc, test_disassembler);
 	suite_add_tcase(s, tc);
 	return s;
