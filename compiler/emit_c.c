@@ -97,6 +97,7 @@ static void emit_insn(Emit *E, const uint32_t *code, uint32_t pc, const char *o,
 	fprintf(E->f, "%scsf_op_%s(m", o ? "\t\t" : "\t", oi->name);
 	for (int k = 0; k < oi->nops; k++) {
 		if (o) fprintf(E->f, ", %s[%d]", o, base + k);
+		else if (oi->kind[k] == CSF_K_N) fprintf(E->f, ", %d", csf_imm(a[k]));
 		else fprintf(E->f, ", %lu", (unsigned long)a[k]);
 	}
 	fputs(");\n", E->f);

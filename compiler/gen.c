@@ -130,6 +130,19 @@ static void emit_op(Gen *G, int op, uint32_t a, uint32_t b, uint32_t c, uint32_t
 	emit_words(G, op, ops);
 }
 
+/* Does an operand of this kind (enum csf_operand_kind) name memory slots? */
+static int slot_kind(int kind)
+{
+	return kind == CSF_K_S || kind == CSF_K_V || kind == CSF_K_DS || kind == CSF_K_DV;
+}
+
+/* Emits R[dest] := R[x] ^ k for a constant k: POWI when csf_powi computes it, else POW. */
+static void emit_pow_const(Gen *G, uint32_t dest, uint32_t x, double k)
+{
+	if (csf_is_powi(k)) emit_op(G, CSF_OP_POWI, dest, x, (uint32_t)(int)k, 0);
+	else emit_op(G, CSF_OP_POW, dest, x, const_slot(G, (double[3]){ k, 0, 0 }, 0), 0);
+}
+
 static uint32_t emit(Gen *G, RExpr *e);
 
 /* Structural equality of two expressions (same operations on the same operands). */
@@ -185,6 +198,10 @@ static int emit_event(Gen *G, RExpr *e, uint32_t dest)
 static void emit_into(Gen *G, RExpr *e, uint32_t dest)
 {
 	if (e->k == R_OP && emit_event(G, e, dest)) return;
+	if (e->k == R_OP && e->op == CSF_OP_POW && e->a[1]->k == R_CONST) {
+		emit_pow_const(G, dest, emit(G, e->a[0]), e->a[1]->c[0]);
+		return;
+	}
 	if (e->k == R_OP) {
 		uint32_t o[3] = { 0, 0, 0 };
 		for (int i = 0; i < e->n; i++) o[i] = emit(G, e->a[i]);
@@ -398,6 +415,17 @@ static void tangent(Jac *J, int op, const uint32_t *o, const int *in)
 			JE(MOV, ta, WK(3), 0, 0);
 		}
 		break;
+	case CSF_OP_POWI: { /* n b^(n-1) db, with b^(n-1) computed as '^' computes it */
+		int n = csf_imm(c);
+		if (n == 0) {
+			JE(MOV, ta, J->zero, 0, 0);
+			break;
+		}
+		emit_pow_const(J->G, WK(0), b, n - 1);
+		JE(MUL, WK(1), WK(0), const_slot(J->G, (double[3]){ n, 0, 0 }, 0), 0);
+		JE(MUL, ta, WK(1), tb, 0);
+		break;
+	}
 	case CSF_OP_ATAN2: /* (c db - b dc) / (b^2 + c^2) */
 		JE(MUL, WK(0), b, b, 0);
 		JE(MUL, WK(1), c, c, 0);
@@ -547,6 +575,7 @@ static int depends(const uint32_t *code, uint32_t n, unsigned char *act, int smo
 			if (smooth && !differentiable((int)code[pc])) continue;
 			int any = 0;
 			for (int k = 1; k < oi->nops; k++) {
+				if (!slot_kind(oi->kind[k])) continue;
 				uint32_t x = code[pc + 1 + k];
 				any |= act[x] || ((oi->kind[k] == CSF_K_V || oi->kind[k] == CSF_K_DV) && (act[x + 1] || act[x + 2]));
 			}
@@ -631,7 +660,8 @@ static void gen_jacobian(Gen *G, csf_prog *p)
 		for (int k = 0; k < oi->nops; k++) o[k] = rc[pc + 1 + k];
 		if ((oi->kind[0] == CSF_K_DS || oi->kind[0] == CSF_K_DV) && jact(J, oi->kind[0], o[0])) {
 			int in[3] = { 0, 0, 0 };
-			for (int k = 1; k < oi->nops; k++) in[k - 1] = differentiable(op) && jact(J, oi->kind[k], o[k]);
+			for (int k = 1; k < oi->nops; k++)
+				in[k - 1] = differentiable(op) && slot_kind(oi->kind[k]) && jact(J, oi->kind[k], o[k]);
 			tangent(J, differentiable(op) ? op : -1, o, in);
 		}
 		emit_words(G, op, o);
@@ -820,8 +850,7 @@ int gen_program(Model *M, csf_prog *p)
 			const csf_opinfo *oi = &csf_opinfo_table[p->code[sec][i]];
 			for (int k = 0; k < oi->nops; k++) {
 				uint32_t *w = &p->code[sec][i + 1 + k];
-				int slotk = oi->kind[k] == CSF_K_S || oi->kind[k] == CSF_K_V || oi->kind[k] == CSF_K_DS || oi->kind[k] == CSF_K_DV;
-				if (slotk && (*w & SCRATCH)) *w = base + (*w & ~SCRATCH);
+				if (slot_kind(oi->kind[k]) && (*w & SCRATCH)) *w = base + (*w & ~SCRATCH);
 			}
 			i += 1u + oi->nops;
 		}

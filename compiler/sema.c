@@ -52,7 +52,9 @@ void fold_op(int op, double in[3][3], double out[3])
 	double m[12] = { 0 };
 	for (int i = 0; i < 3; i++)
 		for (int k = 0; k < 3; k++) m[3 + 3 * i + k] = in[i][k];
-	switch (op) {
+	if (op == CSF_OP_POW) /* a constant exponent: as POWI computes it, not as POW */
+		m[0] = csf_pow(m[3], m[6]);
+	else switch (op) {
 #define OP(name, n, a, b, c, d, syn) case CSF_OP_##name: csf_op_##name(m FOLD_ARGS##n); break;
 #define CTRL(name, n, a, b, c, d, syn)
 #include "opcodes.def"

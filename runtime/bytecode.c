@@ -7,8 +7,9 @@
  * file costs at most its own size in memory. After decoding, csf_verify
  * checks every cross-reference (string offsets, memory slots, sources) and
  * every instruction (opcode in range, operands in bounds, jumps forward to
- * an instruction boundary inside the section). A verified program cannot
- * make the VM read or write outside its memory or loop forever.
+ * an instruction boundary inside the section, POWI's exponent within
+ * CSF_POWI_MAX). A verified program cannot make the VM read or write
+ * outside its memory or loop forever.
  */
 #include <stdlib.h>
 #include <string.h>
@@ -368,6 +369,7 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 				case CSF_K_DV: case CSF_K_V: ok = slot_ok(p, v, 3); break;
 				case CSF_K_J: ok = v > pc && v <= n && start[v]; break;
 				case CSF_K_AS: ok = v < p->nasserts; break;
+				case CSF_K_N: ok = csf_imm(v) >= -CSF_POWI_MAX && csf_imm(v) <= CSF_POWI_MAX; break;
 				default: ok = 0; break;
 				}
 				if (!ok) {
@@ -435,7 +437,11 @@ void csf_disassemble(const csf_prog *p, FILE *f)
 			}
 			const csf_opinfo *oi = &csf_opinfo_table[p->code[s][pc]];
 			fprintf(f, "  %5lu  %-7s", (unsigned long)pc, oi->name);
-			for (int k = 0; k < oi->nops; k++) fprintf(f, " %lu", (unsigned long)p->code[s][pc + 1 + k]);
+			for (int k = 0; k < oi->nops; k++) {
+				uint32_t v = p->code[s][pc + 1 + k];
+				if (oi->kind[k] == CSF_K_N) fprintf(f, " %d", csf_imm(v));
+				else fprintf(f, " %lu", (unsigned long)v);
+			}
 			fprintf(f, "%*s; %s\n", 4 * (4 - oi->nops), "", oi->synopsis);
 			pc += 1u + oi->nops;
 		}

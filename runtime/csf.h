@@ -43,7 +43,7 @@ enum csf_opcode {
 };
 
 /* Operand kinds of opcodes.def. */
-enum csf_operand_kind { CSF_K___ = 0, CSF_K_DS, CSF_K_DV, CSF_K_S, CSF_K_V, CSF_K_J, CSF_K_AS };
+enum csf_operand_kind { CSF_K___ = 0, CSF_K_DS, CSF_K_DV, CSF_K_S, CSF_K_V, CSF_K_J, CSF_K_AS, CSF_K_N };
 
 typedef struct csf_opinfo {
 	const char *name;     /* "ADD" */

@@ -27,6 +27,36 @@ static inline double csf_bool(int c) { return c ? 1.0 : 0.0; }
 
 static inline double csf_vmag3(double x, double y, double z) { return sqrt(x * x + y * y + z * z); }
 
+/* The largest |n| for which x^n is repeated multiplication (csf_powi). */
+#define CSF_POWI_MAX 8
+
+/*
+ * x^n for an integer n, |n| <= CSF_POWI_MAX, by multiplication from the left:
+ * x^0 = 1 (for every x, as pow gives), x^1 = x, x^2 = x*x, x^3 = (x*x)*x,
+ * x^4 = ((x*x)*x)*x, ..., and x^-n = 1/(x^n): x^-2 = 1/(x*x), 0^-2 = inf.
+ */
+static inline double csf_powi(double x, int n)
+{
+	int k = n < 0 ? -n : n;
+	double r = k ? x : 1.0;
+	for (int i = 1; i < k; i++) r = r * x;
+	return n < 0 ? 1.0 / r : r;
+}
+
+/* Is y an exponent csf_powi takes: a whole number with |y| <= CSF_POWI_MAX? */
+static inline int csf_is_powi(double y) { return fabs(y) <= CSF_POWI_MAX && y == (double)(int)y; }
+
+/*
+ * x^y for an exponent y known at compile time, the language's '^' with a
+ * constant exponent: csf_powi for a whole number |y| <= CSF_POWI_MAX, else
+ * pow. The constant folder and the POWI instruction compute it; an exponent
+ * known only at run time (POW) is always pow.
+ */
+static inline double csf_pow(double x, double y) { return csf_is_powi(y) ? csf_powi(x, (int)y) : pow(x, y); }
+
+/* The signed integer an immediate operand word holds (two's complement, as gen.c writes it). */
+static inline int csf_imm(csf_u32 w) { return w < 0x80000000u ? (int)w : -(int)~w - 1; }
+
 /* The angle between a and b, as atan2(|a x b|, a . b): accurate near 0 and pi too. */
 static inline double csf_vangle3(const double *a, const double *b)
 {
@@ -55,6 +85,8 @@ CSF_OP2(SUB, x - y)
 CSF_OP2(MUL, x * y)
 CSF_OP2(DIV, x / y)
 CSF_OP2(POW, pow(x, y))
+/* POW with an exponent known at compile time: the immediate c, |c| <= CSF_POWI_MAX. */
+static inline void csf_op_POWI(double *m, csf_u32 a, csf_u32 b, csf_u32 c) { m[a] = csf_powi(m[b], csf_imm(c)); }
 CSF_OP1(NEG, -x)
 CSF_OP2(ATAN2, atan2(x, y))
 CSF_OP2(MIN, csf_min(x, y))

@@ -159,8 +159,9 @@ for sys in mks cgs fps; do
 done
 [ $u -eq 0 ] && ok
 
-# 5a. hostile bytecode: every byte flipped, every truncation (csfvm must exit 2, never crash)
-printf 'object p: x = 1 m\nobject p: v = 0 m/s\nobject p: k = 1 s^-2\nrule: x'"'"' = v\nrule: v'"'"' = -k * x\nassert x < 2 m\ninc t till 1 by 0.5 watch x, v\n' >"$T/h.csf"
+# 5a. hostile bytecode: every byte flipped, every truncation (csfvm must exit 2, never crash);
+#     the model has a POWI, whose exponent the verifier checks
+printf 'object p: x = 1 m\nobject p: v = 0 m/s\nobject p: k = 1 s^-2\nrule: x'"'"' = v\nrule: v'"'"' = -k * x^3 / (1 m^2)\nassert x < 2 m\ninc t till 1 by 0.5 watch x, v\n' >"$T/h.csf"
 "$CSFC" "$T/h.csf" -o "$T/h.csfb" 2>/dev/null
 if timeout "$LIMIT" "$B/fuzz-bytecode" "$T/h.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode: $(tail -n 3 "$T/fuzz")"; fi
 # the same for a program with events and contacts (their tables, EVGT, CONTACT)

@@ -120,6 +120,38 @@ START_TEST(test_verifier)
 }
 END_TEST
 
+/* POWI's exponent must be within -8..8; the disassembler prints it signed. */
+START_TEST(test_powi_verified)
+{
+	csf_prog p;
+	ck_assert_int_eq(compile_string("object b: x = 2\nobject b: y = 0\nrule: y = x^-2\ninc t till 1 by 1 watch y\n", &p, NULL), 0);
+	uint32_t *code = p.code[CSF_SEC_OUT];
+	ck_assert(code[0] == CSF_OP_POWI && code[3] == (uint32_t)-2);
+	defect c[] = {
+		{ &code[3], 9, "operand 3 of POWI" },
+		{ &code[3], (uint32_t)-9, "operand 3 of POWI" },
+		{ &code[3], 0x7FFFFFFFu, "operand 3 of POWI" },
+		{ &code[3], 0x80000000u, "operand 3 of POWI" },
+		{ &code[2], p.nmem, "operand 2 of POWI" },
+	};
+	expect_defects(&p, c, sizeof c / sizeof c[0]);
+	char err[256];
+	for (int n = -8; n <= 8; n += 16) {
+		code[3] = (uint32_t)n;
+		ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "POWI %d: %s", n, err);
+	}
+	code[3] = (uint32_t)-2;
+	char *buf;
+	size_t len;
+	FILE *f = open_memstream(&buf, &len);
+	csf_disassemble(&p, f);
+	fclose(f);
+	ck_assert_msg(strstr(buf, xprintf("POWI    %lu %lu -2 ", (unsigned long)code[1], (unsigned long)code[2])) != NULL, "%s", buf);
+	free(buf);
+	csf_prog_free(&p);
+}
+END_TEST
+
 /* A block on a 30 degree ramp, held by static friction; and a conditional force. */
 static const char *contact_model =
 	"object ramp: vector point = (0, 0, 0) m\n"
@@ -260,6 +292,7 @@ Suite *bytecode_suite(void)
 	tcase_add_test(tc, test_roundtrip);
 	tcase_add_test(tc, test_header_checks);
 	tcase_add_test(tc, test_verifier);
+	tcase_add_test(tc, test_powi_verified);
 	tcase_add_test(tc, test_contact_routine);
 	tcase_add_test(tc, test_contact_settle);
 	tcase_add_test(tc, test_disassembler);

@@ -41,6 +41,16 @@ START_TEST(test_each_instruction)
 }
 END_TEST
 
+/* POWI's exponent, an immediate, is written as the signed number it is. */
+START_TEST(test_powi_exponent)
+{
+	uint32_t code[] = { CSF_OP_POWI, 10, 13, (uint32_t)-2, CSF_OP_POWI, 11, 13, 8 };
+	char *c = emit_one(code, sizeof code / sizeof code[0]);
+	ck_assert_msg(strstr(c, "\tcsf_op_POWI(m, 10, 13, -2);\n") && strstr(c, "\tcsf_op_POWI(m, 11, 13, 8);\n"), "%s", c);
+	free(c);
+}
+END_TEST
+
 START_TEST(test_control_flow)
 {
 	uint32_t code[] = { CSF_OP_JZ, 1, 6, CSF_OP_MOV, 0, 3, CSF_OP_ASSERT, 2, 0, CSF_OP_JMP, 14, CSF_OP_NOT, 4, 5 };
@@ -80,6 +90,7 @@ Suite *emit_c_suite(void)
 	Suite *s = suite_create("emit_c");
 	TCase *tc = tcase_create("translation");
 	tcase_add_loop_test(tc, test_each_instruction, 0, CSF_NOPCODES);
+	tcase_add_test(tc, test_powi_exponent);
 	tcase_add_test(tc, test_control_flow);
 	tcase_add_test(tc, test_program_shape);
 	suite_add_tcase(s, tc);

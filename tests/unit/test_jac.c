@@ -95,12 +95,41 @@ START_TEST(test_linear_exact)
 }
 END_TEST
 
+/*
+ * The tangent of x^n (POWI) is n x^(n-1) dx with x^(n-1) as '^' computes it:
+ * for x^3, exactly (x*x)*3; x^(n-1) for n = -8 is pow(x, -9).
+ */
+static const int powi_n[] = { -8, -3, -1, 0, 1, 2, 3, 8 };
+
+START_TEST(test_powi_tangent)
+{
+	int n = powi_n[_i];
+	csf_prog p;
+	char *d;
+	ck_assert_msg(compile_string(xprintf("global r = 1 s^-1\nobject b: x = 1.3\nrule: x' = r * x^(%d)\n"
+	                                     "inc t till 1 s by 1 s watch x\n", n), &p, &d) == 0, "%s", d);
+	free(d);
+	double *m = malloc(p.nmem * sizeof *m);
+	memcpy(m, p.mem0, p.nmem * sizeof *m);
+	m[p.jtan + p.tslot] = 0;
+	m[p.jtan + p.ystart] = 1;
+	csf_vm_exec(&p, CSF_SEC_JAC, m);
+	double x = 1.3, got = m[p.jtan + p.dstart];
+	double want = n == 3 ? (x * x) * 3 : n == 0 ? 0 : csf_pow(x, n - 1) * n;
+	ck_assert_msg(got == want, "d(x^%d)/dx = %.17g, expected %.17g", n, got, want);
+	ck_assert(n != -8 || want == pow(x, -9) * -8);
+	free(m);
+	csf_prog_free(&p);
+}
+END_TEST
+
 Suite *jac_suite(void)
 {
 	Suite *s = suite_create("jacobian");
 	TCase *tc = tcase_create("jac");
 	tcase_add_test(tc, test_against_differences);
 	tcase_add_test(tc, test_linear_exact);
+	tcase_add_loop_test(tc, test_powi_tangent, 0, sizeof powi_n / sizeof powi_n[0]);
 	suite_add_tcase(s, tc);
 	return s;
 }

@@ -13,6 +13,7 @@ static const struct { int op; double in[7]; double out[3]; } cases[] = {
 	{ CSF_OP_MUL, { 1.5, 0, 0, 2.25 }, { 3.375 } },
 	{ CSF_OP_DIV, { 3, 0, 0, 4 }, { 0.75 } },
 	{ CSF_OP_POW, { 2, 0, 0, 10 }, { 1024 } },
+	{ CSF_OP_POWI, { 1.5 }, { 11.390625 } }, /* the immediate is 6 */
 	{ CSF_OP_NEG, { 2 }, { -2 } },
 	{ CSF_OP_ATAN2, { 1, 0, 0, 1 }, { M_PI / 4 } },
 	{ CSF_OP_MIN, { 1, 0, 0, -1 }, { -1 } },
@@ -134,6 +135,106 @@ START_TEST(test_control_flow)
 }
 END_TEST
 
+/* x^k for k = 0..8, written out in the order DECISIONS 8 gives: from the left. */
+static double product(double x, int k)
+{
+	switch (k) {
+	case 0: return 1;
+	case 1: return x;
+	case 2: return x * x;
+	case 3: return (x * x) * x;
+	case 4: return ((x * x) * x) * x;
+	case 5: return (((x * x) * x) * x) * x;
+	case 6: return ((((x * x) * x) * x) * x) * x;
+	case 7: return (((((x * x) * x) * x) * x) * x) * x;
+	default: return ((((((x * x) * x) * x) * x) * x) * x) * x;
+	}
+}
+
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0 || (isnan(a) && isnan(b)); }
+
+/* x values: ordinary, negative, zeros, ones, overflowing, non-finite */
+static const double powi_x[] = { 1.3, -1.3, 2.3, 0.7, -0.5, 0.0, -0.0, 1.0, -1.0, 1e40, -1e300, 1e-200, INFINITY, -INFINITY, NAN };
+
+/* csf_powi(x, n) is the product from the left, bit for bit, and 1/(that) for n < 0. */
+START_TEST(test_powi_products)
+{
+	for (size_t i = 0; i < sizeof powi_x / sizeof powi_x[0]; i++)
+		for (int n = -CSF_POWI_MAX; n <= CSF_POWI_MAX; n++) {
+			double x = powi_x[i], want = n < 0 ? 1 / product(x, -n) : product(x, n);
+			ck_assert_msg(same_bits(csf_powi(x, n), want), "%g^%d = %.17g, expected %.17g", x, n, csf_powi(x, n), want);
+			ck_assert_msg(same_bits(csf_pow(x, n), want), "csf_pow(%g, %d) = %.17g", x, n, csf_pow(x, n));
+		}
+	/* where it differs from pow: 1.3^3 in the last bit; 0^-n is 1/0; x^n overflows, so x^-n is 0 */
+	ck_assert(csf_powi(1.3, 3) == (1.3 * 1.3) * 1.3 && csf_powi(1.3, 3) != pow(1.3, 3));
+	ck_assert(csf_powi(0.0, -2) == INFINITY && csf_powi(-0.0, -1) == -INFINITY && csf_powi(-0.0, -2) == INFINITY);
+	ck_assert(csf_powi(1e40, 8) == INFINITY && csf_powi(-1e103, 3) == -INFINITY);
+	ck_assert(csf_powi(1e40, -8) == 0 && pow(1e40, -8) > 0);
+	ck_assert(csf_powi(NAN, 0) == 1 && pow(NAN, 0) == 1);
+	/* any other exponent calls pow */
+	static const double other[] = { 2.5, -0.5, 9, -9, 1e300, INFINITY, NAN, 0.1 };
+	for (size_t i = 0; i < sizeof other / sizeof other[0]; i++) {
+		ck_assert(!csf_is_powi(other[i]));
+		ck_assert_msg(same_bits(csf_pow(1.3, other[i]), pow(1.3, other[i])), "csf_pow(1.3, %g)", other[i]);
+	}
+	ck_assert(csf_is_powi(-0.0) && csf_is_powi(8) && csf_is_powi(-8) && csf_is_powi(2.0));
+}
+END_TEST
+
+/* The VM's POWI (exponent immediate) gives csf_powi's bits; POW (exponent in memory, known only at run time) pow's. */
+START_TEST(test_powi_instruction)
+{
+	for (size_t i = 0; i < sizeof powi_x / sizeof powi_x[0]; i++)
+		for (int n = -CSF_POWI_MAX; n <= CSF_POWI_MAX; n++) {
+			double m[12] = { 0 };
+			m[3] = powi_x[i];
+			m[6] = n;
+			uint32_t code[] = { CSF_OP_POWI, 0, 3, (uint32_t)n, CSF_OP_POW, 1, 3, 6 };
+			csf_prog p = one_instruction(code, 8, m, 12);
+			char err[256];
+			ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "POWI %d: %s", n, err);
+			ck_assert_int_eq(csf_vm_exec(&p, CSF_SEC_OUT, m), -1);
+			double want = csf_powi(powi_x[i], n), want_pow = pow(powi_x[i], n);
+			ck_assert_msg(same_bits(m[0], want) && same_bits(m[1], want_pow),
+			              "%g^%d: POWI %.17g, POW %.17g, expected %.17g and %.17g", powi_x[i], n, m[0], m[1], want,
+			              want_pow);
+		}
+}
+END_TEST
+
+/*
+ * The constant folder (a power of constants, folded at compile time) and the
+ * VM (the same power of a variable, by POWI) agree bit for bit, for every
+ * exponent written as an integer literal, a negative one, in parentheses,
+ * as 2.0 or as a constant expression; other exponents stay POW.
+ */
+static const struct { const char *k; double n; int powi; } folder_cases[] = {
+	{ "-8", -8, 1 }, { "-5", -5, 1 }, { "(-2)", -2, 1 }, { "-1", -1, 1 }, { "0", 0, 1 }, { "1", 1, 1 },
+	{ "(2)", 2, 1 }, { "2.0", 2, 1 }, { "3", 3, 1 }, { "(1 + 3)", 4, 1 }, { "7", 7, 1 }, { "8", 8, 1 },
+	{ "9", 9, 0 }, { "-9", -9, 0 }, { "2.5", 2.5, 0 }, { "0.5", 0.5, 0 },
+};
+
+START_TEST(test_powi_folder)
+{
+	const char *k = folder_cases[_i].k;
+	char *src = xprintf("global q = 1.3^%s\nobject b: x = 1.3\nobject b: y = 0\nrule: y = x^%s\n"
+	                    "inc t till 1 by 1 watch y, q\n", k, k);
+	csf_prog p;
+	char *d;
+	ck_assert_msg(compile_string(src, &p, &d) == 0, "x^%s: %s", k, d);
+	free(d);
+	const uint32_t *code = p.code[CSF_SEC_OUT];
+	ck_assert_msg(code[0] == (uint32_t)(folder_cases[_i].powi ? CSF_OP_POWI : CSF_OP_POW), "x^%s: %s", k,
+	              csf_opinfo_table[code[0]].name);
+	double *m = run_out(&p);
+	double y = m[col_slot(&p, "b.y")], q = m[col_slot(&p, "q")];
+	ck_assert_msg(same_bits(y, q) && same_bits(y, csf_pow(1.3, folder_cases[_i].n)), "x^%s: VM %.17g, folded %.17g", k,
+	              y, q);
+	free(m);
+	csf_prog_free(&p);
+}
+END_TEST
+
 Suite *vm_suite(void)
 {
 	Suite *s = suite_create("vm");
@@ -142,6 +243,9 @@ Suite *vm_suite(void)
 	tcase_add_test(tc, test_vpack);
 	tcase_add_test(tc, test_overlapping_vectors);
 	tcase_add_test(tc, test_control_flow);
+	tcase_add_test(tc, test_powi_products);
+	tcase_add_test(tc, test_powi_instruction);
+	tcase_add_loop_test(tc, test_powi_folder, 0, sizeof folder_cases / sizeof folder_cases[0]);
 	suite_add_tcase(s, tc);
 	return s;
 }
