@@ -184,14 +184,7 @@ static int is_predefined(const char *n)
 	return 0;
 }
 
-static Var *prop_of(Object *o, const char *name)
-{
-	for (int i = 0; i < o->props.n; i++) {
-		Var *v = o->props.v[i];
-		if (strcmp(v->name, name) == 0) return v;
-	}
-	return NULL;
-}
+static Var *prop_of(Object *o, const char *name) { return map_get(&o->props_by_name, name); }
 
 static char *temp_key(const char *name, Object **bind, int nbind)
 {
@@ -647,6 +640,7 @@ static void set_prop(Object *o, Stmt *s, int from_kind)
 	p->from_kind = from_kind;
 	if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
 	vec_push(&o->props, p);
+	map_put(&o->props_by_name, p->name, p);
 	map_put(&prop_names, p->name, p);
 }
 
@@ -750,7 +744,8 @@ static int stmt_reads_rf(Stmt *s)
 	return 0;
 }
 
-/* Does every name the statement reads exist for this binding? (Without reporting.) */
+/* Does every name the statement reads exist for this binding? (Without reporting.) Each name is
+ * checked on one object of the binding; a NULL in bind passes every name checked on it. */
 static int names_apply(Expr *x, Object **bind, int nbind, const char **missing)
 {
 	if (!x) return 1;
@@ -765,7 +760,7 @@ static int names_apply(Expr *x, Object **bind, int nbind, const char **missing)
 		return 1;
 	}
 	if (x->kind == E_FIELD && x->a->kind == E_NAME && map_get(&objects_by_name, x->a->name) &&
-	    !prop_of(bind[0], x->a->name))
+	    (!bind[0] || !prop_of(bind[0], x->a->name)))
 		return 1;
 	if (!names_apply(x->a, bind, nbind, missing) || !names_apply(x->b, bind, nbind, missing)) return 0;
 	for (int i = 0; i < x->nargs; i++)
@@ -782,12 +777,56 @@ static int stmt_applies(Stmt *s, Object **bind, int nbind, const char **missing)
 	return 1;
 }
 
-/* Calls f for every binding the statement applies to; returns how many. */
+/* The bindings of a rule: $0 any object, $1..$k other objects in ascending order (spec 2.2.1).
+ * stmt_applies is a conjunction of conditions each on one place of the tuple, so only the
+ * objects fit for each place are tried, and every tuple of them applies. */
+typedef struct Tuples {
+	Stmt *s;
+	void (*f)(Stmt *, Object **, int);
+	int k;
+	int **fit;     /* [0..k]: the indices of the objects fit for $j, ascending */
+	int *nfit;     /* [0..k]: how many */
+	Object **cur;  /* the tuple being built */
+	int count;     /* how many tuples f was called for */
+	int failed;    /* f reported an error */
+} Tuples;
+
+/* The position of the first value greater than x in the ascending array v[0..n). */
+static int first_greater(const int *v, int n, int x)
+{
+	int lo = 0, hi = n;
+	while (lo < hi) {
+		int mid = lo + (hi - lo) / 2;
+		if (v[mid] > x) hi = mid;
+		else lo = mid + 1;
+	}
+	return lo;
+}
+
+/* Binds $j..$k in ascending order to objects of index greater than `after`, then calls f. */
+static void bind_from(Tuples *T, int j, int after)
+{
+	if (j > T->k) {
+		Object **bind = xalloc((size_t)(T->k + 1) * sizeof *bind);
+		memcpy(bind, T->cur, (size_t)(T->k + 1) * sizeof *bind);
+		int before = diag_errors;
+		T->f(T->s, bind, T->k + 1);
+		T->count++;
+		T->failed = diag_errors > before; /* one report per statement, not per object */
+		return;
+	}
+	for (int i = first_greater(T->fit[j], T->nfit[j], after); i < T->nfit[j] && !T->failed; i++) {
+		if (T->fit[j][i] == T->cur[0]->index) continue;
+		T->cur[j] = M->objects.v[T->fit[j][i]];
+		bind_from(T, j + 1, T->fit[j][i]);
+	}
+}
+
+/* Calls f for every binding the statement applies to; returns how many, -1 after an error. */
 static int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 {
 	int k = stmt_max_dollar(s);
 	int nobj = M->objects.n;
-	int count = 0;
 	const char *missing = NULL;
 	if (s->has_for) {
 		int n = s->fors.n;
@@ -819,35 +858,34 @@ static int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 		f(s, bind, n);
 		return 1;
 	}
-	int *idx = xalloc((size_t)(k + 1) * sizeof *idx);
-	for (int i0 = 0; i0 < nobj; i0++) {
-		/* $1..$k: combinations of the other objects in ascending order (k == 1: every other object) */
-		int others = nobj - 1;
-		if (k > others) break;
-		for (int j = 0; j < k; j++) idx[j] = j;
-		for (;;) {
-			Object **bind = xalloc((size_t)(k + 1) * sizeof *bind);
-			bind[0] = M->objects.v[i0];
-			for (int j = 0; j < k; j++) bind[j + 1] = M->objects.v[idx[j] < i0 ? idx[j] : idx[j] + 1];
-			if (stmt_applies(s, bind, k + 1, &missing)) {
-				int before = diag_errors;
-				f(s, bind, k + 1);
-				count++;
-				if (diag_errors > before) return -1; /* one report per statement, not per object */
-			}
-			int j = k - 1;
-			while (j >= 0 && idx[j] == others - k + j) j--;
-			if (j < 0) break;
-			idx[j]++;
-			for (int q = j + 1; q < k; q++) idx[q] = idx[q - 1] + 1;
+	Tuples T = { s, f, k, xalloc((size_t)(k + 1) * sizeof(int *)), xalloc((size_t)(k + 1) * sizeof(int)),
+		     xalloc((size_t)(k + 1) * sizeof(Object *)), 0, 0 };
+	for (int j = 0; j <= k; j++) {
+		T.fit[j] = xalloc((size_t)nobj * sizeof(int));
+		for (int i = 0; i < nobj; i++) {
+			T.cur[j] = M->objects.v[i];
+			if (stmt_applies(s, T.cur, k + 1, &missing)) T.fit[j][T.nfit[j]++] = i;
+			T.cur[j] = NULL;
 		}
 	}
-	if (count == 0 && !s->call) { /* contact rules: a scene may have no pair that can touch */
+	for (int i = 0; i < T.nfit[0] && !T.failed; i++) {
+		T.cur[0] = M->objects.v[T.fit[0][i]];
+		bind_from(&T, 1, -1);
+	}
+	if (T.failed) return -1;
+	if (T.count == 0 && !s->call) { /* contact rules: a scene may have no pair that can touch */
+		/* the name to report is the one the last tuple lacks: ($0, $1, ..., $k) = (last, last - k, ..., last - 1) */
+		missing = NULL;
+		if (k < nobj) {
+			T.cur[0] = M->objects.v[nobj - 1];
+			for (int j = 1; j <= k; j++) T.cur[j] = M->objects.v[nobj - 1 - k + j - 1];
+			stmt_applies(s, T.cur, k + 1, &missing);
+		}
 		if (missing) error_at(s->loc, "this %s applies to no object: none has '%s'", s->kind == S_ASSERT ? "assertion" : "rule", missing);
 		else error_at(s->loc, "this %s applies to no object", s->kind == S_ASSERT ? "assertion" : "rule");
 		return -1;
 	}
-	return count;
+	return T.count;
 }
 
 static int add_src(Loc l, char *text)
@@ -1222,61 +1260,244 @@ static int check_call(Stmt *s)
  * runtime's contact routine, which reads the bodies' other properties by
  * their mechanics/mass_point names. Kept only if the pair can touch.
  */
-static void inst_contact(Stmt *s, Object **bind, int nbind)
+
+static const char *const body_props[CSF_CF_POS2] = { NULL, "v", "a", "m", NULL, "cr", "mu_s", "mu_k", "FN", "Ff" };
+static const char *const plane_props[CSF_CF_POS2] = { NULL, "edge", NULL, NULL, NULL, "cr", "mu_s", "mu_k", NULL, NULL };
+
+/* Body k's (0: $0, 1: $1) geometry in rule s on object o: the properties that arguments 2k and
+ * 2k + 1 of contact() name, into geo[0..1]. Returns 0 if o lacks one: not this geometry. */
+static int contact_geo(Stmt *s, Object *o, int k, Var **geo)
 {
-	Expr *x = s->call;
-	if (nbind < 2) return;
-	Object *A = bind[0], *B = bind[1];
-	Var *geo[4];
-	for (int i = 0; i < 4; i++)
-		if (!(geo[i] = prop_of(bind[i < 2 ? 0 : 1], x->args[i]->name))) return; /* not this geometry */
-	int plane = geo[3]->isvec;
-	if (!plane && A->index > B->index && !s->has_for) return; /* the pair (B, A) is the same */
-	Contact *c = xalloc(sizeof *c);
-	c->a = A, c->b = B, c->plane = plane, c->src = cur_src, c->st = s;
-	static const char *const body[CSF_CF_POS2] = { NULL, "v", "a", "m", NULL, "cr", "mu_s", "mu_k", "FN", "Ff" };
-	static const char *const plane_props[CSF_CF_POS2] = { NULL, "edge", NULL, NULL, NULL, "cr", "mu_s", "mu_k", NULL, NULL };
-	for (int k = 0; k < 2; k++) {
-		Object *o = k ? B : A;
-		const char *const *names = k && plane ? plane_props : body;
-		int base = k ? CSF_CF_POS2 : CSF_CF_POS; /* body j's fields follow body i's, in the same order */
-		c->f[base + CSF_CF_POS] = geo[2 * k];
-		c->f[base + CSF_CF_R] = geo[2 * k + 1];
-		for (int f = 0; f < CSF_CF_POS2; f++) {
-			if (!names[f]) continue;
-			Var *v = prop_of(o, names[f]);
-			if (!v || v->isvec != (f == CSF_CF_V || f == CSF_CF_A || f == CSF_CF_FN || f == CSF_CF_FF)) {
+	for (int i = 0; i < 2; i++)
+		if (!(geo[i] = prop_of(o, s->call->args[2 * k + i]->name))) return 0;
+	return 1;
+}
+
+/* Fills body k's fields of c (its a, b and plane set) from geo and the properties the contact
+ * routine reads. Returns 0 if one is missing or of the wrong type, reporting it at s if report. */
+static int contact_body(Contact *c, int k, Var **geo, Stmt *s, int report)
+{
+	Object *o = k ? c->b : c->a;
+	const char *const *names = k && c->plane ? plane_props : body_props;
+	int base = k ? CSF_CF_POS2 : CSF_CF_POS; /* body j's fields follow body i's, in the same order */
+	c->f[base + CSF_CF_POS] = geo[0];
+	c->f[base + CSF_CF_R] = geo[1];
+	for (int f = 0; f < CSF_CF_POS2; f++) {
+		if (!names[f]) continue;
+		Var *v = prop_of(o, names[f]);
+		if (!v || v->isvec != (f == CSF_CF_V || f == CSF_CF_A || f == CSF_CF_FN || f == CSF_CF_FF)) {
+			if (report)
 				error_at(s->loc, "contact of %s and %s: object '%s' needs %s property '%s' (mechanics/mass_point's "
 				                 "kinds have it)",
-				         A->name, B->name, o->name, v && v->isvec ? "a scalar" : v ? "a vector" : "the", names[f]);
-				return;
-			}
-			c->f[base + f] = v;
+				         c->a->name, c->b->name, o->name, v && v->isvec ? "a scalar" : v ? "a vector" : "the", names[f]);
+			return 0;
 		}
+		c->f[base + f] = v;
 	}
-	if (!c->f[CSF_CF_POS]->state || !c->f[CSF_CF_V]->state || (!plane && (!c->f[CSF_CF_POS2]->state || !c->f[CSF_CF_V2]->state))) {
+	return 1;
+}
+
+/* Are the position and velocity of c's body k integrated? A plane's need not be. */
+static int contact_integrated(Contact *c, int k)
+{
+	int base = k ? CSF_CF_POS2 : CSF_CF_POS;
+	return (k && c->plane) || (c->f[base + CSF_CF_POS]->state && c->f[base + CSF_CF_V]->state);
+}
+
+/* Do two points at pa and pb moving at va and vb approach each other on the line through them? */
+static inline int points_approach(const double *pa, const double *va, const double *pb, const double *vb)
+{
+	double d[3] = { pa[0] - pb[0], pa[1] - pb[1], pa[2] - pb[2] }, dv[3] = { va[0] - vb[0], va[1] - vb[1], va[2] - vb[2] };
+	double cx[3] = { d[1] * dv[2] - d[2] * dv[1], d[2] * dv[0] - d[0] * dv[2], d[0] * dv[1] - d[1] * dv[0] };
+	return cx[0] == 0 && cx[1] == 0 && cx[2] == 0 && !(d[0] * dv[0] + d[1] * dv[1] + d[2] * dv[2] >= 0) &&
+	       csf_vmag3(d[0], d[1], d[2]) != 0;
+}
+
+/* The contact of bind[0] and bind[1] by rule s, if the pair can touch. */
+static void inst_contact(Stmt *s, Object **bind, int nbind)
+{
+	if (nbind < 2) return;
+	Contact c = { 0 };
+	Var *geo[4];
+	c.a = bind[0], c.b = bind[1];
+	if (!contact_geo(s, c.a, 0, geo) || !contact_geo(s, c.b, 1, geo + 2)) return;
+	c.plane = geo[3]->isvec;
+	if (!c.plane && c.a->index > c.b->index && !s->has_for) return; /* the pair (B, A) is the same */
+	c.src = cur_src, c.st = s;
+	if (!contact_body(&c, 0, geo, s, 1) || !contact_body(&c, 1, geo + 2, s, 1)) return;
+	if (!contact_integrated(&c, 0) || !contact_integrated(&c, 1)) {
 		error_at(s->loc, "contact of %s and %s: positions and velocities must be integrated (pos' = v, v' = a)",
-		         A->name, B->name);
+		         c.a->name, c.b->name);
 		return;
 	}
-	if (!plane) {
-		const double *pa = c->f[CSF_CF_POS]->init, *pb = c->f[CSF_CF_POS2]->init;
-		const double *va = c->f[CSF_CF_V]->init, *vb = c->f[CSF_CF_V2]->init;
-		double d[3] = { pa[0] - pb[0], pa[1] - pb[1], pa[2] - pb[2] }, dv[3] = { va[0] - vb[0], va[1] - vb[1], va[2] - vb[2] };
+	if (!c.plane) {
+		const double *pa = c.f[CSF_CF_POS]->init, *pb = c.f[CSF_CF_POS2]->init;
+		const double *va = c.f[CSF_CF_V]->init, *vb = c.f[CSF_CF_V2]->init;
+		double d[3] = { pa[0] - pb[0], pa[1] - pb[1], pa[2] - pb[2] };
 		double dist = csf_vmag3(d[0], d[1], d[2]);
-		if (c->f[CSF_CF_R]->init[0] + c->f[CSF_CF_R2]->init[0] <= 0) {
+		if (c.f[CSF_CF_R]->init[0] + c.f[CSF_CF_R2]->init[0] <= 0) {
 			/* two points meet only when they move on the line through them */
-			double cx[3] = { d[1] * dv[2] - d[2] * dv[1], d[2] * dv[0] - d[0] * dv[2], d[0] * dv[1] - d[1] * dv[0] };
-			if (!s->has_for && (dist == 0 || cx[0] != 0 || cx[1] != 0 || cx[2] != 0 || d[0] * dv[0] + d[1] * dv[1] + d[2] * dv[2] >= 0))
-				return;
+			if (!s->has_for && !points_approach(pa, va, pb, vb)) return;
 			if (dist == 0) {
-				error_at(s->loc, "contact of %s and %s: two points at the same place have no line of contact", A->name, B->name);
+				error_at(s->loc, "contact of %s and %s: two points at the same place have no line of contact", c.a->name,
+				         c.b->name);
 				return;
 			}
 		}
-		for (int k = 0; k < 3; k++) c->dir[k] = dist > 0 ? d[k] / dist : 0;
+		for (int k = 0; k < 3; k++) c.dir[k] = dist > 0 ? d[k] / dist : 0;
 	}
-	vec_push(&M->contacts, c);
+	Contact *p = xalloc(sizeof *p);
+	*p = c;
+	vec_push(&M->contacts, p);
+}
+
+/* What the search for contact pairs knows of an object, as $0 (k = 0) and as $1 (k = 1). */
+typedef struct Body {
+	int index;
+	int geo[2];       /* has the geometry */
+	int bad[2];       /* lacks a field the contact routine reads, or is not integrated: an error */
+	int plane;        /* as $1: a plane */
+	double pos[2][3]; /* initial values: position (a plane's point) */
+	double r[2];      /* radius */
+	double v[3];      /* velocity, if not bad */
+	int point;        /* bit k: as $k, a point (a body of radius 0) */
+} Body;
+
+/* What contact rule s needs of every object, in an array indexed like M->objects. */
+static Body *contact_bodies(Stmt *s)
+{
+	Body *B = xalloc((size_t)M->objects.n * sizeof *B);
+	for (int i = 0; i < M->objects.n; i++) {
+		B[i].index = i;
+		for (int k = 0; k < 2; k++) {
+			Var *geo[2];
+			if (!contact_geo(s, M->objects.v[i], k, geo)) continue;
+			Contact c = { 0 };
+			c.a = c.b = M->objects.v[i];
+			c.plane = k && geo[1]->isvec;
+			B[i].geo[k] = 1;
+			B[i].bad[k] = !contact_body(&c, k, geo, s, 0) || !contact_integrated(&c, k);
+			if (k) B[i].plane = c.plane;
+			memcpy(B[i].pos[k], geo[0]->init, sizeof B[i].pos[k]);
+			B[i].r[k] = geo[1]->init[0];
+			if (!B[i].bad[k] && !c.plane) memcpy(B[i].v, c.f[k ? CSF_CF_V2 : CSF_CF_V]->init, sizeof B[i].v);
+			if (!c.plane && B[i].r[k] == 0) B[i].point |= 1 << k;
+		}
+	}
+	return B;
+}
+
+/* The first binding (*ea, *eb) of n bodies B that is an error, in binding order: $0 in order,
+ * each with its $1 in order (a plane before it, or any body or plane after it). (n, n) if none. */
+static void first_bad_pair(Body *B, int n, int *ea, int *eb)
+{
+	/* next_*[i]: the first $1 from i on, any or bad; plane_*: the first plane */
+	int *next_any = xalloc((size_t)(n + 1) * sizeof *next_any), *next_bad = xalloc((size_t)(n + 1) * sizeof *next_bad);
+	int plane_any = n, plane_bad = n;
+	next_any[n] = next_bad[n] = n;
+	for (int i = n - 1; i >= 0; i--) {
+		next_any[i] = B[i].geo[1] ? i : next_any[i + 1];
+		next_bad[i] = B[i].geo[1] && B[i].bad[1] ? i : next_bad[i + 1];
+		if (B[i].geo[1] && B[i].plane) plane_any = i;
+		if (B[i].geo[1] && B[i].plane && B[i].bad[1]) plane_bad = i;
+	}
+	*ea = *eb = n;
+	for (int a = 0; a < n; a++) {
+		if (!B[a].geo[0]) continue;
+		/* a bad $0 fails with its first $1, a good one with its first bad $1 */
+		int plane = B[a].bad[0] ? plane_any : plane_bad, b = plane < a ? plane : (B[a].bad[0] ? next_any : next_bad)[a + 1];
+		if (b < n) {
+			*ea = a, *eb = b;
+			return;
+		}
+	}
+}
+
+/* Orders bodies by the bits of their velocity, then by index. */
+static int body_cmp(const void *x, const void *y)
+{
+	const Body *a = x, *b = y;
+	int c = memcmp(a->v, b->v, sizeof a->v);
+	return c ? c : (a->index > b->index) - (a->index < b->index);
+}
+
+/* Orders pairs of objects (two Object* each) as bindings are ordered: by $0, then $1. */
+static int pair_cmp(const void *x, const void *y)
+{
+	Object *const *a = x, *const *b = y;
+	int c = (a[0]->index > b[0]->index) - (a[0]->index < b[0]->index);
+	return c ? c : (a[1]->index > b[1]->index) - (a[1]->index < b[1]->index);
+}
+
+/* The pairs of points among n bodies B ($0 before $1) that approach each other on their common
+ * line, in binding order: of Object*, $0 and $1 of each pair. Two points of equal velocity never
+ * do (the difference is 0, or NaN), so only pairs across groups of equal velocity are tried;
+ * the rest is all pairs: the test is exact in floating point, and no index reproduces it. */
+static Vec meeting_points(Body *B, int n)
+{
+	Body *pts = xalloc((size_t)n * sizeof *pts);
+	int npts = 0;
+	for (int i = 0; i < n; i++)
+		if (B[i].point) pts[npts++] = B[i];
+	Vec meet = { 0 };
+	if (!npts) return meet;
+	qsort(pts, (size_t)npts, sizeof *pts, body_cmp);
+	for (int g = 0, e; g < npts; g = e) {
+		for (e = g + 1; e < npts && memcmp(pts[e].v, pts[g].v, sizeof pts[g].v) == 0; e++) continue;
+		for (int i = g; i < e; i++)
+			for (int j = e; j < npts; j++) {
+				const Body *a = pts[i].index < pts[j].index ? &pts[i] : &pts[j];
+				const Body *b = a == &pts[i] ? &pts[j] : &pts[i];
+				if ((a->point & 1) && (b->point & 2) && points_approach(a->pos[0], a->v, b->pos[1], b->v)) {
+					vec_push(&meet, M->objects.v[a->index]);
+					vec_push(&meet, M->objects.v[b->index]);
+				}
+			}
+	}
+	if (meet.n) qsort(meet.v, (size_t)meet.n / 2, 2 * sizeof *meet.v, pair_cmp);
+	return meet;
+}
+
+/*
+ * A contact rule without `for`: calls inst_contact, in binding order, for the bindings ($0, $1)
+ * it keeps or reports, without trying every pair: a $0 with every plane; with every body after
+ * it if one of the two has a radius other than 0; with the points it meets if both are points;
+ * and, last, the first binding that is an error, found from each object alone.
+ */
+static void contact_pairs(Stmt *s)
+{
+	int n = M->objects.n, ea, eb;
+	Body *B = contact_bodies(s);
+	first_bad_pair(B, n, &ea, &eb);
+	Vec meet = meeting_points(B, n);
+	/* the $1 objects: planes, bodies, and the bodies of radius other than 0 */
+	int *planes = xalloc((size_t)n * sizeof *planes), *bodies = xalloc((size_t)n * sizeof *bodies);
+	int *sized = xalloc((size_t)n * sizeof *sized), nplanes = 0, nbodies = 0, nsized = 0;
+	for (int i = 0; i < n; i++) {
+		if (B[i].geo[1] && B[i].plane) planes[nplanes++] = i;
+		if (B[i].geo[1] && !B[i].plane) bodies[nbodies++] = i;
+		if (B[i].geo[1] && !B[i].plane && B[i].r[1] != 0) sized[nsized++] = i;
+	}
+	int t = 0; /* the next pair in meet */
+	for (int a = 0; a < n && a <= ea; a++) {
+		if (!B[a].geo[0]) continue;
+		const int *L = B[a].r[0] != 0 ? bodies : sized;
+		int nl = B[a].r[0] != 0 ? nbodies : nsized;
+		int p = 0, q = first_greater(L, nl, a);
+		for (;;) { /* merge the three ascending lists of $1 */
+			if (p < nplanes && planes[p] == a) p++;
+			int bp = p < nplanes ? planes[p] : n, bq = q < nl ? L[q] : n;
+			int bt = t < meet.n && ((Object *)meet.v[t])->index == a ? ((Object *)meet.v[t + 1])->index : n;
+			int b = bp < bq ? bp : bq;
+			if (bt < b) b = bt;
+			if (b == n || (a == ea && b >= eb)) break;
+			inst_contact(s, (Object *[]){ M->objects.v[a], M->objects.v[b] }, 2);
+			p += bp == b;
+			q += bq == b;
+			t += bt == b ? 2 : 0;
+		}
+	}
+	if (ea < n) inst_contact(s, (Object *[]){ M->objects.v[ea], M->objects.v[eb] }, 2);
 }
 
 static Vec deriv_insts;
@@ -1520,7 +1741,10 @@ Model *sema_run(Stmt *stmts)
 		}
 		cur_src = stmt_src(s);
 		if (!s->call) for_each_binding(s, inst_rule);
-		else if (check_call(s)) for_each_binding(s, inst_contact);
+		else if (check_call(s)) {
+			if (s->has_for) for_each_binding(s, inst_contact);
+			else contact_pairs(s);
+		}
 	}
 	for (int i = 0; i < M->contacts.n; i++) {
 		Contact *c = M->contacts.v[i];

@@ -36,6 +36,7 @@ struct Object {
 	Loc loc;
 	int index;
 	Vec props;       /* of Var* (V_PROP), in definition order */
+	Map props_by_name; /* the same, by name */
 };
 
 typedef enum RKind { R_CONST, R_VAR, R_RF, R_OP, R_COMP } RKind;
