@@ -18,7 +18,8 @@
  *   gm  = G * m_i                            MUL
  *   gmm = gm * m_j                           MUL
  *   r   = sqrt((dx*dx + dy*dy) + dz*dz)      VMAG  (csf_vmag3)
- *   r3  = pow(r, 3.0)                        POW
+ *   r3  = (r*r)*r                            POWI  (csf_powi(r, 3): the
+ *                                                  language's r^3)
  *   s   = gmm / r3                           DIV
  *   F   = (dx*s, dy*s, dz*s)                 VMUL
  *   RF  = ((F_j0 + F_j1) + F_j2) + ...       VADD chain, j ascending
@@ -26,17 +27,17 @@
  *   pos' = v, v' = a                         VMOV
  *
  * so its results are bit-identical to csfvm's. What it leaves out is what a
- * person writing C would not write: the VM evaluates pos_j - pos_i twice and
- * G*m_i once per pair, stores every pair force in memory before summing, and
- * copies the state in and the derivatives out around each evaluation; here
- * the repeated values are computed once (the same IEEE results) and the sum
- * is accumulated in registers. Compile with -O2 -ffp-contract=off (no FMA
- * contraction, never -ffast-math), as the VM is.
+ * person writing C would not write: the VM computes G*m_i once per pair,
+ * stores every pair force in memory before summing, and copies the state in
+ * and the derivatives out around each evaluation; here G*m_i is computed
+ * once per body (the same IEEE result) and the sum is accumulated in
+ * registers. Compile with -O2 -ffp-contract=off (no FMA contraction, never
+ * -ffast-math), as the VM is.
  *
- * Built with -DNBODY_CUBE (bin/nbody_cube), it computes r^3 as r*r*r
- * instead of pow(r, 3.0): what one would write by hand, but no longer the
- * VM's arithmetic (results differ in the last bits). The benchmark runs it
- * as a third, informational program, to show what pow costs.
+ * Built with -DNBODY_POW (bin/nbody_pow), it computes r^3 as pow(r, 3.0),
+ * as the VM did before integer powers: no longer the VM's arithmetic
+ * (results differ in the last bits). The benchmark runs it as a third,
+ * informational program, to show what pow would cost.
  *
  * --stats prints, on stderr, the number of right-hand side evaluations and
  * the smallest distance between two bodies seen at the output times (a
@@ -68,10 +69,10 @@ static int rhs(double t, const double *y, double *dydt, void *ctx)
 			double dx = pj[0] - pi[0], dy = pj[1] - pi[1], dz = pj[2] - pi[2];
 			double gmm = gm * m[j];
 			double r = sqrt(dx * dx + dy * dy + dz * dz);
-#ifdef NBODY_CUBE
-			double s = gmm / (r * r * r); /* not the VM's arithmetic: see the top */
+#ifdef NBODY_POW
+			double s = gmm / pow(r, 3.0); /* not the VM's arithmetic: see the top */
 #else
-			double s = gmm / pow(r, 3.0);
+			double s = gmm / ((r * r) * r); /* POWI: csf_powi(r, 3) */
 #endif
 			double fx = dx * s, fy = dy * s, fz = dz * s;
 			if (first) {

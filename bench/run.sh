@@ -37,7 +37,7 @@ EMITC_CFLAGS=${EMITC_CFLAGS:--O2}
 
 CSFC=$BUILD/csfc
 CSFVM=$BUILD/csfvm
-for p in "$CSFC" "$CSFVM" "$BIN/nbody" "$BIN/nbody_cube" "$BIN/chain" "$BIN/timeit"; do
+for p in "$CSFC" "$CSFVM" "$BIN/nbody" "$BIN/nbody_pow" "$BIN/chain" "$BIN/timeit"; do
 	[ -x "$p" ] || { echo "run.sh: $p is missing: build it first (make bench from the top)" >&2; exit 2; }
 done
 case $REPS in '' | *[!0-9]* | 0) echo "run.sh: REPS must be a positive integer" >&2; exit 2 ;; esac
@@ -134,24 +134,25 @@ maxdiff() {
 
 # nbrun PROGRAM OUTFILE [TILL] : one timed n-body run, prints the wall seconds.
 # emit-c is the model built by csfc --emit-c (the same till: no start-up variant).
-# nbody.c-cube is nbody.c with r*r*r for pow(r, 3): informational, not the VM's arithmetic.
+# nbody.c-pow is nbody.c with pow(r, 3.0) for the VM's (r*r)*r (as the VM computed r^3
+# before integer powers): informational, not the VM's arithmetic.
 nbrun() {
 	# shellcheck disable=SC2086 # WATCH is a list of numbers
 	case $1 in
 	csfvm) timed "$2" "$CSFVM" "$TMP/$NB${3:+.$3}.csfb" ;;
 	emit-c) timed "$2" "$BIN/$NBGEN" ;;
 	nbody.c) timed "$2" "$BIN/nbody" "$NBIC" "${3:-$NB_TILL}" "$NB_BY" $WATCH ;;
-	nbody.c-cube) timed "$2" "$BIN/nbody_cube" "$NBIC" "${3:-$NB_TILL}" "$NB_BY" $WATCH ;;
+	nbody.c-pow) timed "$2" "$BIN/nbody_pow" "$NBIC" "${3:-$NB_TILL}" "$NB_BY" $WATCH ;;
 	esac
 }
-PROGS="csfvm emit-c nbody.c nbody.c-cube"
+PROGS="csfvm emit-c nbody.c nbody.c-pow"
 
 # Agreement (and warm-up): one untimed run of each, compared value by value.
 "$CSFVM" "$TMP/$NB.csfb" > "$TMP/$NB.csfvm.csv"
 # shellcheck disable=SC2086
 "$BIN/nbody" --stats "$NBIC" "$NB_TILL" "$NB_BY" $WATCH > "$TMP/$NB.nbody.c.csv" 2> "$TMP/$NB.stats"
 # shellcheck disable=SC2086
-"$BIN/nbody_cube" "$NBIC" "$NB_TILL" "$NB_BY" $WATCH > "$TMP/$NB.nbody.c-cube.csv"
+"$BIN/nbody_pow" "$NBIC" "$NB_TILL" "$NB_BY" $WATCH > "$TMP/$NB.nbody.c-pow.csv"
 "$BIN/$NBGEN" > "$TMP/$NB.emit-c.csv"
 cmp -s "$TMP/$NB.csfvm.csv" "$TMP/$NB.emit-c.csv" ||
 	{ say "run.sh: the csfc --emit-c program's output differs from csfvm's ($TMP/$NB.emit-c.csv, $TMP/$NB.csfvm.csv)"; exit 1; }
@@ -161,14 +162,14 @@ EVALS=$(awk '{ print $2 }' "$TMP/$NB.stats")
 CLOSEST=$(awk '{ print $(NF - 1) }' "$TMP/$NB.stats")
 if cmp -s "$TMP/$NB.csfvm.csv" "$TMP/$NB.nbody.c.csv"; then IDENTICAL=yes; else IDENTICAL=no; fi
 DIFF=$(maxdiff "$TMP/$NB.csfvm.csv" "$TMP/$NB.nbody.c.csv")
-CUBEDIFF=$(maxdiff "$TMP/$NB.csfvm.csv" "$TMP/$NB.nbody.c-cube.csv")
-for d in "$DIFF" "$CUBEDIFF"; do
+POWDIFF=$(maxdiff "$TMP/$NB.csfvm.csv" "$TMP/$NB.nbody.c-pow.csv")
+for d in "$DIFF" "$POWDIFF"; do
 	[ "$d" != mismatch ] || { say "run.sh: csfvm and nbody printed tables of different shapes"; exit 1; }
 done
 MAXABS=${DIFF% *}
 MAXREL=${DIFF#* }
 say "agreement: identical output: $IDENTICAL; max |csfvm - nbody.c| = $MAXABS, max relative = $MAXREL"
-say "           (nbody.c-cube, r*r*r for pow: max |csfvm - cube| = ${CUBEDIFF% *})"
+say "           (nbody.c-pow, pow(r, 3.0) for (r*r)*r: max |csfvm - nbody.c-pow| = ${POWDIFF% *})"
 
 # Start-up: the same model with till 0 (csfvm: load, decode and verify the bytecode).
 sh ./gen_nbody.sh "$NB_N" 0 "$NB_BY" "$TMP/$NB.0.csf" "$TMP/$NB.0.ic"
@@ -256,7 +257,7 @@ E2=$(median "emitc_$CH" "csfc --emit-c + cc $EMITC_CFLAGS" 3)
 VS=$(median "$NB" csfvm 3)
 GS=$(median "$NB" emit-c 3)
 CS=$(median "$NB" nbody.c 3)
-QS=$(median "$NB" nbody.c-cube 3)
+PS=$(median "$NB" nbody.c-pow 3)
 V0=$(median "startup_$NB" csfvm 3)
 C0=$(median "startup_$NB" nbody.c 3)
 HV=$(median "$CH" csfvm 3)
@@ -271,11 +272,11 @@ ncpu=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo "?")
 gsl=$(pkg-config --modversion gsl 2>/dev/null || echo "?")
 ccv=$(${CC:-cc} --version 2>/dev/null | awk 'NR == 1' || echo "?")
 
-awk -v c1="$C1" -v c2="$C2" -v e1="$E1" -v e2="$E2" -v vs="$VS" -v gs="$GS" -v cs="$CS" -v qs="$QS" -v v0="$V0" -v c0="$C0" \
+awk -v c1="$C1" -v c2="$C2" -v e1="$E1" -v e2="$E2" -v vs="$VS" -v gs="$GS" -v cs="$CS" -v ps="$PS" -v v0="$V0" -v c0="$C0" \
 	-v hv="$HV" -v hg="$HG" -v hc="$HC" -v chsteps="$CHSTEPS" -v chevals="$CHEVALS" -v chinsns="$CH_INSNS" \
 	-v chn="$CH_N" -v chtill="$CH_TILL" -v chby="$CH_BY" -v chident="$CHIDENT" -v chdiff="$CHDIFF" -v chlinks="$CHLINKS" \
 	-v ecflags="$EMITC_CFLAGS" -v nbgenbytes="$NBGEN_BYTES" \
-	-v cubediff="${CUBEDIFF% *}" -v steps="$STEPS" -v evals="$EVALS" -v npairs="$NPAIRS" \
+	-v powdiff="${POWDIFF% *}" -v steps="$STEPS" -v evals="$EVALS" -v npairs="$NPAIRS" \
 	-v reps="$REPS" -v sn="$SCENE_N" -v nb="$NB_N" -v till="$NB_TILL" -v by="$NB_BY" \
 	-v sbytes="$SCENE_BYTES" -v sinsns="$SCENE_INSNS" -v nbinsns="$NB_INSNS" \
 	-v ident="$IDENTICAL" -v maxabs="$MAXABS" -v maxrel="$MAXREL" -v closest="$CLOSEST" \
@@ -294,7 +295,7 @@ BEGIN {
 	printf "| %d-body gravity, till %s by %s | csfvm | %.3f | %d | %.3e |\n", nb, till, by, vs, steps, vs / steps
 	printf "| %d-body gravity, till %s by %s | emit-c | %.3f | %d | %.3e |\n", nb, till, by, gs, steps, gs / steps
 	printf "| %d-body gravity, till %s by %s | nbody.c | %.3f | %d | %.3e |\n", nb, till, by, cs, steps, cs / steps
-	printf "| %d-body gravity, till %s by %s | nbody.c-cube (r*r*r, informational) | %.3f | %d | %.3e |\n", nb, till, by, qs, steps, qs / steps
+	printf "| %d-body gravity, till %s by %s | nbody.c-pow (pow(r, 3.0), informational) | %.3f | %d | %.3e |\n", nb, till, by, ps, steps, ps / steps
 	printf "| %d-body start-up only (till 0) | csfvm | %.3f | 1 | %.3f |\n", nb, v0, v0
 	printf "| %d-body start-up only (till 0) | nbody.c | %.3f | 1 | %.3f |\n", nb, c0, c0
 	printf "| chain of %d masses, till %s by %s | csfvm | %.3f | %d | %.3e |\n", chn, chtill, chby, hv, chsteps, hv / chsteps
@@ -306,19 +307,19 @@ BEGIN {
 	printf "| %d-body gravity | %.2f | %.2f (%s) | %.2f (%s) |\n", nb, vs / cs, gs / cs, verdict(gs / cs, 1.25, 1), vs / gs, verdict(vs / gs, 8, 1)
 	printf "| chain of %d masses | %.2f | %.2f (%s) | %.2f (%s) |\n\n", chn, hv / hc, hg / hc, verdict(hg / hc, 1.25, 1), hv / hg, verdict(hv / hg, 8, 1)
 	printf "- %d-body gravity, csfvm / nbody.c without start-up (each run minus its till-0 run): %.2f\n", nb, (vs - v0) / (cs - c0)
-	printf "  - without start-up and pow (taking nbody.c - nbody.c-cube as the time of pow, the same in both): %.2f\n", \
-		(vs - v0 - (cs - qs)) / (qs - c0)
-	printf "- csfvm / nbody.c-cube (r*r*r for pow, not the same arithmetic): %.2f\n", vs / qs
+	printf "- what pow would cost: nbody.c-pow is nbody.c with pow(r, 3.0) for (r*r)*r (r^3 as csfvm computed it before integer powers; not the same arithmetic)\n"
+	printf "  - nbody.c-pow / nbody.c without start-up (each minus the till-0 run of nbody.c): %.2f; pow takes %.1f ns a pair more than (r*r)*r; csfvm / nbody.c-pow: %.2f\n", \
+		(ps - c0) / (cs - c0), (ps - cs) / evals / npairs * 1e9, vs / ps
 	printf "- per right-hand side evaluation (%d in the n-body run, %d pairs and %d VM instructions each):\n", evals, npairs, nbinsns
-	printf "  csfvm %.0f us, emit-c %.0f us, nbody.c %.0f us, nbody.c-cube %.0f us; per pair %.1f, %.1f, %.1f and %.1f ns\n", \
-		vs / evals * 1e6, gs / evals * 1e6, cs / evals * 1e6, qs / evals * 1e6, \
-		vs / evals / npairs * 1e9, gs / evals / npairs * 1e9, cs / evals / npairs * 1e9, qs / evals / npairs * 1e9
+	printf "  csfvm %.0f us, emit-c %.0f us, nbody.c %.0f us, nbody.c-pow %.0f us; per pair %.1f, %.1f, %.1f and %.1f ns\n", \
+		vs / evals * 1e6, gs / evals * 1e6, cs / evals * 1e6, ps / evals * 1e6, \
+		vs / evals / npairs * 1e9, gs / evals / npairs * 1e9, cs / evals / npairs * 1e9, ps / evals / npairs * 1e9
 	printf "- per right-hand side evaluation of the chain (%d in the run, %d VM instructions each): csfvm %.1f us, emit-c %.1f us, chain.c %.1f us\n", \
 		chevals, chinsns, hv / chevals * 1e6, hg / chevals * 1e6, hc / chevals * 1e6
 	printf "- agreement: emit-c and csfvm outputs byte-identical on both scenes: yes (checked; the run fails otherwise)\n"
 	printf "- agreement: csfvm and nbody.c outputs byte-identical: %s; max |csfvm - nbody.c| = %s (relative %s);\n", \
 		ident, maxabs, maxrel
-	printf "  max |csfvm - nbody.c-cube| = %s\n", cubediff
+	printf "  max |csfvm - nbody.c-pow| = %s\n", powdiff
 	printf "- agreement: csfvm and chain.c outputs byte-identical: %s; max |csfvm - chain.c| = %s (relative %s)\n", \
 		chident, substr(chdiff, 1, index(chdiff, " ") - 1), substr(chdiff, index(chdiff, " ") + 1)
 	printf "- closest approach of two bodies at the output times: %s m; chain links between %s m at the output times\n", closest, chlinks
