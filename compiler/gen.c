@@ -592,28 +592,53 @@ static int depends(const uint32_t *code, uint32_t n, unsigned char *act, int smo
  * Position/velocity pairs for velocity Verlet: a state variable x whose
  * derivative rule is x' = v, with v a state variable whose own derivative
  * does not depend on v. vpair[i] = 1 + the index of i's velocity component.
+ * One dependency pass from all the candidate velocities at once settles
+ * every candidate whose derivative none of them reaches (gravity: all); only
+ * the others get a pass of their own.
  */
+static Var *pair_velocity(Inst *I)
+{
+	if (!I->isderiv) return NULL;
+	Assign *a = I->then.v[0];
+	Var *x = a->var, *v = a->e->k == R_VAR ? a->e->var : NULL;
+	return v && v->state && v != x && v->isvec == x->isvec ? v : NULL;
+}
+
+/* Does v's derivative depend on the slots marked in act (after depends from them)? */
+static int reaches(const csf_prog *p, const unsigned char *act, int branch, const Var *v)
+{
+	uint32_t vd = p->dstart + ((uint32_t)v->slot - p->ystart);
+	int dep = branch;
+	for (int k = 0; k < (v->isvec ? 3 : 1); k++) dep |= act[vd + k];
+	return dep;
+}
+
+static void mark_var(unsigned char *act, const Var *v)
+{
+	for (int k = 0; k < (v->isvec ? 3 : 1); k++) act[v->slot + k] = 1;
+}
+
 static void gen_pairs(Gen *G, Model *M, csf_prog *p)
 {
 	p->vpair = calloc(p->ny ? p->ny : 1, sizeof *p->vpair);
-	unsigned char *act = malloc(G->nmem);
-	if (!p->vpair || !act) exit(2);
+	unsigned char *all = calloc(G->nmem, 1), *act = malloc(G->nmem);
+	if (!p->vpair || !all || !act) exit(2);
+	for (int i = 0; i < M->insts.n; i++)
+		if (pair_velocity(M->insts.v[i])) mark_var(all, pair_velocity(M->insts.v[i]));
+	int branch = depends(p->code[CSF_SEC_RHS], p->ncode[CSF_SEC_RHS], all, 0);
 	for (int i = 0; i < M->insts.n; i++) {
 		Inst *I = M->insts.v[i];
-		if (!I->isderiv) continue;
-		Assign *a = I->then.v[0];
-		Var *x = a->var, *v = a->e->k == R_VAR ? a->e->var : NULL;
-		if (!v || !v->state || v == x || v->isvec != x->isvec) continue;
-		memset(act, 0, G->nmem);
-		int w = v->isvec ? 3 : 1;
-		for (int k = 0; k < w; k++) act[v->slot + k] = 1;
-		int branch = depends(p->code[CSF_SEC_RHS], p->ncode[CSF_SEC_RHS], act, 0);
-		uint32_t vd = p->dstart + ((uint32_t)v->slot - p->ystart);
-		int dep = branch;
-		for (int k = 0; k < w; k++) dep |= act[vd + k];
-		if (dep) continue;
-		for (int k = 0; k < w; k++) p->vpair[(uint32_t)x->slot - p->ystart + k] = (uint32_t)v->slot - p->ystart + k + 1;
+		Var *v = pair_velocity(I), *x = v ? ((Assign *)I->then.v[0])->var : NULL;
+		if (!v) continue;
+		if (reaches(p, all, branch, v)) {
+			memset(act, 0, G->nmem);
+			mark_var(act, v);
+			if (reaches(p, act, depends(p->code[CSF_SEC_RHS], p->ncode[CSF_SEC_RHS], act, 0), v)) continue;
+		}
+		for (int k = 0; k < (v->isvec ? 3 : 1); k++)
+			p->vpair[(uint32_t)x->slot - p->ystart + k] = (uint32_t)v->slot - p->ystart + k + 1;
 	}
+	free(all);
 	free(act);
 }
 
