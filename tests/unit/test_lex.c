@@ -15,6 +15,19 @@ static int lex_all(const char *text, Token *out, int max)
 	return n;
 }
 
+/* What scanning text prints on the diagnostics stream (the caller frees it). */
+static char *lex_diagnostics(const char *text)
+{
+	char *buf;
+	size_t len;
+	Token t[8];
+	diag_out = open_memstream(&buf, &len);
+	lex_all(text, t, 8);
+	fclose(diag_out);
+	diag_out = NULL;
+	return buf;
+}
+
 START_TEST(test_tokens)
 {
 	Token t[32];
@@ -56,12 +69,7 @@ START_TEST(test_pi)
 	ck_assert_str_eq(t[4].text, "pi");
 	ck_assert_int_eq(t[4].loc.col, 9);
 	ck_assert_int_eq(t[4].end_col, 11);
-	char *buf;
-	size_t len;
-	diag_out = open_memstream(&buf, &len);
-	lex_all("\xCF\x80 @\n", t, 8);
-	fclose(diag_out);
-	diag_out = NULL;
+	char *buf = lex_diagnostics("\xCF\x80 @\n");
 	ck_assert_msg(strstr(buf, "l.csf:1:4: error: unexpected character '@'\n  \xCF\x80 @\n    ^\n") != NULL, "%s", buf);
 	free(buf);
 }
@@ -91,13 +99,7 @@ END_TEST
 
 START_TEST(test_tab_rejected)
 {
-	char *buf;
-	size_t len;
-	diag_out = open_memstream(&buf, &len);
-	Token t[8];
-	lex_all("x = 1\n\ty = 2\n", t, 8);
-	fclose(diag_out);
-	diag_out = NULL;
+	char *buf = lex_diagnostics("x = 1\n\ty = 2\n");
 	ck_assert_msg(strstr(buf, "l.csf:2:1: error: tabs are not allowed in indentation") != NULL, "%s", buf);
 	free(buf);
 }
