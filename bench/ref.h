@@ -2,8 +2,9 @@
  * ref.h - what the hand-written reference programs (nbody.c, chain.c) share:
  * their command line, the integrator set up as runtime/ode.c sets it up
  * (GSL rk8pd, driver_alloc_scaled_new with h0 = by, epsabs = epsrel = 1e-10,
- * a_y = 1, a_dydt = 0 and the absolute tolerance of each vector scaled as
- * csfc scales it: by its initial magnitude when that is below one unit;
+ * a_y = 1, a_dydt = 0 and the absolute tolerance of each property scaled as
+ * csfc scales it: by its largest initial magnitude over the objects when
+ * that is below one unit;
  * hmax = by, evolve_apply up to each t_k = k*by, a step that would end
  * just short of it stretched to end there, as csf_ode_step), and the output loop of
  * runtime/driver.c, numbers formatted by the runtime's own csf_fmt_double.
@@ -72,13 +73,15 @@ static double ref_run(int (*rhs)(double, const double *, double *, void *), size
 {
 	gsl_set_error_handler_off();
 	gsl_odeiv2_system sys = { rhs, NULL, dim, NULL };
-	/* the state is made of 3-vectors; each one's tolerance scale is min(1, |initial value|) */
-	double *scale = malloc(dim * sizeof *scale);
+	/* the state is made of objects of two 3-vectors (pos and v); each property's tolerance
+	   scale is min(1, the largest |initial value| it has in any object) */
+	double *scale = malloc(dim * sizeof *scale), big[2] = { 0, 0 };
 	if (!scale) ref_die("out of memory");
 	for (size_t i = 0; i + 2 < dim; i += 3) {
 		double mag = sqrt(y[i] * y[i] + y[i + 1] * y[i + 1] + y[i + 2] * y[i + 2]);
-		scale[i] = scale[i + 1] = scale[i + 2] = mag > 0 && mag < 1 ? mag : 1;
+		if (mag > big[i % 6 / 3]) big[i % 6 / 3] = mag;
 	}
+	for (size_t i = 0; i < dim; i++) scale[i] = big[i % 6 / 3] > 0 && big[i % 6 / 3] < 1 ? big[i % 6 / 3] : 1;
 	gsl_odeiv2_driver *drv =
 		gsl_odeiv2_driver_alloc_scaled_new(&sys, gsl_odeiv2_step_rk8pd, by, 1e-10, 1e-10, 1.0, 0.0, scale);
 	if (!drv || gsl_odeiv2_driver_set_hmax(drv, by) != GSL_SUCCESS) ref_die("cannot set up the integrator");

@@ -642,6 +642,9 @@ static void gen_pairs(Gen *G, Model *M, csf_prog *p)
 	free(act);
 }
 
+/* The magnitude of v's initial value. */
+static double init_mag(const Var *v) { return v->isvec ? csf_vmag3(v->init[0], v->init[1], v->init[2]) : fabs(v->init[0]); }
+
 static void gen_jacobian(Gen *G, csf_prog *p)
 {
 	const uint32_t *rc = p->code[CSF_SEC_RHS];
@@ -783,16 +786,28 @@ int gen_program(Model *M, csf_prog *p)
 	p->dstart = alloc_mem(G, p->ny, NULL);
 	p->yscale = malloc((p->ny ? p->ny : 1) * sizeof *p->yscale);
 	if (!p->yscale) exit(2);
+	/* the state variable of each property name that starts largest, over all objects */
+	Map largest = { 0 };
+	for (int i = 0; i < M->objects.n; i++) {
+		Object *o = M->objects.v[i];
+		for (int j = 0; j < o->props.n; j++) {
+			Var *v = o->props.v[j], *w = v->state ? map_get(&largest, v->name) : NULL;
+			if (v->state && (!w || init_mag(v) > init_mag(w))) map_put(&largest, v->name, v);
+		}
+	}
 	for (int i = 0; i < M->objects.n; i++) {
 		Object *o = M->objects.v[i];
 		for (int j = 0; j < o->props.n; j++) {
 			Var *v = o->props.v[j];
-			/* one SI unit of v, in the system's units; smaller when v starts smaller
-			   (so that a 1e-20 m orbit keeps the relative accuracy of a 1 m one) */
+			if (!v->state) continue;
+			/* one SI unit of v, in the system's units; smaller when the property starts
+			   smaller in every object (so that a 1e-20 m orbit keeps the relative accuracy
+			   of a 1 m one), but not because it starts near zero in this one (a normal
+			   mode's node: cos(pi/2) is 6e-17) */
 			double one = v->dimk == DK_KNOWN ? dims_to_system(1.0, v->dim) : 1.0;
-			double mag = v->isvec ? csf_vmag3(v->init[0], v->init[1], v->init[2]) : fabs(v->init[0]);
+			double mag = init_mag(map_get(&largest, v->name));
 			if (mag > 0 && mag < one && isfinite(mag)) one = mag;
-			for (int k = 0; v->state && k < (v->isvec ? 3 : 1); k++) p->yscale[(uint32_t)v->slot - p->ystart + (uint32_t)k] = one;
+			for (int k = 0; k < (v->isvec ? 3 : 1); k++) p->yscale[(uint32_t)v->slot - p->ystart + (uint32_t)k] = one;
 		}
 	}
 	M->time->slot = (int)p->tslot;

@@ -236,8 +236,10 @@ if CSF_BUILD="$B" sh tests/methods_tol.sh >"$T/mt" 2>&1; then ok; else bad "meth
 # 5h. a ball dropped onto floors and inclines anywhere, at every output interval:
 #     every row against the exact motion (tests/contacts/drop.sh)
 if sh tests/contacts/drop.sh "$CSFC" "$CSFVM" "$T" >"$T/drop" 2>&1; then ok; else bad "contacts: $(grep FAIL "$T/drop" | head -n 3)"; fi
-# 5j. 1000 projectiles, every row of every object against the closed form (tests/contacts/projectiles.sh)
-if sh tests/contacts/projectiles.sh "$CSFC" "$CSFVM" "$T" >"$T/pj" 2>&1; then ok; else bad "1000 projectiles: $(grep FAIL "$T/pj" | head -n 3)"; fi
+# 5j. 1000 projectiles, every row of every object against the closed form (tests/many/projectiles.sh)
+if sh tests/many/projectiles.sh "$CSFC" "$CSFVM" "$T" >"$T/pj" 2>&1; then ok; else bad "1000 projectiles: $(grep FAIL "$T/pj" | head -n 3)"; fi
+# 5k. a ring of 200 masses and springs in a normal mode: every row of every mass (tests/many/ring.sh)
+if sh tests/many/ring.sh "$CSFC" "$CSFVM" "$T" >"$T/ring" 2>&1; then ok; else bad "ring of masses: $(grep FAIL "$T/ring" | head -n 3)"; fi
 # 5i. every contact scene under every method: each finishes, exact to 1e-6 (tests/contacts/methods.sh)
 if sh tests/contacts/methods.sh "$CSFC" "$CSFVM" "$T" >"$T/mm" 2>&1; then ok; else bad "contacts and methods: $(grep FAIL "$T/mm" | head -n 3)"; fi
 

@@ -1,5 +1,5 @@
 #!/bin/sh
-# tests/contacts/projectiles.sh CSFC CSFVM DIR - 1000 projectiles, each with
+# tests/many/projectiles.sh CSFC CSFVM DIR - 1000 projectiles, each with
 # its own initial position and velocity, under gravity (mechanics/rules):
 # every row of every object against the closed form
 #   pos = pos0 + v0 t + g t^2/2,  v = v0 + g t,  g = (0, 0, -9.80665),
