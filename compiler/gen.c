@@ -623,8 +623,10 @@ static void gen_pairs(Gen *G, Model *M, csf_prog *p)
 	p->vpair = calloc(p->ny ? p->ny : 1, sizeof *p->vpair);
 	unsigned char *all = calloc(G->nmem, 1), *act = malloc(G->nmem);
 	if (!p->vpair || !all || !act) exit(2);
-	for (int i = 0; i < M->insts.n; i++)
-		if (pair_velocity(M->insts.v[i])) mark_var(all, pair_velocity(M->insts.v[i]));
+	for (int i = 0; i < M->insts.n; i++) {
+		Var *v = pair_velocity(M->insts.v[i]);
+		if (v) mark_var(all, v);
+	}
 	int branch = depends(p->code[CSF_SEC_RHS], p->ncode[CSF_SEC_RHS], all, 0);
 	for (int i = 0; i < M->insts.n; i++) {
 		Inst *I = M->insts.v[i];

@@ -280,7 +280,7 @@ static void enter_contact(const csf_contact *c, double *m, const double n[3])
 /* Is the pair touching: the gap closed, up to the event's location error? */
 static int touching(const csf_contact *c, const double *m, double gap)
 {
-	return gap <= csf_max(1e-12 * scale(c, m), resolution(c, m)) && inside(c, m) >= 0;
+	return gap <= 1e-12 * scale(c, m) && inside(c, m) >= 0;
 }
 
 /* Lift-off: apart, exactly touching. */

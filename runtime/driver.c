@@ -172,13 +172,10 @@ static int jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx)
 	const csf_prog *p = r->p;
 	double *m = r->m, *tan = r->m + p->jtan;
 	uint32_t n = p->ny;
-	if (p->ncontacts) {
-		r->njac++;
-		return jac_differences(r, t, y, dfdy, dfdt);
-	}
+	r->njac++;
+	if (p->ncontacts) return jac_differences(r, t, y, dfdy, dfdt);
 	m[p->tslot] = t;
 	memcpy(m + p->ystart, y, n * sizeof *y);
-	r->njac++;
 	for (uint32_t j = 0; j <= n; j++) {
 		memset(tan + p->ystart, 0, n * sizeof *tan);
 		tan[p->tslot] = j == n ? 1.0 : 0.0;
