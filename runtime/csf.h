@@ -43,7 +43,30 @@ enum csf_opcode {
 };
 
 /* Operand kinds of opcodes.def. */
-enum csf_operand_kind { CSF_K___ = 0, CSF_K_DS, CSF_K_DV, CSF_K_S, CSF_K_V, CSF_K_J, CSF_K_AS, CSF_K_N };
+enum csf_operand_kind { CSF_K___ = 0, CSF_K_DS, CSF_K_DV, CSF_K_S, CSF_K_V, CSF_K_J, CSF_K_AS, CSF_K_N, CSF_K_L, CSF_K_C,
+                        CSF_K_B };
+
+/*
+ * Loops. LOOP L, n, end runs its body (up to the matching NEXT) n times with
+ * the index of level L going 0, 1, ..., n - 1; loops nest, level 1
+ * outermost, at most CSF_LOOP_MAX deep. A slot or assertion operand word w
+ * is relative: its top bits name a register, whose value is added to the
+ * rest of the word (csf_operand). Register 0 is 0; register 2L - 1 is the
+ * index of loop level L, register 2L three times it (the stride of a vector
+ * in an array of vectors); register 7 is invalid. So an array of one scalar
+ * per object of a shape is read as base + index, one of vectors as
+ * base + 3 index.
+ */
+#define CSF_LOOP_MAX 3
+#define CSF_REG_SHIFT 29
+#define CSF_SLOT_MASK ((1u << CSF_REG_SHIFT) - 1u)
+#define CSF_NREGS 7
+/* The register of operand word w, and w with register r. */
+static inline uint32_t csf_reg(uint32_t w) { return w >> CSF_REG_SHIFT; }
+static inline uint32_t csf_rel(uint32_t slot, uint32_t r) { return slot | r << CSF_REG_SHIFT; }
+/* The slot (or assertion index) word w names, given the registers. */
+static inline uint32_t csf_operand(uint32_t w, const uint32_t *reg) { return (w & CSF_SLOT_MASK) + reg[w >> CSF_REG_SHIFT]; }
+
 
 typedef struct csf_opinfo {
 	const char *name;     /* "ADD" */

@@ -1,23 +1,32 @@
 /*
  * vm.c - the CSF bytecode interpreter.
  *
- * A code section is a straight sequence of instructions with forward jumps
- * only (conditional rules), so execution always terminates. Every
+ * A code section is a sequence of instructions with forward jumps only
+ * (conditional rules) and counted loops (LOOP ... NEXT, the rules over the
+ * objects of a shape), so execution always terminates. Slot operands are
+ * relative to the loop registers (csf_operand, csf.h). Every
  * instruction's semantics is the csf_op_NAME function of csf_ops.h, the
  * same function the generated C calls; this file only decodes operands.
  * The program must have passed csf_verify: operands are not checked here.
  */
 #include "csf.h"
 
-#define CSF_ARGS1 , pc[1]
-#define CSF_ARGS2 , pc[1], pc[2]
-#define CSF_ARGS3 , pc[1], pc[2], pc[3]
-#define CSF_ARGS4 , pc[1], pc[2], pc[3], pc[4]
+/* An operand of kind K, decoded: slots and assertion indices through the registers. */
+#define DEC_DS(w) csf_operand(w, reg)
+#define DEC_DV(w) csf_operand(w, reg)
+#define DEC_S(w) csf_operand(w, reg)
+#define DEC_V(w) csf_operand(w, reg)
+#define DEC_N(w) (w)
+#define ARGS1(a, b, c, d) , DEC_##a(pc[1])
+#define ARGS2(a, b, c, d) , DEC_##a(pc[1]), DEC_##b(pc[2])
+#define ARGS3(a, b, c, d) , DEC_##a(pc[1]), DEC_##b(pc[2]), DEC_##c(pc[3])
+#define ARGS4(a, b, c, d) , DEC_##a(pc[1]), DEC_##b(pc[2]), DEC_##c(pc[3]), DEC_##d(pc[4])
 
 int csf_vm_exec(const csf_prog *p, int sec, double *m)
 {
 	const uint32_t *code = p->code[sec];
 	const uint32_t *pc = code, *end = code + p->ncode[sec];
+	uint32_t reg[CSF_NREGS + 1] = { 0 }, count[CSF_LOOP_MAX + 1] = { 0 };
 
 	while (pc < end) {
 		switch ((enum csf_opcode)pc[0]) {
@@ -25,7 +34,7 @@ int csf_vm_exec(const csf_prog *p, int sec, double *m)
 			pc = code + pc[1];
 			continue;
 		case CSF_OP_JZ:
-			if (m[pc[1]] == 0.0) {
+			if (m[csf_operand(pc[1], reg)] == 0.0) {
 				pc = code + pc[2];
 				continue;
 			}
@@ -36,12 +45,36 @@ int csf_vm_exec(const csf_prog *p, int sec, double *m)
 			pc += 1;
 			continue;
 		case CSF_OP_ASSERT:
-			if (m[pc[1]] == 0.0) return (int)pc[2];
+			if (m[csf_operand(pc[1], reg)] == 0.0) return (int)csf_operand(pc[2], reg);
 			pc += 3;
+			continue;
+		case CSF_OP_LOOP:
+			reg[2 * pc[1] - 1] = reg[2 * pc[1]] = 0;
+			count[pc[1]] = pc[2];
+			if (pc[2] == 0) {
+				pc = code + pc[3];
+				continue;
+			}
+			pc += 4;
+			continue;
+		case CSF_OP_NEXT:
+			reg[2 * pc[1]] += 3;
+			if (++reg[2 * pc[1] - 1] < count[pc[1]]) {
+				pc = code + pc[2];
+				continue;
+			}
+			pc += 3;
+			continue;
+		case CSF_OP_JEQ:
+			if (reg[2 * pc[1] - 1] == reg[2 * pc[2] - 1]) {
+				pc = code + pc[3];
+				continue;
+			}
+			pc += 4;
 			continue;
 #define OP(name, n, a, b, c, d, syn) \
 	case CSF_OP_##name: \
-		csf_op_##name(m CSF_ARGS##n); \
+		csf_op_##name(m ARGS##n(a, b, c, d)); \
 		pc += 1 + n; \
 		continue;
 #define CTRL(name, n, a, b, c, d, syn)
