@@ -19,7 +19,8 @@
 #include "csf.h"
 #include "gen.h"
 
-#define SCRATCH 0x80000000u
+/* Scratch operands carry this bit until scratch is placed; memory stays below it. */
+#define SCRATCH (1u << 28)
 
 typedef struct Gen {
 	Model *M;
@@ -40,6 +41,7 @@ typedef struct Gen {
 	struct { RExpr *e; uint32_t slot; } cse[64]; /* within one equation: values computed so far */
 	int ncse;
 	Map consts;  /* constant bits -> slot + 1 */
+	int loop;     /* the levels of the loops the instance being emitted runs in (0: none) */
 	Inst *evinst; /* emitting the condition of this conditional rule, located as events */
 	Map evmap;    /* comparison (by address) -> event index + 1 */
 	csf_event *events;
@@ -62,6 +64,11 @@ static void *grow(void *p, uint32_t *cap, uint32_t need, size_t elem)
 
 static uint32_t alloc_mem(Gen *G, uint32_t n, const double *init)
 {
+	if ((uint64_t)G->nmem + n >= SCRATCH / 2) { /* the Jacobian's tangents double it */
+		error_plain("the scene needs more than %u memory slots (%u MiB of values): too big to compile", SCRATCH / 2,
+		            SCRATCH / 2 / 131072);
+		exit(1);
+	}
 	G->mem = grow(G->mem, &G->capmem, G->nmem + n, sizeof(double));
 	for (uint32_t i = 0; i < n; i++) G->mem[G->nmem + i] = init ? init[i] : 0.0;
 	G->nmem += n;
@@ -80,11 +87,55 @@ static uint32_t str_intern(Gen *G, const char *s)
 	return G->nstrs - n;
 }
 
+/*
+ * The slot of v, allocated at its first use. A property of the objects of a
+ * shape is an array, member i's value at slot + i (a vector: slot + 3 i),
+ * allocated for all members at once; so is a temporary of one object of
+ * such a shape (only the representative's exists).
+ */
 static uint32_t var_slot(Gen *G, Var *v)
 {
-	if (v->slot < 0) v->slot = (int)alloc_mem(G, v->isvec ? 3 : 1, v->kind == V_TEMP ? NULL : v->init);
+	if (v->slot >= 0) return (uint32_t)v->slot;
+	uint32_t w = v->isvec ? 3 : 1;
+	if (!sema_per_member(v)) {
+		v->slot = (int)alloc_mem(G, w, v->kind == V_TEMP ? NULL : v->init);
+		return (uint32_t)v->slot;
+	}
+	Shape *S = v->obj->shape;
+	uint32_t base = alloc_mem(G, (uint32_t)S->n * w, NULL);
+	if (v->kind == V_TEMP) {
+		v->slot = (int)base;
+		return base;
+	}
+	for (int q = 0; q < S->n; q++) {
+		Var *m = map_get(&S->members[q]->props_by_name, v->name);
+		m->slot = (int)(base + (uint32_t)q * w);
+		memcpy(G->mem + m->slot, m->init, w * sizeof(double));
+	}
 	return (uint32_t)v->slot;
 }
+
+/* The operand word for v read at place ($n) of the instance being emitted: relative to
+   that place's loop index when v is an array over a shape. */
+static uint32_t var_operand(Gen *G, Var *v, int place)
+{
+	uint32_t s = var_slot(G, v), level = (uint32_t)place + 1;
+	if (place < 0 || (int)level > G->loop || !sema_per_member(v)) return s;
+	return csf_rel(s, v->isvec ? 2 * level : 2 * level - 1);
+}
+
+/* How many levels of loops instance I runs in: one per place when a shape of more than one
+   object is bound (0: compiled for its objects alone). */
+static int inst_loops(const Model *M, const Inst *I)
+{
+	if (!M->shaped || I->st->has_for) return 0;
+	for (int b = 0; b < I->nbind; b++)
+		if (I->bind[b]->shape->n > 1) return I->nbind;
+	return 0;
+}
+
+/* A $1 rule with attribute F in loops: its forces summed over $1 into an array (acc). */
+static int sums_pairs(const Model *M, const Inst *I) { return I->isF && I->nbind > 1 && inst_loops(M, I); }
 
 static uint64_t dbits(double d)
 {
@@ -145,6 +196,32 @@ static void emit_pow_const(Gen *G, uint32_t dest, uint32_t x, double k)
 
 static uint32_t emit(Gen *G, RExpr *e);
 
+/* The slot of I's sums over $1 (sums_pairs), one vector per member of $0's shape. */
+static uint32_t acc_slot(Gen *G, Inst *I)
+{
+	if (!I->acc) I->acc = 1 + (int)alloc_mem(G, 3u * (uint32_t)I->bind[0]->shape->n, NULL);
+	return (uint32_t)I->acc - 1;
+}
+
+/* The terms of object o's RF, the forces of its F rules in their order (of a $1 rule in loops,
+   its sum over $1), as operand words into t[0..max); returns how many there are. */
+static int rf_terms(Gen *G, Object *o, uint32_t *t, int max)
+{
+	Vec *fs = &G->Finsts[o->index];
+	int n = 0;
+	for (int i = 0; i < fs->n; i++) {
+		Inst *I = fs->v[i];
+		if (sums_pairs(G->M, I)) {
+			if (n < max) t[n] = G->loop ? csf_rel(acc_slot(G, I), 2) : acc_slot(G, I);
+			n++;
+			continue;
+		}
+		for (int k = 0; k < I->targets.n; k++, n++)
+			if (n < max) t[n] = var_operand(G, I->targets.v[k], 0);
+	}
+	return n;
+}
+
 /* Structural equality of two expressions (same operations on the same operands). */
 static int expr_same(const RExpr *a, const RExpr *b)
 {
@@ -152,7 +229,7 @@ static int expr_same(const RExpr *a, const RExpr *b)
 	if (a->k != b->k || a->isvec != b->isvec) return 0;
 	switch (a->k) {
 	case R_CONST: return memcmp(a->c, b->c, sizeof a->c) == 0;
-	case R_VAR: return a->var == b->var;
+	case R_VAR: return a->var == b->var && a->place == b->place;
 	case R_RF: return a->obj == b->obj;
 	case R_COMP: return a->comp == b->comp && expr_same(a->a[0], b->a[0]);
 	case R_OP:
@@ -178,20 +255,25 @@ static int emit_event(Gen *G, RExpr *e, uint32_t dest)
 	if (!G->evinst || !(op == CSF_OP_LT || op == CSF_OP_LE || op == CSF_OP_GT || op == CSF_OP_GE)) return 0;
 	char *key = xprintf("%p", (void *)e);
 	uintptr_t known = (uintptr_t)map_get(&G->evmap, key);
+	/* in a loop (one level: by shape, conditional rules of pairs are not), one event per member */
+	uint32_t n = G->loop ? (uint32_t)G->evinst->bind[0]->shape->n : 1;
 	if (!known) {
-		G->events = grow(G->events, &G->capevents, G->nevents + 1, sizeof *G->events);
-		double unset = -1;
-		uint32_t value = alloc_mem(G, 1, NULL), mode = alloc_mem(G, 1, &unset);
+		G->events = grow(G->events, &G->capevents, G->nevents + n, sizeof *G->events);
+		uint32_t value = alloc_mem(G, n, NULL), mode = alloc_mem(G, n, NULL);
 		int strict = op == CSF_OP_LT || op == CSF_OP_GT;
-		G->events[G->nevents++] = (csf_event){ strict ? 0u : 1u, value, mode, (uint32_t)G->evinst->src };
-		known = G->nevents;
+		known = G->nevents + 1;
+		for (uint32_t q = 0; q < n; q++) {
+			G->mem[mode + q] = -1;
+			G->events[G->nevents++] = (csf_event){ strict ? 0u : 1u, value + q, mode + q, (uint32_t)G->evinst->src };
+		}
 		map_put(&G->evmap, key, (void *)known);
 	}
 	const csf_event *ev = &G->events[known - 1];
+	uint32_t r = G->loop ? 1 : 0, value = csf_rel(ev->value, r), mode = csf_rel(ev->mode, r);
 	uint32_t x = emit(G, e->a[0]), y = emit(G, e->a[1]);
-	if (op == CSF_OP_LT || op == CSF_OP_LE) emit_op(G, CSF_OP_SUB, ev->value, y, x, 0);
-	else emit_op(G, CSF_OP_SUB, ev->value, x, y, 0);
-	emit_op(G, ev->kind ? CSF_OP_EVGE : CSF_OP_EVGT, dest, ev->value, ev->mode, 0);
+	if (op == CSF_OP_LT || op == CSF_OP_LE) emit_op(G, CSF_OP_SUB, value, y, x, 0);
+	else emit_op(G, CSF_OP_SUB, value, x, y, 0);
+	emit_op(G, ev->kind ? CSF_OP_EVGE : CSF_OP_EVGT, dest, value, mode, 0);
 	return 1;
 }
 
@@ -209,15 +291,12 @@ static void emit_into(Gen *G, RExpr *e, uint32_t dest)
 		return;
 	}
 	if (e->k == R_RF) {
-		Vec *fs = &G->Finsts[e->obj->index];
-		Vec tv = { 0 };
-		for (int i = 0; i < fs->n; i++) {
-			Inst *I = fs->v[i];
-			for (int k = 0; k < I->targets.n; k++) vec_push(&tv, I->targets.v[k]);
-		}
-		if (tv.n >= 2) {
-			emit_op(G, CSF_OP_VADD, dest, var_slot(G, tv.v[0]), var_slot(G, tv.v[1]), 0);
-			for (int i = 2; i < tv.n; i++) emit_op(G, CSF_OP_VADD, dest, dest, var_slot(G, tv.v[i]), 0);
+		int n = rf_terms(G, e->obj, NULL, 0);
+		if (n >= 2) {
+			uint32_t *t = xalloc((size_t)n * sizeof *t);
+			rf_terms(G, e->obj, t, n);
+			emit_op(G, CSF_OP_VADD, dest, t[0], t[1], 0);
+			for (int i = 2; i < n; i++) emit_op(G, CSF_OP_VADD, dest, dest, t[i], 0);
 			return;
 		}
 	}
@@ -229,19 +308,13 @@ static uint32_t emit(Gen *G, RExpr *e)
 {
 	switch (e->k) {
 	case R_CONST: return const_slot(G, e->c, e->isvec);
-	case R_VAR: return e->var->kind == V_TIME ? G->p->tslot : var_slot(G, e->var);
+	case R_VAR: return e->var->kind == V_TIME ? G->p->tslot : var_operand(G, e->var, e->place);
 	case R_COMP: return emit(G, e->a[0]) + (uint32_t)e->comp;
 	case R_RF: {
-		Vec *fs = &G->Finsts[e->obj->index];
-		int n = 0;
-		Var *only = NULL;
-		for (int i = 0; i < fs->n; i++) {
-			Inst *I = fs->v[i];
-			n += I->targets.n;
-			if (I->targets.n) only = I->targets.v[0];
-		}
+		uint32_t t[1];
+		int n = rf_terms(G, e->obj, t, 1);
 		if (n == 0) return const_slot(G, (double[3]){ 0, 0, 0 }, 1);
-		if (n == 1) return var_slot(G, only);
+		if (n == 1) return t[0];
 		uint32_t d = new_scratch(G, 3);
 		emit_into(G, e, d);
 		return d;
@@ -269,11 +342,22 @@ static void add_line(Gen *G, uint32_t src)
 	G->lines[G->nlines++] = (csf_line){ pc(G), src };
 }
 
-static void add_target(Gen *G, uint32_t slot, Var *v, uint32_t src, const char *name)
+static void add_target(Gen *G, uint32_t slot, Var *v, uint32_t src, const char *name, Object *o)
 {
 	G->targets = grow(G->targets, &G->captargets, G->ntargets + 1, sizeof(csf_target));
 	G->targets[G->ntargets++] = (csf_target){ slot, v->isvec ? 3u : 1u, src, str_intern(G, name),
-		                                      str_intern(G, v->obj ? v->obj->name : "global") };
+		                                      str_intern(G, o ? o->name : "global") };
+}
+
+/* Targets of v, computed at slot (+ d, a derivative's offset) by I: one per member in loops. */
+static void add_targets(Gen *G, Inst *I, Var *v, uint32_t slot, uint32_t src, const char *name)
+{
+	Shape *S = I->bind[0]->shape;
+	if (!inst_loops(G->M, I) || !(sema_per_member(v) || sums_pairs(G->M, I))) {
+		add_target(G, slot, v, src, name, v->obj);
+		return;
+	}
+	for (int q = 0; q < S->n; q++) add_target(G, slot + (uint32_t)q * (v->isvec ? 3u : 1u), v, src, name, S->members[q]);
 }
 
 static void emit_assigns(Gen *G, Inst *I, Vec *br)
@@ -281,7 +365,7 @@ static void emit_assigns(Gen *G, Inst *I, Vec *br)
 	for (int i = 0; i < br->n; i++) {
 		Assign *a = br->v[i];
 		cse_reset(G);
-		emit_into(G, a->e, var_slot(G, a->var));
+		emit_into(G, a->e, var_operand(G, a->var, 0));
 	}
 	cse_reset(G);
 	/* variables the other branch introduces are zero in this one */
@@ -290,45 +374,87 @@ static void emit_assigns(Gen *G, Inst *I, Vec *br)
 		int set = 0;
 		for (int k = 0; k < br->n; k++) set |= ((Assign *)br->v[k])->var == v;
 		if (!set)
-			emit_op(G, v->isvec ? CSF_OP_VMOV : CSF_OP_MOV, var_slot(G, v), const_slot(G, (double[3]){ 0, 0, 0 }, v->isvec), 0, 0);
+			emit_op(G, v->isvec ? CSF_OP_VMOV : CSF_OP_MOV, var_operand(G, v, 0), const_slot(G, (double[3]){ 0, 0, 0 }, v->isvec), 0, 0);
 	}
 }
 
-static Vec assert_tab; /* of Inst*, in assertion index order */
+static Vec assert_tab, assert_obj; /* of Inst* and Object*, in assertion index order */
 
+/* The code of one instance, for one binding of its loops' indices. */
+static void emit_body(Gen *G, Inst *I)
+{
+	if (I->isassert) {
+		uint32_t c = emit(G, I->cond);
+		I->assert_index = assert_tab.n;
+		Shape *S = I->bind[0]->shape;
+		for (int q = 0; q < (G->loop ? S->n : 1); q++) {
+			vec_push(&assert_tab, I);
+			vec_push(&assert_obj, G->loop ? S->members[q] : I->bind[0]);
+		}
+		emit_op(G, CSF_OP_ASSERT, c, csf_rel((uint32_t)I->assert_index, G->loop ? 1 : 0), 0, 0);
+		return;
+	}
+	if (I->isderiv) {
+		Assign *a = I->then.v[0];
+		emit_into(G, a->e, var_operand(G, a->var, 0) + (G->p->dstart - G->p->ystart));
+		return;
+	}
+	if (!I->cond) {
+		emit_assigns(G, I, &I->then);
+		return;
+	}
+	G->evinst = I->needed[CSF_SEC_RHS] ? I : NULL;
+	uint32_t c = emit(G, I->cond);
+	G->evinst = NULL;
+	uint32_t jz = pc(G);
+	emit_op(G, CSF_OP_JZ, c, 0, 0, 0);
+	emit_assigns(G, I, &I->then);
+	uint32_t jmp = pc(G);
+	emit_op(G, CSF_OP_JMP, 0, 0, 0, 0);
+	G->code[jz + 2] = pc(G);
+	emit_assigns(G, I, &I->els);
+	G->code[jmp + 1] = pc(G);
+}
+
+/*
+ * One instance. By shape, its code runs in a loop over the members of $0's
+ * shape (level 1), and for $1 over those of $1's (level 2, skipping $0
+ * itself); a $1 rule with attribute F adds its force to the sum of $0's,
+ * over $1 in ascending object index, from 0.
+ */
 static void emit_inst(Gen *G, Inst *I)
 {
 	G->scratch = 0;
 	cse_reset(G);
 	add_line(G, (uint32_t)I->src);
-	if (I->isassert) {
-		uint32_t c = emit(G, I->cond);
-		I->assert_index = assert_tab.n;
-		vec_push(&assert_tab, I);
-		emit_op(G, CSF_OP_ASSERT, c, (uint32_t)I->assert_index, 0, 0);
-		return;
+	G->loop = inst_loops(G->M, I);
+	int sums = sums_pairs(G->M, I);
+	uint32_t top[CSF_LOOP_MAX + 1] = { 0 }, jeq = 0;
+	for (int l = 1; l <= G->loop; l++) {
+		if (l == 2 && sums) emit_op(G, CSF_OP_VMOV, csf_rel(acc_slot(G, I), 2), const_slot(G, (double[3]){ 0, 0, 0 }, 1), 0, 0);
+		top[l] = pc(G);
+		emit_op(G, CSF_OP_LOOP, (uint32_t)l, (uint32_t)I->bind[l - 1]->shape->n, 0, 0);
 	}
+	if (G->loop == 2 && I->bind[0]->shape == I->bind[1]->shape) {
+		jeq = pc(G);
+		emit_op(G, CSF_OP_JEQ, 1, 2, 0, 0);
+	}
+	emit_body(G, I);
+	for (int i = 0; sums && i < I->targets.n; i++) {
+		uint32_t acc = csf_rel(acc_slot(G, I), 2);
+		emit_op(G, CSF_OP_VADD, acc, acc, var_operand(G, I->targets.v[i], 0), 0);
+	}
+	if (jeq) G->code[jeq + 3] = pc(G);
+	for (int l = G->loop; l >= 1; l--) {
+		emit_op(G, CSF_OP_NEXT, (uint32_t)l, top[l] + 4, 0, 0);
+		G->code[top[l] + 3] = pc(G);
+	}
+	G->loop = 0;
+	if (I->isassert) return;
 	if (I->isderiv) {
-		Assign *a = I->then.v[0];
-		uint32_t d = G->p->dstart + (var_slot(G, a->var) - G->p->ystart);
-		emit_into(G, a->e, d);
-		add_target(G, d, a->var, (uint32_t)I->src, xprintf("%s'", a->var->name));
+		Var *v = ((Assign *)I->then.v[0])->var;
+		add_targets(G, I, v, G->p->dstart + (var_slot(G, v) - G->p->ystart), (uint32_t)I->src, xprintf("%s'", v->name));
 		return;
-	}
-	if (!I->cond) {
-		emit_assigns(G, I, &I->then);
-	} else {
-		G->evinst = I->needed[CSF_SEC_RHS] ? I : NULL;
-		uint32_t c = emit(G, I->cond);
-		G->evinst = NULL;
-		uint32_t jz = pc(G);
-		emit_op(G, CSF_OP_JZ, c, 0, 0, 0);
-		emit_assigns(G, I, &I->then);
-		uint32_t jmp = pc(G);
-		emit_op(G, CSF_OP_JMP, 0, 0, 0, 0);
-		G->code[jz + 2] = pc(G);
-		emit_assigns(G, I, &I->els);
-		G->code[jmp + 1] = pc(G);
 	}
 	for (int i = 0; i < I->targets.n; i++) {
 		Var *v = I->targets.v[i];
@@ -338,7 +464,7 @@ static void emit_inst(Gen *G, Inst *I)
 			for (int k = 0; k < br->n; k++)
 				if (((Assign *)br->v[k])->var == v) src = (uint32_t)((Assign *)br->v[k])->src;
 		}
-		add_target(G, var_slot(G, v), v, src, v->name);
+		add_targets(G, I, v, sums ? acc_slot(G, I) : var_slot(G, v), src, v->name);
 	}
 }
 
@@ -359,13 +485,31 @@ typedef struct Jac {
 	uint32_t W;          /* first work slot */
 	uint32_t zero, one, two, ln10, zvec;
 	unsigned char *act;  /* active primal slots */
+	uint32_t cnt[CSF_LOOP_MAX + 1]; /* the counts of the loops around the instruction */
 } Jac;
 
-static int jact(Jac *J, int kind, uint32_t s)
+/*
+ * The slots [lo, hi) an operand word of kind `kind` can name, given the
+ * counts of the loops around it (cnt[level]): all of its array for a word
+ * relative to a loop index. The analyses below are by array, not by element.
+ */
+static void operand_range(uint32_t w, int kind, const uint32_t *cnt, uint32_t *lo, uint32_t *hi)
 {
-	if (kind == CSF_K_V || kind == CSF_K_DV) return J->act[s] || J->act[s + 1] || J->act[s + 2];
-	return J->act[s];
+	uint32_t r = csf_reg(w), n = r ? cnt[(r + 1) / 2] : 1;
+	*lo = w & CSF_SLOT_MASK;
+	*hi = *lo + (n ? n - 1 : 0) * (r && r % 2 == 0 ? 3u : 1u) + (kind == CSF_K_V || kind == CSF_K_DV ? 3u : 1u);
 }
+
+static int any_marked(const unsigned char *act, uint32_t w, int kind, const uint32_t *cnt)
+{
+	uint32_t lo, hi;
+	operand_range(w, kind, cnt, &lo, &hi);
+	for (uint32_t s = lo; s < hi; s++)
+		if (act[s]) return 1;
+	return 0;
+}
+
+static int jact(Jac *J, int kind, uint32_t s) { return any_marked(J->act, s, kind, J->cnt); }
 
 #define JE(op, a, b, c, d) emit_op(J->G, CSF_OP_##op, a, b, c, d)
 #define T(x) ((x) + J->P)
@@ -566,23 +710,22 @@ static int differentiable(int op)
 static int depends(const uint32_t *code, uint32_t n, unsigned char *act, int smooth)
 {
 	int branch = 0;
+	uint32_t cnt[CSF_LOOP_MAX + 1] = { 0 };
 	for (int changed = 1; changed;) {
 		changed = 0;
 		for (uint32_t pc = 0; pc < n; pc += 1u + csf_opinfo_table[code[pc]].nops) {
 			const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
-			if (code[pc] == CSF_OP_JZ && act[code[pc + 1]]) branch = 1;
+			if (code[pc] == CSF_OP_LOOP) cnt[code[pc + 1]] = code[pc + 2];
+			if (code[pc] == CSF_OP_JZ && any_marked(act, code[pc + 1], CSF_K_S, cnt)) branch = 1;
 			if (oi->kind[0] != CSF_K_DS && oi->kind[0] != CSF_K_DV) continue;
 			if (smooth && !differentiable((int)code[pc])) continue;
 			int any = 0;
-			for (int k = 1; k < oi->nops; k++) {
-				if (!slot_kind(oi->kind[k])) continue;
-				uint32_t x = code[pc + 1 + k];
-				any |= act[x] || ((oi->kind[k] == CSF_K_V || oi->kind[k] == CSF_K_DV) && (act[x + 1] || act[x + 2]));
-			}
-			uint32_t d = code[pc + 1];
-			int w = oi->kind[0] == CSF_K_DV ? 3 : 1;
-			for (int k = 0; any && k < w; k++)
-				if (!act[d + k]) act[d + k] = 1, changed = 1;
+			for (int k = 1; k < oi->nops; k++)
+				if (slot_kind(oi->kind[k])) any |= any_marked(act, code[pc + 1 + k], oi->kind[k], cnt);
+			uint32_t lo, hi;
+			operand_range(code[pc + 1], oi->kind[0], cnt, &lo, &hi);
+			for (uint32_t d = lo; any && d < hi; d++)
+				if (!act[d]) act[d] = 1, changed = 1;
 		}
 	}
 	return branch;
@@ -637,7 +780,9 @@ static void gen_pairs(Gen *G, Model *M, csf_prog *p)
 			mark_var(act, v);
 			if (reaches(p, act, depends(p->code[CSF_SEC_RHS], p->ncode[CSF_SEC_RHS], act, 0), v)) continue;
 		}
-		for (int k = 0; k < (v->isvec ? 3 : 1); k++)
+		Shape *S = x->obj->shape; /* by shape, x and v are arrays over its members */
+		int nm = M->shaped ? S->n : 1;
+		for (int k = 0; k < (v->isvec ? 3 : 1) * nm; k++)
 			p->vpair[(uint32_t)x->slot - p->ystart + k] = (uint32_t)v->slot - p->ystart + k + 1;
 	}
 	free(all);
@@ -688,6 +833,7 @@ static void gen_jacobian(Gen *G, csf_prog *p)
 		const csf_opinfo *oi = &csf_opinfo_table[op];
 		uint32_t o[4] = { 0, 0, 0, 0 };
 		for (int k = 0; k < oi->nops; k++) o[k] = rc[pc + 1 + k];
+		if (op == CSF_OP_LOOP) J->cnt[o[0]] = o[1];
 		if ((oi->kind[0] == CSF_K_DS || oi->kind[0] == CSF_K_DV) && jact(J, oi->kind[0], o[0])) {
 			int in[3] = { 0, 0, 0 };
 			for (int k = 1; k < oi->nops; k++)
@@ -696,7 +842,7 @@ static void gen_jacobian(Gen *G, csf_prog *p)
 		}
 		emit_words(G, op, o);
 		for (int k = 0; k < oi->nops; k++)
-			if (oi->kind[k] == CSF_K_J) {
+			if (oi->kind[k] == CSF_K_J || oi->kind[k] == CSF_K_B) {
 				if (nfix == capfix) {
 					capfix = capfix ? 2 * capfix : 16;
 					fix = realloc(fix, capfix * sizeof *fix);
@@ -741,7 +887,7 @@ int gen_program(Model *M, csf_prog *p)
 	memset(p, 0, sizeof *p);
 	G->M = M;
 	G->p = p;
-	assert_tab = (Vec){ 0 };
+	assert_tab = assert_obj = (Vec){ 0 };
 	G->Finsts = xalloc((size_t)(M->objects.n + 1) * sizeof(Vec));
 	for (int i = 0; i < M->insts.n; i++) {
 		Inst *I = M->insts.v[i];
@@ -755,7 +901,8 @@ int gen_program(Model *M, csf_prog *p)
 	}
 	for (int i = 0; i < M->cols.n; i++) {
 		WatchCol *w = M->cols.v[i];
-		if (w->var->det) mark(G, w->var->det, CSF_SEC_OUT);
+		Var *v = sema_canon(w->var);
+		if (v->det) mark(G, v->det, CSF_SEC_OUT);
 	}
 
 	/* Contacts need every body's acceleration, in OUT too (a, FN and Ff are watchable). */
@@ -765,7 +912,7 @@ int gen_program(Model *M, csf_prog *p)
 	for (int i = 0; i < M->contacts.n; i++) {
 		Contact *c = M->contacts.v[i];
 		for (int k = 0; k < 2; k++) {
-			Var *a = c->f[k ? CSF_CF_A2 : CSF_CF_A];
+			Var *a = sema_canon(c->f[k ? CSF_CF_A2 : CSF_CF_A]);
 			if (!a || !a->det) continue;
 			mark(G, a->det, CSF_SEC_OUT);
 			map_put(&dets, xprintf("%p", (void *)a->det), a->det);
@@ -863,7 +1010,8 @@ int gen_program(Model *M, csf_prog *p)
 		WatchCol *w = M->cols.v[i];
 		const char *unit = w->var->dimk == DK_KNOWN ? dims_unit(w->var->dim) : "";
 		p->cols[i].name = str_intern(G, *unit ? xprintf("%s [%s]", w->name, unit) : w->name);
-		p->cols[i].slot = (w->var->kind == V_TIME ? p->tslot : var_slot(G, w->var)) + (uint32_t)w->comp;
+		p->cols[i].slot = (w->var->kind == V_TIME ? p->tslot : var_slot(G, w->var)) +
+		                  (uint32_t)(w->member * (w->var->isvec ? 3 : 1) + w->comp);
 	}
 
 	/* The object table: every object and the properties the program keeps in memory. */
@@ -915,7 +1063,7 @@ int gen_program(Model *M, csf_prog *p)
 	p->asserts = calloc(p->nasserts + 1, sizeof *p->asserts);
 	for (int i = 0; i < assert_tab.n; i++) {
 		Inst *I = assert_tab.v[i];
-		p->asserts[i] = (csf_assert){ (uint32_t)I->src, str_intern(G, I->bind[0]->name) };
+		p->asserts[i] = (csf_assert){ (uint32_t)I->src, str_intern(G, ((Object *)assert_obj.v[i])->name) };
 	}
 	str_intern(G, "");
 	p->strs = G->strs;

@@ -37,6 +37,14 @@
 static Model *M;
 static Map objects_by_name, globals_by_name, kinds, temps, prop_names, vector_decls;
 static int def_counter;
+static int shaped;             /* resolving once per shape (sema_run's first attempt) */
+static const char *unshaped;   /* why the model cannot be: the attempt is given up */
+
+/* Gives up resolving by shape (the model is resolved again, object by object). */
+static void unshape(const char *why)
+{
+	if (!unshaped) unshaped = why;
+}
 
 static const char *const predefined_names[] = { "t", "RF", NULL };
 
@@ -201,7 +209,7 @@ static Var *find_temp(const char *name, Object **bind, int nbind)
 	return v;
 }
 
-static RExpr *var_ref(Ctx *C, Var *v, Loc l)
+static RExpr *var_ref(Ctx *C, Var *v, Loc l, int place)
 {
 	if (C->init) {
 		if (v->kind == V_TIME) {
@@ -213,6 +221,7 @@ static RExpr *var_ref(Ctx *C, Var *v, Loc l)
 	}
 	RExpr *e = rnew(R_VAR, l);
 	e->var = v;
+	e->place = place;
 	e->isvec = v->isvec;
 	add_unique(C->reads, v);
 	return e;
@@ -223,14 +232,23 @@ static RExpr *build(Ctx *C, Expr *x);
 static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int explicit_obj)
 {
 	Loc l = x->loc;
+	int place = -1; /* which $n o is */
+	for (int p = 0; !C->init && !explicit_obj && p < C->nbind; p++)
+		if (C->bind[p] == o) {
+			place = p;
+			break;
+		}
+	/* by shape, a member stands for its shape: the representative's variables, at o's place */
+	if (shaped && o && !C->init && o->sidx) o = o->shape->members[0];
 	if (!explicit_obj) {
-		if (strcmp(name, "t") == 0) return var_ref(C, M->time, l);
+		if (strcmp(name, "t") == 0) return var_ref(C, M->time, l, -1);
 		if (strcmp(name, "RF") == 0) {
 			if (C->init || !o) {
 				error_at(l, "RF is only defined in rules");
 				C->failed = 1;
 				return rvconst((double[3]){ 0, 0, 0 }, l);
 			}
+			if (place != 0 && o->shape->n > 1) unshape("a rule reads the RF of $1");
 			RExpr *e = rnew(R_RF, l);
 			e->obj = o;
 			e->isvec = 1;
@@ -238,11 +256,11 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 			return e;
 		}
 		Var *g = map_get(&globals_by_name, name);
-		if (g) return var_ref(C, g, l);
+		if (g) return var_ref(C, g, l, -1);
 	}
 	if (o) {
 		Var *p = prop_of(o, name);
-		if (p) return var_ref(C, p, l);
+		if (p) return var_ref(C, p, l, place);
 	}
 	if (C->init) {
 		if (explicit_obj) error_at(l, "object '%s' has no property '%s' (yet)", o->name, name);
@@ -253,7 +271,7 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 	if (map_get(&prop_names, name) || explicit_obj) {
 		if (explicit_obj) {
 			Var *t = map_get(&temps, temp_key(name, &o, 1));
-			if (t) return var_ref(C, t, l);
+			if (t) return var_ref(C, t, l, -1);
 			error_at(l, "object '%s' has no property '%s'", o->name, name);
 		}
 		C->failed = 2; /* not applicable to this binding */
@@ -262,7 +280,7 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 	/* A temporary of this binding (or, for NAME$n, of object $n). */
 	Object **bind = C->bind;
 	int nbind = C->key_nbind ? C->key_nbind : C->nbind;
-	if (o != C->bind[0]) {
+	if (place != 0) {
 		bind = xalloc(sizeof *bind);
 		bind[0] = o;
 		nbind = 1;
@@ -283,10 +301,11 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 		t->slot = -1;
 		t->isvec = map_get(&vector_decls, name) != NULL;
 		t->key = temp_key(name, bind, nbind);
+		t->pair = nbind > 1;
 		t->order = def_counter++;
 		vec_push(C->pending, t);
 	}
-	return var_ref(C, t, l);
+	return var_ref(C, t, l, place);
 }
 
 static void type_error(Ctx *C, Loc l, const char *msg)
@@ -696,6 +715,85 @@ static void build_objects(Stmt *stmts)
 	}
 }
 
+/* ---- shapes ---- */
+
+/* Marks in named the objects expression x names (NAME.PROP). */
+static void mark_named(Expr *x, Map *named)
+{
+	if (!x) return;
+	if (x->kind == E_FIELD && x->a->kind == E_NAME) {
+		Object *o = map_get(&objects_by_name, x->a->name);
+		if (o) map_put(named, o->name, o);
+	}
+	mark_named(x->a, named);
+	mark_named(x->b, named);
+	for (int i = 0; i < x->nargs; i++) mark_named(x->args[i], named);
+}
+
+/*
+ * Groups the objects into shapes: by the names, types and dimensions of
+ * their properties, in order (what decides which rules apply to an object
+ * and how each resolves). By object (not shaped), or when a rule, a `for`
+ * list or the watch list names the object and one of its temporaries, an
+ * object is a shape of its own.
+ */
+static void build_shapes(Stmt *stmts, Stmt *start)
+{
+	Map named = { 0 }, by_sig = { 0 };
+	for (Stmt *s = stmts; s; s = s->next) {
+		if (s->kind != S_RULE && s->kind != S_ASSERT) continue;
+		mark_named(s->cond, &named);
+		mark_named(s->call, &named);
+		for (int b = 0; b < 2; b++)
+			for (Eqn *q = b ? s->else_eqns : s->eqns; q; q = q->next) {
+				mark_named(q->lhs, &named);
+				mark_named(q->rhs, &named);
+			}
+		for (int i = 0; i < s->fors.n; i++) {
+			ObjRef *r = s->fors.v[i];
+			Object *o = r->name ? map_get(&objects_by_name, r->name)
+			                    : (r->index < M->objects.n ? M->objects.v[r->index] : NULL);
+			if (o) map_put(&named, o->name, o);
+		}
+	}
+	for (int i = 0; start && i < start->watch.n; i++) {
+		WatchItem *w = start->watch.v[i];
+		Object *o = w->obj ? map_get(&objects_by_name, w->obj) : NULL;
+		if (o && !prop_of(o, w->prop)) map_put(&named, o->name, o);
+	}
+	for (int i = 0; i < M->objects.n; i++) {
+		Object *o = M->objects.v[i];
+		char *sig = NULL;
+		if (shaped && !map_get(&named, o->name)) {
+			char **one = xalloc((size_t)o->props.n * sizeof *one);
+			size_t len = 0;
+			for (int j = 0; j < o->props.n; j++) {
+				Var *v = o->props.v[j];
+				one[j] = xprintf("%s:%d:%d:%a:%a:%a;", v->name, v->isvec, v->dimk, v->dim[0], v->dim[1], v->dim[2]);
+				len += strlen(one[j]);
+			}
+			sig = xalloc(len + 1);
+			for (int j = 0, at = 0; j < o->props.n; j++) at += sprintf(sig + at, "%s", one[j]);
+		}
+		Shape *S = sig ? map_get(&by_sig, sig) : NULL;
+		if (!S) {
+			S = xalloc(sizeof *S);
+			S->index = M->shapes.n;
+			vec_push(&M->shapes, S);
+			if (sig) map_put(&by_sig, sig, S);
+		}
+		o->shape = S;
+		o->sidx = S->n++;
+	}
+	for (int i = 0; i < M->shapes.n; i++) ((Shape *)M->shapes.v[i])->members = NULL;
+	int *fill = xalloc((size_t)M->shapes.n * sizeof *fill);
+	for (int i = 0; i < M->objects.n; i++) {
+		Object *o = M->objects.v[i];
+		if (!o->shape->members) o->shape->members = xalloc((size_t)o->shape->n * sizeof(Object *));
+		o->shape->members[fill[o->shape->index]++] = o;
+	}
+}
+
 /* ---- rule instances ---- */
 
 static int max_dollar(Expr *x)
@@ -818,6 +916,8 @@ static void bind_from(Tuples *T, int j, int after)
 	for (int i = first_greater(T->fit[j], T->nfit[j], after); i < T->nfit[j] && !T->failed; i++) {
 		if (T->fit[j][i] == T->cur[0]->index) continue;
 		T->cur[j] = M->objects.v[T->fit[j][i]];
+		/* by shape: $1 is another shape's representative, or the second member of $0's */
+		if (shaped && T->cur[j]->sidx == 1 && T->cur[j]->shape != T->cur[0]->shape) continue;
 		bind_from(T, j + 1, T->fit[j][i]);
 	}
 }
@@ -860,9 +960,12 @@ static int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 	}
 	Tuples T = { s, f, k, xalloc((size_t)(k + 1) * sizeof(int *)), xalloc((size_t)(k + 1) * sizeof(int)),
 		     xalloc((size_t)(k + 1) * sizeof(Object *)), 0, 0 };
+	if (shaped && k > 1) unshape("a rule over $1..$k, k > 1");
 	for (int j = 0; j <= k; j++) {
 		T.fit[j] = xalloc((size_t)nobj * sizeof(int));
 		for (int i = 0; i < nobj; i++) {
+			/* by shape: the representatives, and for $1 the second members */
+			if (shaped && ((Object *)M->objects.v[i])->sidx > (j ? 1 : 0)) continue;
 			T.cur[j] = M->objects.v[i];
 			if (stmt_applies(s, T.cur, k + 1, &missing)) T.fit[j][T.nfit[j]++] = i;
 			T.cur[j] = NULL;
@@ -914,7 +1017,33 @@ static const char *var_label(Var *v)
 	return xprintf("%s.%s", v->obj->name, v->name);
 }
 
-static int determined(Var *v) { return v->kind == V_TIME || v->state || v->det != NULL; }
+static int determined(Var *v)
+{
+	v = sema_canon(v);
+	return v->kind == V_TIME || v->state || v->det != NULL;
+}
+
+Var *sema_canon(Var *v)
+{
+	if (!v || v->kind != V_PROP || !v->obj->shape || v->obj->sidx == 0) return v;
+	Var *r = prop_of(v->obj->shape->members[0], v->name);
+	return r ? r : v;
+}
+
+int sema_per_member(const Var *v)
+{
+	return v->obj && v->obj->shape && v->obj->shape->n > 1 && (v->kind == V_PROP || (v->kind == V_TEMP && !v->pair));
+}
+
+/* The places ($n) at which e reads x, as bits 1 << (place + 1). */
+static unsigned var_places(const RExpr *e, const Var *x)
+{
+	if (!e) return 0;
+	if (e->k == R_VAR) return e->var == x ? 1u << (e->place + 1) : 0;
+	unsigned m = 0;
+	for (int i = 0; i < 3; i++) m |= var_places(e->a[i], x);
+	return m;
+}
 
 static void explain_det(Var *v)
 {
@@ -1149,6 +1278,10 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 		         x->isvec ? "vector" : "scalar");
 		return NULL;
 	}
+	if (shaped && !I->st->has_for && I->nbind > 1 && !(x->kind == V_TEMP && x->pair))
+		unshape("a rule over pairs ($1) determines a variable of one object");
+	if (shaped && sema_per_member(x) && (var_places(lhs, x) | var_places(rhs, x)) & ~2u)
+		unshape("a rule determines a variable of $1");
 	Assign *a = xalloc(sizeof *a);
 	a->var = x;
 	a->e = sol;
@@ -1207,6 +1340,7 @@ static void inst_rule(Stmt *s, Object **bind, int nbind)
 	if (!s->cond) {
 		if (!resolve_eqn(I, s->eqns, &I->then, I->src)) return;
 	} else {
+		if (shaped && !s->has_for && nbind > 1) unshape("a conditional rule over pairs ($1)");
 		I->cond = build_cond(I, s->cond, "the condition of a rule");
 		if (!I->cond) return;
 		for (int b = 0; b < 2; b++) {
@@ -1506,6 +1640,7 @@ static void inst_deriv(Stmt *s, Object **bind, int nbind)
 {
 	Inst *I = new_inst(s, bind, nbind);
 	I->isderiv = 1;
+	if (shaped && !s->has_for && nbind > 1) unshape("a derivative rule over pairs ($1)");
 	I->src = cur_src;
 	Var *v = prop_of(bind[0], s->eqns->lhs->name);
 	if (!v) {
@@ -1520,6 +1655,11 @@ static void inst_deriv(Stmt *s, Object **bind, int nbind)
 	}
 	v->state = 1;
 	v->deriv = I;
+	for (int q = 1; shaped && q < bind[0]->shape->n; q++) { /* every member's is state */
+		Var *w = prop_of(bind[0]->shape->members[q], v->name);
+		w->state = 1;
+		w->deriv = I;
+	}
 	add_unique(&I->targets, v);
 	I->why = xprintf("integrates %s (state variable)", v->name);
 	vec_push(&deriv_insts, I);
@@ -1573,23 +1713,38 @@ static void inst_assert(Stmt *s, Object **bind, int nbind)
 
 /* ---- the watch list ---- */
 
-static void add_col(Var *v, const char *label)
+static void add_col(Var *v, const char *label, int member)
 {
 	for (int c = 0; c < (v->isvec ? 3 : 1); c++) {
 		WatchCol *w = xalloc(sizeof *w);
 		w->var = v;
 		w->comp = c;
+		w->member = member;
 		w->name = v->isvec ? xprintf("%s.%c", label, 'x' + c) : xstrdup(label);
 		vec_push(&M->cols, w);
 	}
 }
 
+/* Object o's property or temporary `name`, or NULL; a temporary of a shape's member is the
+ * representative's, at *member. */
+static Var *watch_var(Object *o, const char *name, int *member)
+{
+	Var *v = prop_of(o, name);
+	*member = 0;
+	if (v) return v;
+	Object *r = shaped ? o->shape->members[0] : o;
+	v = map_get(&temps, temp_key(name, &r, 1));
+	if (v) *member = o->sidx;
+	return v;
+}
+
 static void build_watch(Stmt *st)
 {
+	int member;
 	if (!st || !st->has_watch) {
 		for (int i = 0; i < M->objects.n; i++) {
 			Object *o = M->objects.v[i];
-			for (int j = 0; j < o->props.n; j++) add_col(o->props.v[j], var_label(o->props.v[j]));
+			for (int j = 0; j < o->props.n; j++) add_col(o->props.v[j], var_label(o->props.v[j]), 0);
 		}
 		return;
 	}
@@ -1606,28 +1761,26 @@ static void build_watch(Stmt *st)
 				error_at(w->loc, "unknown object '%s'", w->obj);
 				continue;
 			}
-			Var *v = prop_of(o, w->prop);
-			if (!v) v = map_get(&temps, temp_key(w->prop, &o, 1));
+			Var *v = watch_var(o, w->prop, &member);
 			if (!v) {
 				error_at(w->loc, "object '%s' has no property or temporary '%s'", o->name, w->prop);
 				continue;
 			}
-			add_col(v, var_label(v));
+			add_col(v, xprintf("%s.%s", o->name, w->prop), member);
 			continue;
 		}
 		if (strcmp(w->prop, "t") == 0) continue; /* t is always the first column */
 		Var *g = map_get(&globals_by_name, w->prop);
 		if (g) {
-			add_col(g, g->name);
+			add_col(g, g->name, 0);
 			continue;
 		}
 		int found = 0;
 		for (int j = 0; j < M->objects.n; j++) {
 			Object *o = M->objects.v[j];
-			Var *v = prop_of(o, w->prop);
-			if (!v) v = map_get(&temps, temp_key(w->prop, &o, 1));
+			Var *v = watch_var(o, w->prop, &member);
 			if (v) {
-				add_col(v, var_label(v));
+				add_col(v, xprintf("%s.%s", o->name, w->prop), member);
 				found = 1;
 			}
 		}
@@ -1674,10 +1827,13 @@ static void check_sections(Stmt *stmts)
 	}
 }
 
-Model *sema_run(Stmt *stmts)
+static Model *resolve(Stmt *stmts)
 {
 	M = xalloc(sizeof *M);
-	memset(&objects_by_name, 0, sizeof(Map));
+	objects_by_name = globals_by_name = kinds = temps = prop_names = vector_decls = watched = (Map){ 0 };
+	def_counter = 0;
+	deriv_insts = (Vec){ 0 };
+	unshaped = NULL;
 	predefine();
 	check_sections(stmts);
 	build_objects(stmts);
@@ -1704,6 +1860,7 @@ Model *sema_run(Stmt *stmts)
 		M->start = start;
 	}
 	if (diag_errors) return M;
+	build_shapes(stmts, start);
 	for (int i = 0; start && i < start->watch.n; i++) {
 		WatchItem *w = start->watch.v[i];
 		map_put(&watched, w->obj ? xprintf("%s\x01%s", w->obj, w->prop) : w->prop, w);
@@ -1750,7 +1907,7 @@ Model *sema_run(Stmt *stmts)
 		Contact *c = M->contacts.v[i];
 		for (int k = 0; k < 2; k++) {
 			Var *a = c->f[k ? CSF_CF_A2 : CSF_CF_A];
-			if (a && !a->det)
+			if (a && !sema_canon(a)->det)
 				error_at(c->st->loc, "contact of %s and %s: no rule determines %s.a (Newton's second law, "
 				                     "'rule: RF = a.mul(m)' of mechanics/rules, does)",
 				         c->a->name, c->b->name, (k ? c->b : c->a)->name);
@@ -1766,10 +1923,47 @@ Model *sema_run(Stmt *stmts)
 			for_each_binding(s, inst_assert);
 		}
 	build_watch(start);
+	/* by shape, a temporary of a pair lives for one iteration of its rule's loop */
+	for (int i = 0; shaped && i < M->insts.n; i++) {
+		Inst *I = M->insts.v[i];
+		for (int k = 0; k < I->reads.n; k++) {
+			Var *v = I->reads.v[k];
+			if (v->kind == V_TEMP && v->pair && v->det != I) unshape("a temporary of a pair ($1) read by another rule");
+		}
+	}
 	/* Also after errors: the instances that failed are left out, and the dimensions of the
 	 * others are checked all the same, so one run reports both kinds of error. */
 	dims_check(M);
 	return M;
+}
+
+/*
+ * Resolves by shape first, silently; a model that cannot be resolved that way
+ * (unshape), or that has an error, is resolved again object by object, which
+ * reports the errors as they have always been reported.
+ */
+Model *sema_run(Stmt *stmts)
+{
+	FILE *saved = diag_out, *null = fopen("/dev/null", "w");
+	int errors = diag_errors;
+	const char *why = "";
+	if (null) {
+		diag_out = null;
+		shaped = 1;
+		Model *m = resolve(stmts);
+		diag_out = saved;
+		fclose(null);
+		if (!unshaped && diag_errors == errors) {
+			m->shaped = 1;
+			return m;
+		}
+		why = unshaped ? unshaped : "";
+		diag_errors = errors;
+	}
+	shaped = 0;
+	Model *m = resolve(stmts);
+	m->unshaped_why = why;
+	return m;
 }
 
 /* ---- --explain ---- */
@@ -1785,8 +1979,15 @@ void sema_explain(Model *Mo, FILE *f)
 			Inst *I = Mo->insts.v[k];
 			if (I->st != s) continue;
 			n++;
+			Shape *S = Mo->shaped && !s->has_for ? I->bind[0]->shape : NULL;
 			fprintf(f, "  for %s", I->bind[0]->name);
-			for (int b = 1; b < I->nbind; b++) fprintf(f, "%s%s", b == 1 ? " with " : ", ", I->bind[b]->name);
+			if (S && S->n > 1) fprintf(f, " and the %d other objects of its shape", S->n - 1);
+			for (int b = 1; b < I->nbind; b++) {
+				Object *o = I->bind[b];
+				if (S && o->shape == S) fprintf(f, ", each with every other one");
+				else if (S && o->shape->n > 1) fprintf(f, ", each with %s and the %d other objects of its shape", o->name, o->shape->n - 1);
+				else fprintf(f, "%s%s", b == 1 ? " with " : ", ", o->name);
+			}
 			if (I->isassert) fprintf(f, ": checked at every output step");
 			else fprintf(f, ": %s%s", I->isderiv ? "" : "solves for ", I->why ? I->why : "?");
 			if (!I->isassert && !I->needed[0] && !I->needed[1]) fprintf(f, "; left out: nothing needs it");
@@ -1803,13 +2004,14 @@ void sema_explain(Model *Mo, FILE *f)
 		}
 		if (!n) fprintf(f, "  applies to no %s\n", s->call ? "pair that can touch" : "object");
 	}
+	if (!Mo->shaped && *Mo->unshaped_why) fprintf(f, "rules compiled once per object, not per shape: %s\n", Mo->unshaped_why);
 	for (int i = 0; i < Mo->objects.n; i++) {
 		Object *o = Mo->objects.v[i];
 		fprintf(f, "object %s:", o->name);
 		for (int j = 0; j < o->props.n; j++) {
-			Var *v = o->props.v[j];
+			Var *v = o->props.v[j], *r = sema_canon(v);
 			fprintf(f, "%s %s (%s)", j ? "," : "", v->name,
-			        v->state ? "state" : v->det ? xprintf("computed, line %d", v->det->st->loc.line) : "constant");
+			        r->state ? "state" : r->det ? xprintf("computed, line %d", r->det->st->loc.line) : "constant");
 		}
 		fputc('\n', f);
 	}

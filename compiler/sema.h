@@ -11,6 +11,20 @@
 typedef struct Object Object;
 typedef struct Inst Inst;
 
+/*
+ * A shape: the objects that have the same properties (names, types and
+ * dimensions, in the same order), and so the same rule instances. A rule is
+ * resolved once per shape, for its first member (the representative), and
+ * compiled as a loop over the members; their properties are arrays (gen.c).
+ * An object named in a rule, a `for` list or a watched temporary is a shape
+ * of its own.
+ */
+typedef struct Shape {
+	int index;
+	int n;             /* members */
+	Object **members;  /* in ascending object index; members[0] represents the shape */
+} Shape;
+
 typedef enum VarKind { V_TIME, V_GLOBAL, V_PROP, V_TEMP } VarKind;
 
 typedef struct Var {
@@ -29,6 +43,7 @@ typedef struct Var {
 	int from_kind;   /* props: the value is a kind's default, not yet set */
 	int dimk;        /* DK_UNKNOWN until known (dims.c) */
 	double dim[3];   /* exponents of length, mass, time */
+	int pair;        /* temps: of a tuple of objects ($1), not of one object */
 } Var;
 
 struct Object {
@@ -37,6 +52,8 @@ struct Object {
 	int index;
 	Vec props;       /* of Var* (V_PROP), in definition order */
 	Map props_by_name; /* the same, by name */
+	Shape *shape;
+	int sidx;        /* its index among the shape's members */
 };
 
 typedef enum RKind { R_CONST, R_VAR, R_RF, R_OP, R_COMP } RKind;
@@ -48,6 +65,8 @@ struct RExpr {
 	int op;          /* csf opcode for R_OP */
 	double c[3];     /* R_CONST */
 	Var *var;        /* R_VAR */
+	int place;       /* R_VAR: the place of the binding ($n) whose object it belongs to; -1: a global,
+	                    t, or a property of a named object */
 	Object *obj;     /* R_RF */
 	int comp;        /* R_COMP: 0..2 of a[0] */
 	RExpr *a[3];
@@ -83,6 +102,7 @@ struct Inst {
 	int src;         /* its statement in the source table */
 	int assert_index;
 	char *why;       /* for --explain: what it solves for and why */
+	int acc;         /* gen.c: a $1 F rule's sums over $1, an array of vectors (slot, -1 before) */
 };
 
 /* A contact pair (mechanics/rules 1-4), handled by the runtime's contact routine. */
@@ -95,7 +115,7 @@ typedef struct Contact {
 	double dir[3];   /* two points: the unit vector from b to a */
 } Contact;
 
-typedef struct WatchCol { char *name; Var *var; int comp; } WatchCol;
+typedef struct WatchCol { char *name; Var *var; int comp; int member; /* index in var's shape (temps) */ } WatchCol;
 
 typedef struct Model {
 	Vec objects;     /* of Object* */
@@ -109,6 +129,9 @@ typedef struct Model {
 	Vec srcs;        /* of Stmt* or Eqn* text: see gen.c */
 	double till, by;
 	Stmt *start;
+	Vec shapes;      /* of Shape* */
+	int shaped;      /* rules compiled once per shape; 0: once per object */
+	const char *unshaped_why; /* why not, for --explain */
 } Model;
 
 /* A statement in the source table (what runtime errors name). */
@@ -116,6 +139,11 @@ typedef struct SrcEntry { Loc loc; char *text; } SrcEntry;
 
 /* Builds and resolves the model from the statement list. Errors are reported; check diag_errors. */
 Model *sema_run(Stmt *stmts);
+
+/* The variable standing for v in the code: the representative's property of v's name. */
+Var *sema_canon(Var *v);
+/* Is v an array over its shape's members (a property, or a temporary of one object)? */
+int sema_per_member(const Var *v);
 
 /* Writes what each rule solves for and which rules were left out (csfc --explain). */
 void sema_explain(Model *M, FILE *f);
