@@ -20,6 +20,10 @@ char *xstrdup(const char *s);
 char *xstrndup(const char *s, size_t n);
 char *xprintf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void arena_free(void);
+/* Everything allocated after a mark is released by arena_release (temporary work). */
+typedef struct ArenaMark { void *blocks; char *bump, *bump_end; } ArenaMark;
+ArenaMark arena_mark(void);
+void arena_release(ArenaMark m);
 
 /* A growable array of pointers. */
 typedef struct Vec { void **v; int n, cap; } Vec;

@@ -627,7 +627,11 @@ static void set_prop(Object *o, Stmt *s, int from_kind)
 		return;
 	}
 	int ok;
-	RExpr *r = const_value(s->value, o, &ok);
+	/* the value's expression is folded to a constant and then not needed: one object's
+	   values take no memory from the next's */
+	ArenaMark mark = arena_mark();
+	RExpr rv = *const_value(s->value, o, &ok), *r = &rv;
+	arena_release(mark);
 	if (!ok) return;
 	if (s->isvec && !r->isvec) {
 		error_at(s->value->loc, "property '%s' is declared a vector but its value is a scalar", s->prop);
@@ -764,6 +768,7 @@ static void build_shapes(Stmt *stmts, Stmt *start)
 	for (int i = 0; i < M->objects.n; i++) {
 		Object *o = M->objects.v[i];
 		char *sig = NULL;
+		ArenaMark mark = arena_mark();
 		if (shaped && !map_get(&named, o->name)) {
 			char **one = xalloc((size_t)o->props.n * sizeof *one);
 			size_t len = 0;
@@ -776,6 +781,7 @@ static void build_shapes(Stmt *stmts, Stmt *start)
 			for (int j = 0, at = 0; j < o->props.n; j++) at += sprintf(sig + at, "%s", one[j]);
 		}
 		Shape *S = sig ? map_get(&by_sig, sig) : NULL;
+		if (S) arena_release(mark); /* the signature of a known shape is not kept */
 		if (!S) {
 			S = xalloc(sizeof *S);
 			S->index = M->shapes.n;

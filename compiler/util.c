@@ -47,6 +47,22 @@ void *xalloc(size_t n)
 	return p;
 }
 
+ArenaMark arena_mark(void) { return (ArenaMark){ blocks, bump, bump_end }; }
+
+void arena_release(ArenaMark m)
+{
+	/* what was handed out from m's chunk since: up to bump, or (a new chunk was begun) all of it */
+	char *end = bump_end == m.bump_end ? bump : m.bump_end;
+	while (blocks != m.blocks) {
+		Block *b = blocks->next;
+		free(blocks);
+		blocks = b;
+	}
+	bump = m.bump;
+	bump_end = m.bump_end;
+	if (bump) memset(bump, 0, (size_t)(end - bump)); /* xalloc hands out zeroed memory */
+}
+
 void *xrealloc_arr(void *p, size_t n)
 {
 	void *q = xalloc(n);

@@ -240,6 +240,8 @@ if sh tests/contacts/drop.sh "$CSFC" "$CSFVM" "$T" >"$T/drop" 2>&1; then ok; els
 if sh tests/many/projectiles.sh "$CSFC" "$CSFVM" "$T" >"$T/pj" 2>&1; then ok; else bad "1000 projectiles: $(grep FAIL "$T/pj" | head -n 3)"; fi
 # 5k. a ring of 200 masses and springs in a normal mode: every row of every mass (tests/many/ring.sh)
 if sh tests/many/ring.sh "$CSFC" "$CSFVM" "$T" >"$T/ring" 2>&1; then ok; else bad "ring of masses: $(grep FAIL "$T/ring" | head -n 3)"; fi
+# 5l. the code grows with the scene's text, not its number of objects (tests/many/code_size.sh)
+if sh tests/many/code_size.sh "$CSFC" "$T" >"$T/cs" 2>&1; then ok; else bad "code size: $(grep FAIL "$T/cs" | head -n 3)"; fi
 # 5i. every contact scene under every method: each finishes, exact to 1e-6 (tests/contacts/methods.sh)
 if sh tests/contacts/methods.sh "$CSFC" "$CSFVM" "$T" >"$T/mm" 2>&1; then ok; else bad "contacts and methods: $(grep FAIL "$T/mm" | head -n 3)"; fi
 

@@ -1,0 +1,25 @@
+#!/bin/sh
+# tests/many/code_size.sh CSFC DIR - the code grows with the scene's text, not
+# with its number of objects: every rule is compiled once per shape of object,
+# as a loop. The code sections (rhs, out, jac) of bench/gen_scene.sh 10 and of
+# gen_scene.sh N have the same number of words, and those of bench/gen_nbody.sh
+# 16 and 2048 (pairwise gravity: a loop over pairs); only the data grows.
+# A deterministic size, not a time. Prints "N passed, N failed".
+CSFC=$1 T=$2
+N=${CODE_SIZE_N:-100000}
+pass=0 fail=0
+sections() { "$CSFC" --dump-bytecode "$1" -o "$T/cs.csfb" 2>"$T/cs.err" | grep '^section' | tr '\n' ' '; }
+check() { # what, small model, large model
+	a=$(sections "$2") b=$(sections "$3")
+	if [ -n "$a" ] && [ "$a" = "$b" ]; then pass=$((pass + 1)); else
+		echo "FAIL: $1: code of the small scene [$a], of the large one [$b] $(head -n 1 "$T/cs.err")"; fail=$((fail + 1))
+	fi
+}
+sh bench/gen_scene.sh 10 "$T/scene10.csf"
+sh bench/gen_scene.sh "$N" "$T/sceneN.csf"
+check "gen_scene.sh 10 and $N" "$T/scene10.csf" "$T/sceneN.csf"
+sh bench/gen_nbody.sh 16 1 0.1 "$T/nb16.csf" "$T/nb16.ic"
+sh bench/gen_nbody.sh 2048 1 0.1 "$T/nb2048.csf" "$T/nb2048.ic"
+check "gen_nbody.sh 16 and 2048" "$T/nb16.csf" "$T/nb2048.csf"
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
