@@ -6,7 +6,7 @@
  * Runs COMMAND with its standard output sent to OUT_FILE (/dev/null to
  * discard it) and prints on standard output one line: the wall-clock
  * seconds from fork to exit (CLOCK_MONOTONIC), then the user and system CPU
- * seconds of the child. Exits with the command's status, 127 if it could not
+ * seconds of the child, then its peak resident memory in KiB (ru_maxrss). Exits with the command's status, 127 if it could not
  * be started. POSIX only: the benchmark must not need GNU date's %N.
  */
 #define _POSIX_C_SOURCE 200809L
@@ -61,7 +61,7 @@ int main(int argc, char **argv)
 	double t1 = now();
 	struct rusage ru;
 	getrusage(RUSAGE_CHILDREN, &ru);
-	printf("%.6f %.6f %.6f\n", t1 - t0, tv(ru.ru_utime), tv(ru.ru_stime));
+	printf("%.6f %.6f %.6f %ld\n", t1 - t0, tv(ru.ru_utime), tv(ru.ru_stime), ru.ru_maxrss);
 	if (WIFEXITED(st)) return WEXITSTATUS(st);
 	return 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
 }

@@ -1444,15 +1444,6 @@ static int contact_integrated(Contact *c, int k)
 	return (k && c->plane) || (c->f[base + CSF_CF_POS]->state && c->f[base + CSF_CF_V]->state);
 }
 
-/* Do two points at pa and pb moving at va and vb approach each other on the line through them? */
-static inline int points_approach(const double *pa, const double *va, const double *pb, const double *vb)
-{
-	double d[3] = { pa[0] - pb[0], pa[1] - pb[1], pa[2] - pb[2] }, dv[3] = { va[0] - vb[0], va[1] - vb[1], va[2] - vb[2] };
-	double cx[3] = { d[1] * dv[2] - d[2] * dv[1], d[2] * dv[0] - d[0] * dv[2], d[0] * dv[1] - d[1] * dv[0] };
-	return cx[0] == 0 && cx[1] == 0 && cx[2] == 0 && !(d[0] * dv[0] + d[1] * dv[1] + d[2] * dv[2] >= 0) &&
-	       csf_vmag3(d[0], d[1], d[2]) != 0;
-}
-
 /* The contact of bind[0] and bind[1] by rule s, if the pair can touch. */
 static void inst_contact(Stmt *s, Object **bind, int nbind)
 {
@@ -1472,18 +1463,9 @@ static void inst_contact(Stmt *s, Object **bind, int nbind)
 	}
 	if (!c.plane) {
 		const double *pa = c.f[CSF_CF_POS]->init, *pb = c.f[CSF_CF_POS2]->init;
-		const double *va = c.f[CSF_CF_V]->init, *vb = c.f[CSF_CF_V2]->init;
 		double d[3] = { pa[0] - pb[0], pa[1] - pb[1], pa[2] - pb[2] };
 		double dist = csf_vmag3(d[0], d[1], d[2]);
-		if (c.f[CSF_CF_R]->init[0] + c.f[CSF_CF_R2]->init[0] <= 0) {
-			/* two points meet only when they move on the line through them */
-			if (!s->has_for && !points_approach(pa, va, pb, vb)) return;
-			if (dist == 0) {
-				error_at(s->loc, "contact of %s and %s: two points at the same place have no line of contact", c.a->name,
-				         c.b->name);
-				return;
-			}
-		}
+		if (c.f[CSF_CF_R]->init[0] + c.f[CSF_CF_R2]->init[0] <= 0) return; /* two points never touch */
 		for (int k = 0; k < 3; k++) c.dir[k] = dist > 0 ? d[k] / dist : 0;
 	}
 	Contact *p = xalloc(sizeof *p);
@@ -1499,8 +1481,6 @@ typedef struct Body {
 	int plane;        /* as $1: a plane */
 	double pos[2][3]; /* initial values: position (a plane's point) */
 	double r[2];      /* radius */
-	double v[3];      /* velocity, if not bad */
-	int point;        /* bit k: as $k, a point (a body of radius 0) */
 } Body;
 
 /* What contact rule s needs of every object, in an array indexed like M->objects. */
@@ -1520,8 +1500,6 @@ static Body *contact_bodies(Stmt *s)
 			if (k) B[i].plane = c.plane;
 			memcpy(B[i].pos[k], geo[0]->init, sizeof B[i].pos[k]);
 			B[i].r[k] = geo[1]->init[0];
-			if (!B[i].bad[k] && !c.plane) memcpy(B[i].v, c.f[k ? CSF_CF_V2 : CSF_CF_V]->init, sizeof B[i].v);
-			if (!c.plane && B[i].r[k] == 0) B[i].point |= 1 << k;
 		}
 	}
 	return B;
@@ -1553,63 +1531,16 @@ static void first_bad_pair(Body *B, int n, int *ea, int *eb)
 	}
 }
 
-/* Orders bodies by the bits of their velocity, then by index. */
-static int body_cmp(const void *x, const void *y)
-{
-	const Body *a = x, *b = y;
-	int c = memcmp(a->v, b->v, sizeof a->v);
-	return c ? c : (a->index > b->index) - (a->index < b->index);
-}
-
-/* Orders pairs of objects (two Object* each) as bindings are ordered: by $0, then $1. */
-static int pair_cmp(const void *x, const void *y)
-{
-	Object *const *a = x, *const *b = y;
-	int c = (a[0]->index > b[0]->index) - (a[0]->index < b[0]->index);
-	return c ? c : (a[1]->index > b[1]->index) - (a[1]->index < b[1]->index);
-}
-
-/* The pairs of points among n bodies B ($0 before $1) that approach each other on their common
- * line, in binding order: of Object*, $0 and $1 of each pair. Two points of equal velocity never
- * do (the difference is 0, or NaN), so only pairs across groups of equal velocity are tried;
- * the rest is all pairs: the test is exact in floating point, and no index reproduces it. */
-static Vec meeting_points(Body *B, int n)
-{
-	Body *pts = xalloc((size_t)n * sizeof *pts);
-	int npts = 0;
-	for (int i = 0; i < n; i++)
-		if (B[i].point) pts[npts++] = B[i];
-	Vec meet = { 0 };
-	if (!npts) return meet;
-	qsort(pts, (size_t)npts, sizeof *pts, body_cmp);
-	for (int g = 0, e; g < npts; g = e) {
-		for (e = g + 1; e < npts && memcmp(pts[e].v, pts[g].v, sizeof pts[g].v) == 0; e++) continue;
-		for (int i = g; i < e; i++)
-			for (int j = e; j < npts; j++) {
-				const Body *a = pts[i].index < pts[j].index ? &pts[i] : &pts[j];
-				const Body *b = a == &pts[i] ? &pts[j] : &pts[i];
-				if ((a->point & 1) && (b->point & 2) && points_approach(a->pos[0], a->v, b->pos[1], b->v)) {
-					vec_push(&meet, M->objects.v[a->index]);
-					vec_push(&meet, M->objects.v[b->index]);
-				}
-			}
-	}
-	if (meet.n) qsort(meet.v, (size_t)meet.n / 2, 2 * sizeof *meet.v, pair_cmp);
-	return meet;
-}
-
 /*
  * A contact rule without `for`: calls inst_contact, in binding order, for the bindings ($0, $1)
  * it keeps or reports, without trying every pair: a $0 with every plane; with every body after
- * it if one of the two has a radius other than 0; with the points it meets if both are points;
- * and, last, the first binding that is an error, found from each object alone.
+ * it if one of the two has a radius other than 0 (two points never touch); and, last, the first binding that is an error, found from each object alone.
  */
 static void contact_pairs(Stmt *s)
 {
 	int n = M->objects.n, ea, eb;
 	Body *B = contact_bodies(s);
 	first_bad_pair(B, n, &ea, &eb);
-	Vec meet = meeting_points(B, n);
 	/* the $1 objects: planes, bodies, and the bodies of radius other than 0 */
 	int *planes = xalloc((size_t)n * sizeof *planes), *bodies = xalloc((size_t)n * sizeof *bodies);
 	int *sized = xalloc((size_t)n * sizeof *sized), nplanes = 0, nbodies = 0, nsized = 0;
@@ -1618,23 +1549,19 @@ static void contact_pairs(Stmt *s)
 		if (B[i].geo[1] && !B[i].plane) bodies[nbodies++] = i;
 		if (B[i].geo[1] && !B[i].plane && B[i].r[1] != 0) sized[nsized++] = i;
 	}
-	int t = 0; /* the next pair in meet */
 	for (int a = 0; a < n && a <= ea; a++) {
 		if (!B[a].geo[0]) continue;
 		const int *L = B[a].r[0] != 0 ? bodies : sized;
 		int nl = B[a].r[0] != 0 ? nbodies : nsized;
 		int p = 0, q = first_greater(L, nl, a);
-		for (;;) { /* merge the three ascending lists of $1 */
+		for (;;) { /* merge the two ascending lists of $1 */
 			if (p < nplanes && planes[p] == a) p++;
 			int bp = p < nplanes ? planes[p] : n, bq = q < nl ? L[q] : n;
-			int bt = t < meet.n && ((Object *)meet.v[t])->index == a ? ((Object *)meet.v[t + 1])->index : n;
 			int b = bp < bq ? bp : bq;
-			if (bt < b) b = bt;
 			if (b == n || (a == ea && b >= eb)) break;
 			inst_contact(s, (Object *[]){ M->objects.v[a], M->objects.v[b] }, 2);
 			p += bp == b;
 			q += bq == b;
-			t += bt == b ? 2 : 0;
 		}
 	}
 	if (ea < n) inst_contact(s, (Object *[]){ M->objects.v[ea], M->objects.v[eb] }, 2);

@@ -15,11 +15,12 @@ check() { # what, small model, large model
 		echo "FAIL: $1: code of the small scene [$a], of the large one [$b] $(head -n 1 "$T/cs.err")"; fail=$((fail + 1))
 	fi
 }
-sh bench/gen_scene.sh 10 "$T/scene10.csf"
-sh bench/gen_scene.sh "$N" "$T/sceneN.csf"
+B=$(dirname "$0")/../../bench
+rm -f "$T"/scene10.csf "$T"/sceneN.csf "$T"/nb16.csf "$T"/nb2048.csf
+sh "$B/gen_scene.sh" 10 "$T/scene10.csf" && sh "$B/gen_scene.sh" "$N" "$T/sceneN.csf" &&
+	sh "$B/gen_nbody.sh" 16 1 0.1 "$T/nb16.csf" "$T/nb16.ic" && sh "$B/gen_nbody.sh" 2048 1 0.1 "$T/nb2048.csf" "$T/nb2048.ic" ||
+	{ echo "FAIL: the generators failed"; echo "0 passed, 1 failed"; exit 1; }
 check "gen_scene.sh 10 and $N" "$T/scene10.csf" "$T/sceneN.csf"
-sh bench/gen_nbody.sh 16 1 0.1 "$T/nb16.csf" "$T/nb16.ic"
-sh bench/gen_nbody.sh 2048 1 0.1 "$T/nb2048.csf" "$T/nb2048.ic"
 check "gen_nbody.sh 16 and 2048" "$T/nb16.csf" "$T/nb2048.csf"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

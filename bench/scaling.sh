@@ -1,0 +1,76 @@
+#!/bin/sh
+# scaling.sh - how csfc and csfvm grow with the number of objects (README.md,
+# "Scaling"); run by `make` in bench/ after run.sh. Environment as run.sh:
+# BUILD (csfc, csfvm), BIN (nbody, timeit), OUT (results), README.
+#
+#   gen_scene.sh N, N = 1e3, 1e4, 1e5: csfc seconds and peak memory, bytecode
+#     bytes, code words (rhs + out + jac), csfvm start-up (the model with till 0);
+#   gen_nbody.sh N, N = 128, 512, 2048: csfc seconds, code words, bytecode
+#     bytes, and the time per pair of one right-hand side evaluation of csfvm
+#     beside nbody.c (the same arithmetic): (run - start-up) / (evaluations
+#     N (N - 1)), evaluations from nbody --stats (both take the same steps).
+# Each run once: the sizes are exact, the times are for orders of magnitude.
+set -eu
+BUILD=${BUILD:-../build}
+BIN=${BIN:-bin}
+OUT=${OUT:-results}
+case $BUILD in ..//*) BUILD=${BUILD#..} ;; esac
+README=${README-README.md}
+CSFC=$BUILD/csfc
+CSFVM=$BUILD/csfvm
+TMP=$OUT/scaling.tmp
+rm -rf "$TMP"
+mkdir -p "$TMP"
+say() { printf '%s\n' "$*" >&2; }
+# run OUT CMD... : "wall_seconds peak_KiB" of one run
+run() { "$BIN/timeit" "$@" | awk '{ print $1, $4 }'; }
+words() { "$CSFC" --dump-bytecode "$1" -o "$TMP/w.csfb" | awk '/^section/ { gsub(/[()]/, ""); n += $3 } END { print n }'; }
+TAB=$TMP/table.md
+{
+	echo "| scene | N | csfc s | csfc peak MiB | bytecode bytes | code words | csfvm start-up s |"
+	echo "|---|---:|---:|---:|---:|---:|---:|"
+} > "$TAB"
+for n in 1000 10000 100000; do
+	sh ./gen_scene.sh "$n" "$TMP/s$n.csf"
+	set -- $(run /dev/null "$CSFC" "$TMP/s$n.csf" -o "$TMP/s$n.csfb")
+	cs=$1 mem=$2
+	sed 's/^inc t till 1 by/inc t till 0 by/' "$TMP/s$n.csf" > "$TMP/s$n.0.csf"
+	"$CSFC" "$TMP/s$n.0.csf" -o "$TMP/s$n.0.csfb"
+	set -- $(run /dev/null "$CSFVM" "$TMP/s$n.0.csfb")
+	echo "| gen_scene.sh | $n | $cs | $((mem / 1024)) | $(wc -c < "$TMP/s$n.csfb" | tr -d ' ') | $(words "$TMP/s$n.csf") | $1 |" >> "$TAB"
+	say "scaling: gen_scene $n: csfc $cs s"
+done
+{
+	echo
+	echo "| scene | N | csfc s | code words | bytecode bytes | csfvm ns/pair | nbody.c ns/pair | csfvm / nbody.c |"
+	echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+} >> "$TAB"
+for n in 128 512 2048; do
+	till=$(awk -v n="$n" 'BEGIN { print n >= 2048 ? 0.02 : n >= 512 ? 0.2 : 2 }')
+	sh ./gen_nbody.sh "$n" "$till" 0.01 "$TMP/n$n.csf" "$TMP/n$n.ic"
+	sh ./gen_nbody.sh "$n" 0 0.01 "$TMP/n$n.0.csf" "$TMP/n$n.0.ic"
+	set -- $(run /dev/null "$CSFC" "$TMP/n$n.csf" -o "$TMP/n$n.csfb")
+	cs=$1
+	"$CSFC" "$TMP/n$n.0.csf" -o "$TMP/n$n.0.csfb"
+	W=$(awk '/^inc / { for (i = 1; i <= NF; i++) if ($i ~ /^p[0-9]+\.pos/) { sub(/^p/, "", $i); sub(/\..*/, "", $i); printf "%s ", $i } }' "$TMP/n$n.csf")
+	# shellcheck disable=SC2086
+	"$BIN/nbody" --stats "$TMP/n$n.ic" "$till" 0.01 $W > /dev/null 2> "$TMP/n$n.stats"
+	ev=$(awk '{ print $2 }' "$TMP/n$n.stats")
+	vm=$(run /dev/null "$CSFVM" "$TMP/n$n.csfb" | awk '{ print $1 }')
+	vm0=$(run /dev/null "$CSFVM" "$TMP/n$n.0.csfb" | awk '{ print $1 }')
+	# shellcheck disable=SC2086
+	hc=$(run /dev/null "$BIN/nbody" "$TMP/n$n.ic" "$till" 0.01 $W | awk '{ print $1 }')
+	# shellcheck disable=SC2086
+	hc0=$(run /dev/null "$BIN/nbody" "$TMP/n$n.ic" 0 0.01 $W | awk '{ print $1 }')
+	awk -v n="$n" -v cs="$cs" -v w="$(words "$TMP/n$n.csf")" -v b="$(wc -c < "$TMP/n$n.csfb" | tr -d ' ')" \
+	    -v ev="$ev" -v vm="$vm" -v vm0="$vm0" -v hc="$hc" -v hc0="$hc0" 'BEGIN {
+		p = ev * n * (n - 1); a = (vm - vm0) / p * 1e9; h = (hc - hc0) / p * 1e9
+		printf "| gen_nbody.sh | %d | %s | %d | %d | %.2f | %.2f | %.2f |\n", n, cs, w, b, a, h, a / h }' >> "$TAB"
+	say "scaling: gen_nbody $n: $ev evaluations"
+done
+cat "$TAB" >&2
+cp "$TAB" "$OUT/scaling.md"
+if [ -n "$README" ] && grep -q '^<!-- scaling -->' "$README"; then
+	awk -v tab="$TAB" '/^<!-- scaling -->/ { print; while ((getline l < tab) > 0) print l; skip = 1; next }
+		/^<!-- \/scaling -->/ { skip = 0 } !skip' "$README" > "$TMP/readme" && cp "$TMP/readme" "$README"
+fi
