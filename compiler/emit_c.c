@@ -4,7 +4,9 @@
  * The C is a translation of the bytecode, instruction by instruction, not a
  * second compiler from the AST: every instruction becomes a call of the
  * runtime function the VM's case calls (csf_op_NAME of csf_ops.h) with its
- * operands as constants, jumps become gotos, assertions early returns. The
+ * operands as constants (an operand relative to a loop register as base +
+ * the loop's index), jumps become gotos, assertions early returns, a
+ * LOOP ... NEXT a for statement over its own index variable. The
  * program's tables travel as the bytecode image itself, embedded as a byte
  * array and loaded by the same loader csfvm uses; the integrator driver,
  * output and diagnostics are libcsfrt's. So the executable and csfvm print
@@ -53,6 +55,7 @@ typedef struct Emit {
 	int ntabs;
 	int nchunks;
 	int count;        /* instructions in the current function */
+	int depth;        /* loops open: the C for statements the next instruction is inside */
 	const unsigned char *target;
 } Emit;
 
@@ -64,10 +67,13 @@ static void open_chunk(Emit *E)
 
 static void close_chunk(Emit *E) { fputs("\treturn -1;\n}\n\n", E->f); }
 
+/* The tabs that start a line depth + extra levels deep. */
+static void indent(Emit *E, int extra) { fprintf(E->f, "%.*s", E->depth + extra, "\t\t\t\t\t\t\t\t"); }
+
 static void src_comment(Emit *E, uint32_t src, const char *more)
 {
 	const csf_src *s = &E->p->srcs[src];
-	fputc('\t', E->f);
+	indent(E, 1);
 	comment(E->f, xprintf("%s:%lu: %s%s", csf_str(E->p, E->p->files[s->file]), (unsigned long)s->line,
 	                      csf_str(E->p, s->text), more));
 	fputc('\n', E->f);
@@ -75,30 +81,97 @@ static void src_comment(Emit *E, uint32_t src, const char *more)
 
 static uint32_t insn_len(const uint32_t *code, uint32_t pc) { return 1u + csf_opinfo_table[code[pc]].nops; }
 
-/* One instruction as C; operands from o[] when o is given (inside a loop), else constants. */
+/* Operand kinds whose words may be relative to a loop register (csf_operand). */
+static int relative_kind(int kind)
+{
+	return kind == CSF_K_DS || kind == CSF_K_DV || kind == CSF_K_S || kind == CSF_K_V || kind == CSF_K_AS;
+}
+
+/* Does the instruction at pc belong to a loop's machinery: a loop instruction or a relative operand? */
+static int uses_loop(const uint32_t *code, uint32_t pc)
+{
+	const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
+	if (code[pc] == CSF_OP_LOOP || code[pc] == CSF_OP_NEXT || code[pc] == CSF_OP_JEQ) return 1;
+	for (int k = 0; k < oi->nops; k++)
+		if (relative_kind(oi->kind[k]) && csf_reg(code[pc + 1 + k])) return 1;
+	return 0;
+}
+
+/*
+ * Can the instruction at pc be a row of an operand table? Not control flow,
+ * and not a loop's: a table holds operand words as constants, and a
+ * relative word is no constant.
+ */
+static int tabular(const uint32_t *code, uint32_t pc)
+{
+	uint32_t op = code[pc];
+	return op != CSF_OP_JMP && op != CSF_OP_JZ && op != CSF_OP_ASSERT && op != CSF_OP_CONTACT && !uses_loop(code, pc);
+}
+
+/* Operand word w of kind kind as a C expression: a constant, or base + loop index i1..i3 (times 3). */
+static void put_operand(FILE *f, int kind, uint32_t w)
+{
+	uint32_t r = relative_kind(kind) ? csf_reg(w) : 0;
+	if (kind == CSF_K_N) fprintf(f, "%d", csf_imm(w));
+	else if (r == 0) fprintf(f, "%lu", (unsigned long)w);
+	else fprintf(f, "%luu + %si%lu", (unsigned long)(w & CSF_SLOT_MASK), r % 2 ? "" : "3u * ", (unsigned long)(r + 1) / 2);
+}
+
+/*
+ * A control instruction as C: jumps become gotos, assertions returns,
+ * LOOP ... NEXT a for statement. Returns 0 for any other instruction.
+ */
+static int emit_control(Emit *E, const uint32_t *code, uint32_t pc)
+{
+	const uint32_t *a = code + pc + 1; /* only the instruction's own operands: a CONTACT has none */
+	switch (code[pc]) {
+	case CSF_OP_JMP:
+		fprintf(E->f, "goto L%lu;\n", (unsigned long)a[0]);
+		return 1;
+	case CSF_OP_JZ:
+		fputs("if (m[", E->f);
+		put_operand(E->f, CSF_K_S, a[0]);
+		fprintf(E->f, "] == 0.0) goto L%lu;\n", (unsigned long)a[1]);
+		return 1;
+	case CSF_OP_ASSERT:
+		fputs("if (m[", E->f);
+		put_operand(E->f, CSF_K_S, a[0]);
+		fputs(csf_reg(a[1]) ? "] == 0.0) return (int)(" : "] == 0.0) return ", E->f);
+		put_operand(E->f, CSF_K_AS, a[1]);
+		fputs(csf_reg(a[1]) ? ");\n" : ";\n", E->f);
+		return 1;
+	case CSF_OP_CONTACT:
+		fputs("csf_contact_apply(p, m);\n", E->f);
+		return 1;
+	case CSF_OP_LOOP: { /* a count of 0 runs no iteration, as the VM's jump to the end */
+		unsigned long l = a[0];
+		fprintf(E->f, "for (uint32_t i%lu = 0; i%lu < %luu; i%lu++) {\n", l, l, (unsigned long)a[1], l);
+		E->depth++;
+		return 1;
+	}
+	case CSF_OP_NEXT:
+		fputs("}\n", E->f);
+		return 1;
+	case CSF_OP_JEQ:
+		fprintf(E->f, "if (i%lu == i%lu) goto L%lu;\n", (unsigned long)a[0], (unsigned long)a[1], (unsigned long)a[2]);
+		return 1;
+	}
+	return 0;
+}
+
+/* One instruction as C; operands from o[] when o is given (inside a loop over a table), else constants. */
 static void emit_insn(Emit *E, const uint32_t *code, uint32_t pc, const char *o, int base)
 {
 	const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
 	const uint32_t *a = code + pc + 1;
-	switch (code[pc]) {
-	case CSF_OP_JMP:
-		fprintf(E->f, "\tgoto L%lu;\n", (unsigned long)a[0]);
-		return;
-	case CSF_OP_JZ:
-		fprintf(E->f, "\tif (m[%lu] == 0.0) goto L%lu;\n", (unsigned long)a[0], (unsigned long)a[1]);
-		return;
-	case CSF_OP_ASSERT:
-		fprintf(E->f, "\tif (m[%lu] == 0.0) return %lu;\n", (unsigned long)a[0], (unsigned long)a[1]);
-		return;
-	case CSF_OP_CONTACT:
-		fputs("\tcsf_contact_apply(p, m);\n", E->f);
-		return;
-	}
-	fprintf(E->f, "%scsf_op_%s(m", o ? "\t\t" : "\t", oi->name);
+	if (code[pc] == CSF_OP_NEXT) E->depth--; /* the closing brace lines up with its for */
+	indent(E, o ? 2 : 1);
+	if (emit_control(E, code, pc)) return;
+	fprintf(E->f, "csf_op_%s(m", oi->name);
 	for (int k = 0; k < oi->nops; k++) {
-		if (o) fprintf(E->f, ", %s[%d]", o, base + k);
-		else if (oi->kind[k] == CSF_K_N) fprintf(E->f, ", %d", csf_imm(a[k]));
-		else fprintf(E->f, ", %lu", (unsigned long)a[k]);
+		fputs(", ", E->f);
+		if (o) fprintf(E->f, "%s[%d]", o, base + k);
+		else put_operand(E->f, oi->kind[k], a[k]);
 	}
 	fputs(");\n", E->f);
 }
@@ -111,10 +184,11 @@ static int open_table(Emit *E, size_t n, int w)
 	return t;
 }
 
+/* Can the unit [from, to) be a row of an operand table: every instruction tabular? */
 static int no_control(const uint32_t *code, uint32_t from, uint32_t to)
 {
 	for (uint32_t pc = from; pc < to; pc += insn_len(code, pc))
-		if (code[pc] == CSF_OP_JMP || code[pc] == CSF_OP_JZ || code[pc] == CSF_OP_ASSERT || code[pc] == CSF_OP_CONTACT) return 0;
+		if (!tabular(code, pc)) return 0;
 	return 1;
 }
 
@@ -131,11 +205,10 @@ static void emit_straight(Emit *E, uint32_t from, uint32_t to)
 {
 	const uint32_t *code = E->p->code[E->sec];
 	for (uint32_t pc = from; pc < to;) {
-		if (E->target[pc]) fprintf(E->f, "L%lu:\n", (unsigned long)pc);
+		/* a label right before a loop's closing brace needs a statement to label */
+		if (E->target[pc]) fprintf(E->f, "L%lu:%s\n", (unsigned long)pc, code[pc] == CSF_OP_NEXT ? " ;" : "");
 		uint32_t len = insn_len(code, pc), n = 0, q = pc;
-		while (q < to && code[q] == code[pc] && !E->target[q] && code[q] != CSF_OP_JMP && code[q] != CSF_OP_JZ &&
-		       code[q] != CSF_OP_ASSERT && code[q] != CSF_OP_CONTACT)
-			q += len, n++;
+		while (q < to && code[q] == code[pc] && !E->target[q] && tabular(code, q)) q += len, n++;
 		if (n >= MIN_RUN) {
 			int w = (int)len - 1, t = open_table(E, n, w);
 			for (uint32_t r = pc; r < q; r += len) {
@@ -144,10 +217,13 @@ static void emit_straight(Emit *E, uint32_t from, uint32_t to)
 				fputs(" },\n", E->tabs);
 			}
 			fputs("};\n\n", E->tabs);
-			fprintf(E->f, "\tfor (size_t k = 0; k < %lu; k++) {\n\t\tconst uint32_t *o = csf_t%d[k];\n",
-			        (unsigned long)n, t);
+			indent(E, 1);
+			fprintf(E->f, "for (size_t k = 0; k < %lu; k++) {\n", (unsigned long)n);
+			indent(E, 2);
+			fprintf(E->f, "const uint32_t *o = csf_t%d[k];\n", t);
 			emit_insn(E, code, pc, "o", 0);
-			fputs("\t}\n", E->f);
+			indent(E, 1);
+			fputs("}\n", E->f);
 			E->count += 4;
 			pc = q;
 			continue;
@@ -159,24 +235,54 @@ static void emit_straight(Emit *E, uint32_t from, uint32_t to)
 }
 
 /*
+ * The control flow of a section's n words of code: target[pc] when a goto
+ * jumps to pc; nosplit[pc] when the code cannot be split into two functions
+ * at pc, because a loop's for statement or a jump spans it (a goto cannot
+ * leave its function). The LOOP's own jump to its end is the for's exit,
+ * no goto.
+ */
+static void mark_flow(const uint32_t *code, uint32_t n, unsigned char *target, unsigned char *nosplit)
+{
+	long *span = calloc((size_t)n + 2, sizeof *span); /* +1 where a span starts, -1 past its end */
+	if (!span) exit(2);
+	for (uint32_t pc = 0; pc < n; pc += insn_len(code, pc)) {
+		uint32_t op = code[pc], to;
+		if (op == CSF_OP_LOOP) { /* the loop is [pc, its end): no split in (pc, end) */
+			span[pc + 1]++;
+			span[code[pc + 3]]--;
+			continue;
+		}
+		if (op == CSF_OP_JMP) to = code[pc + 1];
+		else if (op == CSF_OP_JZ) to = code[pc + 2];
+		else if (op == CSF_OP_JEQ) to = code[pc + 3];
+		else continue;
+		target[to] = 1; /* and no split in (pc, to]: the label must be in the goto's function */
+		span[pc + 1]++;
+		span[to + 1]--;
+	}
+	long open = 0;
+	for (uint32_t pc = 0; pc <= n; pc++) nosplit[pc] = (open += span[pc]) > 0;
+	free(span);
+}
+
+/*
  * Writes section sec as functions fname_0, fname_1, ... of about CHUNK
- * instructions each, split only where a statement's code starts (jumps
- * never leave a statement), and fname calling them in order. Consecutive
- * instances of one rule whose instructions differ only in their operands
- * (a $n rule over every pair of objects) become one loop over a table of
- * operands: the same calls in the same order, in a fraction of the code.
+ * instructions each, split only where a statement's code starts and no
+ * loop or jump spans (mark_flow), and fname calling them in order.
+ * Consecutive instances of one rule whose instructions differ only in their
+ * operands (a $n rule over every pair of objects) become one loop over a
+ * table of operands: the same calls in the same order, in a fraction of the
+ * code. Code with loops (LOOP ... NEXT, relative operands) is written as C
+ * for statements instead.
  */
 static void emit_section(const csf_prog *p, int sec, const char *fname, FILE *f, FILE *tabs, int *ntabs)
 {
 	uint32_t n = p->ncode[sec];
 	const uint32_t *code = p->code[sec];
-	unsigned char *target = calloc((size_t)n + 1, 1);
-	if (!target) exit(2);
-	for (uint32_t pc = 0; pc < n; pc += insn_len(code, pc)) {
-		if (code[pc] == CSF_OP_JMP) target[code[pc + 1]] = 1;
-		if (code[pc] == CSF_OP_JZ) target[code[pc + 2]] = 1;
-	}
-	Emit E = { p, sec, fname, f, tabs, *ntabs, 0, 0, target };
+	unsigned char *target = calloc((size_t)n + 1, 1), *nosplit = calloc((size_t)n + 1, 1);
+	if (!target || !nosplit) exit(2);
+	mark_flow(code, n, target, nosplit);
+	Emit E = { p, sec, fname, f, tabs, *ntabs, 0, 0, 0, target };
 	/* units: the code of one statement instance, from one line-table entry to the next */
 	uint32_t nl = p->nlines[sec];
 	open_chunk(&E);
@@ -186,13 +292,13 @@ static void emit_section(const csf_prog *p, int sec, const char *fname, FILE *f,
 		uint32_t src = p->lines[sec][i].src, len = to - from;
 		/* how many following units repeat this one's shape */
 		uint32_t g = 1;
-		if (len && no_control(code, from, to) && !target[from])
+		if (len && E.depth == 0 && no_control(code, from, to) && !target[from])
 			while (i + g < nl && p->lines[sec][i + g].src == src) {
 				uint32_t f2 = p->lines[sec][i + g].pc, t2 = i + g + 1 < nl ? p->lines[sec][i + g + 1].pc : n;
 				if (target[f2] || !same_shape(code, from, len, f2, t2 - f2) || !no_control(code, f2, t2)) break;
 				g++;
 			}
-		if (E.count >= CHUNK) {
+		if (E.count >= CHUNK && !nosplit[from]) {
 			close_chunk(&E);
 			open_chunk(&E);
 		}
@@ -250,6 +356,7 @@ static void emit_section(const csf_prog *p, int sec, const char *fname, FILE *f,
 	}
 	*ntabs = E.ntabs;
 	free(target);
+	free(nosplit);
 }
 
 void emit_c(const csf_prog *p, const unsigned char *image, size_t len, const char *model, FILE *f)

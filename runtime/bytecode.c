@@ -6,10 +6,11 @@
  * against the bytes left before it is allocated, so a truncated or hostile
  * file costs at most its own size in memory. After decoding, csf_verify
  * checks every cross-reference (string offsets, memory slots, sources) and
- * every instruction (opcode in range, operands in bounds, jumps forward to
- * an instruction boundary inside the section, POWI's exponent within
- * CSF_POWI_MAX). A verified program cannot make the VM read or write
- * outside its memory or loop forever.
+ * every instruction (opcode in range, operands in bounds for every value of
+ * the loop registers they use, jumps forward to an instruction boundary
+ * inside the section and inside the same loop body, loops properly nested
+ * and matched, POWI's exponent within CSF_POWI_MAX). A verified program
+ * cannot make the VM read or write outside its memory or loop forever.
  */
 #include <stdlib.h>
 #include <string.h>
@@ -31,15 +32,23 @@ const csf_opinfo csf_opinfo_table[CSF_NOPCODES] = {
 #undef OP
 };
 
+/* CRC-32 (reflected polynomial 0xEDB88320) a byte at a time, from a table of the CRC of each
+   byte value (computed once): the bitwise loop took 8 steps per byte of a 100 MB image. */
 unsigned long csf_crc32(const unsigned char *buf, size_t len)
 {
-	unsigned long crc = 0xFFFFFFFFul;
-	for (size_t i = 0; i < len; i++) {
-		crc ^= buf[i];
-		for (int k = 0; k < 8; k++)
-			crc = (crc >> 1) ^ (0xEDB88320ul & (0ul - (crc & 1ul)));
+	static uint32_t table[256];
+	static int ready;
+	if (!ready) {
+		for (uint32_t n = 0; n < 256; n++) {
+			uint32_t c = n;
+			for (int k = 0; k < 8; k++) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+			table[n] = c;
+		}
+		ready = 1;
 	}
-	return crc ^ 0xFFFFFFFFul;
+	uint32_t crc = 0xFFFFFFFFu;
+	for (size_t i = 0; i < len; i++) crc = (crc >> 8) ^ table[(crc ^ buf[i]) & 0xFFu];
+	return (unsigned long)(crc ^ 0xFFFFFFFFu);
 }
 
 /* ---- encoding ---- */
@@ -275,6 +284,181 @@ static int slot_ok(const csf_prog *p, uint32_t s, uint32_t width)
 	return s < p->nmem && width <= p->nmem - s;
 }
 
+/*
+ * The state of the code check of one section: the instruction boundaries,
+ * the loop context of every pc, and the loops open at the pc being checked.
+ */
+typedef struct code_check {
+	const csf_prog *p;
+	int sec;
+	const uint32_t *code;
+	uint32_t n;
+	unsigned char *start; /* start[pc]: an instruction starts at pc (or pc == n) */
+	uint32_t *ctx;        /* ctx[pc]: 1 + the pc of the innermost loop around pc, 0 outside loops */
+	uint32_t open[CSF_LOOP_MAX]; /* the pcs of the LOOPs open, outermost first */
+	int depth;            /* how many are open */
+	char *err;
+	size_t errlen;
+} code_check;
+
+/* Fails the check of the instruction at pc (of its operand k + 1 when k >= 0) with a reason. */
+static int bad_insn(code_check *c, uint32_t pc, int k, const char *fmt, ...)
+{
+	char why[160];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(why, sizeof why, fmt, ap);
+	va_end(ap);
+	const char *name = csf_opinfo_table[c->code[pc]].name;
+	if (k >= 0)
+		return fail(c->err, c->errlen, "section %d: operand %d of %s at %lu %s", c->sec, k + 1, name,
+		            (unsigned long)pc, why);
+	return fail(c->err, c->errlen, "section %d: %s at %lu: %s", c->sec, name, (unsigned long)pc, why);
+}
+
+/* Finds the instruction boundaries; rejects unknown opcodes and instructions cut off by the end. */
+static int check_boundaries(code_check *c)
+{
+	for (uint32_t pc = 0; pc < c->n;) {
+		uint32_t op = c->code[pc];
+		if (op >= CSF_NOPCODES)
+			return fail(c->err, c->errlen, "section %d: invalid opcode %lu at %lu", c->sec, (unsigned long)op,
+			            (unsigned long)pc);
+		if (csf_opinfo_table[op].nops >= c->n - pc)
+			return fail(c->err, c->errlen, "section %d: instruction at %lu runs past the end of the code", c->sec,
+			            (unsigned long)pc);
+		c->start[pc] = 1;
+		pc += 1u + csf_opinfo_table[op].nops;
+	}
+	c->start[c->n] = 1;
+	return 0;
+}
+
+/*
+ * Checks a slot operand word w naming width slots (width 0: an assertion
+ * index) for every value its register takes. A relative operand's register
+ * must be an open loop's: index (odd register) or 3 times the index (even).
+ * Its largest value is base + (count - 1) * stride; a count of 0 is checked
+ * as 1, so a body is valid even if it never runs and the bound does not
+ * depend on the count's being non-zero. 64-bit arithmetic: no count can
+ * wrap the bound around.
+ */
+static int check_slot(code_check *c, uint32_t pc, int k, uint32_t w, uint32_t width)
+{
+	uint32_t r = csf_reg(w);
+	uint64_t top = w & CSF_SLOT_MASK;
+	if (r >= CSF_NREGS) return bad_insn(c, pc, k, "uses invalid register %lu", (unsigned long)r);
+	if (r) {
+		uint32_t level = (r + 1) / 2;
+		if ((int)level > c->depth)
+			return bad_insn(c, pc, k, "uses the register of loop level %lu, which is not open",
+			                (unsigned long)level);
+		uint64_t count = c->code[c->open[level - 1] + 2];
+		top += (count ? count - 1 : 0) * (r % 2 ? 1u : 3u);
+	}
+	if (width ? top + width > c->p->nmem : top >= c->p->nasserts)
+		return bad_insn(c, pc, k, "out of range");
+	return 0;
+}
+
+/* LOOP L, n, end: opens level L, which must be the next level down. Its end is checked at its NEXT. */
+static int check_loop(code_check *c, uint32_t pc)
+{
+	uint32_t level = c->code[pc + 1];
+	if (c->depth == CSF_LOOP_MAX) return bad_insn(c, pc, -1, "loops nested deeper than %d", CSF_LOOP_MAX);
+	if (level != (uint32_t)c->depth + 1)
+		return bad_insn(c, pc, -1, "loop level %lu where level %d is expected", (unsigned long)level, c->depth + 1);
+	c->open[c->depth++] = pc;
+	return 0;
+}
+
+/*
+ * NEXT L, start closes the innermost loop: L must be its level, start the
+ * pc just past its LOOP, and the LOOP's end the pc just past this NEXT.
+ */
+static int check_next(code_check *c, uint32_t pc)
+{
+	if (c->depth == 0) return bad_insn(c, pc, -1, "no LOOP is open");
+	uint32_t loop = c->open[c->depth - 1];
+	if (c->code[pc + 1] != (uint32_t)c->depth)
+		return bad_insn(c, pc, -1, "loop level %lu where the innermost loop is level %d", (unsigned long)c->code[pc + 1],
+		                c->depth);
+	if (c->code[pc + 2] != loop + 4)
+		return bad_insn(c, pc, -1, "start %lu is not the body of its LOOP at %lu", (unsigned long)c->code[pc + 2],
+		                (unsigned long)loop);
+	if (c->code[loop + 3] != pc + 3)
+		return bad_insn(c, loop, -1, "end %lu is not just past its NEXT at %lu", (unsigned long)c->code[loop + 3],
+		                (unsigned long)pc);
+	c->depth--;
+	return 0;
+}
+
+/*
+ * One instruction in order, with the loops open before it: the loop
+ * structure, every operand but the forward jumps (they need the context of
+ * their target, known after the scan), and the instruction's context. A
+ * LOOP is outside its own loop, a NEXT inside.
+ */
+static int check_insn(code_check *c, uint32_t pc)
+{
+	const csf_opinfo *oi = &csf_opinfo_table[c->code[pc]];
+	c->ctx[pc] = c->depth ? c->open[c->depth - 1] + 1 : 0;
+	for (int k = 0; k < oi->nops; k++) {
+		uint32_t v = c->code[pc + 1 + k];
+		int r = 0;
+		switch (oi->kind[k]) {
+		case CSF_K_DS: case CSF_K_S: r = check_slot(c, pc, k, v, 1); break;
+		case CSF_K_DV: case CSF_K_V: r = check_slot(c, pc, k, v, 3); break;
+		case CSF_K_AS: r = check_slot(c, pc, k, v, 0); break;
+		case CSF_K_N:
+			if (csf_imm(v) < -CSF_POWI_MAX || csf_imm(v) > CSF_POWI_MAX) r = bad_insn(c, pc, k, "out of range");
+			break;
+		case CSF_K_L: /* LOOP's and NEXT's levels: check_loop, check_next; JEQ's: open loops */
+			if (c->code[pc] == CSF_OP_JEQ && (v < 1 || v > (uint32_t)c->depth))
+				r = bad_insn(c, pc, k, "is loop level %lu, which is not open", (unsigned long)v);
+			break;
+		case CSF_K_C: case CSF_K_B: case CSF_K_J: break; /* the count bounds operands; B: check_next; J: later */
+		default: r = bad_insn(c, pc, k, "of an invalid kind"); break;
+		}
+		if (r) return r;
+	}
+	if (c->code[pc] == CSF_OP_LOOP) return check_loop(c, pc);
+	if (c->code[pc] == CSF_OP_NEXT) return check_next(c, pc);
+	return 0;
+}
+
+/* Forward jumps land on an instruction boundary in their own loop context: none enters or leaves a loop body. */
+static int check_jumps(code_check *c)
+{
+	for (uint32_t pc = 0; pc < c->n;) {
+		const csf_opinfo *oi = &csf_opinfo_table[c->code[pc]];
+		for (int k = 0; k < oi->nops; k++) {
+			uint32_t v = c->code[pc + 1 + k];
+			if (oi->kind[k] != CSF_K_J) continue;
+			if (!(v > pc && v <= c->n && c->start[v])) return bad_insn(c, pc, k, "out of range");
+			if (c->ctx[v] != c->ctx[pc])
+				return bad_insn(c, pc, k, "jumps to %lu into or out of a loop body", (unsigned long)v);
+		}
+		pc += 1u + oi->nops;
+	}
+	return 0;
+}
+
+/* Checks the code of section s: boundaries, loop structure, operands, jumps. */
+static int check_code(const csf_prog *p, int s, char *err, size_t errlen)
+{
+	code_check c = { .p = p, .sec = s, .code = p->code[s], .n = p->ncode[s], .err = err, .errlen = errlen };
+	c.start = calloc((size_t)c.n + 1, 1);
+	c.ctx = calloc((size_t)c.n + 1, sizeof *c.ctx);
+	int r = !c.start || !c.ctx ? fail(err, errlen, "out of memory") : check_boundaries(&c);
+	for (uint32_t pc = 0; !r && pc < c.n; pc += 1u + csf_opinfo_table[c.code[pc]].nops) r = check_insn(&c, pc);
+	if (!r && c.depth) r = bad_insn(&c, c.open[c.depth - 1], -1, "loop has no NEXT");
+	if (!r) r = check_jumps(&c);
+	free(c.start);
+	free(c.ctx);
+	return r;
+}
+
 int csf_verify(const csf_prog *p, char *err, size_t errlen)
 {
 	if (p->nstrs == 0 || p->strs[p->nstrs - 1] != '\0') return fail(err, errlen, "string table is not NUL-terminated");
@@ -340,49 +524,9 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 			    !STR_OK(t->name) || !STR_OK(t->object))
 				return fail(err, errlen, "target %lu of section %d out of range", (unsigned long)i, s);
 		}
-		/* Instruction boundaries first, so jumps can be checked against them. */
-		uint32_t n = p->ncode[s];
-		unsigned char *start = calloc((size_t)n + 1, 1);
-		if (!start) return fail(err, errlen, "out of memory");
-		for (uint32_t pc = 0; pc < n;) {
-			uint32_t op = p->code[s][pc];
-			if (op >= CSF_NOPCODES) {
-				free(start);
-				return fail(err, errlen, "section %d: invalid opcode %lu at %lu", s, (unsigned long)op, (unsigned long)pc);
-			}
-			if (csf_opinfo_table[op].nops >= n - pc) {
-				free(start);
-				return fail(err, errlen, "section %d: instruction at %lu runs past the end of the code", s,
-				            (unsigned long)pc);
-			}
-			start[pc] = 1;
-			pc += 1u + csf_opinfo_table[op].nops;
-		}
-		start[n] = 1;
-		for (uint32_t pc = 0; pc < n;) {
-			const csf_opinfo *oi = &csf_opinfo_table[p->code[s][pc]];
-			for (int k = 0; k < oi->nops; k++) {
-				uint32_t v = p->code[s][pc + 1 + k];
-				int ok = 1;
-				switch (oi->kind[k]) {
-				case CSF_K_DS: case CSF_K_S: ok = slot_ok(p, v, 1); break;
-				case CSF_K_DV: case CSF_K_V: ok = slot_ok(p, v, 3); break;
-				case CSF_K_J: ok = v > pc && v <= n && start[v]; break;
-				case CSF_K_AS: ok = v < p->nasserts; break;
-				case CSF_K_N: ok = csf_imm(v) >= -CSF_POWI_MAX && csf_imm(v) <= CSF_POWI_MAX; break;
-				default: ok = 0; break;
-				}
-				if (!ok) {
-					free(start);
-					return fail(err, errlen, "section %d: operand %d of %s at %lu out of range", s, k + 1,
-					            oi->name, (unsigned long)pc);
-				}
-			}
-			pc += 1u + oi->nops;
-		}
-		free(start);
+		if (check_code(p, s, err, errlen)) return -1;
 		for (uint32_t i = 0; i < p->nlines[s]; i++)
-			if (p->lines[s][i].pc > n || p->lines[s][i].src >= p->nsrcs)
+			if (p->lines[s][i].pc > p->ncode[s] || p->lines[s][i].src >= p->nsrcs)
 				return fail(err, errlen, "line table entry %lu of section %d out of range", (unsigned long)i, s);
 	}
 #undef STR_OK
@@ -411,6 +555,54 @@ void csf_prog_free(csf_prog *p)
 	memset(p, 0, sizeof *p);
 }
 
+/* Operand word v of kind kind as listed: loop levels as i, j, k; relative slots as 120+i or 300+3i. */
+static void dis_operand(FILE *f, int kind, uint32_t v)
+{
+	static const char level[] = "?ijk";
+	switch (kind) {
+	case CSF_K_N:
+		fprintf(f, " %d", csf_imm(v));
+		return;
+	case CSF_K_L:
+		if (v >= 1 && v <= CSF_LOOP_MAX) fprintf(f, " %c", level[v]);
+		else fprintf(f, " %lu", (unsigned long)v);
+		return;
+	case CSF_K_DS: case CSF_K_DV: case CSF_K_S: case CSF_K_V: case CSF_K_AS: {
+		uint32_t r = csf_reg(v);
+		if (r == 0) break;
+		fprintf(f, " %lu+", (unsigned long)(v & CSF_SLOT_MASK));
+		if (r < CSF_NREGS) fprintf(f, "%s%c", r % 2 ? "" : "3", level[(r + 1) / 2]);
+		else fprintf(f, "r%lu", (unsigned long)r); /* invalid: only an unverified program has it */
+		return;
+	}
+	}
+	fprintf(f, " %lu", (unsigned long)v);
+}
+
+/* Section s's instructions under their source lines, loop bodies indented one step per level. */
+static void dis_section(const csf_prog *p, int s, FILE *f)
+{
+	uint32_t li = 0;
+	int depth = 0;
+	for (uint32_t pc = 0; pc < p->ncode[s];) {
+		uint32_t op = p->code[s][pc];
+		if (op == CSF_OP_NEXT && depth > 0) depth--; /* a NEXT lines up with its LOOP */
+		while (li < p->nlines[s] && p->lines[s][li].pc <= pc) {
+			const csf_src *src = &p->srcs[p->lines[s][li].src];
+			if (p->lines[s][li].pc == pc)
+				fprintf(f, "  %*s; %s:%lu: %s\n", 2 * depth, "", csf_str(p, p->files[src->file]),
+				        (unsigned long)src->line, csf_str(p, src->text));
+			li++;
+		}
+		const csf_opinfo *oi = &csf_opinfo_table[op];
+		fprintf(f, "  %5lu  %*s%-7s", (unsigned long)pc, 2 * depth, "", oi->name);
+		for (int k = 0; k < oi->nops; k++) dis_operand(f, oi->kind[k], p->code[s][pc + 1 + k]);
+		fprintf(f, "%*s; %s\n", 4 * (4 - oi->nops), "", oi->synopsis);
+		if (op == CSF_OP_LOOP && depth < CSF_LOOP_MAX) depth++;
+		pc += 1u + oi->nops;
+	}
+}
+
 void csf_disassemble(const csf_prog *p, FILE *f)
 {
 	static const char *const secname[CSF_NSEC] = { "rhs", "out", "jac" };
@@ -426,24 +618,6 @@ void csf_disassemble(const csf_prog *p, FILE *f)
 	}
 	for (int s = 0; s < CSF_NSEC; s++) {
 		fprintf(f, "section %s (%lu words)\n", secname[s], (unsigned long)p->ncode[s]);
-		uint32_t li = 0;
-		for (uint32_t pc = 0; pc < p->ncode[s];) {
-			while (li < p->nlines[s] && p->lines[s][li].pc <= pc) {
-				const csf_src *src = &p->srcs[p->lines[s][li].src];
-				if (p->lines[s][li].pc == pc)
-					fprintf(f, "  ; %s:%lu: %s\n", csf_str(p, p->files[src->file]), (unsigned long)src->line,
-					        csf_str(p, src->text));
-				li++;
-			}
-			const csf_opinfo *oi = &csf_opinfo_table[p->code[s][pc]];
-			fprintf(f, "  %5lu  %-7s", (unsigned long)pc, oi->name);
-			for (int k = 0; k < oi->nops; k++) {
-				uint32_t v = p->code[s][pc + 1 + k];
-				if (oi->kind[k] == CSF_K_N) fprintf(f, " %d", csf_imm(v));
-				else fprintf(f, " %lu", (unsigned long)v);
-			}
-			fprintf(f, "%*s; %s\n", 4 * (4 - oi->nops), "", oi->synopsis);
-			pc += 1u + oi->nops;
-		}
+		dis_section(p, s, f);
 	}
 }

@@ -21,6 +21,7 @@ Suite *bytecode_suite(void);
 Suite *vm_suite(void);
 Suite *emit_c_suite(void);
 Suite *jac_suite(void);
+Suite *loops_suite(void);
 
 /*
  * Compiles source text (file name "t.csf") to a verified program in *p.
