@@ -46,7 +46,7 @@ done
 	echo "|---|---:|---:|---:|---:|---:|---:|---:|"
 } >> "$TAB"
 for n in 128 512 2048; do
-	till=$(awk -v n="$n" 'BEGIN { print n >= 2048 ? 0.02 : n >= 512 ? 0.2 : 2 }')
+	till=$(awk -v n="$n" 'BEGIN { print (n >= 2048 ? 0.02 : n >= 512 ? 0.2 : 2) }')
 	sh ./gen_nbody.sh "$n" "$till" 0.01 "$TMP/n$n.csf" "$TMP/n$n.ic"
 	sh ./gen_nbody.sh "$n" 0 0.01 "$TMP/n$n.0.csf" "$TMP/n$n.0.ic"
 	set -- $(run /dev/null "$CSFC" "$TMP/n$n.csf" -o "$TMP/n$n.csfb")
