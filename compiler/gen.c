@@ -909,14 +909,12 @@ int gen_program(Model *M, csf_prog *p)
 	/* The contact routine runs after the last of them: last_a, an index into M->insts. */
 	int last_a = -1;
 	Map dets = { 0 }; /* the instances that determine a body's a, by address */
-	for (int i = 0; i < M->contacts.n; i++) {
-		Contact *c = M->contacts.v[i];
-		for (int k = 0; k < 2; k++) {
-			Var *a = sema_canon(c->f[k ? CSF_CF_A2 : CSF_CF_A]);
-			if (!a || !a->det) continue;
-			mark(G, a->det, CSF_SEC_OUT);
-			map_put(&dets, xprintf("%p", (void *)a->det), a->det);
-		}
+	for (int i = 0; i < M->cbodies.n && M->contacts.n; i++) {
+		ContactBody *b = M->cbodies.v[i];
+		Var *a = sema_canon(b->f[CSF_CF_A]);
+		if (b->plane || !a || !a->det) continue;
+		mark(G, a->det, CSF_SEC_OUT);
+		map_put(&dets, xprintf("%p", (void *)a->det), a->det);
 	}
 	for (int j = 0; j < M->insts.n && M->contacts.n; j++)
 		if (map_get(&dets, xprintf("%p", M->insts.v[j]))) last_a = j;
@@ -961,20 +959,43 @@ int gen_program(Model *M, csf_prog *p)
 	}
 	M->time->slot = (int)p->tslot;
 
-	/* The contact table: the bodies' property slots and each pair's work slots. */
-	p->ncontacts = (uint32_t)M->contacts.n;
-	p->contacts = calloc(p->ncontacts + 1, sizeof *p->contacts);
-	if (!p->contacts) exit(2);
+	/* The contact tables: the bodies' property slots, and each rule's lists of bodies (csf.h). */
+	p->ncbodies = M->contacts.n ? (uint32_t)M->cbodies.n : 0;
+	p->ncrules = (uint32_t)M->contacts.n;
+	p->cbodies = calloc(p->ncbodies + 1, sizeof *p->cbodies);
+	p->crules = calloc(p->ncrules + 1, sizeof *p->crules);
+	if (!p->cbodies || !p->crules) exit(2);
+	for (uint32_t i = 0; i < p->ncbodies; i++) {
+		ContactBody *b = M->cbodies.v[i];
+		csf_cbody *pb = &p->cbodies[i];
+		pb->plane = (uint32_t)b->plane;
+		pb->object = (uint32_t)b->o->index;
+		for (int f = 0; f < CSF_CF_N; f++) {
+			Var *v = b->f[f];
+			pb->s[f] = v ? var_slot(G, v) : p->tslot;
+			/* the radius, or a plane's geometry, computed or integrated: not known from positions */
+			if (v && (f == CSF_CF_R || (b->plane && (f == CSF_CF_POS || f == CSF_CF_V))) && (v->state || v->det))
+				pb->varies = 1;
+		}
+	}
 	for (int i = 0; i < M->contacts.n; i++) {
 		Contact *c = M->contacts.v[i];
-		csf_contact *pc = &p->contacts[i];
-		pc->plane = (uint32_t)c->plane;
-		pc->src = (uint32_t)c->src;
-		for (int f = 0; f < CSF_CF_WORK; f++)
-			pc->s[f] = c->f[f] ? var_slot(G, c->f[f]) : p->tslot;
-		double w[CSF_CW_N] = { 0 };
-		memcpy(w + CSF_CW_DIR, c->dir, sizeof c->dir);
-		pc->s[CSF_CF_WORK] = alloc_mem(G, CSF_CW_N, w);
+		p->ncmembers += (uint32_t)(c->b0.n + c->b1.n);
+	}
+	p->cmembers = calloc(p->ncmembers + 1, sizeof *p->cmembers);
+	if (!p->cmembers) exit(2);
+	uint32_t nm = 0;
+	for (int i = 0; i < M->contacts.n; i++) {
+		Contact *c = M->contacts.v[i];
+		csf_crule *pr = &p->crules[i];
+		pr->src = (uint32_t)c->src;
+		pr->every = (uint32_t)c->every;
+		for (int k = 0; k < 2; k++) {
+			Vec *L = k ? &c->b1 : &c->b0;
+			*(k ? &pr->first1 : &pr->first0) = nm;
+			*(k ? &pr->n1 : &pr->n0) = (uint32_t)L->n;
+			for (int j = 0; j < L->n; j++) p->cmembers[nm++] = (uint32_t)((ContactBody *)L->v[j])->index;
+		}
 	}
 
 	for (int sec = CSF_SEC_RHS; sec <= CSF_SEC_OUT; sec++) {
@@ -991,7 +1012,7 @@ int gen_program(Model *M, csf_prog *p)
 			if (sec == CSF_SEC_OUT && I->isderiv) continue;
 			emit_inst(G, I);
 			if (i == last_a) {
-				add_line(G, p->contacts[0].src);
+				add_line(G, p->crules[0].src);
 				emit_op(G, CSF_OP_CONTACT, 0, 0, 0, 0);
 			}
 		}
@@ -1045,7 +1066,7 @@ int gen_program(Model *M, csf_prog *p)
 			i += 1u + oi->nops;
 		}
 
-	if (!p->ncontacts) gen_pairs(G, M, p); /* the contact routine's forces depend on v */
+	if (!p->ncrules) gen_pairs(G, M, p); /* the contact routine's forces depend on v */
 	else if (!(p->vpair = calloc(p->ny ? p->ny : 1, sizeof *p->vpair))) exit(2);
 	gen_jacobian(G, p);
 

@@ -1396,13 +1396,22 @@ static int check_call(Stmt *s)
 
 /*
  * contact(pos, radius, pos$1, radius$1) or contact(pos, radius, point$1,
- * normal$1): a pair of mass points or a mass point and a plane, for the
- * runtime's contact routine, which reads the bodies' other properties by
- * their mechanics/mass_point names. Kept only if the pair can touch.
+ * normal$1): mass points, and a mass point and a plane, for the runtime's
+ * contact routine, which reads the bodies' other properties by their
+ * mechanics/mass_point names. The program lists the bodies of each rule
+ * (Contact, ContactBody), not its pairs: the routine finds at run time the
+ * pairs that come near. Two points (both of radius 0) never touch.
  */
 
-static const char *const body_props[CSF_CF_POS2] = { NULL, "v", "a", "m", NULL, "cr", "mu_s", "mu_k", "FN", "Ff" };
-static const char *const plane_props[CSF_CF_POS2] = { NULL, "edge", NULL, NULL, NULL, "cr", "mu_s", "mu_k", NULL, NULL };
+static const char *const body_props[CSF_CF_N] = { NULL, "v", "a", "m", NULL, "cr", "mu_s", "mu_k", "FN", "Ff" };
+static const char *const plane_props[CSF_CF_N] = { NULL, "edge", NULL, NULL, NULL, "cr", "mu_s", "mu_k", NULL, NULL };
+
+/* A binding ($0, $1) of a contact rule, as it is checked: its objects and their properties. */
+typedef struct CPair {
+	Object *a, *b;
+	int plane;            /* b is a plane */
+	Var *f[2][CSF_CF_N];  /* of a and of b, in the order of enum csf_contact_field (csf.h) */
+} CPair;
 
 /* Body k's (0: $0, 1: $1) geometry in rule s on object o: the properties that arguments 2k and
  * 2k + 1 of contact() name, into geo[0..1]. Returns 0 if o lacks one: not this geometry. */
@@ -1415,72 +1424,92 @@ static int contact_geo(Stmt *s, Object *o, int k, Var **geo)
 
 /* Fills body k's fields of c (its a, b and plane set) from geo and the properties the contact
  * routine reads. Returns 0 if one is missing or of the wrong type, reporting it at s if report. */
-static int contact_body(Contact *c, int k, Var **geo, Stmt *s, int report)
+static int contact_body(CPair *c, int k, Var **geo, Stmt *s, int report)
 {
 	Object *o = k ? c->b : c->a;
 	const char *const *names = k && c->plane ? plane_props : body_props;
-	int base = k ? CSF_CF_POS2 : CSF_CF_POS; /* body j's fields follow body i's, in the same order */
-	c->f[base + CSF_CF_POS] = geo[0];
-	c->f[base + CSF_CF_R] = geo[1];
-	for (int f = 0; f < CSF_CF_POS2; f++) {
-		if (!names[f]) continue;
-		Var *v = prop_of(o, names[f]);
-		if (!v || v->isvec != (f == CSF_CF_V || f == CSF_CF_A || f == CSF_CF_FN || f == CSF_CF_FF)) {
+	Var **f = c->f[k];
+	f[CSF_CF_POS] = geo[0];
+	f[CSF_CF_R] = geo[1];
+	for (int i = 0; i < CSF_CF_N; i++) {
+		if (!names[i]) continue;
+		Var *v = prop_of(o, names[i]);
+		if (!v || v->isvec != (i == CSF_CF_V || i == CSF_CF_A || i == CSF_CF_FN || i == CSF_CF_FF)) {
 			if (report)
 				error_at(s->loc, "contact of %s and %s: object '%s' needs %s property '%s' (mechanics/mass_point's "
 				                 "kinds have it)",
-				         c->a->name, c->b->name, o->name, v && v->isvec ? "a scalar" : v ? "a vector" : "the", names[f]);
+				         c->a->name, c->b->name, o->name, v && v->isvec ? "a scalar" : v ? "a vector" : "the", names[i]);
 			return 0;
 		}
-		c->f[base + f] = v;
+		f[i] = v;
 	}
 	return 1;
 }
 
 /* Are the position and velocity of c's body k integrated? A plane's need not be. */
-static int contact_integrated(Contact *c, int k)
+static int contact_integrated(CPair *c, int k)
 {
-	int base = k ? CSF_CF_POS2 : CSF_CF_POS;
-	return (k && c->plane) || (c->f[base + CSF_CF_POS]->state && c->f[base + CSF_CF_V]->state);
+	return (k && c->plane) || (c->f[k][CSF_CF_POS]->state && c->f[k][CSF_CF_V]->state);
 }
 
-/* The contact of bind[0] and bind[1] by rule s, if the pair can touch. */
+/* Checks the binding (a, b) of contact rule s into c, reporting what is wrong. 0 if it is wrong. */
+static int contact_binding(Stmt *s, Object *a, Object *b, CPair *c)
+{
+	Var *geo[4];
+	memset(c, 0, sizeof *c);
+	c->a = a, c->b = b;
+	if (!contact_geo(s, a, 0, geo) || !contact_geo(s, b, 1, geo + 2)) return 0;
+	c->plane = geo[3]->isvec;
+	if (!contact_body(c, 0, geo, s, 1) || !contact_body(c, 1, geo + 2, s, 1)) return 0;
+	if (!contact_integrated(c, 0) || !contact_integrated(c, 1)) {
+		error_at(s->loc, "contact of %s and %s: positions and velocities must be integrated (pos' = v, v' = a)",
+		         a->name, b->name);
+		return 0;
+	}
+	return 1;
+}
+
+/* The contact body of object o with properties f: one per object and geometry. */
+static ContactBody *contact_cbody(Object *o, int plane, Var **f)
+{
+	char *key = xprintf("%d %p %p %d", o->index, (void *)f[CSF_CF_POS], (void *)f[CSF_CF_R], plane);
+	ContactBody *b = map_get(&M->cbody_keys, key);
+	if (b) return b;
+	b = xalloc(sizeof *b);
+	b->o = o, b->plane = plane, b->index = M->cbodies.n;
+	memcpy(b->f, f, sizeof b->f);
+	vec_push(&M->cbodies, b);
+	map_put(&M->cbody_keys, key, b);
+	return b;
+}
+
+static Contact *new_contact(Stmt *s, int every)
+{
+	Contact *r = xalloc(sizeof *r);
+	r->st = s, r->src = cur_src, r->every = every;
+	return r;
+}
+
+/* Rule s with `for`: the pair (bind[0], bind[1]), unless it is two points (they never touch). */
 static void inst_contact(Stmt *s, Object **bind, int nbind)
 {
-	if (nbind < 2) return;
-	Contact c = { 0 };
-	Var *geo[4];
-	c.a = bind[0], c.b = bind[1];
-	if (!contact_geo(s, c.a, 0, geo) || !contact_geo(s, c.b, 1, geo + 2)) return;
-	c.plane = geo[3]->isvec;
-	if (!c.plane && c.a->index > c.b->index && !s->has_for) return; /* the pair (B, A) is the same */
-	c.src = cur_src, c.st = s;
-	if (!contact_body(&c, 0, geo, s, 1) || !contact_body(&c, 1, geo + 2, s, 1)) return;
-	if (!contact_integrated(&c, 0) || !contact_integrated(&c, 1)) {
-		error_at(s->loc, "contact of %s and %s: positions and velocities must be integrated (pos' = v, v' = a)",
-		         c.a->name, c.b->name);
-		return;
-	}
-	if (!c.plane) {
-		const double *pa = c.f[CSF_CF_POS]->init, *pb = c.f[CSF_CF_POS2]->init;
-		double d[3] = { pa[0] - pb[0], pa[1] - pb[1], pa[2] - pb[2] };
-		double dist = csf_vmag3(d[0], d[1], d[2]);
-		if (c.f[CSF_CF_R]->init[0] + c.f[CSF_CF_R2]->init[0] <= 0) return; /* two points never touch */
-		for (int k = 0; k < 3; k++) c.dir[k] = dist > 0 ? d[k] / dist : 0;
-	}
-	Contact *p = xalloc(sizeof *p);
-	*p = c;
-	vec_push(&M->contacts, p);
+	CPair c;
+	if (nbind < 2 || !contact_binding(s, bind[0], bind[1], &c)) return;
+	if (!c.plane && !(c.f[0][CSF_CF_R]->init[0] + c.f[1][CSF_CF_R]->init[0] > 0)) return;
+	Contact *r = new_contact(s, 0);
+	vec_push(&r->b0, contact_cbody(c.a, 0, c.f[0]));
+	vec_push(&r->b1, contact_cbody(c.b, c.plane, c.f[1]));
+	r->nplanes = c.plane;
+	vec_push(&M->contacts, r);
 }
 
-/* What the search for contact pairs knows of an object, as $0 (k = 0) and as $1 (k = 1). */
+/* What the search for contact bodies knows of an object, as $0 (k = 0) and as $1 (k = 1). */
 typedef struct Body {
-	int index;
 	int geo[2];       /* has the geometry */
 	int bad[2];       /* lacks a field the contact routine reads, or is not integrated: an error */
 	int plane;        /* as $1: a plane */
-	double pos[2][3]; /* initial values: position (a plane's point) */
 	double r[2];      /* radius */
+	Var *f[2][CSF_CF_N];
 } Body;
 
 /* What contact rule s needs of every object, in an array indexed like M->objects. */
@@ -1488,18 +1517,17 @@ static Body *contact_bodies(Stmt *s)
 {
 	Body *B = xalloc((size_t)M->objects.n * sizeof *B);
 	for (int i = 0; i < M->objects.n; i++) {
-		B[i].index = i;
 		for (int k = 0; k < 2; k++) {
 			Var *geo[2];
 			if (!contact_geo(s, M->objects.v[i], k, geo)) continue;
-			Contact c = { 0 };
+			CPair c = { 0 };
 			c.a = c.b = M->objects.v[i];
 			c.plane = k && geo[1]->isvec;
 			B[i].geo[k] = 1;
 			B[i].bad[k] = !contact_body(&c, k, geo, s, 0) || !contact_integrated(&c, k);
 			if (k) B[i].plane = c.plane;
-			memcpy(B[i].pos[k], geo[0]->init, sizeof B[i].pos[k]);
 			B[i].r[k] = geo[1]->init[0];
+			memcpy(B[i].f[k], c.f[k], sizeof B[i].f[k]);
 		}
 	}
 	return B;
@@ -1532,39 +1560,107 @@ static void first_bad_pair(Body *B, int n, int *ea, int *eb)
 }
 
 /*
- * A contact rule without `for`: calls inst_contact, in binding order, for the bindings ($0, $1)
- * it keeps or reports, without trying every pair: a $0 with every plane; with every body after
- * it if one of the two has a radius other than 0 (two points never touch); and, last, the first binding that is an error, found from each object alone.
+ * A contact rule without `for`: every mass point with its geometry as $0,
+ * every object with its geometry as $1, in the order of definition; the
+ * first binding that is an error is reported instead. Kept only if one of
+ * its pairs can touch: a mass point and a plane (of another object), or
+ * two mass points the sum of whose radii is positive.
  */
 static void contact_pairs(Stmt *s)
 {
 	int n = M->objects.n, ea, eb;
 	Body *B = contact_bodies(s);
 	first_bad_pair(B, n, &ea, &eb);
-	/* the $1 objects: planes, bodies, and the bodies of radius other than 0 */
-	int *planes = xalloc((size_t)n * sizeof *planes), *bodies = xalloc((size_t)n * sizeof *bodies);
-	int *sized = xalloc((size_t)n * sizeof *sized), nplanes = 0, nbodies = 0, nsized = 0;
-	for (int i = 0; i < n; i++) {
-		if (B[i].geo[1] && B[i].plane) planes[nplanes++] = i;
-		if (B[i].geo[1] && !B[i].plane) bodies[nbodies++] = i;
-		if (B[i].geo[1] && !B[i].plane && B[i].r[1] != 0) sized[nsized++] = i;
+	if (ea < n) {
+		CPair c;
+		contact_binding(s, M->objects.v[ea], M->objects.v[eb], &c);
+		return;
 	}
-	for (int a = 0; a < n && a <= ea; a++) {
-		if (!B[a].geo[0]) continue;
-		const int *L = B[a].r[0] != 0 ? bodies : sized;
-		int nl = B[a].r[0] != 0 ? nbodies : nsized;
-		int p = 0, q = first_greater(L, nl, a);
-		for (;;) { /* merge the two ascending lists of $1 */
-			if (p < nplanes && planes[p] == a) p++;
-			int bp = p < nplanes ? planes[p] : n, bq = q < nl ? L[q] : n;
-			int b = bp < bq ? bp : bq;
-			if (b == n || (a == ea && b >= eb)) break;
-			inst_contact(s, (Object *[]){ M->objects.v[a], M->objects.v[b] }, 2);
-			p += bp == b;
-			q += bq == b;
+	/* the bodies it applies to (a bad one here has no binding) */
+	for (int i = 0; i < n; i++)
+		for (int k = 0; k < 2; k++) B[i].geo[k] = B[i].geo[k] && !B[i].bad[k];
+	int n0 = 0, touch = 0;
+	for (int i = 0; i < n; i++) n0 += B[i].geo[0];
+	double maxr0 = -HUGE_VAL; /* the largest radius of a $0 defined before */
+	for (int i = 0; i < n && !touch; i++) {
+		if (B[i].geo[1] && B[i].plane) touch = n0 > B[i].geo[0];
+		else if (B[i].geo[1] && maxr0 + B[i].r[1] > 0) touch = 1;
+		if (B[i].geo[0] && B[i].r[0] > maxr0) maxr0 = B[i].r[0];
+	}
+	if (!touch) return;
+	Contact *r = new_contact(s, 1);
+	for (int i = 0; i < n; i++) {
+		if (B[i].geo[0]) vec_push(&r->b0, contact_cbody(M->objects.v[i], 0, B[i].f[0]));
+		if (B[i].geo[1]) vec_push(&r->b1, contact_cbody(M->objects.v[i], B[i].plane, B[i].f[1]));
+		if (B[i].geo[1] && B[i].plane) r->nplanes++;
+	}
+	vec_push(&M->contacts, r);
+}
+
+/*
+ * For --explain: which bodies the contact rules of statement s apply to.
+ * Returns how many lines it wrote.
+ */
+static int explain_contacts(Model *Mo, Stmt *s, FILE *f)
+{
+	int lines = 0;
+	for (int k = 0; k < Mo->contacts.n; k++) {
+		Contact *r = Mo->contacts.v[k];
+		if (r->st != s) continue;
+		lines++;
+		if (!r->every) {
+			fprintf(f, "  for %s with %s: the contact routine (%s); computed in rhs and out\n",
+			        ((ContactBody *)r->b0.v[0])->o->name, ((ContactBody *)r->b1.v[0])->o->name,
+			        r->nplanes ? "a mass point and a plane" : "two mass points");
+			continue;
+		}
+		/* the mass points ($0, and $1 that are not planes) and the planes, each once */
+		char *seen = xalloc((size_t)Mo->cbodies.n + 1);
+		Vec names = { 0 };
+		int npts = 0;
+		for (int q = 0; q < 2; q++)
+			for (int j = 0; j < (q ? r->b1.n : r->b0.n); j++) {
+				ContactBody *b = (q ? r->b1.v : r->b0.v)[j];
+				if (b->plane || seen[b->index]) continue;
+				seen[b->index] = 1, npts++;
+				vec_push(&names, b->o->name);
+			}
+		for (int j = 0; j < r->b1.n; j++)
+			if (((ContactBody *)r->b1.v[j])->plane) vec_push(&names, ((ContactBody *)r->b1.v[j])->o->name);
+		fprintf(f, "  for %d mass point%s", npts, npts == 1 ? "" : "s");
+		if (r->nplanes) fprintf(f, " and %d plane%s", r->nplanes, r->nplanes == 1 ? "" : "s");
+		if (names.n <= 6)
+			for (int j = 0; j < names.n; j++) fprintf(f, "%s%s", j ? ", " : " (", (char *)names.v[j]);
+		fprintf(f, "%s: the contact routine (%s), on the pairs it finds near at run time%s; computed in rhs and out\n",
+		        names.n <= 6 ? ")" : "", r->nplanes == r->b1.n ? "a mass point and a plane" : r->nplanes ? "two mass points, a mass point and a plane" : "two mass points",
+		        r->nplanes == r->b1.n ? "" : " (two points never touch)");
+	}
+	return lines;
+}
+
+/* Every mass point of a contact rule must have its a determined (by Newton's second law). */
+static void contact_accels(void)
+{
+	char *done = xalloc((size_t)M->cbodies.n + 1);
+	for (int i = 0; i < M->contacts.n; i++) {
+		Contact *r = M->contacts.v[i];
+		for (int k = 0; k < 2; k++) {
+			Vec *L = k ? &r->b1 : &r->b0, *O = k ? &r->b0 : &r->b1;
+			for (int j = 0; j < L->n; j++) {
+				ContactBody *b = L->v[j];
+				Var *a = b->f[CSF_CF_A];
+				if (b->plane || !a || sema_canon(a)->det || done[b->index]) continue;
+				done[b->index] = 1;
+				Object *other = NULL; /* the first body it can meet, to name the pair */
+				for (int q = 0; q < O->n && !other; q++)
+					if (((ContactBody *)O->v[q])->o != b->o) other = ((ContactBody *)O->v[q])->o;
+				error_at(r->st->loc, "contact of %s and %s: no rule determines %s.a (Newton's second law, "
+				                     "'rule: RF = a.mul(m)' of mechanics/rules, does)",
+				         k ? (other ? other->name : "?") : b->o->name, k ? b->o->name : (other ? other->name : "?"),
+				         b->o->name);
+			}
 		}
 	}
-	if (ea < n) inst_contact(s, (Object *[]){ M->objects.v[ea], M->objects.v[eb] }, 2);
 }
 
 static Vec deriv_insts;
@@ -1836,16 +1932,7 @@ static Model *resolve(Stmt *stmts)
 			else contact_pairs(s);
 		}
 	}
-	for (int i = 0; i < M->contacts.n; i++) {
-		Contact *c = M->contacts.v[i];
-		for (int k = 0; k < 2; k++) {
-			Var *a = c->f[k ? CSF_CF_A2 : CSF_CF_A];
-			if (a && !sema_canon(a)->det)
-				error_at(c->st->loc, "contact of %s and %s: no rule determines %s.a (Newton's second law, "
-				                     "'rule: RF = a.mul(m)' of mechanics/rules, does)",
-				         c->a->name, c->b->name, (k ? c->b : c->a)->name);
-		}
-	}
+	contact_accels();
 	for (int i = 0; i < deriv_insts.n; i++) {
 		resolve_deriv(deriv_insts.v[i]);
 		vec_push(&M->insts, deriv_insts.v[i]);
@@ -1928,13 +2015,7 @@ void sema_explain(Model *Mo, FILE *f)
 				fprintf(f, "; computed in %s", I->needed[0] && I->needed[1] ? "rhs and out" : I->needed[0] ? "rhs" : "out");
 			fputc('\n', f);
 		}
-		for (int k = 0; k < Mo->contacts.n; k++) {
-			Contact *c = Mo->contacts.v[k];
-			if (c->st != s) continue;
-			n++;
-			fprintf(f, "  for %s with %s: the contact routine (%s); computed in rhs and out\n", c->a->name, c->b->name,
-			        c->plane ? "a mass point and a plane" : "two mass points");
-		}
+		n += explain_contacts(Mo, s, f);
 		if (!n) fprintf(f, "  applies to no %s\n", s->call ? "pair that can touch" : "object");
 	}
 	if (!Mo->shaped && *Mo->unshaped_why) fprintf(f, "rules compiled once per object, not per shape: %s\n", Mo->unshaped_why);

@@ -105,14 +105,24 @@ struct Inst {
 	int acc;         /* gen.c: a $1 F rule's sums over $1, an array of vectors (slot, -1 before) */
 };
 
-/* A contact pair (mechanics/rules 1-4), handled by the runtime's contact routine. */
+/* A body of the contact routine: a mass point or a plane, with the properties the routine reads. */
+typedef struct ContactBody {
+	Object *o;
+	int plane;
+	Var *f[CSF_CF_N]; /* in the order of enum csf_contact_field (csf.h); NULL: not read */
+	int index;        /* in Model.cbodies */
+} ContactBody;
+
+/*
+ * A contact rule (mechanics/rules 1-4) and the bodies it applies to; the
+ * runtime's contact routine finds which of its pairs touch (csf_crule).
+ */
 typedef struct Contact {
-	Object *a, *b;
-	int plane;       /* b is a plane */
-	int src;
 	Stmt *st;
-	Var *f[CSF_CF_WORK]; /* properties, in the order of enum csf_contact_field (csf.h) */
-	double dir[3];   /* two points: the unit vector from b to a */
+	int src;
+	int every;       /* 1: every pair of the lists; 0: a rule with `for`, its one pair */
+	Vec b0, b1;      /* of ContactBody*: the $0 mass points, the $1 mass points or planes */
+	int nplanes;     /* of b1 */
 } Contact;
 
 typedef struct WatchCol { char *name; Var *var; int comp; int member; /* index in var's shape (temps) */ } WatchCol;
@@ -123,7 +133,9 @@ typedef struct Model {
 	Var *time;
 	Vec insts;       /* of Inst*: algebraic rules in resolution order, then derivatives, then assertions */
 	Vec temps;       /* of Var* */
-	Vec contacts;    /* of Contact*: pairs that can touch */
+	Vec contacts;    /* of Contact*: the contact rules that have a pair that can touch */
+	Vec cbodies;     /* of ContactBody*: their bodies */
+	Map cbody_keys;  /* ContactBody* by object and geometry */
 	Vec cols;        /* of WatchCol* */
 	Vec stmts;       /* of Stmt*: rules and assertions in source order (for --explain) */
 	Vec srcs;        /* of Stmt* or Eqn* text: see gen.c */

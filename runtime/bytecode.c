@@ -21,7 +21,8 @@
 #include "bytecode.h"
 
 _Static_assert(sizeof(csf_src) == 12 && sizeof(csf_col) == 8 && sizeof(csf_assert) == 8 && sizeof(csf_prop) == 16 &&
-               sizeof(csf_target) == 20 && sizeof(csf_line) == 8, "tables are arrays of u32");
+               sizeof(csf_target) == 20 && sizeof(csf_line) == 8 && sizeof(csf_cbody) == 4 * (3 + CSF_CF_N) &&
+               sizeof(csf_crule) == 24, "tables are arrays of u32");
 
 const csf_opinfo csf_opinfo_table[CSF_NOPCODES] = {
 #define OP(name, n, a, b, c, d, syn) \
@@ -126,8 +127,12 @@ int csf_encode(const csf_prog *p, unsigned char **out, size_t *len)
 	put_u32s(&w, (const uint32_t *)p->props, 4 * (size_t)p->nprops);
 	put_u32(&w, p->nevents);
 	put_u32s(&w, (const uint32_t *)p->events, 4 * (size_t)p->nevents);
-	put_u32(&w, p->ncontacts);
-	put_u32s(&w, (const uint32_t *)p->contacts, (2 + CSF_CF_N) * (size_t)p->ncontacts);
+	put_u32(&w, p->ncbodies);
+	put_u32s(&w, (const uint32_t *)p->cbodies, (3 + CSF_CF_N) * (size_t)p->ncbodies);
+	put_u32(&w, p->ncmembers);
+	put_u32s(&w, p->cmembers, p->ncmembers);
+	put_u32(&w, p->ncrules);
+	put_u32s(&w, (const uint32_t *)p->crules, 6 * (size_t)p->ncrules);
 	for (int s = 0; s < CSF_NSEC; s++) {
 		put_u32(&w, p->ntargets[s]);
 		put_u32s(&w, (const uint32_t *)p->targets[s], 5 * (size_t)p->ntargets[s]);
@@ -257,7 +262,9 @@ int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, siz
 	ARR(p->nobjects, p->objects, 4);
 	ARR(p->nprops, p->props, sizeof(csf_prop));
 	ARR(p->nevents, p->events, sizeof(csf_event));
-	ARR(p->ncontacts, p->contacts, sizeof(csf_contact));
+	ARR(p->ncbodies, p->cbodies, sizeof(csf_cbody));
+	ARR(p->ncmembers, p->cmembers, 4);
+	ARR(p->ncrules, p->crules, sizeof(csf_crule));
 	for (int s = 0; s < CSF_NSEC; s++) {
 		ARR(p->ntargets[s], p->targets[s], sizeof(csf_target));
 		ARR(p->ncode[s], p->code[s], 4);
@@ -459,6 +466,53 @@ static int check_code(const csf_prog *p, int s, char *err, size_t errlen)
 	return r;
 }
 
+/*
+ * The contact tables: every slot in memory (a mass point's position in the
+ * state, where the broad phase reads it from state vectors), every body and
+ * list in range, a rule's $0 mass points, a `for` rule's two lists as long
+ * and its pairs of two objects, and no body twice in a list.
+ */
+static int verify_contacts(const csf_prog *p, char *err, size_t errlen)
+{
+	for (uint32_t i = 0; i < p->ncbodies; i++) {
+		const csf_cbody *b = &p->cbodies[i];
+		static const unsigned char width[CSF_CF_N] = { 3, 3, 3, 1, 1, 1, 1, 1, 3, 3 };
+		int ok = b->plane <= 1 && b->varies <= 1 && b->object < p->nobjects;
+		for (int f = 0; ok && f < CSF_CF_N; f++) {
+			uint32_t w = width[f];
+			if (b->plane && f == CSF_CF_R) w = 3; /* a plane's normal */
+			if (b->plane && (f == CSF_CF_A || f == CSF_CF_M || f == CSF_CF_FN || f == CSF_CF_FF)) continue;
+			ok = slot_ok(p, b->s[f], w);
+		}
+		if (ok && !b->plane)
+			ok = b->s[CSF_CF_POS] >= p->ystart && (uint64_t)b->s[CSF_CF_POS] + 3 <= (uint64_t)p->ystart + p->ny;
+		if (!ok) return fail(err, errlen, "contact body %lu out of range", (unsigned long)i);
+	}
+	for (uint32_t i = 0; i < p->ncmembers; i++)
+		if (p->cmembers[i] >= p->ncbodies) return fail(err, errlen, "contact list entry %lu out of range", (unsigned long)i);
+	uint64_t *seen = calloc((size_t)p->ncbodies + 1, sizeof *seen); /* the last list each body was in, + 1 */
+	if (!seen) return fail(err, errlen, "out of memory");
+	int bad = 0;
+	uint32_t i = 0;
+	for (; i < p->ncrules && !bad; i++) {
+		const csf_crule *r = &p->crules[i];
+		bad = r->src >= p->nsrcs || r->every > 1 || (uint64_t)r->first0 + r->n0 > p->ncmembers ||
+		      (uint64_t)r->first1 + r->n1 > p->ncmembers || (!r->every && r->n0 != r->n1);
+		for (uint32_t role = 0; role < 2 && !bad; role++)
+			for (uint32_t k = 0; k < (role ? r->n1 : r->n0) && !bad; k++) {
+				uint32_t b = p->cmembers[(role ? r->first1 : r->first0) + k];
+				uint64_t list = 2 * (uint64_t)i + role + 1;
+				bad = (role == 0 && p->cbodies[b].plane) || seen[b] == list;
+				seen[b] = list;
+				if (!r->every && role == 1)
+					bad = bad || p->cbodies[b].object == p->cbodies[p->cmembers[r->first0 + k]].object;
+			}
+	}
+	free(seen);
+	if (bad) return fail(err, errlen, "contact rule %lu out of range", (unsigned long)(i - 1));
+	return 0;
+}
+
 int csf_verify(const csf_prog *p, char *err, size_t errlen)
 {
 	if (p->nstrs == 0 || p->strs[p->nstrs - 1] != '\0') return fail(err, errlen, "string table is not NUL-terminated");
@@ -505,18 +559,7 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 		if (e->kind > 1 || !slot_ok(p, e->value, 1) || !slot_ok(p, e->mode, 1) || e->src >= p->nsrcs)
 			return fail(err, errlen, "event %lu out of range", (unsigned long)i);
 	}
-	for (uint32_t i = 0; i < p->ncontacts; i++) {
-		const csf_contact *c = &p->contacts[i];
-		static const unsigned char width[CSF_CF_N] = { 3, 3, 3, 1, 1, 1, 1, 1, 3, 3, 3, 3, 3, 1, 1, 1, 1, 1, 3, 3, CSF_CW_N };
-		int ok = c->plane <= 1 && c->src < p->nsrcs;
-		for (int f = 0; ok && f < CSF_CF_N; f++) {
-			uint32_t w = width[f];
-			if (c->plane && f == CSF_CF_R2) w = 3; /* a plane's normal */
-			if (c->plane && (f == CSF_CF_A2 || f == CSF_CF_M2 || f == CSF_CF_FN2 || f == CSF_CF_FF2)) continue;
-			ok = slot_ok(p, c->s[f], w);
-		}
-		if (!ok) return fail(err, errlen, "contact %lu out of range", (unsigned long)i);
-	}
+	if (verify_contacts(p, err, errlen)) return -1;
 	for (int s = 0; s < CSF_NSEC; s++) {
 		for (uint32_t i = 0; i < p->ntargets[s]; i++) {
 			const csf_target *t = &p->targets[s][i];
@@ -546,7 +589,9 @@ void csf_prog_free(csf_prog *p)
 	free(p->objects);
 	free(p->props);
 	free(p->events);
-	free(p->contacts);
+	free(p->cbodies);
+	free(p->cmembers);
+	free(p->crules);
 	for (int s = 0; s < CSF_NSEC; s++) {
 		free(p->targets[s]);
 		free(p->code[s]);

@@ -29,7 +29,11 @@
  *   objects   u32 n, n x {u32 name}
  *   props     u32 n, n x {u32 object, name, slot, width}
  *   events    u32 n, n x {u32 kind, value, mode, src}
- *   contacts  u32 n, n x {u32 plane, src, CSF_CF_N slots} (csf.h)
+ *   cbodies   u32 n, n x {u32 plane, object, varies, CSF_CF_N slots}: the
+ *             bodies of the contact routine, mass points and planes (csf.h)
+ *   cmembers  u32 n, n x u32: the contact rules' lists of bodies
+ *   crules    u32 n, n x {u32 src, every, first0, n0, first1, n1}: the
+ *             contact rules, each with its $0 and $1 lists in cmembers
  *   then for each code section (RHS, OUT, JAC):
  *   targets   u32 n, n x {u32 slot, width, src, name, object}
  *   code      u32 n, n words (opcode, operands...)
@@ -42,7 +46,7 @@
 #define CSF_BYTECODE_H
 
 #define CSFB_MAGIC "CSFB"
-#define CSFB_VERSION 7u
+#define CSFB_VERSION 8u
 #define CSFB_INT_PROBE 0x01020304u
 #define CSFB_FLOAT_PROBE 370.5
 #define CSFB_HEADER_SIZE 28u

@@ -31,26 +31,74 @@
  * restitution e = min(cr_i, cr_j) (the less elastic one), so the defaults
  * (cr 1, mu 0) leave the other body's coefficient as it is. Several
  * simultaneous contacts are solved together by Gauss-Seidel sweeps.
+ *
+ * The program lists the bodies of each contact rule, not its pairs; the
+ * routine works on the candidate pairs only, those near enough to matter,
+ * found by a broad phase (below, "the candidate pairs") and kept in the
+ * order of the pairs, so that what it computes is what it would compute
+ * for every pair of the scene: an apart pair that is not a candidate has
+ * a positive gap at every instant its guard would be looked at, and does
+ * nothing. Two points (radius 0) never touch.
  */
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "csf.h"
 
 enum { APART, SLIDING, STICKING, HOPPING }; /* the modes of a pair */
 
-#define F(c, f) ((c)->s[CSF_CF_##f])
-#define W(c, k) ((c)->s[CSF_CF_WORK] + CSF_CW_##k)
+/* A pair's work values: mode, the two guards, the normal force's size, the friction force,
+   the sliding direction, the time a hop lands. A pair that is not a candidate is apart. */
+enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_N = 11 };
+
+/* A candidate pair: body i (a mass point, $0) and body j (a mass point or a plane, $1). */
+typedef struct cpair {
+	uint32_t rule, k0, k1;   /* its place in the order of pairs: its rule, $0's and $1's place in its lists */
+	uint32_t plane;          /* j is a plane */
+	const uint32_t *si, *sj; /* the property slots of i and j (csf_cbody) */
+	double w[W_N];
+} cpair;
+
+/* A pair's key, for sorting: rule, k0, k1. */
+typedef struct pkey { uint32_t rule, k0, k1; } pkey;
+
+/* Where a mass point is in the lists of a rule without `for`: rule, role (0 $0, 1 $1), place. */
+typedef struct memb { uint32_t rule, role, place; } memb;
+
+struct csf_contacts {
+	const csf_prog *p;
+	cpair *pairs, *next;      /* the candidates; the next ones (csf_contacts_find) */
+	uint32_t n, nnext;
+	size_t cap, capnext;
+	long *from;               /* next[k]'s place in pairs, or -1 (new) */
+	double *old;              /* a copy of a guard vector while it is remapped */
+	size_t capfrom, capold;
+	pkey *keys;               /* the pairs found, before sorting */
+	size_t nkeys, capkeys;
+	double *box;              /* 6 per body (lo xyz, hi xyz), its reach over the states; planes: unused */
+	double *mg;               /* per body, the rounding margin of its reach */
+	double *pn;               /* 4 per plane: the unit normal, and |point|_1 */
+	uint32_t *sap, nsap;      /* the mass points of rules without `for`, in sweep order */
+	int axis;                 /* the sweep's axis, -1 before the first */
+	uint32_t *mstart;         /* per body, its memberships: mem[mstart[b] .. mstart[b + 1]) */
+	memb *mem;
+};
+
+#define I(c, f) ((c)->si[CSF_CF_##f])
+#define J(c, f) ((c)->sj[CSF_CF_##f])
+#define W(c, k) ((c)->w[W_##k])
+#define WV(c, k) ((c)->w + W_##k)
 
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 static double mag3(const double *a) { return csf_vmag3(a[0], a[1], a[2]); }
 
-static double inv_mass_i(const csf_contact *c, const double *m) { return 1.0 / m[F(c, M)]; }
-static double inv_mass_j(const csf_contact *c, const double *m) { return c->plane ? 0.0 : 1.0 / m[F(c, M2)]; }
+static double inv_mass_i(const cpair *c, const double *m) { return 1.0 / m[I(c, M)]; }
+static double inv_mass_j(const cpair *c, const double *m) { return c->plane ? 0.0 : 1.0 / m[J(c, M)]; }
 
 /* Relative value of vector property field fi of i and fj of j (j a plane: 0). */
-static void rel(const csf_contact *c, const double *m, uint32_t fi, uint32_t fj, double out[3])
+static void rel(const cpair *c, const double *m, uint32_t fi, uint32_t fj, double out[3])
 {
 	for (int k = 0; k < 3; k++) out[k] = m[fi + k] - (c->plane ? 0.0 : m[fj + k]);
 }
@@ -58,53 +106,61 @@ static void rel(const csf_contact *c, const double *m, uint32_t fi, uint32_t fj,
 /*
  * The pair's unit normal n (from j towards i), its gap (returned) and the
  * centripetal term of the gap's second derivative (spheres moving round
- * each other): gap'' = (a_i - a_j) . n + curv.
+ * each other): gap'' = (a_i - a_j) . n + curv. The positions of i and j
+ * (a mass point) are at pi and pj, the rest in m. Two points (radius 0)
+ * never touch: their gap is infinite; two spheres at one place have no
+ * normal (n = 0), their gap is minus the sum of their radii.
  */
-static double geometry(const csf_contact *c, const double *m, double n[3], double *curv)
+static double geometry_at(const cpair *c, const double *m, const double *pi, const double *pj, double n[3],
+                          double *curv)
 {
-	const double *pi = m + F(c, POS);
 	*curv = 0;
 	if (c->plane) {
-		const double *q = m + F(c, POS2), *nn = m + F(c, R2);
+		const double *q = m + J(c, POS), *nn = m + J(c, R);
 		double k = mag3(nn), d[3];
 		for (int i = 0; i < 3; i++) n[i] = nn[i] / k, d[i] = pi[i] - q[i];
-		return dot3(d, n) - m[F(c, R)];
+		return dot3(d, n) - m[I(c, R)];
 	}
-	const double *pj = m + F(c, POS2);
 	double d[3] = { pi[0] - pj[0], pi[1] - pj[1], pi[2] - pj[2] };
-	double R = m[F(c, R)] + m[F(c, R2)], dist = mag3(d);
+	double R = m[I(c, R)] + m[J(c, R)], dist = mag3(d);
 	if (R > 0 && dist > 0) {
 		double vr[3];
 		for (int i = 0; i < 3; i++) n[i] = d[i] / dist;
-		rel(c, m, F(c, V), F(c, V2), vr);
+		rel(c, m, I(c, V), J(c, V), vr);
 		double vn = dot3(vr, n);
 		*curv = (dot3(vr, vr) - vn * vn) / dist;
 		return dist - R;
 	}
-	/* two points: the line they move on, fixed when the program was compiled */
-	memcpy(n, m + W(c, DIR), 3 * sizeof *n);
-	return dot3(d, n) - R;
+	n[0] = n[1] = n[2] = 0;
+	return R > 0 ? -R : HUGE_VAL;
+}
+
+static double geometry(const cpair *c, const double *m, double n[3], double *curv)
+{
+	return geometry_at(c, m, m + I(c, POS), c->plane ? NULL : m + J(c, POS), n, curv);
 }
 
 /*
- * A plane with an edge (V2 holds the vector from its point to the edge line,
- * perpendicular to it; zero: no edge) ends there: how far inside body i is
- * (negative past the edge). HUGE_VAL without an edge.
+ * A plane with an edge (its V slot holds the vector from its point to the edge line,
+ * perpendicular to it; zero: no edge) ends there: how far inside body i,
+ * at pi, is (negative past the edge). HUGE_VAL without an edge.
  */
-static double inside(const csf_contact *c, const double *m)
+static double inside_at(const cpair *c, const double *m, const double *pi)
 {
 	if (!c->plane) return HUGE_VAL;
-	const double *e = m + F(c, V2), *pi = m + F(c, POS), *q = m + F(c, POS2);
+	const double *e = m + J(c, V), *q = m + J(c, POS);
 	double len = mag3(e);
 	if (!(len > 0)) return HUGE_VAL;
 	double d[3] = { pi[0] - q[0], pi[1] - q[1], pi[2] - q[2] };
 	return len - dot3(d, e) / len;
 }
 
+static double inside(const cpair *c, const double *m) { return inside_at(c, m, m + I(c, POS)); }
+
 /* The pair's length scale: the magnitudes its gap is computed from. */
-static double scale(const csf_contact *c, const double *m)
+static double scale(const cpair *c, const double *m)
 {
-	return mag3(m + F(c, POS)) + mag3(m + F(c, POS2)) + m[F(c, R)] + (c->plane ? 0 : m[F(c, R2)]);
+	return mag3(m + I(c, POS)) + mag3(m + J(c, POS)) + m[I(c, R)] + (c->plane ? 0 : m[J(c, R)]);
 }
 
 /*
@@ -112,34 +168,34 @@ static double scale(const csf_contact *c, const double *m)
  * place of the magnitudes the gap is computed from. A gap within it of zero
  * is zero, and a hop no higher than it cannot be followed.
  */
-static double resolution(const csf_contact *c, const double *m)
+static double resolution(const cpair *c, const double *m)
 {
 	return 2 * DBL_EPSILON * scale(c, m);
 }
 
 /* Sliding or sticking: pressed together by a normal force. */
-static int in_contact(const csf_contact *c, const double *m)
+static int in_contact(const cpair *c)
 {
-	return m[W(c, MODE)] == SLIDING || m[W(c, MODE)] == STICKING;
+	return W(c, MODE) == SLIDING || W(c, MODE) == STICKING;
 }
 
-static int has_friction(const csf_contact *c, const double *m)
+static int has_friction(const cpair *c, const double *m)
 {
-	return m[F(c, MUS)] > 0 || m[F(c, MUK)] > 0 || (m[F(c, MUS2)] > 0 || m[F(c, MUK2)] > 0);
+	return m[I(c, MUS)] > 0 || m[I(c, MUK)] > 0 || (m[J(c, MUS)] > 0 || m[J(c, MUK)] > 0);
 }
-static double mu_s(const csf_contact *c, const double *m) { return csf_max(m[F(c, MUS)], m[F(c, MUS2)]); }
-static double mu_k(const csf_contact *c, const double *m) { return csf_max(m[F(c, MUK)], m[F(c, MUK2)]); }
-static double restitution(const csf_contact *c, const double *m) { return csf_min(m[F(c, CR)], m[F(c, CR2)]); }
+static double mu_s(const cpair *c, const double *m) { return csf_max(m[I(c, MUS)], m[J(c, MUS)]); }
+static double mu_k(const cpair *c, const double *m) { return csf_max(m[I(c, MUK)], m[J(c, MUK)]); }
+static double restitution(const cpair *c, const double *m) { return csf_min(m[I(c, CR)], m[J(c, CR)]); }
 
 /* Adds force f (on i; -f on j) to both accelerations and to force property fi/fj. */
-static void add_force(const csf_contact *c, double *m, const double f[3], uint32_t fi, uint32_t fj)
+static void add_force(cpair *c, double *m, const double f[3], uint32_t fi, uint32_t fj)
 {
 	double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m);
 	for (int k = 0; k < 3; k++) {
-		m[F(c, A) + k] += f[k] * wi;
+		m[I(c, A) + k] += f[k] * wi;
 		m[fi + k] += f[k];
 		if (!c->plane) {
-			m[F(c, A2) + k] -= f[k] * wj;
+			m[J(c, A) + k] -= f[k] * wj;
 			m[fj + k] -= f[k];
 		}
 	}
@@ -153,100 +209,104 @@ static void tangential(const double x[3], const double n[3], double out[3])
 }
 
 /* The relative tangential velocity of the pair (normal n). */
-static void slip_velocity(const csf_contact *c, const double *m, const double n[3], double vt[3])
+static void slip_velocity(const cpair *c, const double *m, const double n[3], double vt[3])
 {
 	double vr[3];
-	rel(c, m, F(c, V), F(c, V2), vr);
+	rel(c, m, I(c, V), J(c, V), vr);
 	tangential(vr, n, vt);
 }
 
 void csf_contact_apply(const csf_prog *p, double *m)
 {
-	for (uint32_t i = 0; i < p->ncontacts; i++) {
-		const csf_contact *c = &p->contacts[i];
-		for (int k = 0; k < 3; k++) {
-			m[F(c, FN) + k] = m[F(c, FF) + k] = m[W(c, F) + k] = 0;
-			if (!c->plane) m[F(c, FN2) + k] = m[F(c, FF2) + k] = 0;
-		}
-		m[W(c, LAM)] = 0;
+	csf_contacts *cs = p->crun;
+	if (!cs) return;
+	for (uint32_t b = 0; b < p->ncbodies; b++) {
+		const csf_cbody *cb = &p->cbodies[b];
+		if (cb->plane) continue;
+		for (int k = 0; k < 3; k++) m[cb->s[CSF_CF_FN] + k] = m[cb->s[CSF_CF_FF] + k] = 0;
+	}
+	for (uint32_t i = 0; i < cs->n; i++) {
+		cpair *c = &cs->pairs[i];
+		for (int k = 0; k < 3; k++) WV(c, F)[k] = 0;
+		W(c, LAM) = 0;
 	}
 	/* Gauss-Seidel sweeps: with one contact the second sweep changes nothing */
 	for (int sweep = 0; sweep < 100; sweep++) {
 		double change = 0, size = 0;
-		for (uint32_t i = 0; i < p->ncontacts; i++) {
-			const csf_contact *c = &p->contacts[i];
-			if (!in_contact(c, m)) continue;
+		for (uint32_t i = 0; i < cs->n; i++) {
+			cpair *c = &cs->pairs[i];
+			if (!in_contact(c)) continue;
 			double n[3], curv, ar[3], f[3];
 			geometry(c, m, n, &curv);
 			double w = inv_mass_i(c, m) + inv_mass_j(c, m);
-			rel(c, m, F(c, A), F(c, A2), ar);
+			rel(c, m, I(c, A), J(c, A), ar);
 			double dl = -(dot3(ar, n) + curv) / w, dn[3] = { dl * n[0], dl * n[1], dl * n[2] };
-			m[W(c, LAM)] += dl;
-			add_force(c, m, dn, F(c, FN), F(c, FN2));
+			W(c, LAM) += dl;
+			add_force(c, m, dn, I(c, FN), J(c, FN));
 			change = csf_max(change, fabs(dl));
-			size = csf_max(size, fabs(m[W(c, LAM)]));
+			size = csf_max(size, fabs(W(c, LAM)));
 			if (!has_friction(c, m)) continue;
-			double *fc = m + W(c, F);
-			if (m[W(c, MODE)] == SLIDING) {
+			double *fc = WV(c, F);
+			if (W(c, MODE) == SLIDING) {
 				double vt[3];
 				slip_velocity(c, m, n, vt);
 				/* against the sliding; once it has turned back (past the guard's zero, before the
 				   event is located) against its direction at the start, so that the force is smooth
 				   up to the crossing and the integrator sees no switching */
-				double s = mag3(vt), k = mu_k(c, m) * fabs(m[W(c, LAM)]);
-				int ahead = dot3(vt, m + W(c, DS)) > 0;
-				for (int j = 0; j < 3; j++) f[j] = -k * (ahead ? vt[j] / s : m[W(c, DS) + j]);
+				double s = mag3(vt), k = mu_k(c, m) * fabs(W(c, LAM));
+				int ahead = dot3(vt, WV(c, DS)) > 0;
+				for (int j = 0; j < 3; j++) f[j] = -k * (ahead ? vt[j] / s : WV(c, DS)[j]);
 			} else { /* sticking: cancel the relative tangential acceleration */
 				double at[3];
-				rel(c, m, F(c, A), F(c, A2), ar);
+				rel(c, m, I(c, A), J(c, A), ar);
 				tangential(ar, n, at);
 				for (int j = 0; j < 3; j++) f[j] = fc[j] - at[j] / w;
 			}
 			double df[3] = { f[0] - fc[0], f[1] - fc[1], f[2] - fc[2] };
 			memcpy(fc, f, sizeof f);
-			add_force(c, m, df, F(c, FF), F(c, FF2));
+			add_force(c, m, df, I(c, FF), J(c, FF));
 			change = csf_max(change, mag3(df));
 			size = csf_max(size, mag3(f));
 		}
 		if (change <= 1e-15 * size) break;
 	}
-	for (uint32_t i = 0; i < p->ncontacts; i++) {
-		const csf_contact *c = &p->contacts[i];
+	for (uint32_t i = 0; i < cs->n; i++) {
+		cpair *c = &cs->pairs[i];
 		double n[3], curv;
 		double gap = geometry(c, m, n, &curv);
-		double *g = m + W(c, G0);
+		double *g = WV(c, G0);
 		double in = inside(c, m);
-		if (m[W(c, MODE)] == HOPPING) { /* the hop lands */
-			g[0] = m[W(c, TL)] - m[p->tslot];
+		if (W(c, MODE) == HOPPING) { /* the hop lands */
+			g[0] = W(c, TL) - m[p->tslot];
 			g[1] = 1;
 			continue;
 		}
-		if (!in_contact(c, m)) { /* the gap closes over the plane (not past its edge) */
+		if (!in_contact(c)) { /* the gap closes over the plane (not past its edge) */
 			g[0] = csf_max(gap, -in);
 			g[1] = 1;
 			continue;
 		}
-		g[0] = csf_min(m[W(c, LAM)], in); /* the normal force would pull, or the body left the edge */
+		g[0] = csf_min(W(c, LAM), in); /* the normal force would pull, or the body left the edge */
 		if (!has_friction(c, m)) {
 			g[1] = 1;
-		} else if (m[W(c, MODE)] == SLIDING) {
+		} else if (W(c, MODE) == SLIDING) {
 			double vt[3];
 			slip_velocity(c, m, n, vt);
-			g[1] = dot3(vt, m + W(c, DS));
+			g[1] = dot3(vt, WV(c, DS));
 		} else {
-			g[1] = mu_s(c, m) * fabs(m[W(c, LAM)]) - mag3(m + W(c, F));
+			g[1] = mu_s(c, m) * fabs(W(c, LAM)) - mag3(WV(c, F));
 		}
 	}
 }
 
 /* Changes the relative velocity of the pair by dv (along any direction), conserving momentum. */
-static void add_impulse(const csf_contact *c, double *m, const double dv[3])
+static void add_impulse(cpair *c, double *m, const double dv[3])
 {
 	double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), w = wi + wj;
 	for (int k = 0; k < 3; k++) {
 		double j = dv[k] / w; /* the impulse on i */
-		m[F(c, V) + k] += j * wi;
-		if (!c->plane) m[F(c, V2) + k] -= j * wj;
+		m[I(c, V) + k] += j * wi;
+		if (!c->plane) m[J(c, V) + k] -= j * wj;
 	}
 }
 
@@ -255,59 +315,60 @@ static void add_impulse(const csf_contact *c, double *m, const double dv[3])
  * location error): then, if rounding left it negative, body i outward by the
  * least amount that makes it non-negative, so that the gap's guard is armed.
  */
-static void close_gap(const csf_contact *c, double *m, const double n[3], double gap)
+static void close_gap(cpair *c, double *m, const double n[3], double gap)
 {
 	double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), w = wi + wj, nn[3], curv;
 	for (int k = 0; k < 3; k++) {
-		m[F(c, POS) + k] -= gap * n[k] * (wi / w);
-		if (!c->plane) m[F(c, POS2) + k] += gap * n[k] * (wj / w);
+		m[I(c, POS) + k] -= gap * n[k] * (wi / w);
+		if (!c->plane) m[J(c, POS) + k] += gap * n[k] * (wj / w);
 	}
 	double push = DBL_EPSILON * scale(c, m) / 8;
 	for (int i = 0; i < 64 && (gap = geometry(c, m, nn, &curv)) < 0; i++, push *= 2)
-		for (int k = 0; k < 3; k++) m[F(c, POS) + k] += csf_max(push, -gap) * n[k];
+		for (int k = 0; k < 3; k++) m[I(c, POS) + k] += csf_max(push, -gap) * n[k];
 }
 
 /* Enters contact: the relative normal velocity is zero; sticks if the tangential one is too. */
-static void enter_contact(const csf_contact *c, double *m, const double n[3])
+static void enter_contact(cpair *c, double *m, const double n[3])
 {
 	double vt[3];
 	slip_velocity(c, m, n, vt);
 	double s = mag3(vt);
-	m[W(c, MODE)] = s == 0 && has_friction(c, m) ? STICKING : SLIDING;
-	for (int k = 0; k < 3; k++) m[W(c, DS) + k] = s > 0 ? vt[k] / s : 0;
+	W(c, MODE) = s == 0 && has_friction(c, m) ? STICKING : SLIDING;
+	for (int k = 0; k < 3; k++) WV(c, DS)[k] = s > 0 ? vt[k] / s : 0;
 }
 
 /* Is the pair touching: the gap closed, up to the event's location error? */
-static int touching(const csf_contact *c, const double *m, double gap)
+static int touching(const cpair *c, const double *m, double gap)
 {
 	return gap <= 1e-12 * scale(c, m) && inside(c, m) >= 0;
 }
 
 /* Lift-off: apart, exactly touching. */
-static void separate(const csf_contact *c, double *m)
+static void separate(cpair *c, double *m)
 {
 	double n[3], curv, gap = geometry(c, m, n, &curv);
-	m[W(c, MODE)] = APART;
+	W(c, MODE) = APART;
 	close_gap(c, m, n, gap);
 }
 
 /* Sliding has stopped: the relative tangential velocity becomes exactly zero, and the pair sticks. */
-static void stick(const csf_contact *c, double *m)
+static void stick(cpair *c, double *m)
 {
 	double n[3], curv, vt[3];
 	geometry(c, m, n, &curv);
 	slip_velocity(c, m, n, vt);
 	for (int k = 0; k < 3; k++) vt[k] = -vt[k];
 	add_impulse(c, m, vt);
-	m[W(c, MODE)] = STICKING;
+	W(c, MODE) = STICKING;
 }
 
 /* Static friction cannot hold: the pair slides, the way the friction force held it back from. */
-static void slide(const csf_contact *c, double *m)
+static void slide(cpair *c, double *m)
 {
-	double *f = m + W(c, F), s = mag3(f);
-	for (int k = 0; k < 3; k++) m[W(c, DS) + k] = s > 0 ? -f[k] / s : 0;
-	m[W(c, MODE)] = SLIDING;
+	(void)m; /* as stick */
+	double *f = WV(c, F), s = mag3(f);
+	for (int k = 0; k < 3; k++) WV(c, DS)[k] = s > 0 ? -f[k] / s : 0;
+	W(c, MODE) = SLIDING;
 }
 
 /*
@@ -318,7 +379,7 @@ static void slide(const csf_contact *c, double *m)
  *
  * At rest: that train ends within zeno seconds (a single hop, with e = 1).
  */
-static int at_rest(const csf_contact *c, const double *m, double vn, double an, double zeno)
+static int at_rest(const cpair *c, const double *m, double vn, double an, double zeno)
 {
 	double e = restitution(c, m);
 	return an < 0 && 2 * vn / -an <= zeno * (e < 1 ? 1 - e : 1);
@@ -333,12 +394,12 @@ static int at_rest(const csf_contact *c, const double *m, double vn, double an, 
  * takes, 2 vn/|an|, found from the velocity alone.
  */
 /* The height below which a hop is too low (as hops() says). */
-static double too_low(const csf_contact *c, const double *m, double tol)
+static double too_low(const cpair *c, const double *m, double tol)
 {
 	return csf_max(1024 * resolution(c, m), 100 * tol * scale(c, m));
 }
 
-static int hops(const csf_contact *c, const double *m, double vn, double an, double tol)
+static int hops(const cpair *c, const double *m, double vn, double an, double tol)
 {
 	return an < 0 && vn * vn / (-2 * an) <= too_low(c, m, tol);
 }
@@ -351,17 +412,17 @@ static int hops(const csf_contact *c, const double *m, double vn, double an, dou
  * sweeps, each pair's correcting its velocity in turn (the contacts' only
  * pushing).
  */
-static void collide(const csf_prog *p, double *m, const csf_contact *hit, double target, double vn)
+static void collide(csf_contacts *cs, double *m, cpair *hit, double target, double vn)
 {
 	double size = fabs(target) + fabs(vn);
 	for (int sweep = 0; sweep < 1000; sweep++) {
 		double change = 0;
-		for (uint32_t i = 0; i < p->ncontacts; i++) {
-			const csf_contact *c = &p->contacts[i];
-			if (c != hit && !in_contact(c, m)) continue;
+		for (uint32_t i = 0; i < cs->n; i++) {
+			cpair *c = &cs->pairs[i];
+			if (c != hit && !in_contact(c)) continue;
 			double n[3], curv, vr[3], dv[3];
 			geometry(c, m, n, &curv);
-			rel(c, m, F(c, V), F(c, V2), vr);
+			rel(c, m, I(c, V), J(c, V), vr);
 			double v = dot3(vr, n), d = c == hit ? target - v : csf_max(0, -v);
 			if (d == 0) continue;
 			for (int k = 0; k < 3; k++) dv[k] = d * n[k];
@@ -373,47 +434,49 @@ static void collide(const csf_prog *p, double *m, const csf_contact *hit, double
 }
 
 /* Do pairs c and d share a body (a plane is no body: it does not move)? */
-static int share_body(const csf_contact *c, const csf_contact *d)
+static int share_body(const cpair *c, const cpair *d)
 {
-	uint32_t ci = F(c, POS), cj = c->plane ? 0 : F(c, POS2), di = F(d, POS), dj = d->plane ? 0 : F(d, POS2);
+	uint32_t ci = I(c, POS), cj = c->plane ? 0 : J(c, POS), di = I(d, POS), dj = d->plane ? 0 : J(d, POS);
 	return c != d && (ci == di || ci == dj || (cj && (cj == di || cj == dj)));
 }
 
 /* Is a body of pair c in contact with, or touching, a third one? */
-static int crowded(const csf_prog *p, const double *m, const csf_contact *c)
+static int crowded(csf_contacts *cs, const double *m, const cpair *c)
 {
-	for (uint32_t i = 0; i < p->ncontacts; i++) {
-		const csf_contact *d = &p->contacts[i];
+	for (uint32_t i = 0; i < cs->n; i++) {
+		cpair *d = &cs->pairs[i];
 		double n[3], curv;
-		if (share_body(c, d) && (in_contact(d, m) || touching(d, m, geometry(d, m, n, &curv)))) return 1;
+		if (share_body(c, d) && (in_contact(d) || touching(d, m, geometry(d, m, n, &curv)))) return 1;
 	}
 	return 0;
 }
 
 int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, csf_eval_fn eval, void *ctx)
 {
+	csf_contacts *cs = p->crun;
+	if (!cs) return 0;
 	/* each pass evaluates the forces and guards of the current modes, then acts on what they say */
-	for (uint32_t iter = 0; iter < 100 + 10 * p->ncontacts; iter++) {
+	for (uint64_t iter = 0; iter < 100 + 10 * (uint64_t)cs->n; iter++) {
 		if (eval(ctx)) return -1;
 		/* the most violent impact first; each changes velocities, so look again */
 		long hit = -1;
 		double worst = 0;
 		int changed = 0;
-		for (uint32_t i = 0; i < p->ncontacts; i++) {
-			const csf_contact *c = &p->contacts[i];
-			if (in_contact(c, m)) continue;
+		for (uint32_t i = 0; i < cs->n; i++) {
+			cpair *c = &cs->pairs[i];
+			if (in_contact(c)) continue;
 			double n[3], curv, vr[3], ar[3];
 			double gap = geometry(c, m, n, &curv);
 			int landing = 0;
-			if (m[W(c, MODE)] == HOPPING) { /* nothing until it lands (it may have been knocked away) */
-				if (m[W(c, G0)] >= 0) continue;
-				m[W(c, MODE)] = APART;
+			if (W(c, MODE) == HOPPING) { /* nothing until it lands (it may have been knocked away) */
+				if (W(c, G0) >= 0) continue;
+				W(c, MODE) = APART;
 				changed = 1;
 				landing = gap <= too_low(c, m, tol); /* its positions are no closer than that */
 			}
 			if (!landing && !touching(c, m, gap)) continue;
-			rel(c, m, F(c, V), F(c, V2), vr);
-			rel(c, m, F(c, A), F(c, A2), ar);
+			rel(c, m, I(c, V), J(c, V), vr);
+			rel(c, m, I(c, A), J(c, A), ar);
 			double vn = dot3(vr, n), an = dot3(ar, n) + curv;
 			if (vn < 0) {
 				if (vn < worst) worst = vn, hit = (long)i;
@@ -429,38 +492,421 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, cs
 			}
 		}
 		if (hit >= 0) {
-			const csf_contact *c = &p->contacts[hit];
+			cpair *c = &cs->pairs[hit];
 			double n[3], curv, vr[3], ar[3];
 			double gap = geometry(c, m, n, &curv);
-			rel(c, m, F(c, V), F(c, V2), vr);
-			rel(c, m, F(c, A), F(c, A2), ar);
+			rel(c, m, I(c, V), J(c, V), vr);
+			rel(c, m, I(c, A), J(c, A), ar);
 			double vn = dot3(vr, n), an = dot3(ar, n) + curv, sep = -restitution(c, m) * vn;
 			/* a hop too low to follow by positions is followed by its flight time only when
 			   nothing else touches the bodies; among several (a ball on a ball on the floor)
 			   it is a rest: the impulses that follow are passed on within this instant */
 			int rest = sep == 0 || at_rest(c, m, sep, an, zeno), low = !rest && hops(c, m, sep, an, tol);
-			if (low && crowded(p, m, c)) rest = 1, low = 0;
-			collide(p, m, c, rest ? 0 : sep, vn);
+			if (low && crowded(cs, m, c)) rest = 1, low = 0;
+			collide(cs, m, c, rest ? 0 : sep, vn);
 			close_gap(c, m, n, gap);
 			if (rest) {
 				enter_contact(c, m, n);
 			} else if (low) {
-				m[W(c, MODE)] = HOPPING;
-				m[W(c, TL)] = m[p->tslot] + 2 * sep / -an;
+				W(c, MODE) = HOPPING;
+				W(c, TL) = m[p->tslot] + 2 * sep / -an;
 			}
-			for (uint32_t i = 0; i < p->ncontacts; i++) /* flights whose velocities just changed */
-				if (share_body(c, &p->contacts[i]) && m[W(&p->contacts[i], MODE)] == HOPPING)
-					m[W(&p->contacts[i], MODE)] = APART;
+			for (uint32_t i = 0; i < cs->n; i++) /* flights whose velocities just changed */
+				if (share_body(c, &cs->pairs[i]) && W(&cs->pairs[i], MODE) == HOPPING)
+					W(&cs->pairs[i], MODE) = APART;
 			continue;
 		}
 		/* a guard of a pair in contact that is negative: its transition (contact.c's header) */
-		for (uint32_t i = 0; i < p->ncontacts; i++) {
-			const csf_contact *c = &p->contacts[i];
-			if (!in_contact(c, m)) continue;
-			if (m[W(c, G0)] < 0) separate(c, m), changed = 1;
-			else if (m[W(c, G1)] < 0) (m[W(c, MODE)] == SLIDING ? stick : slide)(c, m), changed = 1;
+		for (uint32_t i = 0; i < cs->n; i++) {
+			cpair *c = &cs->pairs[i];
+			if (!in_contact(c)) continue;
+			if (W(c, G0) < 0) separate(c, m), changed = 1;
+			else if (W(c, G1) < 0) (W(c, MODE) == SLIDING ? stick : slide)(c, m), changed = 1;
 		}
 		if (!changed) return 0;
 	}
 	return 0;
+}
+
+/* ---- the candidate pairs and the broad phase ---- */
+
+/*
+ * Which pairs are candidates. Every pair that can matter during a step must
+ * be one, so that its events are located exactly as if every pair of the
+ * scene were watched: a pair matters when its gap is (nearly) closed at one
+ * of the instants the driver looks at its guards (the step's start, the
+ * three interpolated points and its end: a crossing between them is not
+ * seen, for any pair; the guards at the states that locate an event serve
+ * only that event's pair), and at an event, when it touches. The driver calls
+ * csf_contacts_find after each step with those five states, and at each
+ * event with the one state: so the candidates are fixed from a step's end
+ * until the next step, while its events are located. A pair that is in
+ * contact or hopping has a mode of its own and stays a candidate; one that
+ * is apart has none (its guard is its gap), so it can leave and come back.
+ *
+ * The broad phase is sort and sweep along one axis (sweep and prune, as in
+ * Box2D's first broad phase and Bullet's axis sweep; Chrono's multicore
+ * solver uses a uniform grid instead): each mass point's box, over the positions
+ * of the states and grown by its radius and a margin, is sorted by its
+ * lower end along the axis on which the bodies are most spread out; a
+ * sweep along the sorted list finds every pair of boxes that overlap, in
+ * O(N + pairs found). Between two calls the bodies move little compared
+ * with their spacing, so the list of the last call is nearly sorted and an
+ * insertion sort puts it in order in about linear time (a sort from
+ * scratch, O(N log N), when it is far off). A uniform grid would do the
+ * same in linear time but needs a cell size: the radii range from 0 (a
+ * point) to any size, and the positions from 1e-20 to 1e20 m, while the
+ * sweep needs no parameter at all. A plane is not a box: each mass point
+ * is tested against each plane (its box's nearest corner), a few planes.
+ *
+ * The margin is 1e-9 of the magnitudes of the positions and radius, far
+ * above the rounding of any gap (1e-16 of them) and above the tolerance
+ * within which a touching pair counts as touching (1e-12 of them).
+ */
+
+static const double MARGIN = 1e-9;
+
+static int key_cmp(const void *x, const void *y)
+{
+	const pkey *a = x, *b = y;
+	if (a->rule != b->rule) return a->rule < b->rule ? -1 : 1;
+	if (a->k0 != b->k0) return a->k0 < b->k0 ? -1 : 1;
+	return (a->k1 > b->k1) - (a->k1 < b->k1);
+}
+
+static int grow(void **arr, size_t *cap, size_t need, size_t elem)
+{
+	if (need <= *cap) return 0;
+	size_t n = *cap ? *cap : 16;
+	while (n < need) n *= 2;
+	void *q = realloc(*arr, n * elem);
+	if (!q) return -1;
+	*arr = q;
+	*cap = n;
+	return 0;
+}
+
+static int push_key(csf_contacts *c, uint32_t rule, uint32_t k0, uint32_t k1)
+{
+	if (grow((void **)&c->keys, &c->capkeys, c->nkeys + 1, sizeof *c->keys)) return -1;
+	c->keys[c->nkeys++] = (pkey){ rule, k0, k1 };
+	return 0;
+}
+
+csf_contacts *csf_contacts_new(const csf_prog *p)
+{
+	csf_contacts *c = calloc(1, sizeof *c);
+	if (!c) return NULL;
+	c->p = p;
+	c->axis = -1;
+	size_t nb = p->ncbodies, nm = 0;
+	c->box = malloc((6 * nb + 1) * sizeof *c->box);
+	c->mg = malloc((nb + 1) * sizeof *c->mg);
+	c->pn = malloc((4 * nb + 1) * sizeof *c->pn);
+	c->mstart = calloc(nb + 2, sizeof *c->mstart);
+	c->sap = malloc((nb + 1) * sizeof *c->sap);
+	if (!c->box || !c->mg || !c->pn || !c->mstart || !c->sap) goto oom;
+	/* the memberships of mass points in rules without `for`, by body, each body's in rule order */
+	for (uint32_t r = 0; r < p->ncrules; r++) {
+		const csf_crule *cr = &p->crules[r];
+		if (!cr->every) continue;
+		for (int role = 0; role < 2; role++)
+			for (uint32_t k = 0; k < (role ? cr->n1 : cr->n0); k++) {
+				uint32_t b = p->cmembers[(role ? cr->first1 : cr->first0) + k];
+				if (!p->cbodies[b].plane) c->mstart[b + 2]++, nm++;
+			}
+	}
+	for (size_t b = 2; b < nb + 2; b++) c->mstart[b] += c->mstart[b - 1];
+	c->mem = malloc((nm + 1) * sizeof *c->mem);
+	if (!c->mem) goto oom;
+	for (uint32_t r = 0; r < p->ncrules; r++) { /* mstart[b + 1] is body b's cursor */
+		const csf_crule *cr = &p->crules[r];
+		if (!cr->every) continue;
+		for (uint32_t role = 0; role < 2; role++)
+			for (uint32_t k = 0; k < (role ? cr->n1 : cr->n0); k++) {
+				uint32_t b = p->cmembers[(role ? cr->first1 : cr->first0) + k];
+				if (!p->cbodies[b].plane) c->mem[c->mstart[b + 1]++] = (memb){ r, role, k };
+			}
+	}
+	/* the bodies of the sweep: mass points in rules without `for` that do not vary */
+	for (uint32_t b = 0; b < nb; b++)
+		if (c->mstart[b + 1] > c->mstart[b] && !p->cbodies[b].varies) c->sap[c->nsap++] = b;
+	return c;
+oom:
+	csf_contacts_free(c);
+	return NULL;
+}
+
+void csf_contacts_free(csf_contacts *c)
+{
+	if (!c) return;
+	free(c->pairs);
+	free(c->next);
+	free(c->from);
+	free(c->old);
+	free(c->keys);
+	free(c->box);
+	free(c->mg);
+	free(c->pn);
+	free(c->sap);
+	free(c->mstart);
+	free(c->mem);
+	free(c);
+}
+
+uint32_t csf_contacts_count(const csf_contacts *c) { return c->n; }
+
+void csf_contacts_guards(const csf_contacts *c, double *g)
+{
+	for (uint32_t k = 0; k < c->n; k++) g[2 * k] = c->pairs[k].w[W_G0], g[2 * k + 1] = c->pairs[k].w[W_G1];
+}
+
+uint32_t csf_contacts_src(const csf_contacts *c, uint32_t k) { return c->p->crules[c->pairs[k].rule].src; }
+
+/* Body b's box over the states (a mass point), grown by its radius and the margin; empty if not a number. */
+static void body_box(csf_contacts *c, const double *m, uint32_t b, const double *const *ys, int ns)
+{
+	const csf_prog *p = c->p;
+	const csf_cbody *cb = &p->cbodies[b];
+	double *bx = c->box + 6 * (size_t)b, big = 0;
+	uint32_t pos = cb->s[CSF_CF_POS] - p->ystart;
+	int bad = 0;
+	for (int a = 0; a < 3; a++) bx[a] = HUGE_VAL, bx[3 + a] = -HUGE_VAL;
+	for (int s = 0; s < ns; s++) {
+		const double *x = ys[s] + pos;
+		for (int a = 0; a < 3; a++) {
+			bad |= isnan(x[a]);
+			if (x[a] < bx[a]) bx[a] = x[a];
+			if (x[a] > bx[3 + a]) bx[3 + a] = x[a];
+		}
+		double l1 = fabs(x[0]) + fabs(x[1]) + fabs(x[2]);
+		if (l1 > big) big = l1;
+	}
+	double r = fabs(m[cb->s[CSF_CF_R]]);
+	c->mg[b] = MARGIN * (big + r);
+	double d = r + c->mg[b];
+	for (int a = 0; a < 3; a++) bx[a] -= d, bx[3 + a] += d;
+	for (int a = 0; a < 6; a++) bad |= isnan(bx[a]);
+	if (bad)
+		for (int a = 0; a < 3; a++) bx[a] = HUGE_VAL, bx[3 + a] = -HUGE_VAL;
+}
+
+/* Plane b's unit normal and the size of its point, into pn. */
+static void plane_normal(csf_contacts *c, const double *m, uint32_t b)
+{
+	const uint32_t *s = c->p->cbodies[b].s;
+	const double *nn = m + s[CSF_CF_R], *q = m + s[CSF_CF_POS];
+	double *pn = c->pn + 4 * (size_t)b, k = mag3(nn);
+	for (int a = 0; a < 3; a++) pn[a] = nn[a] / k;
+	pn[3] = fabs(q[0]) + fabs(q[1]) + fabs(q[2]);
+}
+
+static int overlap(const double *a, const double *b)
+{
+	return a[0] <= b[3] && b[0] <= a[3] && a[1] <= b[4] && b[1] <= a[4] && a[2] <= b[5] && b[2] <= a[5];
+}
+
+/* Can mass points u and v touch within the states (their boxes)? Two points never do. */
+static int near_bodies(const csf_contacts *c, const double *m, uint32_t u, uint32_t v)
+{
+	const csf_cbody *bu = &c->p->cbodies[u], *bv = &c->p->cbodies[v];
+	if (bu->varies || bv->varies) return 1;
+	if (!(m[bu->s[CSF_CF_R]] + m[bv->s[CSF_CF_R]] > 0)) return 0;
+	return overlap(c->box + 6 * (size_t)u, c->box + 6 * (size_t)v);
+}
+
+/* Can mass point u touch plane v within the states: does its box reach the plane? */
+static int near_plane(const csf_contacts *c, const double *m, uint32_t u, uint32_t v)
+{
+	const csf_cbody *bu = &c->p->cbodies[u], *bv = &c->p->cbodies[v];
+	if (bu->varies || bv->varies) return 1;
+	const double *bx = c->box + 6 * (size_t)u, *n = c->pn + 4 * (size_t)v, *q = m + bv->s[CSF_CF_POS];
+	double d = 0; /* the least distance over the box from the plane, along its normal */
+	for (int a = 0; a < 3; a++) d += ((n[a] > 0 ? bx[a] : bx[3 + a]) - q[a]) * n[a];
+	return d <= MARGIN * n[3];
+}
+
+/* The pairs of mass points u and v, whose boxes overlap: in every rule without `for` that has one as $0
+   and the other, defined after it, as $1. */
+static int sweep_pair(csf_contacts *c, uint32_t u, uint32_t v)
+{
+	const csf_prog *p = c->p;
+	uint32_t ou = p->cbodies[u].object, ov = p->cbodies[v].object;
+	for (uint32_t i = c->mstart[u]; i < c->mstart[u + 1]; i++)
+		for (uint32_t j = c->mstart[v]; j < c->mstart[v + 1]; j++) {
+			const memb *a = &c->mem[i], *b = &c->mem[j];
+			if (a->rule != b->rule || a->role == b->role) continue;
+			if (a->role == 0 && ou < ov && push_key(c, a->rule, a->place, b->place)) return -1;
+			if (b->role == 0 && ov < ou && push_key(c, b->rule, b->place, a->place)) return -1;
+		}
+	return 0;
+}
+
+/* A box's lower end along the axis, and its body (to sort afresh). */
+typedef struct sapent { double lo; uint32_t b; } sapent;
+
+static int sap_cmp(const void *x, const void *y)
+{
+	const sapent *a = x, *b = y;
+	if (a->lo != b->lo) return a->lo < b->lo ? -1 : 1;
+	return (a->b > b->b) - (a->b < b->b);
+}
+
+/* Sort and sweep over the mass points of the rules without `for`. */
+static int sweep(csf_contacts *c, const double *m)
+{
+	const csf_prog *p = c->p;
+	uint32_t n = c->nsap, *s = c->sap;
+	/* the axis along which the centres spread most (kept unless another spreads 20 % more) */
+	double sum[3] = { 0 }, sq[3] = { 0 }, var[3];
+	uint32_t cnt = 0;
+	for (uint32_t i = 0; i < n; i++) {
+		const double *bx = c->box + 6 * (size_t)s[i];
+		if (!(bx[0] <= bx[3])) continue;
+		cnt++;
+		for (int a = 0; a < 3; a++) {
+			double x = (bx[a] + bx[3 + a]) / 2;
+			sum[a] += x, sq[a] += x * x;
+		}
+	}
+	int axis = c->axis < 0 ? 0 : c->axis;
+	for (int a = 0; a < 3; a++) var[a] = cnt ? sq[a] - sum[a] * sum[a] / cnt : 0;
+	for (int a = 0; a < 3; a++)
+		if (var[a] > 1.2 * var[axis] || (c->axis < 0 && var[a] > var[axis])) axis = a;
+	if (!isfinite(var[0] + var[1] + var[2])) axis = c->axis < 0 ? 0 : c->axis;
+	c->axis = axis;
+	/* insertion sort by the boxes' lower ends (then by body), from scratch if it is far off */
+	const double *box = c->box;
+#define SAP_LESS(x, y) (box[6 * (size_t)(x) + axis] < box[6 * (size_t)(y) + axis] || \
+                        (box[6 * (size_t)(x) + axis] == box[6 * (size_t)(y) + axis] && (x) < (y)))
+	size_t moves = 0, limit = 8 * (size_t)n + 64;
+	for (uint32_t i = 1; i < n && moves <= limit; i++) {
+		uint32_t x = s[i], j = i;
+		while (j > 0 && SAP_LESS(x, s[j - 1]) && moves++ <= limit) s[j] = s[j - 1], j--;
+		s[j] = x;
+	}
+	if (moves > limit) {
+		/* lower ends with their bodies, sorted afresh (an empty box's is +inf) */
+		sapent *e = malloc((n + 1) * sizeof *e);
+		if (!e) return -1;
+		for (uint32_t i = 0; i < n; i++) e[i].lo = box[6 * (size_t)s[i] + axis], e[i].b = s[i];
+		qsort(e, n, sizeof *e, sap_cmp);
+		for (uint32_t i = 0; i < n; i++) s[i] = e[i].b;
+		free(e);
+	}
+#undef SAP_LESS
+	for (uint32_t i = 0; i < n; i++) {
+		uint32_t u = s[i];
+		const double *bu = box + 6 * (size_t)u;
+		double hi = bu[3 + axis];
+		if (!(bu[axis] <= hi)) continue;
+		for (uint32_t j = i + 1; j < n; j++) {
+			uint32_t v = s[j];
+			const double *bv = box + 6 * (size_t)v;
+			if (bv[axis] > hi) break;
+			if (!overlap(bu, bv) || !(m[p->cbodies[u].s[CSF_CF_R]] + m[p->cbodies[v].s[CSF_CF_R]] > 0)) continue;
+			if (sweep_pair(c, u, v)) return -1;
+		}
+	}
+	return 0;
+}
+
+long csf_contacts_find(csf_contacts *c, const double *m, const double *const *ys, int ns)
+{
+	const csf_prog *p = c->p;
+	c->nkeys = 0;
+	for (uint32_t k = 0; k < c->n; k++) /* the pairs with a mode of their own */
+		if (c->pairs[k].w[W_MODE] != APART && push_key(c, c->pairs[k].rule, c->pairs[k].k0, c->pairs[k].k1))
+			return -1;
+	for (uint32_t b = 0; b < p->ncbodies; b++) {
+		if (p->cbodies[b].plane) plane_normal(c, m, b);
+		else body_box(c, m, b, ys, ns);
+	}
+	for (uint32_t r = 0; r < p->ncrules; r++) {
+		const csf_crule *cr = &p->crules[r];
+		const uint32_t *L0 = p->cmembers + cr->first0, *L1 = p->cmembers + cr->first1;
+		if (!cr->every) { /* `for`: its one pair */
+			for (uint32_t k = 0; k < cr->n0; k++) {
+				uint32_t i = L0[k], j = L1[k];
+				if ((p->cbodies[j].plane ? near_plane(c, m, i, j) : near_bodies(c, m, i, j)) && push_key(c, r, k, k))
+					return -1;
+			}
+			continue;
+		}
+		for (uint32_t k1 = 0; k1 < cr->n1; k1++) { /* every $0 with each plane, and with a $1 that varies */
+			uint32_t j = L1[k1];
+			const csf_cbody *bj = &p->cbodies[j];
+			if (!bj->plane && !bj->varies) continue;
+			for (uint32_t k0 = 0; k0 < cr->n0; k0++) {
+				uint32_t i = L0[k0];
+				const csf_cbody *bi = &p->cbodies[i];
+				if (bj->plane ? bi->object != bj->object && near_plane(c, m, i, j) : bi->object < bj->object)
+					if (push_key(c, r, k0, k1)) return -1;
+			}
+		}
+		for (uint32_t k0 = 0; k0 < cr->n0; k0++) { /* a $0 that varies, with every mass point */
+			const csf_cbody *bi = &p->cbodies[L0[k0]];
+			if (!bi->varies) continue;
+			for (uint32_t k1 = 0; k1 < cr->n1; k1++) {
+				const csf_cbody *bj = &p->cbodies[L1[k1]];
+				if (!bj->plane && bi->object < bj->object && push_key(c, r, k0, k1)) return -1;
+			}
+		}
+	}
+	if (sweep(c, m)) return -1;
+	/* in the order of pairs, each once; a pair that was a candidate keeps its mode */
+	if (c->nkeys) qsort(c->keys, c->nkeys, sizeof *c->keys, key_cmp);
+	if (grow((void **)&c->next, &c->capnext, c->nkeys + 1, sizeof *c->next) ||
+	    grow((void **)&c->from, &c->capfrom, c->nkeys + 1, sizeof *c->from) ||
+	    grow((void **)&c->old, &c->capold, 2 * (size_t)c->n + 1, sizeof *c->old))
+		return -1;
+	uint32_t o = 0, n = 0;
+	for (size_t k = 0; k < c->nkeys; k++) {
+		const pkey *key = &c->keys[k];
+		if (k && key_cmp(key, &c->keys[k - 1]) == 0) continue;
+		while (o < c->n && key_cmp(&(pkey){ c->pairs[o].rule, c->pairs[o].k0, c->pairs[o].k1 }, key) < 0) o++;
+		cpair *q = &c->next[n];
+		if (o < c->n && c->pairs[o].rule == key->rule && c->pairs[o].k0 == key->k0 && c->pairs[o].k1 == key->k1) {
+			*q = c->pairs[o];
+			c->from[n] = o;
+		} else {
+			const csf_crule *cr = &p->crules[key->rule];
+			const csf_cbody *bi = &p->cbodies[p->cmembers[cr->first0 + key->k0]];
+			const csf_cbody *bj = &p->cbodies[p->cmembers[cr->first1 + key->k1]];
+			memset(q, 0, sizeof *q);
+			q->rule = key->rule, q->k0 = key->k0, q->k1 = key->k1;
+			q->plane = bj->plane;
+			q->si = bi->s, q->sj = bj->s;
+			c->from[n] = -1;
+		}
+		n++;
+	}
+	c->nnext = n;
+	return n;
+}
+
+void csf_contacts_commit(csf_contacts *c, const double *m, double *const *g, const double *const *gy, int ng)
+{
+	const csf_prog *p = c->p;
+	for (int q = 0; q < ng; q++) {
+		memcpy(c->old, g[q], 2 * (size_t)c->n * sizeof *c->old);
+		for (uint32_t k = 0; k < c->nnext; k++) {
+			long o = c->from[k];
+			if (o >= 0) {
+				g[q][2 * k] = c->old[2 * o], g[q][2 * k + 1] = c->old[2 * o + 1];
+				continue;
+			}
+			/* a new pair is apart: its guard is its gap (over the plane), as csf_contact_apply computes it */
+			const cpair *cp = &c->next[k];
+			const double *pi = gy[q] + (I(cp, POS) - p->ystart), *pj = cp->plane ? NULL : gy[q] + (J(cp, POS) - p->ystart);
+			double n[3], curv, gap = geometry_at(cp, m, pi, pj, n, &curv);
+			g[q][2 * k] = csf_max(gap, -inside_at(cp, m, pi));
+			g[q][2 * k + 1] = 1;
+		}
+	}
+	cpair *t = c->pairs;
+	c->pairs = c->next, c->next = t;
+	size_t cap = c->cap;
+	c->cap = c->capnext, c->capnext = cap;
+	c->n = c->nnext;
 }

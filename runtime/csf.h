@@ -100,21 +100,37 @@ typedef struct csf_line { uint32_t pc, src; } csf_line;
 typedef struct csf_event { uint32_t kind, value, mode, src; } csf_event;
 
 /*
- * A contact pair (mechanics/rules, rules 1 to 4): slots of body i's
- * properties, of body j's (or of a plane's: its point in POS2, its normal in
- * R2, its edge in V2), and CSF_CW_N work slots of the pair's own state. See contact.c.
+ * The contact routine's tables (mechanics/rules, rules 1 to 4; contact.c).
+ * There is no list of pairs: the program lists the bodies that can touch,
+ * and the routine finds the pairs near or in contact at run time.
+ *
+ * A contact body is a mass point (plane 0) with the slots of its pos, v,
+ * a, m, radius, cr, mu_s, mu_k, FN and Ff (pos in the state), or a plane
+ * (plane 1) with its point in POS, its edge in V, its normal in R and its
+ * cr, mu_s and mu_k (the fields it lacks hold the slot of t); object is
+ * its object; varies is 1 when its radius (a plane: point, normal or
+ * edge) is computed or integrated, so that the routine cannot tell from
+ * positions alone how near it is: it is then a candidate with every body
+ * of its rules at all times.
  */
 enum csf_contact_field {
 	CSF_CF_POS, CSF_CF_V, CSF_CF_A, CSF_CF_M, CSF_CF_R, CSF_CF_CR, CSF_CF_MUS, CSF_CF_MUK, CSF_CF_FN, CSF_CF_FF,
-	CSF_CF_POS2, CSF_CF_V2, CSF_CF_A2, CSF_CF_M2, CSF_CF_R2, CSF_CF_CR2, CSF_CF_MUS2, CSF_CF_MUK2, CSF_CF_FN2,
-	CSF_CF_FF2, CSF_CF_WORK, CSF_CF_N
+	CSF_CF_N
 };
-/* Work slots, from s[CSF_CF_WORK]: mode (0 apart, 1 sliding, 2 sticking, 3 hopping), the two
-   guards, the normal force's size, the friction force, the fixed normal of two points, the
-   sliding direction, the time a hop lands. */
-enum { CSF_CW_MODE = 0, CSF_CW_G0 = 1, CSF_CW_G1 = 2, CSF_CW_LAM = 3, CSF_CW_F = 4, CSF_CW_DIR = 7, CSF_CW_DS = 10,
-       CSF_CW_TL = 13, CSF_CW_N = 14 };
-typedef struct csf_contact { uint32_t plane, src, s[CSF_CF_N]; } csf_contact;
+typedef struct csf_cbody { uint32_t plane, object, varies, s[CSF_CF_N]; } csf_cbody;
+/*
+ * A contact rule (one contact() statement): its $0 bodies, mass points,
+ * are cmembers[first0 .. first0 + n0), its $1 bodies, mass points or
+ * planes, cmembers[first1 .. first1 + n1) (indices into cbodies). every 1
+ * (a rule without `for`): the pairs are every $0 with every $1 of another
+ * object, two mass points once (the $0 defined first), and not two points
+ * (both of radius 0: they never touch); every 0 (a rule with `for`): the
+ * k-th $0 with the k-th $1 (n0 = n1). The pairs are ordered by rule, then
+ * by their $0's place in its list, then their $1's.
+ */
+typedef struct csf_crule { uint32_t src, every, first0, n0, first1, n1; } csf_crule;
+/* The run-time state of the contact routine: the candidate pairs and their modes (contact.c). */
+typedef struct csf_contacts csf_contacts;
 
 /*
  * A program. Strings are offsets into strs (every one NUL-terminated).
@@ -132,10 +148,14 @@ typedef struct csf_prog {
 	double *yscale; /* per state component: the absolute tolerance's scale (the unit system's
 	                   measure of one SI unit of that component), so accuracy is unit-independent */
 	double till, by;
-	uint32_t ncols, nfiles, nsrcs, nasserts, nobjects, nprops, nevents, ncontacts;
+	uint32_t ncols, nfiles, nsrcs, nasserts, nobjects, nprops, nevents;
 	csf_col *cols;
 	csf_event *events;
-	csf_contact *contacts;
+	uint32_t ncbodies, ncmembers, ncrules; /* the contact routine's tables (no rules: no contacts) */
+	csf_cbody *cbodies;
+	uint32_t *cmembers;
+	csf_crule *crules;
+	csf_contacts *crun; /* during csf_run, the contact routine's state; NULL otherwise (not in the file) */
 	uint32_t *objects; /* object names, in definition order */
 	csf_prop *props;
 	uint32_t *files;
@@ -183,10 +203,11 @@ typedef int (*csf_exec_fn)(const csf_prog *p, int sec, double *m);
 int csf_vm_exec(const csf_prog *p, int sec, double *m);
 
 /*
- * The contact routine (the CONTACT instruction; contact.c): for every pair
- * in contact, the normal force that keeps the relative normal acceleration
+ * The contact routine (the CONTACT instruction; contact.c), on the
+ * candidate pairs of p->crun (nothing when it is NULL): for every pair in
+ * contact, the normal force that keeps the relative normal acceleration
  * zero and the friction force of its mode, added to both bodies' a, FN and
- * Ff; and each pair's two guards (an event when one becomes negative).
+ * Ff; and each candidate's two guards (an event when one becomes negative).
  */
 void csf_contact_apply(const csf_prog *p, double *m);
 
@@ -197,12 +218,45 @@ typedef int (*csf_eval_fn)(void *ctx);
  * Makes every contact's mode consistent at the current instant, changing
  * the velocities (and positions, by rounding-size amounts) in m: impacts
  * (restitution), the contacts that come to rest, lift-off, stick and slip,
- * as the guards of the current modes call for. zeno: the time below which
- * a train of bounces counts as at rest; tol: the integrator's relative
- * tolerance (the accuracy of the positions it computes). Returns 0, or -1
- * if eval failed.
+ * as the guards of the current modes call for, over the candidates of
+ * p->crun (chosen at this instant: csf_contacts_find with one state).
+ * zeno: the time below which a train of bounces counts as at rest; tol:
+ * the integrator's relative tolerance (the accuracy of the positions it
+ * computes). Returns 0, or -1 if eval failed.
  */
 int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, csf_eval_fn eval, void *ctx);
+
+/*
+ * The contact routine's state during a run (csf_run keeps it in p->crun):
+ * the candidate pairs, those that can touch soon enough to matter, in the
+ * order of the pairs (csf_crule), each with its mode and work values.
+ * NULL when memory runs out.
+ */
+csf_contacts *csf_contacts_new(const csf_prog *p);
+void csf_contacts_free(csf_contacts *c);
+/* The number of candidate pairs (two guards each, after the events'). */
+uint32_t csf_contacts_count(const csf_contacts *c);
+/* The guards of candidate pairs as the last csf_contact_apply left them, into g[0 .. 2 count). */
+void csf_contacts_guards(const csf_contacts *c, double *g);
+/* The source statement of candidate k (its rule). */
+uint32_t csf_contacts_src(const csf_contacts *c, uint32_t k);
+/*
+ * Chooses the next candidates from the ns states ys[0..ns) (state vectors,
+ * in time order: the instants at which the guards will be looked at): the
+ * pairs in contact or hopping, and every pair whose gap is (nearly) closed
+ * at one of them. m holds the radii and the planes (and is otherwise left
+ * alone). Returns how many there will be, or -1 when memory runs out; then
+ * csf_contacts_commit switches to them.
+ */
+long csf_contacts_find(csf_contacts *c, const double *m, const double *const *ys, int ns);
+/*
+ * Switches to the candidates csf_contacts_find chose. For q < ng, g[q]
+ * holds the guards (two per candidate) of the old candidates, and becomes
+ * those of the new ones (room for 2 count values): a kept pair's are
+ * moved, a new pair's (apart: its gap) computed from the positions of
+ * state gy[q] and m's radii and planes, as csf_contact_apply would.
+ */
+void csf_contacts_commit(csf_contacts *c, const double *m, double *const *g, const double *const *gy, int ng);
 
 /* Run-time options, parsed identically by csfvm and generated executables. */
 typedef struct csf_opts {

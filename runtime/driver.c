@@ -103,13 +103,20 @@ typedef struct run {
 	unsigned long nrhs, njac; /* evaluations, for --stats */
 	unsigned long nevents;
 	long last; /* the guard of the last event */
+	uint32_t last_src; /* its rule's statement */
 	int pending; /* it was located at an output time and happens after that row */
 	double last_h; /* the last step's length */
 	double zeno, tol; /* for csf_contact_settle */
-	/* events: guards (conditional rules' comparisons, then two per contact), work vectors */
+	/* events: guards (conditional rules' comparisons, then two per candidate contact), ng of them
+	   (room for capg), and work vectors */
 	uint32_t ng;
+	size_t capg;
 	double *ga, *gb, *gs, *gh, *ya, *fa, *fb, *ys, *fs, *ye;
 	double *jw; /* with contacts: 3 work vectors for the Jacobian by differences */
+	double *yh; /* with contacts: the 3 interpolated states of a step, one after the other */
+	csf_contacts *cs; /* with contacts: the candidate pairs (contact.c) */
+	unsigned long nchoices, ncand, maxcand; /* for --stats: the choices of candidates, their sum and largest */
+	int nomem; /* memory ran out */
 } run;
 
 static int rhs(double t, const double *y, double *dydt, void *ctx)
@@ -173,7 +180,7 @@ static int jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx)
 	double *m = r->m, *tan = r->m + p->jtan;
 	uint32_t n = p->ny;
 	r->njac++;
-	if (p->ncontacts) return jac_differences(r, t, y, dfdy, dfdt);
+	if (p->ncrules) return jac_differences(r, t, y, dfdy, dfdt);
 	m[p->tslot] = t;
 	memcpy(m + p->ystart, y, n * sizeof *y);
 	for (uint32_t j = 0; j <= n; j++) {
@@ -241,10 +248,9 @@ static void report_nonfinite_value(const csf_prog *p, int sec, const double *m, 
 	        csf_str(p, tg->object), vb, csf_str(p, s->text));
 }
 
-/* "file:line: " of the rule whose guard had the event k (a comparison, or a contact's). */
-static void report_event_src(const csf_prog *p, long k, FILE *err)
+/* "file:line: " of statement src, the rule whose guard had the last event (a comparison, or a contact's). */
+static void report_event_src(const csf_prog *p, uint32_t src, FILE *err)
 {
-	uint32_t src = k < (long)p->nevents ? p->events[k].src : p->contacts[(k - p->nevents) / 2].src;
 	const csf_src *sr = &p->srcs[src];
 	fprintf(err, "%s:%lu: ", csf_str(p, p->files[sr->file]), (unsigned long)sr->line);
 }
@@ -305,11 +311,7 @@ static void read_guards(run *r, double *g)
 		const csf_event *e = &p->events[i];
 		g[i] = m[e->mode] > 0 ? m[e->value] : -m[e->value];
 	}
-	for (uint32_t i = 0; i < p->ncontacts; i++) {
-		uint32_t w = p->contacts[i].s[CSF_CF_WORK];
-		g[p->nevents + 2 * i] = m[w + CSF_CW_G0];
-		g[p->nevents + 2 * i + 1] = m[w + CSF_CW_G1];
-	}
+	if (r->cs) csf_contacts_guards(r->cs, g + p->nevents);
 }
 
 /* Guards g at (t, y), and the derivative in r->fs. 0, or 1 if a derivative is not finite. */
@@ -344,12 +346,56 @@ static int settle_eval(void *ctx)
 	return rhs(s->t, s->y, s->r->fs, s->r);
 }
 
+/* Room for ng guards in each guard vector (keeping their values). 0, or -1 when memory runs out. */
+static int room_for_guards(run *r, size_t ng)
+{
+	if (ng <= r->capg) return 0;
+	size_t cap = r->capg ? r->capg : 16;
+	while (cap < ng) cap *= 2;
+	double **g[4] = { &r->ga, &r->gb, &r->gs, &r->gh };
+	for (int i = 0; i < 4; i++) {
+		double *q = realloc(*g[i], cap * sizeof *q);
+		if (!q) {
+			r->nomem = 1;
+			return -1;
+		}
+		*g[i] = q;
+	}
+	r->capg = cap;
+	return 0;
+}
+
+/*
+ * Chooses the candidate contacts for the ns states ys (contact.c): the
+ * instants at which their guards will be looked at. The guard vectors
+ * g[0..ng) (ga, gb) become those of the new candidates, a new pair's
+ * computed from state gy[q]. 0, or -1 when memory runs out.
+ */
+static int choose_contacts(run *r, const double *const *ys, int ns, double **g[], const double *const *gy, int ng)
+{
+	const csf_prog *p = r->p;
+	long k = csf_contacts_find(r->cs, r->m, ys, ns);
+	if (k < 0 || room_for_guards(r, p->nevents + 2 * (size_t)k)) {
+		r->nomem = 1;
+		return -1;
+	}
+	double *gc[2];
+	for (int q = 0; q < ng; q++) gc[q] = *g[q] + p->nevents;
+	csf_contacts_commit(r->cs, r->m, gc, gy, ng);
+	r->ng = p->nevents + 2 * (uint32_t)k;
+	r->nchoices++, r->ncand += (unsigned long)k;
+	if ((unsigned long)k > r->maxcand) r->maxcand = (unsigned long)k;
+	return 0;
+}
+
 /* Brings every mode up to date at (t, y): at the start, and after an event. */
 static int update_modes(run *r, double t, double *y)
 {
 	const csf_prog *p = r->p;
 	free_modes(r, t, y);
-	if (p->ncontacts) {
+	if (r->cs) {
+		const double *ys[1] = { y };
+		if (choose_contacts(r, ys, 1, NULL, NULL, 0)) return 1;
 		settle_ctx s = { r, t, y };
 		memcpy(r->m + p->ystart, y, p->ny * sizeof *y);
 		if (csf_contact_settle(p, r->m, r->zeno, r->tol, settle_eval, &s)) return 1;
@@ -471,7 +517,7 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
                           size_t msglen)
 {
 	const csf_prog *p = r->p;
-	size_t n = p->ny, ng = r->ng;
+	size_t n = p->ny;
 	unsigned long same = 0, work = 0;
 	if (r->pending && take_event(r, ode, *t, y)) return CSF_ODE_STOPPED;
 	while (*t < t1) {
@@ -484,15 +530,28 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 		r->last_h = tb - ta;
 		if (guards_at(r, tb, y, r->gb)) return CSF_ODE_STOPPED;
 		memcpy(r->fb, r->fs, n * sizeof *y);
+		double lo = ta, hi = tb, dt = tb - ta;
+		if (r->cs) {
+			/* the candidate contacts of this step: every pair that can touch at the instants
+			   its guards are looked at (the start, 3 interpolated points, the end) */
+			for (int j = 1; j < 4; j++) hermite(r, dt, y, j / 4.0, r->yh + (size_t)(j - 1) * n);
+			const double *ys[5] = { r->ya, r->yh, r->yh + n, r->yh + 2 * n, y }, *gy[2] = { r->ya, y };
+			double **g[2] = { &r->ga, &r->gb };
+			if (choose_contacts(r, ys, 5, g, gy, 2)) return CSF_ODE_STOPPED;
+		}
+		size_t ng = r->ng;
 		/* the first of the sample points (3 interpolated, then the step's end) where an armed
 		   guard is negative: [lo, hi], with hi's guards in r->gh */
-		double lo = ta, hi = tb, dt = tb - ta;
 		int found = 0;
 		for (int j = 1; j <= 4 && !found; j++) {
 			if (j < 4) {
-				hermite(r, dt, y, j / 4.0, r->ys);
+				const double *yj = r->yh + (size_t)(j - 1) * n; /* with contacts, computed above */
+				if (!r->cs) {
+					hermite(r, dt, y, j / 4.0, r->ys);
+					yj = r->ys;
+				}
 				hi = ta + j / 4.0 * dt;
-				if (guards_at(r, hi, r->ys, r->gh)) return CSF_ODE_STOPPED;
+				if (guards_at(r, hi, yj, r->gh)) return CSF_ODE_STOPPED;
 			} else {
 				hi = tb;
 				memcpy(r->gh, r->gb, ng * sizeof *r->gh);
@@ -541,6 +600,8 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 		memcpy(y, r->ye, n * sizeof *y);
 		*t = best;
 		r->last = which;
+		r->last_src = which < (long)p->nevents ? p->events[which].src
+		                                      : csf_contacts_src(r->cs, (uint32_t)(which - (long)p->nevents) / 2);
 		if (t1 - best <= location_tol(p)) { /* at an output time: its row shows the state before the event */
 			*t = t1;
 			r->pending = 1;
@@ -572,25 +633,32 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 
 	r.m = malloc((p->nmem ? p->nmem : 1) * sizeof(double));
 	y = malloc((p->ny ? p->ny : 1) * sizeof(double));
-	r.ng = p->nevents + 2 * p->ncontacts;
+	r.ng = p->nevents; /* and two per candidate contact, none yet */
+	/* events: comparisons, or contacts (whose candidates come and go) */
+	int events = p->nevents || p->ncrules;
 	double *work = NULL;
-	if (r.ng) {
-		size_t n = p->ny ? p->ny : 1, g = r.ng;
-		work = malloc((4 * g + 9 * n) * sizeof *work);
+	if (events) {
+		size_t n = p->ny ? p->ny : 1;
+		work = malloc(12 * n * sizeof *work);
 		if (work) {
-			r.ga = work, r.gb = r.ga + g, r.gs = r.gb + g, r.gh = r.gs + g;
-			r.ya = r.gh + g, r.fa = r.ya + n, r.fb = r.fa + n, r.ys = r.fb + n, r.fs = r.ys + n, r.ye = r.fs + n;
+			r.ya = work, r.fa = r.ya + n, r.fb = r.fa + n, r.ys = r.fb + n, r.fs = r.ys + n, r.ye = r.fs + n;
 			r.jw = r.ye + n;
+			r.yh = r.jw + 3 * n;
 		}
+		room_for_guards(&r, r.ng ? r.ng : 1);
 	}
-	if (!r.m || !y || (r.ng && !work)) {
+	if (p->ncrules) {
+		r.cs = csf_contacts_new(p);
+		((csf_prog *)p)->crun = r.cs; /* the CONTACT instruction's state (p is the caller's, not const data) */
+	}
+	if (!r.m || !y || (events && (!work || r.nomem)) || (p->ncrules && !r.cs)) {
 		fprintf(err, "error: out of memory\n");
 		status = 2;
 		goto done;
 	}
 	memcpy(r.m, p->mem0, p->nmem * sizeof(double));
 	memcpy(y, p->mem0 + p->ystart, p->ny * sizeof(double));
-	if (p->ncontacts && !csf_method_contacts(o->method)) {
+	if (p->ncrules && !csf_method_contacts(o->method)) {
 		fprintf(err, "error: method '%s' cannot run a model with contacts (mechanics/rules: their friction "
 		        "depends on v); one of:", o->method);
 		for (size_t k = 0; csf_method_name(k); k++)
@@ -618,9 +686,14 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	/* a train of bounces that would end within zeno is at rest; the integrator's accuracy (contact.c) */
 	r.zeno = 1e-6 * p->by;
 	r.tol = o->tol > 0 ? o->tol : CSF_DEFAULT_TOL;
-	if (r.ng) {
+	if (events) {
 		/* the modes at t = 0: each comparison's side, contacts at rest or colliding */
 		if (update_modes(&r, 0, y) || (p->ny && guards_at(&r, 0, y, r.ga))) {
+			if (r.nomem) {
+				fprintf(err, "error: out of memory\n");
+				status = 2;
+				goto done;
+			}
 			report_nonfinite(p, CSF_SEC_RHS, r.m, 0, "a state derivative", o->fixed, err);
 			status = 1;
 			goto done;
@@ -638,7 +711,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		if (ode && tk > t) {
 			unsigned long before, rej;
 			csf_ode_stats(ode, &before, &rej);
-			int st = r.ng ? advance_events(&r, ode, &t, tk, fixed, fixed_h, y, msg, sizeof msg)
+			int st = events ? advance_events(&r, ode, &t, tk, fixed, fixed_h, y, msg, sizeof msg)
 			         : fixed ? csf_ode_advance_fixed(ode, &t, tk, fixed_h, y, msg, sizeof msg)
 			               : advance_plain(&r, ode, &t, tk, y, msg, sizeof msg);
 			unsigned long after;
@@ -652,6 +725,11 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 				        after - before, csf_ode_method(ode), tb);
 				warned = 1;
 			}
+			if (st == CSF_ODE_STOPPED && r.nomem) {
+				fprintf(err, "error: out of memory\n");
+				status = 2;
+				goto done;
+			}
 			if (st == CSF_ODE_STOPPED) {
 				report_nonfinite(p, CSF_SEC_RHS, r.m, r.fail_t, "a state derivative", o->fixed, err);
 				status = 1;
@@ -662,11 +740,11 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 				csf_fmt_double(tb, t);
 				csf_fmt_double(ta, tk - p->by);
 				csf_fmt_double(hb, r.last_h);
-				if (r.nevents) report_event_src(p, r.last, err);
+				if (r.nevents) report_event_src(p, r.last_src, err);
 				fprintf(err,
 				        "error: at t=%s, %d steps%s since the row at t=%s, the last of %s s: the run cannot get "
 				        "on (%s)\n",
-				        tb, MAX_WORK, r.ng ? " and events" : "", ta, hb,
+				        tb, MAX_WORK, events ? " and events" : "", ta, hb,
 				        r.nevents ? "the last event was of the rule on this line: events that follow each other "
 				                    "ever faster, or a force that switches within each step"
 				        : csf_ode_explicit(ode) ? "the problem looks stiff: try --method msbdf or --method bsimp"
@@ -677,7 +755,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			if (st == CHATTER) {
 				char tb[32];
 				csf_fmt_double(tb, t);
-				report_event_src(p, r.last, err);
+				report_event_src(p, r.last_src, err);
 				fprintf(err,
 				        "error: at t=%s the conditions switch back and forth without time advancing (%s): "
 				        "the model has no solution past this point (a sliding mode; make the switching "
@@ -698,7 +776,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			}
 		}
 		t = tk;
-		if (r.ng && !ode) free_modes(&r, tk, y); /* no state: the conditions depend on t alone */
+		if (events && !ode) free_modes(&r, tk, y); /* no state: the conditions depend on t alone */
 		r.m[p->tslot] = tk;
 		memcpy(r.m + p->ystart, y, p->ny * sizeof(double));
 		int a = exec(p, CSF_SEC_OUT, r.m);
@@ -733,14 +811,24 @@ done:
 	if (o->stats) {
 		unsigned long steps = 0, rejected = 0;
 		if (ode) csf_ode_stats(ode, &steps, &rejected);
+		char cand[96] = "";
+		if (r.cs)
+			snprintf(cand, sizeof cand, ", %.1f contact pairs watched (candidates) on average, at most %lu",
+			         r.nchoices ? (double)r.ncand / (double)r.nchoices : 0.0, r.maxcand);
 		fprintf(err,
 		        "stats: method %s%s, %lu steps (%lu rejected), %lu right-hand side and %lu Jacobian evaluations, "
-		        "%lu events, %.6f s\n",
+		        "%lu events%s, %.6f s\n",
 		        ode ? csf_ode_method(ode) : "none", fixed ? " (fixed steps)" : "", steps, rejected, r.nrhs, r.njac,
-		        r.nevents,
+		        r.nevents, cand,
 		        (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
 	}
 	csf_ode_free(ode);
+	if (r.cs) ((csf_prog *)p)->crun = NULL;
+	csf_contacts_free(r.cs);
+	free(r.ga);
+	free(r.gb);
+	free(r.gs);
+	free(r.gh);
 	free(work);
 	free(y);
 	free(r.m);

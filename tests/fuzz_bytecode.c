@@ -5,9 +5,10 @@
  * every byte (XOR 0xFF), and (3) flips every byte again but then repairs the
  * payload size and checksum, so that the change reaches the verifier as a
  * hostile file would. Every variant must either be rejected by csf_decode
- * with a reason, or pass verification and then run both code sections
- * without touching memory outside the model (the sanitizer build checks
- * that). Prints a summary; exits 1 if a variant that should have been
+ * with a reason, or pass verification and then run both code sections,
+ * and the contact routine on its tables (the broad phase and the settling
+ * of modes), without touching memory outside the model (the sanitizer
+ * build checks that). Prints a summary; exits 1 if a variant that should have been
  * rejected was accepted.
  */
 #include <stdio.h>
@@ -16,6 +17,14 @@
 
 #include "csf.h"
 #include "bytecode.h"
+
+typedef struct exec_ctx { const csf_prog *p; double *m; } exec_ctx;
+static int exec_rhs(void *ctx)
+{
+	exec_ctx *e = ctx;
+	csf_vm_exec(e->p, CSF_SEC_RHS, e->m);
+	return 0;
+}
 
 static int try_one(const unsigned char *buf, size_t len, int must_fail, long *rejected, long *accepted)
 {
@@ -33,8 +42,19 @@ static int try_one(const unsigned char *buf, size_t len, int must_fail, long *re
 	double *m = malloc((p.nmem ? p.nmem : 1) * sizeof *m);
 	if (m) {
 		memcpy(m, p.mem0, p.nmem * sizeof *m);
+		/* the contact routine's tables too: the candidates at this state, settled */
+		csf_contacts *cs = p.ncrules ? csf_contacts_new(&p) : NULL;
+		if (cs) {
+			p.crun = cs;
+			const double *ys[1] = { m + p.ystart };
+			if (csf_contacts_find(cs, m, ys, 1) >= 0) csf_contacts_commit(cs, m, NULL, NULL, 0);
+			exec_ctx e = { &p, m };
+			csf_contact_settle(&p, m, 1e-7, 1e-10, exec_rhs, &e);
+		}
 		csf_vm_exec(&p, CSF_SEC_RHS, m);
 		csf_vm_exec(&p, CSF_SEC_OUT, m);
+		p.crun = NULL;
+		csf_contacts_free(cs);
 		free(m);
 	}
 	csf_prog_free(&p);

@@ -15,7 +15,8 @@
 #     lines that must appear on stderr.
 #  4. both execution paths give identical output: csfvm and `csfc --emit-c`.
 #  5. hostile bytecode, bad usage, output errors, install, a 300-body scene,
-#     every method at every tolerance (tests/methods_tol.sh).
+#     every method at every tolerance (tests/methods_tol.sh), contacts
+#     (tests/contacts/), many objects (tests/many/: 100 balls in a box).
 # The last line is "N passed, N failed".
 set -u
 B=$(cd "${CSF_BUILD:-build}" && pwd)
@@ -164,8 +165,8 @@ done
 printf 'object p: x = 1 m\nobject p: v = 0 m/s\nobject p: k = 1 s^-2\nrule: x'"'"' = v\nrule: v'"'"' = -k * x^3 / (1 m^2)\nassert x < 2 m\ninc t till 1 by 0.5 watch x, v\n' >"$T/h.csf"
 "$CSFC" "$T/h.csf" -o "$T/h.csfb" 2>/dev/null
 if timeout "$LIMIT" "$B/fuzz-bytecode" "$T/h.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode: $(tail -n 3 "$T/fuzz")"; fi
-# the same for a program with events and contacts (their tables, EVGT, CONTACT)
-printf 'using mechanics/mass_point\nobject b: mass_point\nobject b: pos = (0, 0, 0.1) m\nobject b: cr = 0.5\nobject f: plane\nusing mechanics/rules\nrule F: if t < 0.2 s:\n    W = g.mul(m)\nelse:\n    W = g.mul(-m)\ninc t till 0.4 s by 0.2 s watch pos\n' >"$T/hc.csf"
+# the same for a program with events and contacts (their tables, EVGT, CONTACT; a point and a sphere on a floor)
+printf 'using mechanics/mass_point\nobject b: mass_point\nobject b: pos = (0, 0, 0.1) m\nobject b: cr = 0.5\nobject s: mass_point\nobject s: radius = 0.1 m\nobject s: pos = (0, 0, 0.2) m\nobject f: plane\nusing mechanics/rules\nrule F: if t < 0.2 s:\n    W = g.mul(m)\nelse:\n    W = g.mul(-m)\ninc t till 0.4 s by 0.2 s watch pos\n' >"$T/hc.csf"
 "$CSFC" -I stdlib "$T/hc.csf" -o "$T/hc.csfb" 2>"$T/err" || bad "hostile bytecode: the contact model does not compile: $(head -n 1 "$T/err")"
 if timeout "$LIMIT" "$B/fuzz-bytecode" "$T/hc.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode with contacts: $(tail -n 3 "$T/fuzz")"; fi
 # and through the real executable, on a sample of corruptions (each byte inverted)
@@ -242,6 +243,8 @@ if sh tests/many/projectiles.sh "$CSFC" "$CSFVM" "$T" >"$T/pj" 2>&1; then ok; el
 if sh tests/many/ring.sh "$CSFC" "$CSFVM" "$T" >"$T/ring" 2>&1; then ok; else bad "ring of masses: $(grep FAIL "$T/ring" | head -n 3)"; fi
 # 5l. the code grows with the scene's text, not its number of objects (tests/many/code_size.sh)
 if sh tests/many/code_size.sh "$CSFC" "$T" >"$T/cs" 2>&1; then ok; else bad "code size: $(grep FAIL "$T/cs" | head -n 3)"; fi
+# 5m. 100 elastic balls in a box of six planes: inside, energy conserved (tests/many/box.sh)
+if sh tests/many/box.sh "$CSFC" "$CSFVM" "$T" >"$T/box" 2>&1; then ok; else bad "100 balls in a box: $(grep FAIL "$T/box" | head -n 3)"; fi
 # 5i. every contact scene under every method: each finishes, exact to 1e-6 (tests/contacts/methods.sh)
 if sh tests/contacts/methods.sh "$CSFC" "$CSFVM" "$T" >"$T/mm" 2>&1; then ok; else bad "contacts and methods: $(grep FAIL "$T/mm" | head -n 3)"; fi
 

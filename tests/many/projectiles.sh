@@ -3,9 +3,9 @@
 # its own initial position and velocity, under gravity (mechanics/rules):
 # every row of every object against the closed form
 #   pos = pos0 + v0 t + g t^2/2,  v = v0 + g t,  g = (0, 0, -9.80665),
-# within 1e-9 (rk8pd is exact on a quadratic up to rounding). None of the
-# points (radius 0) approaches another on the line through them, so the
-# scene has no contacts. Prints "N passed, N failed".
+# within 1e-9 (rk8pd is exact on a quadratic up to rounding). Two points
+# (radius 0) never touch, and there is no plane, so the scene has no
+# contacts. Prints "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3
 n=1000
 awk -v n=$n 'BEGIN {

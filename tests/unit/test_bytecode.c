@@ -167,20 +167,54 @@ static const char *contact_model =
 	"rule: v' = a\nrule: pos' = v\n"
 	"inc t till 1 s by 0.5 s watch b.a, b.FN, b.Ff\n";
 
+typedef struct eval_ctx { const csf_prog *p; double *m; } eval_ctx;
+static int eval_rhs(void *ctx)
+{
+	eval_ctx *e = ctx;
+	csf_vm_exec(e->p, CSF_SEC_RHS, e->m);
+	return 0;
+}
+
+/* The contact routine's state for p, its candidates chosen at the state in m; in p->crun. */
+static csf_contacts *contacts_at(csf_prog *p, const double *m)
+{
+	csf_contacts *cs = csf_contacts_new(p);
+	ck_assert_ptr_nonnull(cs);
+	p->crun = cs;
+	const double *ys[1] = { m + p->ystart };
+	ck_assert_int_ge(csf_contacts_find(cs, m, ys, 1), 0);
+	csf_contacts_commit(cs, m, NULL, NULL, 0);
+	return cs;
+}
+
+/* The contact body of object `name`. */
+static const csf_cbody *cbody_of(const csf_prog *p, const char *name)
+{
+	for (uint32_t i = 0; i < p->ncbodies; i++)
+		if (strcmp(csf_str(p, p->objects[p->cbodies[i].object]), name) == 0) return &p->cbodies[i];
+	ck_abort_msg("no contact body %s", name);
+	return NULL;
+}
+
 /* The contact routine on a resting, sticking block: a = 0, FN = m g cos30 n, Ff = m g sin30 up the slope. */
 START_TEST(test_contact_routine)
 {
 	csf_prog p;
 	ck_assert_int_eq(compile_string(contact_model, &p, NULL), 0);
-	ck_assert_uint_eq(p.ncontacts, 1);
+	ck_assert_uint_eq(p.ncrules, 1);
+	ck_assert_uint_eq(p.ncbodies, 2);
 	ck_assert_uint_eq(p.nevents, 1);
 	double *m = malloc(p.nmem * sizeof *m);
 	memcpy(m, p.mem0, p.nmem * sizeof *m);
-	const csf_contact *c = &p.contacts[0];
-	m[c->s[CSF_CF_WORK] + CSF_CW_MODE] = 2; /* in contact, sticking */
-	m[p.events[0].mode] = 1;                 /* t < 1 s */
+	m[p.events[0].mode] = 1; /* t < 1 s */
+	/* it touches the ramp at rest, pressed into it: it comes to rest in contact, sticking */
+	csf_contacts *cs = contacts_at(&p, m);
+	ck_assert_uint_eq(csf_contacts_count(cs), 1);
+	eval_ctx e = { &p, m };
+	ck_assert_int_eq(csf_contact_settle(&p, m, 5e-7, 1e-10, eval_rhs, &e), 0);
 	ck_assert_int_eq(csf_vm_exec(&p, CSF_SEC_RHS, m), -1);
 	double g = 9.80665, mg = 2 * g, s30 = 0.5, c30 = 0.8660254037844386;
+	const csf_cbody *c = cbody_of(&p, "b");
 	const double *a = m + c->s[CSF_CF_A], *fn = m + c->s[CSF_CF_FN], *ff = m + c->s[CSF_CF_FF];
 	double want_fn[3] = { -mg * c30 * s30, 0, mg * c30 * c30 }, want_ff[3] = { mg * s30 * c30, 0, mg * s30 * s30 };
 	for (int k = 0; k < 3; k++) {
@@ -189,19 +223,64 @@ START_TEST(test_contact_routine)
 		ck_assert_msg(fabs(ff[k] - want_ff[k]) < 1e-13, "Ff[%d] = %.17g, want %.17g", k, ff[k], want_ff[k]);
 	}
 	/* guards: the normal force pushes (m g cos30 > 0); static friction holds (mu_s N - |f| > 0) */
-	ck_assert(fabs(m[c->s[CSF_CF_WORK] + CSF_CW_G0] - mg * c30) < 1e-13);
-	ck_assert(fabs(m[c->s[CSF_CF_WORK] + CSF_CW_G1] - mg * (c30 - s30)) < 1e-13);
-	/* the verifier checks both tables */
+	double gd[2];
+	csf_contacts_guards(cs, gd);
+	ck_assert(fabs(gd[0] - mg * c30) < 1e-13);
+	ck_assert(fabs(gd[1] - mg * (c30 - s30)) < 1e-13);
+	p.crun = NULL;
+	csf_contacts_free(cs);
+	free(m);
+	csf_prog_free(&p);
+}
+END_TEST
+
+/* Hostile contact tables: every slot, body and list checked (csf_verify). */
+START_TEST(test_contact_tables_verified)
+{
+	csf_prog p;
+	ck_assert_int_eq(compile_string(contact_model, &p, NULL), 0);
+	uint32_t b = (uint32_t)(cbody_of(&p, "b") - p.cbodies), r = (uint32_t)(cbody_of(&p, "ramp") - p.cbodies);
+	csf_cbody *cb = &p.cbodies[b], *cr = &p.cbodies[r];
+	csf_crule *ru = &p.crules[0];
+	ck_assert_uint_eq(p.ncmembers, 2);
+	ck_assert(p.cmembers[ru->first0] == b && p.cmembers[ru->first1] == r && ru->every == 1);
 	defect d[] = {
-		{ &p.contacts[0].s[CSF_CF_V], p.nmem - 1, "contact" }, /* a vector past the end of memory */
-		{ &p.contacts[0].s[CSF_CF_WORK], p.nmem - 2, "contact" },
-		{ &p.contacts[0].plane, 2, "contact" },
-		{ &p.contacts[0].src, p.nsrcs, "contact" },
+		{ &cb->s[CSF_CF_V], p.nmem - 1, "contact body" },   /* a vector past the end of memory */
+		{ &cb->s[CSF_CF_M], p.nmem, "contact body" },
+		{ &cb->s[CSF_CF_POS], p.dstart, "contact body" },   /* a position not in the state */
+		{ &cb->s[CSF_CF_POS], p.ystart + p.ny - 2, "contact body" },
+		{ &cb->plane, 2, "contact body" },
+		{ &cb->varies, 2, "contact body" },
+		{ &cb->object, p.nobjects, "contact body" },
+		{ &cr->s[CSF_CF_R], p.nmem - 2, "contact body" },   /* a plane's normal is a vector */
+		{ &cr->s[CSF_CF_POS], p.nmem, "contact body" },
+		{ &p.cmembers[0], p.ncbodies, "contact list entry" },
+		{ &p.cmembers[ru->first0], r, "contact rule" },     /* a plane as $0 */
+		{ &ru->src, p.nsrcs, "contact rule" },
+		{ &ru->every, 2, "contact rule" },
+		{ &ru->first1, p.ncmembers, "contact rule" },
+		{ &ru->n1, 2, "contact rule" },                     /* a list past the end */
+		{ &ru->first0, 0xFFFFFFFFu, "contact rule" },       /* and one that wraps */
+		{ &ru->n0, 0, "contact rule" },                     /* `for`: not one $0 for each $1 */
 		{ &p.events[0].mode, p.nmem, "event" },
 		{ &p.events[0].kind, 2, "event" },
 	};
-	expect_defects(&p, d, sizeof d / sizeof d[0]);
-	free(m);
+	/* n0 = 0 is fine for a rule without `for`: the n0 defect is checked with every = 0 */
+	expect_defects(&p, d, sizeof d / sizeof d[0] - 3);
+	char err[256];
+	ru->every = 0;
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), 0);
+	expect_defects(&p, d + sizeof d / sizeof d[0] - 3, 3);
+	/* `for`: a pair of one object; a body twice in a list */
+	p.cmembers[ru->first1] = b;
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
+	ck_assert_msg(strstr(err, "contact rule") != NULL, "%s", err);
+	ru->every = 1;
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), 0); /* every: the pair of one object is left out */
+	ru->first1 = ru->first0, ru->n1 = 2;                   /* [b, ramp] ... */
+	p.cmembers[1] = b;                                      /* ... [b, b] */
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
+	ck_assert_msg(strstr(err, "contact rule") != NULL, "%s", err);
 	csf_prog_free(&p);
 }
 END_TEST
@@ -220,50 +299,153 @@ static const char *floor_model =
 	"rule: a = g\nrule: v' = a\nrule: pos' = v\n"
 	"inc t till 1 s by 0.5 s watch b.pos\n";
 
-typedef struct eval_ctx { const csf_prog *p; double *m; } eval_ctx;
-static int eval_rhs(void *ctx)
-{
-	eval_ctx *e = ctx;
-	csf_vm_exec(e->p, CSF_SEC_RHS, e->m);
-	return 0;
-}
-
 /*
  * Impacts of the sphere landing at speed w at t = 2 s, settled by
  * csf_contact_settle (Zeno time 5e-7 s, tolerance 1e-10): it rebounds at
- * w/2 and is apart; on a hop lower than 100 tol times the scale (2e6 m, so
- * 0.02 m) it is hopping, landing after the flight time 2 (w/2)/g; when the
- * train of bounces would end within the Zeno time it rests, with FN = m g.
- * The floor's distance from the origin changes none of this.
+ * w/2 and is apart (guard 0, the gap, zero); on a hop lower than 100 tol
+ * times the scale (2e6 m, so 0.02 m) it is hopping (guard 0, the time
+ * left until it lands after the flight time 2 (w/2)/g); when the train of
+ * bounces would end within the Zeno time it rests (guard 0, the normal
+ * force, FN = m g). The floor's distance from the origin changes none of
+ * this.
  */
 START_TEST(test_contact_settle)
 {
 	csf_prog p;
 	ck_assert_int_eq(compile_string(floor_model, &p, NULL), 0);
-	ck_assert_uint_eq(p.ncontacts, 1);
+	ck_assert_uint_eq(p.ncrules, 1);
 	double *m = malloc(p.nmem * sizeof *m), g = 9.80665;
-	const csf_contact *c = &p.contacts[0];
-	uint32_t w0 = c->s[CSF_CF_WORK];
+	const csf_cbody *c = cbody_of(&p, "b");
 	eval_ctx e = { &p, m };
-	static const struct { double w, mode, v; } cases[] = {
-		{ 2, 0, 1 },         /* a hop of 0.051 m: apart */
-		{ 1, 3, 0.5 },       /* 0.0127 m: hopping */
-		{ 1e-6, 1, 0 },      /* bounces that end within 2e-7 s: at rest, sliding freely */
+	enum { APART, REST, HOPPING };
+	static const struct { double w; int mode; double v; } cases[] = {
+		{ 2, APART, 1 },          /* a hop of 0.051 m: apart */
+		{ 1, HOPPING, 0.5 },      /* 0.0127 m: hopping */
+		{ 1e-6, REST, 0 },        /* bounces that end within 2e-7 s: at rest, sliding freely */
 	};
 	for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
 		memcpy(m, p.mem0, p.nmem * sizeof *m);
 		m[p.tslot] = 2;
 		m[c->s[CSF_CF_V] + 2] = -cases[i].w;
+		csf_contacts *cs = contacts_at(&p, m);
+		ck_assert_uint_eq(csf_contacts_count(cs), 1);
 		ck_assert_int_eq(csf_contact_settle(&p, m, 5e-7, 1e-10, eval_rhs, &e), 0);
-		ck_assert_msg(m[w0 + CSF_CW_MODE] == cases[i].mode, "w=%g: mode %g", cases[i].w, m[w0 + CSF_CW_MODE]);
+		double gd[2];
+		csf_contacts_guards(cs, gd);
 		ck_assert_msg(m[c->s[CSF_CF_V] + 2] == cases[i].v, "w=%g: v %.17g", cases[i].w, m[c->s[CSF_CF_V] + 2]);
 		ck_assert(m[c->s[CSF_CF_POS] + 2] >= 1000000.1); /* not below the floor */
-		if (cases[i].mode == 3)
-			ck_assert_msg(fabs(m[w0 + CSF_CW_TL] - (2 + 2 * 0.5 / g)) < 1e-15, "landing %.17g", m[w0 + CSF_CW_TL]);
-		if (cases[i].mode == 1)
-			ck_assert_msg(fabs(m[c->s[CSF_CF_FN] + 2] - g) < 1e-12 && fabs(m[c->s[CSF_CF_A] + 2]) < 1e-12,
-			              "FN %.17g, a %.17g", m[c->s[CSF_CF_FN] + 2], m[c->s[CSF_CF_A] + 2]);
+		if (cases[i].mode == APART) ck_assert_msg(gd[0] >= 0 && gd[0] < 1e-9, "w=%g: gap %g", cases[i].w, gd[0]);
+		if (cases[i].mode == HOPPING)
+			ck_assert_msg(fabs(gd[0] - 2 * 0.5 / g) < 1e-15, "landing in %.17g", gd[0]);
+		if (cases[i].mode == REST)
+			ck_assert_msg(fabs(gd[0] - g) < 1e-12 && fabs(m[c->s[CSF_CF_FN] + 2] - g) < 1e-12 &&
+			                      fabs(m[c->s[CSF_CF_A] + 2]) < 1e-12,
+			              "N %.17g, FN %.17g, a %.17g", gd[0], m[c->s[CSF_CF_FN] + 2], m[c->s[CSF_CF_A] + 2]);
+		p.crun = NULL;
+		csf_contacts_free(cs);
 	}
+	free(m);
+	csf_prog_free(&p);
+}
+END_TEST
+
+/*
+ * The broad phase: 60 mass points (radii 0 to 0.3 m, a third of them
+ * points) and two planes, placed at random in a 3 m box over five states
+ * (the instants of a step). For each state, the candidates' guards are
+ * their gaps (computed there, all pairs new): every pair whose gap is
+ * negative at one of the states (found by trying all of them) must be a
+ * candidate, two points never are, and the candidates are few (not all
+ * the 1770 + 120 pairs).
+ */
+START_TEST(test_contact_broad_phase)
+{
+	enum { N = 60, NS = 5 };
+	/* mechanics/mass_point and mechanics/rules, without the standard library */
+	char *text = xprintf("def mass_point:\n    m = 1 kg\n    vector v = (0, 0, 0) m/s\n    vector a = (0, 0, 0) m/s^2\n"
+	                     "    vector pos = (0, 0, 0) m\n    radius = 0 m\n    cr = 1\n    mu_s = 0\n    mu_k = 0\n"
+	                     "    vector FN = (0, 0, 0) N\n    vector Ff = (0, 0, 0) N\n"
+	                     "def plane:\n    vector point = (0, 0, 0) m\n    vector normal = (0, 0, 1)\n"
+	                     "    vector edge = (0, 0, 0) m\n    cr = 1\n    mu_s = 0\n    mu_k = 0\n");
+	for (int i = 0; i < N; i++)
+		text = xprintf("%sobject b%d: mass_point\nobject b%d: radius = %g m\n", text, i, i, i % 3 ? 0.05 * (i % 7) : 0.0);
+	text = xprintf("%sobject f: plane\nobject w: plane\nobject w: point = (3, 0, 0) m\nobject w: normal = (-1, 0, 0)\n"
+	               "rule: contact(pos, radius, pos$1, radius$1)\nrule: contact(pos, radius, point$1, normal$1)\n"
+	               "rule: RF = a.mul(m)\nrule: v' = a\nrule: pos' = v\ninc t till 1 by 1 watch b0.pos\n", text);
+	csf_prog p;
+	ck_assert_int_eq(compile_string(text, &p, NULL), 0);
+	ck_assert_uint_eq(p.ncrules, 2);
+	double *m = malloc(p.nmem * sizeof *m), *ys[NS];
+	memcpy(m, p.mem0, p.nmem * sizeof *m);
+	uint32_t pos[N];
+	double rad[N];
+	for (int i = 0; i < N; i++) {
+		const csf_cbody *b = cbody_of(&p, xprintf("b%d", i));
+		pos[i] = b->s[CSF_CF_POS] - p.ystart, rad[i] = m[b->s[CSF_CF_R]];
+	}
+	unsigned long seed = 12345;
+	long total = 0; /* pairs with a negative gap, over the trials */
+	for (int trial = 0; trial < 20; trial++) {
+		for (int s = 0; s < NS; s++) {
+			ys[s] = malloc(p.ny * sizeof *ys[s]);
+			memcpy(ys[s], p.mem0 + p.ystart, p.ny * sizeof *ys[s]);
+			for (int i = 0; i < N; i++)
+				for (int k = 0; k < 3; k++) {
+					seed = (seed * 16807) % 2147483647;
+					/* a drift from state to state; some points exactly on others */
+					double x = (double)seed / 2147483647 * 3 - (k == 2 ? 0.2 : 0);
+					ys[s][pos[i] + k] = s ? ys[s - 1][pos[i] + k] + (x - 1.5) * 0.02 : (i % 10 == 9 ? ys[0][pos[i - 1] + k] : x);
+				}
+		}
+		csf_contacts *cs = csf_contacts_new(&p);
+		ck_assert_ptr_nonnull(cs);
+		long nc = csf_contacts_find(cs, m, (const double *const *)ys, NS);
+		ck_assert_int_ge(nc, 0);
+		double *g[NS];
+		for (int s = 0; s < NS; s++) g[s] = malloc((2 * (size_t)nc + 1) * sizeof *g[s]);
+		csf_contacts_commit(cs, m, g, (const double *const *)ys, NS);
+		ck_assert_uint_eq(csf_contacts_count(cs), (uint32_t)nc);
+		long want = 0, near = 0;
+		for (int s = 0; s < NS; s++) {
+			long neg = 0, all = 0;
+			for (long k = 0; k < nc; k++) neg += g[s][2 * k] < 0;
+			for (int i = 0; i < N; i++) {
+				const double *x = ys[s] + pos[i];
+				all += x[2] - rad[i] < 0;        /* the floor, z = 0 */
+				all += 3 - x[0] - rad[i] < 0;    /* the wall, x = 3 */
+				for (int j = i + 1; j < N; j++) {
+					const double *q = ys[s] + pos[j];
+					double d = csf_vmag3(x[0] - q[0], x[1] - q[1], x[2] - q[2]);
+					if (rad[i] + rad[j] > 0) {
+						all += d - rad[i] - rad[j] < 0;
+						near += s == 0 && d - rad[i] - rad[j] < 0.2;
+					}
+				}
+			}
+			ck_assert_msg(neg == all, "trial %d, state %d: %ld candidates with a negative gap, %ld pairs", trial, s, neg,
+			              all);
+			want += all;
+		}
+		ck_assert_msg(nc < 2 * near + 4 * N, "trial %d: %ld candidates, %ld pairs near", trial, nc, near);
+		for (long k = 0; k < nc; k++) ck_assert(isfinite(g[0][2 * k])); /* no two points: their gap is infinite */
+		for (int s = 0; s < NS; s++) free(g[s]), free(ys[s]);
+		csf_contacts_free(cs);
+		total += want;
+	}
+	ck_assert_msg(total > 100, "%ld pairs touching: the test does not test", total);
+	/* a body whose radius varies, and a plane whose geometry does, are candidates with every body */
+	csf_cbody *b1 = (csf_cbody *)cbody_of(&p, "b1"), *w = (csf_cbody *)cbody_of(&p, "w");
+	b1->varies = w->varies = 1;
+	for (int s = 0; s < NS; s++) {
+		ys[s] = calloc(p.ny, sizeof *ys[s]);
+		for (int i = 0; i < N; i++) /* every body far from every other, above the floor, before the wall */
+			ys[s][pos[i]] = -100.0 * i, ys[s][pos[i] + 2] = 1000 + 100.0 * i;
+	}
+	csf_contacts *cs = csf_contacts_new(&p);
+	long nc = csf_contacts_find(cs, m, (const double *const *)ys, NS);
+	ck_assert_int_eq(nc, (N - 1) + 1 + N); /* b1 with each mass point and with f, w with each */
+	csf_contacts_free(cs);
+	for (int s = 0; s < NS; s++) free(ys[s]);
 	free(m);
 	csf_prog_free(&p);
 }
@@ -294,7 +476,9 @@ Suite *bytecode_suite(void)
 	tcase_add_test(tc, test_verifier);
 	tcase_add_test(tc, test_powi_verified);
 	tcase_add_test(tc, test_contact_routine);
+	tcase_add_test(tc, test_contact_tables_verified);
 	tcase_add_test(tc, test_contact_settle);
+	tcase_add_test(tc, test_contact_broad_phase);
 	tcase_add_test(tc, test_disassembler);
 	suite_add_tcase(s, tc);
 	return s;
