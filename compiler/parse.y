@@ -71,7 +71,7 @@ static Stmt *stmt(StmtKind k, YYLoc l)
 	Stmt *s = xalloc(sizeof *s);
 	s->kind = k;
 	s->loc = LOC(l);
-	s->text = text_from(s->loc);
+	if (k == S_RULE) s->text = text_from(s->loc); /* what diagnostics and --explain quote (assertions set theirs) */
 	return s;
 }
 static Eqn *eqn(Expr *lhs, int deriv, Expr *rhs, YYLoc l)
