@@ -40,7 +40,10 @@ typedef struct Loc { int file, line, col; } Loc; /* file indexes the source tabl
 typedef struct Source { char *path; char *text; size_t len; int nlines; size_t *line_start; } Source;
 extern Vec sources; /* of Source*, index = Loc.file */
 
-/* Reads a file into the source table; returns its index or -1 (errno set). */
+/* The largest model file csfc reads: 128 MiB, about a million objects. */
+#define CSF_MAX_SOURCE (128L << 20)
+/* Reads a file into the source table; returns its index or -1 (errno set; EFBIG: larger than
+ * CSF_MAX_SOURCE). */
 int src_load(const char *path);
 /* Adds an in-memory source (tests); returns its index. */
 int src_add(const char *name, const char *text);

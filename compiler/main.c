@@ -108,6 +108,11 @@ static int run(int argc, char **argv)
 	}
 	opts.stdlib = find_stdlib();
 	if (src_load(in) < 0) {
+		if (errno == EFBIG) {
+			fprintf(stderr, "csfc: error: %s is larger than the %ld MiB a model may have (about a million "
+			                "objects): too big to compile\n", in, CSF_MAX_SOURCE >> 20);
+			return 1;
+		}
 		fprintf(stderr, "csfc: cannot read %s: %s\n", in, strerror(errno));
 		return 2;
 	}

@@ -2001,11 +2001,13 @@ void sema_explain(Model *Mo, FILE *f)
 			n++;
 			Shape *S = Mo->shaped && !s->has_for ? I->bind[0]->shape : NULL;
 			fprintf(f, "  for %s", I->bind[0]->name);
-			if (S && S->n > 1) fprintf(f, " and the %d other objects of its shape", S->n - 1);
+			if (S && S->n > 1) fprintf(f, " and the %d other object%s of its shape", S->n - 1, S->n > 2 ? "s" : "");
 			for (int b = 1; b < I->nbind; b++) {
 				Object *o = I->bind[b];
 				if (S && o->shape == S) fprintf(f, ", each with every other one");
-				else if (S && o->shape->n > 1) fprintf(f, ", each with %s and the %d other objects of its shape", o->name, o->shape->n - 1);
+				else if (S && o->shape->n > 1)
+					fprintf(f, ", each with %s and the %d other object%s of its shape", o->name, o->shape->n - 1,
+					        o->shape->n > 2 ? "s" : "");
 				else fprintf(f, "%s%s", b == 1 ? " with " : ", ", o->name);
 			}
 			if (I->isassert) fprintf(f, ": checked at every output step");

@@ -6,6 +6,7 @@
  * a test redirects it), so tests can compare the exact text.
  */
 #include <errno.h>
+#include <sys/stat.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -129,6 +130,13 @@ FILE *diag_out;
 
 int src_load(const char *path)
 {
+	/* a model takes some 80 times its size to compile (10 KB for an object of 130 bytes):
+	   a larger file is refused before it is read, not left to exhaust memory */
+	struct stat st;
+	if (stat(path, &st) == 0 && st.st_size > CSF_MAX_SOURCE) {
+		errno = EFBIG;
+		return -1;
+	}
 	size_t n;
 	unsigned char *buf = csf_read_file(path, &n);
 	if (!buf) return -1;

@@ -243,6 +243,12 @@ if sh tests/many/projectiles.sh "$CSFC" "$CSFVM" "$T" >"$T/pj" 2>&1; then ok; el
 if sh tests/many/ring.sh "$CSFC" "$CSFVM" "$T" >"$T/ring" 2>&1; then ok; else bad "ring of masses: $(grep FAIL "$T/ring" | head -n 3)"; fi
 # 5l. the code grows with the scene's text, not its number of objects (tests/many/code_size.sh)
 if sh tests/many/code_size.sh "$CSFC" "$T" >"$T/cs" 2>&1; then ok; else bad "code size: $(grep FAIL "$T/cs" | head -n 3)"; fi
+# 5l'. a model too big to compile is an error before anything is read (a sparse file of 200 MiB)
+: > "$T/big.csf" && truncate -s 200M "$T/big.csf" 2>/dev/null
+"$CSFC" "$T/big.csf" -o "$T/big.csfb" 2>"$T/big.err"; st=$?
+if [ $st -eq 1 ] && grep -q "^csfc: error: .*too big to compile" "$T/big.err" && [ ! -e "$T/big.csfb" ]; then ok
+else bad "a 200 MiB model: exit $st, $(head -n 1 "$T/big.err")"; fi
+rm -f "$T/big.csf"
 # 5m. 100 elastic balls in a box of six planes: inside, energy conserved (tests/many/box.sh)
 if sh tests/many/box.sh "$CSFC" "$CSFVM" "$T" >"$T/box" 2>&1; then ok; else bad "100 balls in a box: $(grep FAIL "$T/box" | head -n 3)"; fi
 # 5i. every contact scene under every method: each finishes, exact to 1e-6 (tests/contacts/methods.sh)
