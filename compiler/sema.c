@@ -741,11 +741,11 @@ static void mark_named(Expr *x, Map *named)
  * list or the watch list names the object and one of its temporaries, an
  * object is a shape of its own.
  */
-static void build_shapes(Stmt *stmts, Stmt *start)
+static void build_shapes(Stmt *start)
 {
 	Map named = { 0 }, by_sig = { 0 };
-	for (Stmt *s = stmts; s; s = s->next) {
-		if (s->kind != S_RULE && s->kind != S_ASSERT) continue;
+	for (int i = 0; i < M->stmts.n; i++) { /* the rules and assertions */
+		Stmt *s = M->stmts.v[i];
 		mark_named(s->cond, &named);
 		mark_named(s->call, &named);
 		for (int b = 0; b < 2; b++)
@@ -770,15 +770,23 @@ static void build_shapes(Stmt *stmts, Stmt *start)
 		char *sig = NULL;
 		ArenaMark mark = arena_mark();
 		if (shaped && !map_get(&named, o->name)) {
-			char **one = xalloc((size_t)o->props.n * sizeof *one);
+			/* each property: its name, then type, dimension kind and dimension as hex digits */
 			size_t len = 0;
+			for (int j = 0; j < o->props.n; j++) len += strlen(((Var *)o->props.v[j])->name) + 1 + 2 * (2 + 3 * 8);
+			char *at = sig = xalloc(len + 1);
 			for (int j = 0; j < o->props.n; j++) {
 				Var *v = o->props.v[j];
-				one[j] = xprintf("%s:%d:%d:%a:%a:%a;", v->name, v->isvec, v->dimk, v->dim[0], v->dim[1], v->dim[2]);
-				len += strlen(one[j]);
+				unsigned char bits[2 + 3 * 8] = { (unsigned char)v->isvec, (unsigned char)v->dimk };
+				memcpy(bits + 2, v->dim, sizeof v->dim);
+				size_t n = strlen(v->name);
+				memcpy(at, v->name, n);
+				at += n;
+				*at++ = ':';
+				for (size_t k = 0; k < sizeof bits; k++) {
+					*at++ = "0123456789abcdef"[bits[k] >> 4];
+					*at++ = "0123456789abcdef"[bits[k] & 15];
+				}
 			}
-			sig = xalloc(len + 1);
-			for (int j = 0, at = 0; j < o->props.n; j++) at += sprintf(sig + at, "%s", one[j]);
 		}
 		Shape *S = sig ? map_get(&by_sig, sig) : NULL;
 		if (S) arena_release(mark); /* the signature of a known shape is not kept */
@@ -1889,7 +1897,7 @@ static Model *resolve(Stmt *stmts)
 		M->start = start;
 	}
 	if (diag_errors) return M;
-	build_shapes(stmts, start);
+	build_shapes(start);
 	for (int i = 0; start && i < start->watch.n; i++) {
 		WatchItem *w = start->watch.v[i];
 		map_put(&watched, w->obj ? xprintf("%s\x01%s", w->obj, w->prop) : w->prop, w);
@@ -1937,11 +1945,12 @@ static Model *resolve(Stmt *stmts)
 		resolve_deriv(deriv_insts.v[i]);
 		vec_push(&M->insts, deriv_insts.v[i]);
 	}
-	for (Stmt *s = stmts; s; s = s->next)
-		if (s->kind == S_ASSERT) {
-			cur_src = add_src(s->loc, s->text);
-			for_each_binding(s, inst_assert);
-		}
+	for (int i = 0; i < M->stmts.n; i++) {
+		Stmt *s = M->stmts.v[i];
+		if (s->kind != S_ASSERT) continue;
+		cur_src = add_src(s->loc, s->text);
+		for_each_binding(s, inst_assert);
+	}
 	build_watch(start);
 	/* by shape, a temporary of a pair lives for one iteration of its rule's loop */
 	for (int i = 0; shaped && i < M->insts.n; i++) {

@@ -251,7 +251,7 @@ void map_put(Map *m, char *k, void *v)
 {
 	if (2 * (m->n + 1) > m->cap) {
 		Map g = { 0 };
-		g.cap = m->cap ? 2 * m->cap : 64;
+		g.cap = m->cap ? 2 * m->cap : 8; /* most maps are small: an object's properties */
 		g.keys = xalloc(g.cap * sizeof *g.keys);
 		g.vals = xalloc(g.cap * sizeof *g.vals);
 		for (size_t i = 0; i < m->cap; i++)

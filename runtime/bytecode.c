@@ -33,22 +33,36 @@ const csf_opinfo csf_opinfo_table[CSF_NOPCODES] = {
 #undef OP
 };
 
-/* CRC-32 (reflected polynomial 0xEDB88320) a byte at a time, from a table of the CRC of each
-   byte value (computed once): the bitwise loop took 8 steps per byte of a 100 MB image. */
+/*
+ * CRC-32 (reflected polynomial 0xEDB88320), eight bytes a step ("slicing by
+ * 8"): t[0][b] is the CRC of byte b, t[k][b] that of b followed by k zero
+ * bytes, so the CRC of eight bytes is the exclusive or of eight lookups
+ * (tables computed once). The bitwise loop took 8 steps per byte of a 60 MB
+ * image, a byte-wise table most of csfvm's start-up.
+ */
 unsigned long csf_crc32(const unsigned char *buf, size_t len)
 {
-	static uint32_t table[256];
+	static uint32_t t[8][256];
 	static int ready;
 	if (!ready) {
 		for (uint32_t n = 0; n < 256; n++) {
 			uint32_t c = n;
 			for (int k = 0; k < 8; k++) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
-			table[n] = c;
+			t[0][n] = c;
 		}
+		for (int k = 1; k < 8; k++)
+			for (uint32_t n = 0; n < 256; n++) t[k][n] = (t[k - 1][n] >> 8) ^ t[0][t[k - 1][n] & 0xFFu];
 		ready = 1;
 	}
 	uint32_t crc = 0xFFFFFFFFu;
-	for (size_t i = 0; i < len; i++) crc = (crc >> 8) ^ table[(crc ^ buf[i]) & 0xFFu];
+	size_t i = 0;
+	for (; i + 8 <= len; i += 8) {
+		const unsigned char *b = buf + i;
+		crc ^= (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
+		crc = t[7][crc & 0xFFu] ^ t[6][(crc >> 8) & 0xFFu] ^ t[5][(crc >> 16) & 0xFFu] ^ t[4][crc >> 24] ^
+		      t[3][b[4]] ^ t[2][b[5]] ^ t[1][b[6]] ^ t[0][b[7]];
+	}
+	for (; i < len; i++) crc = (crc >> 8) ^ t[0][(crc ^ buf[i]) & 0xFFu];
 	return (unsigned long)(crc ^ 0xFFFFFFFFu);
 }
 

@@ -34,6 +34,25 @@ START_TEST(test_roundtrip)
 }
 END_TEST
 
+/* The format's checksum is the standard CRC-32: its check value, and lengths around the
+   eight-byte steps against the byte-at-a-time definition. */
+START_TEST(test_crc32)
+{
+	ck_assert_uint_eq(csf_crc32((const unsigned char *)"123456789", 9), 0xCBF43926ul);
+	ck_assert_uint_eq(csf_crc32((const unsigned char *)"", 0), 0ul);
+	unsigned char buf[41];
+	for (int i = 0; i < 41; i++) buf[i] = (unsigned char)(i * 37 + 11);
+	for (size_t n = 0; n <= 41; n++) {
+		unsigned long c = 0xFFFFFFFFul;
+		for (size_t i = 0; i < n; i++) {
+			c ^= buf[i];
+			for (int k = 0; k < 8; k++) c = (c >> 1) ^ (0xEDB88320ul & (0ul - (c & 1ul)));
+		}
+		ck_assert_uint_eq(csf_crc32(buf, n), c ^ 0xFFFFFFFFul);
+	}
+}
+END_TEST
+
 START_TEST(test_header_checks)
 {
 	csf_prog p, q;
@@ -472,6 +491,7 @@ Suite *bytecode_suite(void)
 	Suite *s = suite_create("bytecode");
 	TCase *tc = tcase_create("format");
 	tcase_add_test(tc, test_roundtrip);
+	tcase_add_test(tc, test_crc32);
 	tcase_add_test(tc, test_header_checks);
 	tcase_add_test(tc, test_verifier);
 	tcase_add_test(tc, test_powi_verified);
