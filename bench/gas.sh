@@ -83,12 +83,4 @@ END {
 }' "$CSV" > "$OUT/gas.txt"
 cat "$OUT/gas.txt"
 
-# Rewrite the gas section of the README (between the two markers).
-if [ -n "$README" ] && [ -f "$README" ] && grep -q '^<!-- gas:begin' "$README"; then
-	awk -v sum="$OUT/gas.txt" '
-		/^<!-- gas:begin/ { print; while ((getline l < sum) > 0) print l; skip = 1; next }
-		/^<!-- gas:end/ { skip = 0 }
-		!skip' "$README" > "$TMP/README.md"
-	cp "$TMP/README.md" "$README"
-	say "updated $README"
-fi
+sh ./readme_section.sh "$README" gas "$OUT/gas.txt"

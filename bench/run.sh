@@ -326,12 +326,4 @@ BEGIN {
 }' > "$OUT/summary.txt"
 cat "$OUT/summary.txt"
 
-# Rewrite the results section of the README (between the two markers).
-if [ -n "$README" ] && [ -f "$README" ] && grep -q '^<!-- results:begin' "$README"; then
-	awk -v sum="$OUT/summary.txt" '
-		/^<!-- results:begin/ { print; while ((getline l < sum) > 0) print l; skip = 1; next }
-		/^<!-- results:end/ { skip = 0 }
-		!skip' "$README" > "$TMP/README.md"
-	cp "$TMP/README.md" "$README"
-	say "updated $README"
-fi
+sh ./readme_section.sh "$README" results "$OUT/summary.txt"

@@ -70,7 +70,4 @@ for n in 128 512 2048; do
 done
 cat "$TAB" >&2
 cp "$TAB" "$OUT/scaling.md"
-if [ -n "$README" ] && grep -q '^<!-- scaling -->' "$README"; then
-	awk -v tab="$TAB" '/^<!-- scaling -->/ { print; while ((getline l < tab) > 0) print l; skip = 1; next }
-		/^<!-- \/scaling -->/ { skip = 0 } !skip' "$README" > "$TMP/readme" && cp "$TMP/readme" "$README"
-fi
+sh ./readme_section.sh "$README" scaling "$TAB"

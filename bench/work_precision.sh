@@ -291,13 +291,5 @@ END {
 }' "$CSV" > "$OUT/work-precision.txt"
 cat "$OUT/work-precision.txt"
 
-# Rewrite the work-precision results of the README (between the two markers).
-if [ -n "$README" ] && [ -f "$README" ] && grep -q '^<!-- wp:begin' "$README"; then
-	awk -v sum="$OUT/work-precision.txt" '
-		/^<!-- wp:begin/ { print; while ((getline l < sum) > 0) print l; skip = 1; next }
-		/^<!-- wp:end/ { skip = 0 }
-		!skip' "$README" > "$TMP/README.md"
-	cp "$TMP/README.md" "$README"
-	say "updated $README"
-fi
+sh ./readme_section.sh "$README" wp "$OUT/work-precision.txt"
 say "work-precision: $nruns csfvm runs in $((END - START)) s; $OUT/work-precision.csv, $OUT/work-precision.svg"

@@ -349,7 +349,7 @@ static void add_target(Gen *G, uint32_t slot, Var *v, uint32_t src, const char *
 		                                      str_intern(G, o ? o->name : "global") };
 }
 
-/* Targets of v, computed at slot (+ d, a derivative's offset) by I: one per member in loops. */
+/* Targets of v, computed at slot by I (a derivative: at its derivative's slot): one per member in loops. */
 static void add_targets(Gen *G, Inst *I, Var *v, uint32_t slot, uint32_t src, const char *name)
 {
 	Shape *S = I->bind[0]->shape;

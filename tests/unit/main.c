@@ -36,6 +36,29 @@ int compile_string(const char *text, csf_prog *p, char **diag)
 	return errs;
 }
 
+csf_prog bare_prog(uint32_t *code, uint32_t n, double *mem0, uint32_t nmem, uint32_t nasserts)
+{
+	static csf_assert a[BARE_MAX_ASSERTS];
+	static csf_src s;
+	static uint32_t f;
+	csf_prog p;
+	memset(&p, 0, sizeof p);
+	p.code[CSF_SEC_OUT] = code;
+	p.ncode[CSF_SEC_OUT] = n;
+	p.mem0 = mem0;
+	p.nmem = nmem;
+	p.strs = "";
+	p.nstrs = 1;
+	p.by = 1;
+	p.asserts = a;
+	p.nasserts = nasserts;
+	p.srcs = &s;
+	p.nsrcs = 1;
+	p.files = &f;
+	p.nfiles = 1;
+	return p;
+}
+
 double *run_out(const csf_prog *p)
 {
 	double *m = malloc(p->nmem * sizeof *m + 1);

@@ -33,6 +33,11 @@ int compile_string(const char *text, csf_prog *p, char **diag);
 /* Runs the OUT section of p at t = 0 on a fresh copy of its memory; returns the memory (free it). */
 double *run_out(const csf_prog *p);
 
+/* A verifiable program around OUT code code[0..n) and memory mem0[0..nmem), with nasserts
+ * (at most BARE_MAX_ASSERTS) assertions of one source statement; the tables are shared statics. */
+#define BARE_MAX_ASSERTS 16
+csf_prog bare_prog(uint32_t *code, uint32_t n, double *mem0, uint32_t nmem, uint32_t nasserts);
+
 /* Slot of output column `name` in p, or -1. */
 int col_slot(const csf_prog *p, const char *name);
 

@@ -31,9 +31,6 @@ enum { SUM = 0, TMP = 1, OUT2 = 2, COND = 3, VACC = 4, FLAG = 7, X = 11, ONES = 
 static const double xs[NOBJ] = { 1, 2, 4, 8 }, flags[NOBJ] = { 1, 0, 1, 1 };
 
 static double mem[NMEM];
-static csf_assert asserts[NOBJ];
-static csf_src srcs[1];
-static uint32_t files[1];
 
 /* A verifiable program around OUT code code[0..n): the memory above, one assertion per object. */
 static csf_prog bare(uint32_t *code, uint32_t n)
@@ -46,22 +43,7 @@ static csf_prog bare(uint32_t *code, uint32_t n)
 		mem[ONES + i] = 1;
 	}
 	for (int k = 0; k < 3 * NOBJ; k++) mem[VEC + k] = k + 1;
-	csf_prog p;
-	memset(&p, 0, sizeof p);
-	p.code[CSF_SEC_OUT] = code;
-	p.ncode[CSF_SEC_OUT] = n;
-	p.mem0 = mem;
-	p.nmem = NMEM;
-	p.strs = "";
-	p.nstrs = 1;
-	p.by = 1;
-	p.asserts = asserts;
-	p.nasserts = NOBJ;
-	p.srcs = srcs;
-	p.nsrcs = 1;
-	p.files = files;
-	p.nfiles = 1;
-	return p;
+	return bare_prog(code, n, mem, NMEM, NOBJ);
 }
 
 /*

@@ -56,29 +56,6 @@ static const struct { int op; double in[7]; double out[3]; } cases[] = {
 	{ CSF_OP_NOT, { 0 }, { 1 } },
 };
 
-static csf_prog one_instruction(uint32_t *code, uint32_t n, double *mem0, uint32_t nmem)
-{
-	csf_prog p;
-	memset(&p, 0, sizeof p);
-	p.code[CSF_SEC_OUT] = code;
-	p.ncode[CSF_SEC_OUT] = n;
-	p.mem0 = mem0;
-	p.nmem = nmem;
-	p.strs = "";
-	p.nstrs = 1;
-	p.by = 1;
-	p.nasserts = 1;
-	static csf_assert a;
-	static csf_src s;
-	static uint32_t f;
-	p.asserts = &a;
-	p.srcs = &s;
-	p.nsrcs = 1;
-	p.files = &f;
-	p.nfiles = 1;
-	return p;
-}
-
 START_TEST(test_instruction)
 {
 	double m[12] = { 0 };
@@ -86,7 +63,7 @@ START_TEST(test_instruction)
 	m[9] = cases[_i].in[6];
 	uint32_t code[5] = { (uint32_t)cases[_i].op, 0, 3, 6, 9 };
 	int op = cases[_i].op;
-	csf_prog p = one_instruction(code, 1u + csf_opinfo_table[op].nops, m, 12);
+	csf_prog p = bare_prog(code, 1u + csf_opinfo_table[op].nops, m, 12, 1);
 	char err[256];
 	ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "%s: %s", csf_opinfo_table[op].name, err);
 	ck_assert_int_eq(csf_vm_exec(&p, CSF_SEC_OUT, m), -1);
@@ -101,7 +78,7 @@ START_TEST(test_vpack)
 {
 	double m[12] = { 0, 0, 0, 7, 0, 0, 8, 0, 0, 9 };
 	uint32_t code[] = { CSF_OP_VPACK, 0, 3, 6, 9 };
-	csf_prog p = one_instruction(code, 5, m, 12);
+	csf_prog p = bare_prog(code, 5, m, 12, 1);
 	csf_vm_exec(&p, CSF_SEC_OUT, m);
 	ck_assert(m[0] == 7 && m[1] == 8 && m[2] == 9);
 }
@@ -112,7 +89,7 @@ START_TEST(test_overlapping_vectors)
 	/* V[0] := V[0] x V[1]: the destination overlaps an operand */
 	double m[6] = { 1, 2, 3, 4, 5, 6 };
 	uint32_t code[] = { CSF_OP_VCROSS, 0, 0, 3 };
-	csf_prog p = one_instruction(code, 4, m, 6);
+	csf_prog p = bare_prog(code, 4, m, 6, 1);
 	csf_vm_exec(&p, CSF_SEC_OUT, m);
 	ck_assert(m[0] == -3 && m[1] == 6 && m[2] == -3);
 }
@@ -123,7 +100,7 @@ START_TEST(test_control_flow)
 	/* if R[1] == 0 skip the MOV; then assert R[2] */
 	double m[4] = { 0, 0, 1, 5 };
 	uint32_t code[] = { CSF_OP_JZ, 1, 6, CSF_OP_MOV, 0, 3, CSF_OP_ASSERT, 2, 0 };
-	csf_prog p = one_instruction(code, 9, m, 4);
+	csf_prog p = bare_prog(code, 9, m, 4, 1);
 	char err[256];
 	ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "%s", err);
 	ck_assert_int_eq(csf_vm_exec(&p, CSF_SEC_OUT, m), -1);
@@ -190,7 +167,7 @@ START_TEST(test_powi_instruction)
 			m[3] = powi_x[i];
 			m[6] = n;
 			uint32_t code[] = { CSF_OP_POWI, 0, 3, (uint32_t)n, CSF_OP_POW, 1, 3, 6 };
-			csf_prog p = one_instruction(code, 8, m, 12);
+			csf_prog p = bare_prog(code, 8, m, 12, 1);
 			char err[256];
 			ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "POWI %d: %s", n, err);
 			ck_assert_int_eq(csf_vm_exec(&p, CSF_SEC_OUT, m), -1);
