@@ -50,30 +50,40 @@ static const char *const predefined_names[] = { "t", "RF", NULL };
 
 /* ---- folding with the runtime's arithmetic ---- */
 
-#define FOLD_ARGS1 , 0
-#define FOLD_ARGS2 , 0, 3
-#define FOLD_ARGS3 , 0, 3, 6
-#define FOLD_ARGS4 , 0, 3, 6, 9
+/* Operand k of an instruction being folded: a scalar, a vector, an immediate. */
+#define FOLD_S(k) in[k][0]
+#define FOLD_V(k) csf_v(in[k][0], in[k][1], in[k][2])
+#define FOLD_N(k) (int)in[k][0]
+#define FOLD_DS(e) out[0] = (e)
+#define FOLD_DV(e) \
+	do { \
+		csf_vec r_ = (e); \
+		out[0] = r_.x, out[1] = r_.y, out[2] = r_.z; \
+	} while (0)
+#define FOLD_ARGS1(b, c, d)
+#define FOLD_ARGS2(b, c, d) FOLD_##b(0)
+#define FOLD_ARGS3(b, c, d) FOLD_##b(0), FOLD_##c(1)
+#define FOLD_ARGS4(b, c, d) FOLD_##b(0), FOLD_##c(1), FOLD_##d(2)
 
+/* The result of instruction op on the operand values in[0..], as the VM computes it, in out[0..2]. */
 void fold_op(int op, double in[3][3], double out[3])
 {
-	double m[12] = { 0 };
-	for (int i = 0; i < 3; i++)
-		for (int k = 0; k < 3; k++) m[3 + 3 * i + k] = in[i][k];
-	if (op == CSF_OP_POW) /* a constant exponent: as POWI computes it, not as POW */
-		m[0] = csf_pow(m[3], m[6]);
-	else switch (op) {
-#define OP(name, n, a, b, c, d, syn) case CSF_OP_##name: csf_op_##name(m FOLD_ARGS##n); break;
+	out[0] = out[1] = out[2] = 0;
+	if (op == CSF_OP_POW) { /* a constant exponent: as POWI computes it, not as POW */
+		out[0] = csf_pow(in[0][0], in[1][0]);
+		return;
+	}
+	switch (op) {
+#define OP(name, n, a, b, c, d, syn) \
+	case CSF_OP_##name: \
+		FOLD_##a(csf_op_##name(FOLD_ARGS##n(b, c, d))); \
+		break;
 #define CTRL(name, n, a, b, c, d, syn)
 #include "opcodes.def"
 #undef OP
 #undef CTRL
 	default: break;
 	}
-	/* VPACK reads scalars from 3, 6, 9: the layout above gives it in[0][0], in[1][0], in[2][0]. */
-	out[0] = m[0];
-	out[1] = m[1];
-	out[2] = m[2];
 }
 
 /* ---- expressions ---- */

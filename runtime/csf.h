@@ -194,13 +194,22 @@ void csf_prog_free(csf_prog *p);
 void csf_disassemble(const csf_prog *p, FILE *f);
 
 /*
- * Runs code section sec of p on memory m. Returns -1, or the index of the
- * first assertion that failed (execution stops there).
+ * Runs code section sec of p on memory m, with the state read from y and
+ * the derivatives written to dydt (ny values each) rather than m's slots
+ * [ystart, ystart + ny) and [dstart, dstart + ny); y and dydt may be those
+ * slots themselves. Every slot the runtime reads after a section (t, the
+ * columns, the events' values, the contact bodies', the tangents of the
+ * state and of the derivatives) is in m; the values only a section uses
+ * need not be: csf_vm_exec stores every value it computes, a generated
+ * program keeps the rest in registers (re-run a section on csf_vm_exec to
+ * see them all, as the driver does to name a non-finite value). Returns
+ * -1, or the index of the first assertion that failed (execution stops
+ * there).
  */
-typedef int (*csf_exec_fn)(const csf_prog *p, int sec, double *m);
+typedef int (*csf_exec_fn)(const csf_prog *p, int sec, double *m, const double *y, double *dydt);
 
-/* The interpreter: a csf_exec_fn for verified programs. */
-int csf_vm_exec(const csf_prog *p, int sec, double *m);
+/* The interpreter: a csf_exec_fn for verified programs (it copies y into m and the derivatives out). */
+int csf_vm_exec(const csf_prog *p, int sec, double *m, const double *y, double *dydt);
 
 /*
  * The contact routine (the CONTACT instruction; contact.c), on the

@@ -1,16 +1,18 @@
 /*
  * csf_ops.h - the semantics of every CSF instruction, as inline functions.
  *
- * This header is the single definition of CSF arithmetic. The VM's dispatch
- * loop calls csf_op_NAME with operands decoded from the bytecode; the C that
- * `csfc --emit-c` generates calls the same functions with the operands as
- * constants; the compiler's constant folder calls the scalar helpers. All
- * three therefore perform the same IEEE operations in the same order, and
- * with -ffp-contract=off on both paths their results are bit-identical.
+ * This header is the single definition of CSF arithmetic: functions of
+ * plain values, which know nothing of memory. The VM's dispatch loop calls
+ * csf_op_NAME on the operands it loads from the model's memory and stores
+ * the result; the C that `csfc --emit-c` generates calls the same functions
+ * on C locals, literals and the state arrays; the compiler's constant folder
+ * calls them on constants. All three therefore perform the same IEEE
+ * operations in the same order, and with -ffp-contract=off on every path
+ * their results are bit-identical.
  *
- * m is the model's memory (see bytecode.h); a vector occupies three
- * consecutive slots x, y, z. Vector results are computed into locals before
- * they are stored, so a destination may overlap an operand.
+ * A vector is three doubles x, y, z (csf_vec; in memory, three consecutive
+ * slots). An instruction's operands are all read before its result is
+ * written, so a destination may overlap an operand.
  */
 #ifndef CSF_OPS_H
 #define CSF_OPS_H
@@ -57,36 +59,40 @@ static inline double csf_pow(double x, double y) { return csf_is_powi(y) ? csf_p
 /* The signed integer an immediate operand word holds (two's complement, as gen.c writes it). */
 static inline int csf_imm(csf_u32 w) { return w < 0x80000000u ? (int)w : -(int)~w - 1; }
 
+/* A vector: the three consecutive slots x, y, z of one in memory. */
+typedef struct csf_vec { double x, y, z; } csf_vec;
+
+static inline csf_vec csf_v(double x, double y, double z) { return (csf_vec){ x, y, z }; }
+/* The vector in slots s[0..2], and a vector stored there. */
+static inline csf_vec csf_vload(const double *s) { return (csf_vec){ s[0], s[1], s[2] }; }
+static inline void csf_vstore(double *s, csf_vec v) { s[0] = v.x; s[1] = v.y; s[2] = v.z; }
+
 /* The angle between a and b, as atan2(|a x b|, a . b): accurate near 0 and pi too. */
-static inline double csf_vangle3(const double *a, const double *b)
+static inline double csf_vangle3(csf_vec a, csf_vec b)
 {
-	double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2], z = a[0] * b[1] - a[1] * b[0];
-	return atan2(csf_vmag3(x, y, z), a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+	double x = a.y * b.z - a.z * b.y, y = a.z * b.x - a.x * b.z, z = a.x * b.y - a.y * b.x;
+	return atan2(csf_vmag3(x, y, z), a.x * b.x + a.y * b.y + a.z * b.z);
 }
 
-#define CSF_OP1(name, expr) \
-	static inline void csf_op_##name(double *m, csf_u32 a, csf_u32 b) { double x = m[b]; m[a] = (expr); }
-#define CSF_OP2(name, expr) \
-	static inline void csf_op_##name(double *m, csf_u32 a, csf_u32 b, csf_u32 c) { double x = m[b], y = m[c]; m[a] = (expr); }
+/*
+ * The instructions. csf_op_NAME takes the values of the instruction's
+ * operands after the first (a scalar S as a double, a vector V as a
+ * csf_vec, an immediate N as an int) and returns the value its first
+ * operand, the destination (DS: a double, DV: a csf_vec), receives.
+ */
+#define CSF_OP1(name, expr) static inline double csf_op_##name(double x) { return (expr); }
+#define CSF_OP2(name, expr) static inline double csf_op_##name(double x, double y) { return (expr); }
 
-static inline void csf_op_MOV(double *m, csf_u32 a, csf_u32 b) { m[a] = m[b]; }
-static inline void csf_op_VMOV(double *m, csf_u32 a, csf_u32 b)
-{
-	double x = m[b], y = m[b + 1], z = m[b + 2];
-	m[a] = x; m[a + 1] = y; m[a + 2] = z;
-}
-static inline void csf_op_VPACK(double *m, csf_u32 a, csf_u32 b, csf_u32 c, csf_u32 d)
-{
-	double x = m[b], y = m[c], z = m[d];
-	m[a] = x; m[a + 1] = y; m[a + 2] = z;
-}
+static inline double csf_op_MOV(double x) { return x; }
+static inline csf_vec csf_op_VMOV(csf_vec p) { return p; }
+static inline csf_vec csf_op_VPACK(double x, double y, double z) { return csf_v(x, y, z); }
 CSF_OP2(ADD, x + y)
 CSF_OP2(SUB, x - y)
 CSF_OP2(MUL, x * y)
 CSF_OP2(DIV, x / y)
 CSF_OP2(POW, pow(x, y))
-/* POW with an exponent known at compile time: the immediate c, |c| <= CSF_POWI_MAX. */
-static inline void csf_op_POWI(double *m, csf_u32 a, csf_u32 b, csf_u32 c) { m[a] = csf_powi(m[b], csf_imm(c)); }
+/* POW with an exponent known at compile time: the immediate n, |n| <= CSF_POWI_MAX. */
+static inline double csf_op_POWI(double x, int n) { return csf_powi(x, n); }
 CSF_OP1(NEG, -x)
 CSF_OP2(ATAN2, atan2(x, y))
 CSF_OP2(MIN, csf_min(x, y))
@@ -115,52 +121,31 @@ CSF_OP2(AND, csf_bool(x != 0.0 && y != 0.0))
 CSF_OP2(OR, csf_bool(x != 0.0 || y != 0.0))
 CSF_OP1(NOT, csf_bool(x == 0.0))
 /* A located comparison (an event of a conditional rule): while the runtime
-   integrates, the side is the mode it froze at the last event, R[c]. */
+   integrates, the side is the mode it froze at the last event, y. */
 CSF_OP2(EVGT, y >= 0.0 ? y : csf_bool(x > 0.0))
 CSF_OP2(EVGE, y >= 0.0 ? y : csf_bool(x >= 0.0))
 
 #define CSF_VOP2(name, ex, ey, ez) \
-	static inline void csf_op_##name(double *m, csf_u32 a, csf_u32 b, csf_u32 c) \
-	{ \
-		const double *p = m + b, *q = m + c; \
-		double x = (ex), y = (ey), z = (ez); \
-		m[a] = x; m[a + 1] = y; m[a + 2] = z; \
-	}
-CSF_VOP2(VADD, p[0] + q[0], p[1] + q[1], p[2] + q[2])
-CSF_VOP2(VSUB, p[0] - q[0], p[1] - q[1], p[2] - q[2])
-CSF_VOP2(VMUL, p[0] * q[0], p[1] * q[0], p[2] * q[0])
-CSF_VOP2(VDIV, p[0] / q[0], p[1] / q[0], p[2] / q[0])
-CSF_VOP2(VCROSS, p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0])
+	static inline csf_vec csf_op_##name(csf_vec p, csf_vec q) { return csf_v((ex), (ey), (ez)); }
+CSF_VOP2(VADD, p.x + q.x, p.y + q.y, p.z + q.z)
+CSF_VOP2(VSUB, p.x - q.x, p.y - q.y, p.z - q.z)
+CSF_VOP2(VCROSS, p.y * q.z - p.z * q.y, p.z * q.x - p.x * q.z, p.x * q.y - p.y * q.x)
 
-static inline void csf_op_VNEG(double *m, csf_u32 a, csf_u32 b)
+static inline csf_vec csf_op_VMUL(csf_vec p, double k) { return csf_v(p.x * k, p.y * k, p.z * k); }
+static inline csf_vec csf_op_VDIV(csf_vec p, double k) { return csf_v(p.x / k, p.y / k, p.z / k); }
+static inline csf_vec csf_op_VNEG(csf_vec p) { return csf_v(-p.x, -p.y, -p.z); }
+static inline double csf_op_VDOT(csf_vec p, csf_vec q) { return p.x * q.x + p.y * q.y + p.z * q.z; }
+static inline double csf_op_VMAG(csf_vec p) { return csf_vmag3(p.x, p.y, p.z); }
+static inline double csf_op_VANGLE(csf_vec p, csf_vec q) { return csf_vangle3(p, q); }
+static inline csf_vec csf_op_VUNIT(csf_vec p)
 {
-	double x = -m[b], y = -m[b + 1], z = -m[b + 2];
-	m[a] = x; m[a + 1] = y; m[a + 2] = z;
+	double n = csf_vmag3(p.x, p.y, p.z);
+	return csf_v(p.x / n, p.y / n, p.z / n);
 }
-static inline void csf_op_VDOT(double *m, csf_u32 a, csf_u32 b, csf_u32 c)
+static inline csf_vec csf_op_VPROJ(csf_vec p, csf_vec q)
 {
-	m[a] = m[b] * m[c] + m[b + 1] * m[c + 1] + m[b + 2] * m[c + 2];
-}
-static inline void csf_op_VMAG(double *m, csf_u32 a, csf_u32 b)
-{
-	m[a] = csf_vmag3(m[b], m[b + 1], m[b + 2]);
-}
-static inline void csf_op_VANGLE(double *m, csf_u32 a, csf_u32 b, csf_u32 c)
-{
-	m[a] = csf_vangle3(m + b, m + c);
-}
-static inline void csf_op_VUNIT(double *m, csf_u32 a, csf_u32 b)
-{
-	double n = csf_vmag3(m[b], m[b + 1], m[b + 2]);
-	double x = m[b] / n, y = m[b + 1] / n, z = m[b + 2] / n;
-	m[a] = x; m[a + 1] = y; m[a + 2] = z;
-}
-static inline void csf_op_VPROJ(double *m, csf_u32 a, csf_u32 b, csf_u32 c)
-{
-	const double *p = m + b, *q = m + c;
-	double k = (p[0] * q[0] + p[1] * q[1] + p[2] * q[2]) / (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
-	double x = q[0] * k, y = q[1] * k, z = q[2] * k;
-	m[a] = x; m[a + 1] = y; m[a + 2] = z;
+	double k = (p.x * q.x + p.y * q.y + p.z * q.z) / (q.x * q.x + q.y * q.y + q.z * q.z);
+	return csf_v(q.x * k, q.y * k, q.z * k);
 }
 
 #undef CSF_OP1

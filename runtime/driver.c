@@ -125,14 +125,14 @@ static int rhs(double t, const double *y, double *dydt, void *ctx)
 	const csf_prog *p = r->p;
 	double *m = r->m;
 	m[p->tslot] = t;
-	memcpy(m + p->ystart, y, p->ny * sizeof *y);
-	r->exec(p, CSF_SEC_RHS, m);
+	r->exec(p, CSF_SEC_RHS, m, y, dydt);
 	r->nrhs++;
-	memcpy(dydt, m + p->dstart, p->ny * sizeof *y);
 	for (uint32_t i = 0; i < p->ny; i++)
 		if (!isfinite(dydt[i])) {
 			r->fail = 1;
 			r->fail_t = t;
+			/* every value the section computed, in m for report_nonfinite: the VM's, bit for bit the same */
+			csf_vm_exec(p, CSF_SEC_RHS, m, y, m + p->dstart);
 			return 1;
 		}
 	return 0;
@@ -187,7 +187,7 @@ static int jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx)
 		memset(tan + p->ystart, 0, n * sizeof *tan);
 		tan[p->tslot] = j == n ? 1.0 : 0.0;
 		if (j < n) tan[p->ystart + j] = 1.0;
-		r->exec(p, CSF_SEC_JAC, m);
+		r->exec(p, CSF_SEC_JAC, m, m + p->ystart, m + p->dstart);
 		for (uint32_t i = 0; i < n; i++) {
 			double d = tan[p->dstart + i];
 			if (j < n) dfdy[(size_t)i * n + j] = d;
@@ -779,7 +779,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		if (events && !ode) free_modes(&r, tk, y); /* no state: the conditions depend on t alone */
 		r.m[p->tslot] = tk;
 		memcpy(r.m + p->ystart, y, p->ny * sizeof(double));
-		int a = exec(p, CSF_SEC_OUT, r.m);
+		int a = exec(p, CSF_SEC_OUT, r.m, r.m + p->ystart, r.m + p->dstart);
 		if (a >= 0) {
 			const csf_src *s = &p->srcs[p->asserts[a].src];
 			char tb[32];
@@ -793,6 +793,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		for (uint32_t i = 0; i < p->ny; i++) bad |= !isfinite(r.m[p->ystart + i]);
 		for (uint32_t i = 0; i < p->ncols; i++) bad |= !isfinite(r.m[p->cols[i].slot]);
 		if (bad) {
+			csf_vm_exec(p, CSF_SEC_OUT, r.m, r.m + p->ystart, r.m + p->dstart); /* every value, for the report */
 			report_nonfinite(p, CSF_SEC_OUT, r.m, tk, "a watched or state value", o->fixed, err);
 			status = 1;
 			goto done;

@@ -9,20 +9,23 @@
  * same function the generated C calls; this file only decodes operands.
  * The program must have passed csf_verify: operands are not checked here.
  */
+#include <string.h>
+
 #include "csf.h"
 
-/* An operand of kind K, decoded: slots and assertion indices through the registers. */
-#define DEC_DS(w) csf_operand(w, reg)
-#define DEC_DV(w) csf_operand(w, reg)
-#define DEC_S(w) csf_operand(w, reg)
-#define DEC_V(w) csf_operand(w, reg)
-#define DEC_N(w) (w)
-#define ARGS1(a, b, c, d) , DEC_##a(pc[1])
-#define ARGS2(a, b, c, d) , DEC_##a(pc[1]), DEC_##b(pc[2])
-#define ARGS3(a, b, c, d) , DEC_##a(pc[1]), DEC_##b(pc[2]), DEC_##c(pc[3])
-#define ARGS4(a, b, c, d) , DEC_##a(pc[1]), DEC_##b(pc[2]), DEC_##c(pc[3]), DEC_##d(pc[4])
+/* The value of a read operand of kind K: a scalar or vector slot (through the registers), an immediate. */
+#define LOAD_S(w) m[csf_operand(w, reg)]
+#define LOAD_V(w) csf_vload(m + csf_operand(w, reg))
+#define LOAD_N(w) csf_imm(w)
+/* Stores value e into the destination operand of kind K. */
+#define STORE_DS(w, e) m[csf_operand(w, reg)] = (e)
+#define STORE_DV(w, e) csf_vstore(m + csf_operand(w, reg), (e))
+#define ARGS1(b, c, d)
+#define ARGS2(b, c, d) LOAD_##b(pc[2])
+#define ARGS3(b, c, d) LOAD_##b(pc[2]), LOAD_##c(pc[3])
+#define ARGS4(b, c, d) LOAD_##b(pc[2]), LOAD_##c(pc[3]), LOAD_##d(pc[4])
 
-int csf_vm_exec(const csf_prog *p, int sec, double *m)
+static int exec(const csf_prog *p, int sec, double *m)
 {
 	const uint32_t *code = p->code[sec];
 	const uint32_t *pc = code, *end = code + p->ncode[sec];
@@ -74,7 +77,7 @@ int csf_vm_exec(const csf_prog *p, int sec, double *m)
 			continue;
 #define OP(name, n, a, b, c, d, syn) \
 	case CSF_OP_##name: \
-		csf_op_##name(m ARGS##n(a, b, c, d)); \
+		STORE_##a(pc[1], csf_op_##name(ARGS##n(b, c, d))); \
 		pc += 1 + n; \
 		continue;
 #define CTRL(name, n, a, b, c, d, syn)
@@ -87,4 +90,16 @@ int csf_vm_exec(const csf_prog *p, int sec, double *m)
 		break; /* unreachable for verified code */
 	}
 	return -1;
+}
+
+/*
+ * The state is y and the derivatives go to dydt: copied into and out of
+ * m's own slots unless they are those slots.
+ */
+int csf_vm_exec(const csf_prog *p, int sec, double *m, const double *y, double *dydt)
+{
+	if (y != m + p->ystart) memcpy(m + p->ystart, y, p->ny * sizeof *y);
+	int r = exec(p, sec, m);
+	if (dydt != m + p->dstart) memcpy(dydt, m + p->dstart, p->ny * sizeof *dydt);
+	return r;
 }

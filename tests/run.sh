@@ -13,7 +13,9 @@
 #  3. run-time failures: every tests/runtime/X.csf is run; X.expect gives the
 #     exit status, the number of CSV data rows that must be on stdout, and
 #     lines that must appear on stderr.
-#  4. both execution paths give identical output: csfvm and `csfc --emit-c`.
+#  4. both execution paths give identical output: csfvm and `csfc --emit-c`,
+#     also built with the CFLAGS csfc(1) says keep it (-O3 -march=native
+#     -fno-math-errno).
 #  5. hostile bytecode, bad usage, output errors, install, a 300-body scene,
 #     every method at every tolerance (tests/methods_tol.sh), contacts
 #     (tests/contacts/), many objects (tests/many/: 100 balls in a box).
@@ -116,14 +118,14 @@ done
 # 4. both execution paths: every model above through csfvm and through
 #    `csfc --emit-c`; stdout must be byte-identical, stderr and exit status
 #    equal. tests/emit-c-skip.txt lists models that cannot pass, with a reason.
-for m in tests/e2e/*.csf examples/*.csf tests/runtime/*.csf; do
-	[ -f "$m" ] || continue
-	if grep -q "^$m " tests/emit-c-skip.txt 2>/dev/null; then continue; fi
+# same_as_vm MODEL [CFLAGS]: the generated executable (built with CFLAGS) prints what csfvm prints
+same_as_vm() {
+	m=$1
 	d=$(dirname "$m")
 	f=$(basename "$m")
-	if ! (cd "$d" && "$CSFC" "$f" -o "$T/v.csfb" && "$CSFC" --emit-c "$f" -o "$T/exe") >"$T/cerr" 2>&1; then
-		bad "$m: --emit-c: $(head -n 3 "$T/cerr")"
-		continue
+	if ! (cd "$d" && "$CSFC" "$f" -o "$T/v.csfb" && CFLAGS=${2:-} "$CSFC" --emit-c "$f" -o "$T/exe") >"$T/cerr" 2>&1; then
+		bad "$m: --emit-c${2:+ (CFLAGS=$2)}: $(head -n 3 "$T/cerr")"
+		return
 	fi
 	args=$(cat "${m%.csf}.args" 2>/dev/null || true)
 	# shellcheck disable=SC2086
@@ -133,15 +135,35 @@ for m in tests/e2e/*.csf examples/*.csf tests/runtime/*.csf; do
 	(cd "$d" && timeout "$LIMIT" "$T/exe" $args) >"$T/c.out" 2>"$T/c.err"
 	cs=$?
 	if [ $vs -ne $cs ]; then
-		bad "$m: exit status csfvm $vs, generated executable $cs"
+		bad "$m${2:+ (CFLAGS=$2)}: exit status csfvm $vs, generated executable $cs"
 	elif ! cmp -s "$T/v.out" "$T/c.out"; then
-		bad "$m: stdout differs between csfvm and the generated executable: $(cmp "$T/v.out" "$T/c.out")"
+		bad "$m${2:+ (CFLAGS=$2)}: stdout differs between csfvm and the generated executable: $(cmp "$T/v.out" "$T/c.out")"
 	elif ! cmp -s "$T/v.err" "$T/c.err"; then
-		bad "$m: stderr differs: $(head -n 1 "$T/v.err") / $(head -n 1 "$T/c.err")"
+		bad "$m${2:+ (CFLAGS=$2)}: stderr differs: $(head -n 1 "$T/v.err") / $(head -n 1 "$T/c.err")"
 	else
 		ok
 	fi
+}
+for m in tests/e2e/*.csf examples/*.csf tests/runtime/*.csf; do
+	[ -f "$m" ] || continue
+	if grep -q "^$m " tests/emit-c-skip.txt 2>/dev/null; then continue; fi
+	same_as_vm "$m"
 done
+
+# 4a. the flags that keep the generated executable bit-identical to csfvm
+#     (csfc(1)): -O3, -march=native and -fno-math-errno, together on every
+#     example and the scenes of powers, transcendental functions, events and
+#     contacts, and each alone on two of them.
+for m in examples/*.csf tests/e2e/powers.csf tests/e2e/kepler_e099.csf tests/e2e/damped_oscillator.csf \
+	tests/e2e/liftoff.csf tests/e2e/conditional.csf tests/runtime/nonfinite.csf; do
+	same_as_vm "$m" "-O3 -march=native -fno-math-errno"
+done
+for fl in -O3 -march=native -fno-math-errno; do
+	for m in tests/e2e/powers.csf examples/pendulum.csf; do same_as_vm "$m" "-O2 $fl"; done
+done
+# ... and -ffast-math, which does not, is named in a warning
+if (cd examples && CFLAGS="-O2 -ffast-math" "$CSFC" --emit-c projectile.csf -o "$T/exe") 2>"$T/err" &&
+	grep -q "warning: CFLAGS -ffast-math" "$T/err"; then ok; else bad "CFLAGS=-ffast-math: no warning: $(head -n 1 "$T/err")"; fi
 
 # 4b. unit systems: one scene written in MKS, CGS and FPS literals, each
 #     compiled for each system: all nine outputs equal in SI to 1e-12.

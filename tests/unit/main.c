@@ -63,7 +63,7 @@ double *run_out(const csf_prog *p)
 {
 	double *m = malloc(p->nmem * sizeof *m + 1);
 	memcpy(m, p->mem0, p->nmem * sizeof *m);
-	csf_vm_exec(p, CSF_SEC_OUT, m);
+	vm_run(p, CSF_SEC_OUT, m);
 	return m;
 }
 

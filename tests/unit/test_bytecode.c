@@ -190,7 +190,7 @@ typedef struct eval_ctx { const csf_prog *p; double *m; } eval_ctx;
 static int eval_rhs(void *ctx)
 {
 	eval_ctx *e = ctx;
-	csf_vm_exec(e->p, CSF_SEC_RHS, e->m);
+	vm_run(e->p, CSF_SEC_RHS, e->m);
 	return 0;
 }
 
@@ -231,7 +231,7 @@ START_TEST(test_contact_routine)
 	ck_assert_uint_eq(csf_contacts_count(cs), 1);
 	eval_ctx e = { &p, m };
 	ck_assert_int_eq(csf_contact_settle(&p, m, 5e-7, 1e-10, eval_rhs, &e), 0);
-	ck_assert_int_eq(csf_vm_exec(&p, CSF_SEC_RHS, m), -1);
+	ck_assert_int_eq(vm_run(&p, CSF_SEC_RHS, m), -1);
 	double g = 9.80665, mg = 2 * g, s30 = 0.5, c30 = 0.8660254037844386;
 	const csf_cbody *c = cbody_of(&p, "b");
 	const double *a = m + c->s[CSF_CF_A], *fn = m + c->s[CSF_CF_FN], *ff = m + c->s[CSF_CF_FF];

@@ -27,7 +27,7 @@ static const char *model =
 static void rhs_at(const csf_prog *p, double *m, const double *y, double *f)
 {
 	memcpy(m + p->ystart, y, p->ny * sizeof *y);
-	csf_vm_exec(p, CSF_SEC_RHS, m);
+	vm_run(p, CSF_SEC_RHS, m);
 	memcpy(f, m + p->dstart, p->ny * sizeof *f);
 }
 
@@ -49,7 +49,7 @@ START_TEST(test_against_differences)
 		memset(m + p.jtan + p.ystart, 0, p.ny * sizeof *m);
 		m[p.jtan + p.tslot] = 0;
 		m[p.jtan + p.ystart + j] = 1;
-		csf_vm_exec(&p, CSF_SEC_JAC, m);
+		vm_run(&p, CSF_SEC_JAC, m);
 		double col[4];
 		memcpy(col, m + p.jtan + p.dstart, sizeof col);
 		/* central difference */
@@ -86,7 +86,7 @@ START_TEST(test_linear_exact)
 		memset(m + p.jtan + p.ystart, 0, 2 * sizeof *m);
 		m[p.jtan + p.tslot] = j == 2;
 		if (j < 2) m[p.jtan + p.ystart + j] = 1;
-		csf_vm_exec(&p, CSF_SEC_JAC, m);
+		vm_run(&p, CSF_SEC_JAC, m);
 		for (int i = 0; i < 2; i++)
 			ck_assert_msg(m[p.jtan + p.dstart + i] == want[j][i], "column %d row %d: %.17g", j, i, m[p.jtan + p.dstart + i]);
 	}
@@ -113,7 +113,7 @@ START_TEST(test_powi_tangent)
 	memcpy(m, p.mem0, p.nmem * sizeof *m);
 	m[p.jtan + p.tslot] = 0;
 	m[p.jtan + p.ystart] = 1;
-	csf_vm_exec(&p, CSF_SEC_JAC, m);
+	vm_run(&p, CSF_SEC_JAC, m);
 	double x = 1.3, got = m[p.jtan + p.dstart];
 	double want = n == 3 ? (x * x) * 3 : n == 0 ? 0 : csf_pow(x, n - 1) * n;
 	ck_assert_msg(got == want, "d(x^%d)/dx = %.17g, expected %.17g", n, got, want);

@@ -83,7 +83,7 @@ static double *run(const csf_prog *p, int *ret)
 {
 	double *m = malloc(p->nmem * sizeof *m);
 	memcpy(m, p->mem0, p->nmem * sizeof *m);
-	*ret = csf_vm_exec(p, CSF_SEC_OUT, m);
+	*ret = vm_run(p, CSF_SEC_OUT, m);
 	return m;
 }
 
@@ -334,48 +334,58 @@ static char *emit_string(const csf_prog *p)
 	return buf;
 }
 
-/* The C of the pair rule: nested for statements over i1 and i2, relative operands as index expressions. */
+/*
+ * The C of the pair rule: nested for statements over i1 and i2, relative
+ * operands as index expressions, a jump to the end of the body a continue,
+ * a constant a literal, a work value written before it is read a local,
+ * and what is read before it is written in memory.
+ */
 START_TEST(test_loop_c)
 {
 	master M;
 	build_master(&M);
 	csf_prog p = bare(M.code, M.n);
 	char *c = emit_string(&p);
-	const char *want[] = {
-		xprintf("\tif (m[3] == 0.0) goto L%u;\n\tfor (uint32_t i1 = 0; i1 < 4u; i1++) {\n"
-		        "\t\tif (m[7u + i1] == 0.0) goto L%u;\n"
-		        "\t\tif (m[15u + i1] == 0.0) return (int)(0u + i1);\n"
-		        "\t\tfor (uint32_t i2 = 0; i2 < 4u; i2++) {\n"
-		        "\t\t\tif (i1 == i2) goto L%u;\n"
-		        "\t\t\tcsf_op_MUL(m, 1, 11u + i1, 11u + i2);\n"
-		        "\t\t\tcsf_op_ADD(m, 0, 0, 1);\n"
-		        "\t\t\tcsf_op_VADD(m, 4, 4, 20u + 3u * i2);\n"
-		        "L%u: ;\n\t\t}\nL%u: ;\n\t}\n\tcsf_op_MOV(m, 2, 3);\nL%u:\n\treturn -1;\n",
-		        M.n, M.n1, M.nx, M.nx, M.n1, M.n),
-	};
-	for (size_t i = 0; i < sizeof want / sizeof want[0]; i++)
-		ck_assert_msg(strstr(c, want[i]) != NULL, "no\n%s\nin\n%s", want[i], c);
-	ck_assert_msg(strstr(c, "csf_t") == NULL, "%s", c); /* no operand tables */
+	const char *want = xprintf("\tif (1.0 == 0.0) goto L%u;\n\tfor (uint32_t i1 = 0; i1 < 4u; i1++) {\n"
+	                           "\t\tif (m[7u + i1] == 0.0) continue;\n"
+	                           "\t\tif (m[15u + i1] == 0.0) return (int)(0u + i1);\n"
+	                           "\t\tfor (uint32_t i2 = 0; i2 < 4u; i2++) {\n"
+	                           "\t\t\tif (i1 == i2) continue;\n"
+	                           "\t\t\tr1 = csf_op_MUL(m[11u + i1], m[11u + i2]);\n"
+	                           "\t\t\tm[0u] = csf_op_ADD(m[0u], r1);\n"
+	                           "\t\t\tcsf_vstore(m + 4u, csf_op_VADD(csf_vload(m + 4u), csf_vload(m + 20u + 3u * i2)));\n"
+	                           "\t\t}\n\t}\n\t/* a value no one reads */;\nL%u:\n\treturn -1;\n",
+	                           M.n, M.n);
+	ck_assert_msg(strstr(c, want) != NULL, "no\n%s\nin\n%s", want, c);
+	ck_assert_msg(strstr(c, "\tdouble r1;\n") != NULL, "%s", c);
 	free(c);
 }
 END_TEST
 
-/* A run of one opcode with relative operands stays a run of calls; one with constant operands inside a loop becomes a table. */
-START_TEST(test_loop_c_runs)
+/* A sum into a local across a loop: written before the loop, it stays a local inside it. */
+START_TEST(test_loop_c_local_sum)
 {
-	uint32_t code[256], n = 0;
+	uint32_t code[64], n = 0;
+	put(code, &n, CSF_OP_MOV, TMP, ONES, 0);
 	uint32_t l1 = put(code, &n, CSF_OP_LOOP, 1, NOBJ, 0);
-	for (int k = 0; k < 10; k++) put(code, &n, CSF_OP_ADD, SUM, SUM, R(X, 1));
-	for (int k = 0; k < 10; k++) put(code, &n, CSF_OP_ADD, TMP, TMP, COND);
+	put(code, &n, CSF_OP_ADD, TMP, TMP, R(X, 1));
 	put(code, &n, CSF_OP_NEXT, 1, l1 + 4, 0);
 	code[l1 + 3] = n;
+	put(code, &n, CSF_OP_MOV, OUT2, TMP, 0);
+	/* a loop of count 0 may not run: what it writes is not written after it */
+	uint32_t l2 = put(code, &n, CSF_OP_LOOP, 1, 0, 0);
+	put(code, &n, CSF_OP_MOV, COND, ONES, 0);
+	put(code, &n, CSF_OP_NEXT, 1, l2 + 4, 0);
+	code[l2 + 3] = n;
+	put(code, &n, CSF_OP_MOV, OUT2, COND, 0);
+	put(code, &n, CSF_OP_ASSERT, OUT2, 0, 0);
 	csf_prog p = bare(code, n);
 	char err[256];
 	ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "%s", err);
 	char *c = emit_string(&p);
-	ck_assert_msg(strstr(c, "\t\tcsf_op_ADD(m, 0, 0, 11u + i1);\n\t\tcsf_op_ADD(m, 0, 0, 11u + i1);\n") &&
-	              strstr(c, "\t\tfor (size_t k = 0; k < 10; k++) {\n\t\t\tconst uint32_t *o = csf_t0[k];\n"
-	                        "\t\t\tcsf_op_ADD(m, o[0], o[1], o[2]);\n\t\t}\n\t}\n"),
+	ck_assert_msg(strstr(c, "\tr1 = csf_op_MOV(1.0);\n\tfor (uint32_t i1 = 0; i1 < 4u; i1++) {\n"
+	                        "\t\tr1 = csf_op_ADD(r1, m[11u + i1]);\n\t}\n\tr2 = csf_op_MOV(r1);\n") &&
+	              strstr(c, "\t\tm[3u] = csf_op_MOV(1.0);\n\t}\n\tr2 = csf_op_MOV(m[3u]);\n"),
 	              "%s", c);
 	free(c);
 }
@@ -384,20 +394,21 @@ END_TEST
 /*
  * A whole model whose OUT section is replaced by loops: long enough to be
  * split into several C functions, with the split point falling inside a
- * loop; repeated instances of one statement, each a loop (no operand
- * table); the pair rule. The generated executable must print exactly what
+ * loop and values going from one function to the next in memory; repeated
+ * instances of one statement, each a loop; the pair rule. The generated executable must print exactly what
  * the VM prints.
  */
 static void build_big(csf_prog *p, uint32_t base)
 {
-	uint32_t cap = 16384, n = 0, nl = 0, *code = malloc(cap * sizeof *code);
-	csf_line *lines = malloc(4096 * sizeof *lines);
+	uint32_t cap = 32768, n = 0, nl = 0, *code = malloc(cap * sizeof *code);
+	csf_line *lines = malloc(8192 * sizeof *lines);
 	uint32_t acc = base + SUM, tmp = base + TMP, x = base + X, one = base + COND, vacc = base + VACC;
 #define LINE(src) (lines[nl++] = (csf_line){ n, (src) })
 	LINE(0);
 	put(code, &n, CSF_OP_SUB, acc, acc, acc);
+	put(code, &n, CSF_OP_MOV, base + OUT2, one, 0); /* read in the last function: through memory */
 	put(code, &n, CSF_OP_VSUB, vacc, vacc, vacc);
-	for (int k = 0; k < 600; k++) { /* statements that alternate, so none is grouped */
+	for (int k = 0; k < 3600; k++) { /* statements, so that the loop below crosses 4000 instructions */
 		LINE(k % 2);
 		put(code, &n, CSF_OP_MOV, tmp, one, 0);
 	}
@@ -418,6 +429,7 @@ static void build_big(csf_prog *p, uint32_t base)
 		code[l + 3] = n;
 	}
 	LINE(1);
+	put(code, &n, CSF_OP_MUL, acc, acc, base + OUT2);
 	master M;
 	build_master(&M);
 	for (uint32_t pc = 0; pc < M.n; pc += 1u + csf_opinfo_table[M.code[pc]].nops) { /* the pair rule, moved */
@@ -510,8 +522,11 @@ START_TEST(test_loop_c_matches_vm)
 	FILE *f = fopen(csrc, "w");
 	emit_c(&p, img, len, "t.csf", f);
 	fclose(f);
-	char *c = capture(xprintf("grep -c '^CSF_CHUNK int csf_model_out_' %s", csrc));
+	char *c = capture(xprintf("grep -c '^CSF_FN int csf_model_out_' %s", csrc));
 	ck_assert_msg(c && atoi(c) >= 2, "the OUT section is not split: %s", c ? c : "?");
+	free(c);
+	c = capture(xprintf("grep -c 'm\\[%uu\\] = csf_op_MOV(1.0);' %s", base + OUT2, csrc));
+	ck_assert_msg(c && atoi(c) >= 1, "the value that goes from function to function is not in memory: %s", c ? c : "?");
 	free(c);
 #ifdef __SANITIZE_ADDRESS__
 	setenv("CFLAGS", "-O1 -fsanitize=address,undefined", 1); /* libcsfrt.a is instrumented; -g takes a minute */
@@ -541,7 +556,7 @@ Suite *loops_suite(void)
 	tcase_add_test(tc, test_loop_mutations);
 	tcase_add_test(tc, test_loop_listing);
 	tcase_add_test(tc, test_loop_c);
-	tcase_add_test(tc, test_loop_c_runs);
+	tcase_add_test(tc, test_loop_c_local_sum);
 	tcase_add_test(tc, test_loop_c_matches_vm);
 	suite_add_tcase(s, tc);
 	return s;

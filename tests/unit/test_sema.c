@@ -86,7 +86,7 @@ START_TEST(test_state_variables)
 	ck_assert_uint_eq(p.ny, 2);
 	double *m = malloc(p.nmem * sizeof *m);
 	memcpy(m, p.mem0, p.nmem * sizeof *m);
-	csf_vm_exec(&p, CSF_SEC_RHS, m);
+	vm_run(&p, CSF_SEC_RHS, m);
 	ck_assert(m[p.dstart] == 0 && m[p.dstart + 1] == -1); /* x' = v = 0, v' = -x = -1 */
 	free(m);
 	csf_prog_free(&p);

@@ -66,7 +66,7 @@ START_TEST(test_instruction)
 	csf_prog p = bare_prog(code, 1u + csf_opinfo_table[op].nops, m, 12, 1);
 	char err[256];
 	ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "%s: %s", csf_opinfo_table[op].name, err);
-	ck_assert_int_eq(csf_vm_exec(&p, CSF_SEC_OUT, m), -1);
+	ck_assert_int_eq(vm_run(&p, CSF_SEC_OUT, m), -1);
 	int vec = csf_opinfo_table[op].kind[0] == CSF_K_DV;
 	for (int k = 0; k < (vec ? 3 : 1); k++)
 		ck_assert_msg(fabs(m[k] - cases[_i].out[k]) <= 1e-15, "%s: result %d is %.17g, expected %.17g",
@@ -79,7 +79,7 @@ START_TEST(test_vpack)
 	double m[12] = { 0, 0, 0, 7, 0, 0, 8, 0, 0, 9 };
 	uint32_t code[] = { CSF_OP_VPACK, 0, 3, 6, 9 };
 	csf_prog p = bare_prog(code, 5, m, 12, 1);
-	csf_vm_exec(&p, CSF_SEC_OUT, m);
+	vm_run(&p, CSF_SEC_OUT, m);
 	ck_assert(m[0] == 7 && m[1] == 8 && m[2] == 9);
 }
 END_TEST
@@ -90,7 +90,7 @@ START_TEST(test_overlapping_vectors)
 	double m[6] = { 1, 2, 3, 4, 5, 6 };
 	uint32_t code[] = { CSF_OP_VCROSS, 0, 0, 3 };
 	csf_prog p = bare_prog(code, 4, m, 6, 1);
-	csf_vm_exec(&p, CSF_SEC_OUT, m);
+	vm_run(&p, CSF_SEC_OUT, m);
 	ck_assert(m[0] == -3 && m[1] == 6 && m[2] == -3);
 }
 END_TEST
@@ -103,11 +103,11 @@ START_TEST(test_control_flow)
 	csf_prog p = bare_prog(code, 9, m, 4, 1);
 	char err[256];
 	ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "%s", err);
-	ck_assert_int_eq(csf_vm_exec(&p, CSF_SEC_OUT, m), -1);
+	ck_assert_int_eq(vm_run(&p, CSF_SEC_OUT, m), -1);
 	ck_assert(m[0] == 0);
 	m[1] = 1;
 	m[2] = 0;
-	ck_assert_int_eq(csf_vm_exec(&p, CSF_SEC_OUT, m), 0); /* the assertion fails */
+	ck_assert_int_eq(vm_run(&p, CSF_SEC_OUT, m), 0); /* the assertion fails */
 	ck_assert(m[0] == 5);
 }
 END_TEST
@@ -170,7 +170,7 @@ START_TEST(test_powi_instruction)
 			csf_prog p = bare_prog(code, 8, m, 12, 1);
 			char err[256];
 			ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "POWI %d: %s", n, err);
-			ck_assert_int_eq(csf_vm_exec(&p, CSF_SEC_OUT, m), -1);
+			ck_assert_int_eq(vm_run(&p, CSF_SEC_OUT, m), -1);
 			double want = csf_powi(powi_x[i], n), want_pow = pow(powi_x[i], n);
 			ck_assert_msg(same_bits(m[0], want) && same_bits(m[1], want_pow),
 			              "%g^%d: POWI %.17g, POW %.17g, expected %.17g and %.17g", powi_x[i], n, m[0], m[1], want,
