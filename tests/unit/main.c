@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "suites.h"
+#include "emit_c.h"
 #include "gen.h"
 
 int compile_string(const char *text, csf_prog *p, char **diag)
@@ -57,6 +58,17 @@ csf_prog bare_prog(uint32_t *code, uint32_t n, double *mem0, uint32_t nmem, uint
 	p.files = &f;
 	p.nfiles = 1;
 	return p;
+}
+
+char *emit_string(const csf_prog *p)
+{
+	char *buf;
+	size_t len;
+	FILE *f = open_memstream(&buf, &len);
+	unsigned char image[2] = { 1, 2 };
+	emit_c(p, image, 2, "m.csf", f);
+	fclose(f);
+	return buf;
 }
 
 double *run_out(const csf_prog *p)

@@ -36,6 +36,9 @@ static inline int vm_run(const csf_prog *p, int sec, double *m) { return csf_vm_
 /* Runs the OUT section of p at t = 0 on a fresh copy of its memory; returns the memory (free it). */
 double *run_out(const csf_prog *p);
 
+/* The C emit_c writes for p (with a dummy image), malloc'd. */
+char *emit_string(const csf_prog *p);
+
 /* A verifiable program around OUT code code[0..n) and memory mem0[0..nmem), with nasserts
  * (at most BARE_MAX_ASSERTS) assertions of one source statement; the tables are shared statics. */
 #define BARE_MAX_ASSERTS 16

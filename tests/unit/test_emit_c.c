@@ -11,13 +11,7 @@ static char *emit_one(uint32_t *code, uint32_t n)
 	memset(&p, 0, sizeof p);
 	p.code[CSF_SEC_OUT] = code;
 	p.ncode[CSF_SEC_OUT] = n;
-	char *buf;
-	size_t len;
-	FILE *f = open_memstream(&buf, &len);
-	unsigned char image[2] = { 1, 2 };
-	emit_c(&p, image, 2, "m.csf", f);
-	fclose(f);
-	return buf;
+	return emit_string(&p);
 }
 
 /*
@@ -100,13 +94,7 @@ static char *emit_rhs(uint32_t *code, uint32_t n, double *mem, csf_col *col)
 	p.ncols = 1;
 	char err[256];
 	ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "%s", err);
-	char *buf;
-	size_t len;
-	FILE *f = open_memstream(&buf, &len);
-	unsigned char image[2] = { 1, 2 };
-	emit_c(&p, image, 2, "m.csf", f);
-	fclose(f);
-	return buf;
+	return emit_string(&p);
 }
 
 /*

@@ -323,17 +323,6 @@ START_TEST(test_loop_listing)
 }
 END_TEST
 
-static char *emit_string(const csf_prog *p)
-{
-	char *buf;
-	size_t len;
-	FILE *f = open_memstream(&buf, &len);
-	unsigned char image[2] = { 1, 2 };
-	emit_c(p, image, 2, "m.csf", f);
-	fclose(f);
-	return buf;
-}
-
 /*
  * The C of the pair rule: nested for statements over i1 and i2, relative
  * operands as index expressions, a jump to the end of the body a continue,
