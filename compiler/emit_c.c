@@ -608,8 +608,7 @@ static void mark_targets(const uint32_t *code, uint32_t from, uint32_t to, unsig
 /* The parameters of a section's functions. */
 static const char *params(const Slots *S)
 {
-	return S->direct ? "const csf_prog *p, double *restrict m, const double *restrict y, double *restrict dydt"
-	                 : "const csf_prog *p, double *restrict m";
+	return S->direct ? "const csf_prog *p, double *m, const double *y, double *dydt" : "const csf_prog *p, double *m";
 }
 
 /*

@@ -125,7 +125,7 @@ START_TEST(test_slot_classes)
 	csf_col col;
 	char *c = emit_rhs(code, sizeof code / sizeof code[0], mem, &col);
 	const char *want[] = {
-		"static int csf_model_rhs(const csf_prog *p, double *restrict m, const double *restrict y, double *restrict dydt)\n",
+		"static int csf_model_rhs(const csf_prog *p, double *m, const double *y, double *dydt)\n",
 		"\tv14 = csf_op_VMUL(csf_vload(y + 0u), 2.5);\n",
 		"\tcsf_vstore(dydt + 0u, csf_op_VMOV(v14));\n",
 		"\tr12 = csf_op_ADD((-0.0), 0.1);\n",
@@ -166,8 +166,8 @@ START_TEST(test_program_shape)
 	emit_c(&p, img, len, "t.csf", f);
 	fclose(f);
 	ck_assert_msg(strstr(buf, "#include \"csf.h\"") &&
-	              strstr(buf, "static int csf_model_rhs(const csf_prog *p, double *restrict m, const double *restrict y, double *restrict dydt)") &&
-	              strstr(buf, "static int csf_model_out(const csf_prog *p, double *restrict m, const double *restrict y, double *restrict dydt)") &&
+	              strstr(buf, "static int csf_model_rhs(const csf_prog *p, double *m, const double *y, double *dydt)") &&
+	              strstr(buf, "static int csf_model_out(const csf_prog *p, double *m, const double *y, double *dydt)") &&
 	              strstr(buf, "/* t.csf:3: rule: x' = v */") &&
 	              strstr(buf, xprintf("csf_model_image[%zu]", len)) && strstr(buf, "return csf_main(argc, argv"),
 	              "%s", buf);
