@@ -22,7 +22,7 @@ typedef struct exec_ctx { const csf_prog *p; double *m; } exec_ctx;
 static int exec_rhs(void *ctx)
 {
 	exec_ctx *e = ctx;
-	csf_vm_exec(e->p, CSF_SEC_RHS, e->m);
+	csf_vm_exec(e->p, CSF_SEC_RHS, e->m, e->m + e->p->ystart, e->m + e->p->dstart);
 	return 0;
 }
 
@@ -51,8 +51,8 @@ static int try_one(const unsigned char *buf, size_t len, int must_fail, long *re
 			exec_ctx e = { &p, m };
 			csf_contact_settle(&p, m, 1e-7, 1e-10, exec_rhs, &e);
 		}
-		csf_vm_exec(&p, CSF_SEC_RHS, m);
-		csf_vm_exec(&p, CSF_SEC_OUT, m);
+		csf_vm_exec(&p, CSF_SEC_RHS, m, m + p.ystart, m + p.dstart);
+		csf_vm_exec(&p, CSF_SEC_OUT, m, m + p.ystart, m + p.dstart);
 		p.crun = NULL;
 		csf_contacts_free(cs);
 		free(m);
