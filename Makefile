@@ -5,6 +5,7 @@
 #   make demo       deps + build + compile and run an example
 #   make check      every test, then the whole suite again under ASan/UBSan
 #   make bench      benchmarks; results under bench/results, summary in bench/README.md
+#   make bench-peers  CSF beside SciPy's solve_ivp (installs python3-scipy: deps-peers)
 #   make install    PREFIX=/usr/local DESTDIR=
 
 PREFIX ?= /usr/local
@@ -15,6 +16,7 @@ CFLAGS ?= -O2 -g
 SAN ?=
 
 DEB_PACKAGES = gcc make libgsl-dev check re2c bison pkg-config gnuplot-nox
+PEER_PACKAGES = python3-scipy
 , := ,
 SANFLAGS = $(if $(SAN),-fsanitize=address$(,)undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
 CSF_CFLAGS = -std=c11 -Wall -Wextra -ffp-contract=off -D_DEFAULT_SOURCE $(SANFLAGS)
@@ -22,7 +24,7 @@ CPPFLAGS_ALL = -Iruntime -Icompiler -I$(BUILD)
 LDLIBS_GSL = $(shell pkg-config --libs gsl 2>/dev/null || echo -lgsl -lgslcblas) -lm
 LDFLAGS_SAN = $(if $(SAN),-fsanitize=address$(,)undefined)
 
-RT_SRC = runtime/bytecode.c runtime/vm.c runtime/driver.c runtime/ode.c runtime/contact.c runtime/main.c runtime/compare.c
+RT_SRC = runtime/bytecode.c runtime/vm.c runtime/driver.c runtime/ode.c runtime/contact.c runtime/main.c runtime/compare.c runtime/dop853.c
 RT_OBJ = $(RT_SRC:runtime/%.c=$(BUILD)/rt/%.o)
 CC_SRC = compiler/util.c compiler/units.c compiler/layout.c compiler/sema.c compiler/gen.c compiler/emit_c.c compiler/dims.c
 CC_GEN = $(BUILD)/lex.c $(BUILD)/parse.c
@@ -90,15 +92,22 @@ check:
 
 # ---- set-up, demo, install ----
 
-deps:
-	@missing=""; for p in $(DEB_PACKAGES); do \
+# $(call deb_install,TARGET,PACKAGES): install the missing Debian PACKAGES (as root)
+deb_install = missing=""; for p in $(2); do \
 		dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
 	done; \
-	if [ -z "$$missing" ]; then echo "deps: all present"; \
+	if [ -z "$$missing" ]; then echo "$(1): all present"; \
 	elif [ "$$(id -u)" = 0 ]; then \
-		echo "deps: installing$$missing"; \
+		echo "$(1): installing$$missing"; \
 		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing; \
-	else echo "deps: missing$$missing; run: sudo apt-get install$$missing"; exit 1; fi
+	else echo "$(1): missing$$missing; run: sudo apt-get install$$missing"; exit 1; fi
+
+deps:
+	@$(call deb_install,deps,$(DEB_PACKAGES))
+
+# only for make bench-peers (not needed by make, make check or make bench)
+deps-peers:
+	@$(call deb_install,deps-peers,$(PEER_PACKAGES))
 
 demo: deps
 	$(MAKE) all
@@ -123,7 +132,10 @@ install: all
 bench: all
 	$(MAKE) -C bench BUILD=$(abspath $(BUILD))
 
+bench-peers: all deps-peers
+	$(MAKE) -C bench peers BUILD=$(abspath $(BUILD))
+
 clean:
 	rm -rf build build-san
 
-.PHONY: all deps demo test check install bench clean
+.PHONY: all deps deps-peers demo test check install bench bench-peers clean

@@ -273,6 +273,8 @@ typedef struct csf_opts {
 	double tol;         /* local error bound, <= 0 for the default */
 	int fixed;          /* --fixed: no error control, constant internal steps */
 	double step;        /* --step H: the fixed step (<= 0: by) */
+	double hmax;        /* --hmax H: the longest internal step (<= 0: no cap but the run's length; by for
+	                       the methods that step to each output time) */
 	int stats;          /* --stats: a summary on stderr at the end */
 	int compare;        /* --compare-methods */
 	/* filled in by csf_run: */

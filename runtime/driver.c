@@ -74,6 +74,14 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 				fprintf(stderr, "%s: --step needs a positive number of seconds, not '%s'\n", argv[0], argv[i]);
 				return 2;
 			}
+		} else if (strcmp(a, "--hmax") == 0 && i + 1 < argc) {
+			char *end;
+			errno = 0;
+			o->hmax = strtod(argv[++i], &end);
+			if (*end || errno || !(o->hmax > 0) || !isfinite(o->hmax)) {
+				fprintf(stderr, "%s: --hmax needs a positive number of seconds, not '%s'\n", argv[0], argv[i]);
+				return 2;
+			}
 		} else if (strcmp(a, "--fixed") == 0) {
 			o->fixed = 1;
 		} else if (strcmp(a, "--stats") == 0) {
@@ -107,6 +115,9 @@ typedef struct run {
 	int pending; /* it was located at an output time and happens after that row */
 	double last_h; /* the last step's length */
 	double zeno, tol; /* for csf_contact_settle */
+	int dense;        /* the method's continuous extension gives the rows (advance_dense) */
+	double ti, tend;  /* dense: the integrator's time (at or past the last row), the last output time */
+	double *yi;       /* dense: the integrator's state at ti */
 	/* events: guards (conditional rules' comparisons, then two per candidate contact), ng of them
 	   (room for capg), and work vectors */
 	uint32_t ng;
@@ -421,6 +432,19 @@ static void hermite(const run *r, double dt, const double *yb, double s, double 
 }
 
 /*
+ * The state at ta + s (tb - ta) within the step just taken from (ta, r->ya)
+ * to (tb, yb): the method's continuous extension, or the cubic Hermite
+ * interpolant of the values and derivatives (r->fa, r->fb) at its ends.
+ * 0, or 1 if an evaluation failed.
+ */
+static int interp(run *r, csf_ode *ode, double ta, double tb, const double *yb, double s, double *out)
+{
+	if (r->dense) return csf_ode_dense_eval(ode, ta + s * (tb - ta), out);
+	hermite(r, tb - ta, yb, s, out);
+	return 0;
+}
+
+/*
  * The guards at time tc on the state stepped exactly from the step's start
  * (ta, r->ya) of the step that ended at (tb, yb), into r->gs, the state left
  * in r->ys. Within 1e-6 of the step from its start, the state is the step's
@@ -434,7 +458,7 @@ static int substep_guards(run *r, csf_ode *ode, double ta, double tb, const doub
                           size_t msglen)
 {
 	if (tc - ta < 1e-6 * (tb - ta)) {
-		hermite(r, tb - ta, yb, (tc - ta) / (tb - ta), r->ys);
+		if (interp(r, ode, ta, tb, yb, (tc - ta) / (tb - ta), r->ys)) return CSF_ODE_STOPPED;
 	} else if (csf_ode_substep(ode, ta, r->ya, tc - ta, r->ys)) {
 		if (r->fail) return CSF_ODE_STOPPED;
 		snprintf(msg, msglen, "the %s step from t=%.17g to locate an event at t=%.17g failed", csf_ode_method(ode),
@@ -509,6 +533,101 @@ static int advance_plain(run *r, csf_ode *ode, double *t, double t1, double *y, 
 }
 
 /*
+ * After a step from (ta, r->ya), with guards r->ga and derivative r->fa
+ * there, to (tb, y): the earliest event in (ta, tb]. *which is its guard, or
+ * -1 when there is none (r->ga and r->fa then move on to tb); *te is its
+ * time, r->ye the state there, r->last and r->last_src name it.
+ */
+static int step_events(run *r, csf_ode *ode, double ta, double tb, const double *y, double *te, long *which, char *msg,
+                       size_t msglen)
+{
+	const csf_prog *p = r->p;
+	size_t n = p->ny;
+	int st;
+	*which = -1;
+	if (guards_at(r, tb, y, r->gb)) return CSF_ODE_STOPPED;
+	memcpy(r->fb, r->fs, n * sizeof *y);
+	double lo = ta, hi = tb, dt = tb - ta;
+	if (r->cs) {
+		/* the candidate contacts of this step: every pair that can touch at the instants
+		   its guards are looked at (the start, 3 interpolated points, the end) */
+		for (int j = 1; j < 4; j++)
+			if (interp(r, ode, ta, tb, y, j / 4.0, r->yh + (size_t)(j - 1) * n)) return CSF_ODE_STOPPED;
+		const double *ys[5] = { r->ya, r->yh, r->yh + n, r->yh + 2 * n, y }, *gy[2] = { r->ya, y };
+		double **g[2] = { &r->ga, &r->gb };
+		if (choose_contacts(r, ys, 5, g, gy, 2)) return CSF_ODE_STOPPED;
+	}
+	size_t ng = r->ng;
+	/* the first of the sample points (3 interpolated, then the step's end) where an armed
+	   guard is negative: [lo, hi], with hi's guards in r->gh */
+	int found = 0;
+	for (int j = 1; j <= 4 && !found; j++) {
+		if (j < 4) {
+			const double *yj = r->yh + (size_t)(j - 1) * n; /* with contacts, computed above */
+			if (!r->cs) {
+				if (interp(r, ode, ta, tb, y, j / 4.0, r->ys)) return CSF_ODE_STOPPED;
+				yj = r->ys;
+			}
+			hi = ta + j / 4.0 * dt;
+			if (guards_at(r, hi, yj, r->gh)) return CSF_ODE_STOPPED;
+		} else {
+			hi = tb;
+			memcpy(r->gh, r->gb, ng * sizeof *r->gh);
+		}
+		for (size_t k = 0; k < ng; k++) found |= r->ga[k] >= 0 && r->gh[k] < 0;
+		if (!found) lo = hi;
+	}
+	/* the earliest crossing among the guards negative at hi, each bracketed on exact states */
+	double best = tb;
+	for (size_t k = 0; found && k < ng; k++) {
+		if (!(r->ga[k] >= 0 && r->gh[k] < 0)) continue;
+		/* the exact state's guards at lo and hi (the interpolant only pointed here) */
+		double l = lo, gl = r->ga[k], u = hi, gu = r->gh[k];
+		if (lo > ta) {
+			if ((st = substep_guards(r, ode, ta, tb, y, lo, msg, msglen))) return st;
+			if (r->gs[k] < 0) l = ta; /* already below at lo: the crossing is earlier */
+			else gl = r->gs[k];
+		}
+		if (hi < tb) {
+			if ((st = substep_guards(r, ode, ta, tb, y, hi, msg, msglen))) return st;
+			gu = r->gs[k];
+			if (gu >= 0) { /* not below on the exact state: try the step's end */
+				u = tb, gu = r->gb[k];
+				if (gu >= 0) continue;
+			}
+		}
+		double tk;
+		if ((st = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, &tk, msg, msglen))) return st;
+		if (tk < best || *which < 0) {
+			best = tk, *which = (long)k;
+			memcpy(r->ye, r->ys, n * sizeof *r->ye);
+		}
+	}
+	if (*which < 0) { /* none, or the interpolant's alarm was false */
+		memcpy(r->ga, r->gb, ng * sizeof *r->ga);
+		memcpy(r->fa, r->fb, n * sizeof *r->fa);
+		return CSF_ODE_OK;
+	}
+	*te = best;
+	r->last = *which;
+	r->last_src = *which < (long)p->nevents ? p->events[*which].src
+	                                        : csf_contacts_src(r->cs, (uint32_t)(*which - (long)p->nevents) / 2);
+	return CSF_ODE_OK;
+}
+
+/* One more event at time te after a step from ta: CHATTER after 1000 in a row that do not advance time. */
+static int chatter(unsigned long *same, double ta, double te, char *msg, size_t msglen)
+{
+	if (te - ta > 1e-12 * (1 + fabs(te))) {
+		*same = 0;
+		return 0;
+	}
+	if (++*same <= 1000) return 0;
+	snprintf(msg, msglen, "%lu events without time advancing", *same);
+	return CHATTER;
+}
+
+/*
  * Advances (*t, y) to t1 as csf_ode_step does, stopping at events. On entry
  * r->ga and r->fa hold the guards and derivative at (*t, y), unless an event
  * located at the last output time is pending: it happens first.
@@ -521,102 +640,82 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 	unsigned long same = 0, work = 0;
 	if (r->pending && take_event(r, ode, *t, y)) return CSF_ODE_STOPPED;
 	while (*t < t1) {
-		double ta = *t;
+		double ta = *t, best;
+		long which;
 		if (++work > MAX_WORK) return TOO_MUCH;
 		memcpy(r->ya, y, n * sizeof *y);
 		int st = csf_ode_step(ode, t, t1, fixed, h, y, msg, msglen);
 		if (st != CSF_ODE_OK) return st;
-		double tb = *t;
-		r->last_h = tb - ta;
-		if (guards_at(r, tb, y, r->gb)) return CSF_ODE_STOPPED;
-		memcpy(r->fb, r->fs, n * sizeof *y);
-		double lo = ta, hi = tb, dt = tb - ta;
-		if (r->cs) {
-			/* the candidate contacts of this step: every pair that can touch at the instants
-			   its guards are looked at (the start, 3 interpolated points, the end) */
-			for (int j = 1; j < 4; j++) hermite(r, dt, y, j / 4.0, r->yh + (size_t)(j - 1) * n);
-			const double *ys[5] = { r->ya, r->yh, r->yh + n, r->yh + 2 * n, y }, *gy[2] = { r->ya, y };
-			double **g[2] = { &r->ga, &r->gb };
-			if (choose_contacts(r, ys, 5, g, gy, 2)) return CSF_ODE_STOPPED;
-		}
-		size_t ng = r->ng;
-		/* the first of the sample points (3 interpolated, then the step's end) where an armed
-		   guard is negative: [lo, hi], with hi's guards in r->gh */
-		int found = 0;
-		for (int j = 1; j <= 4 && !found; j++) {
-			if (j < 4) {
-				const double *yj = r->yh + (size_t)(j - 1) * n; /* with contacts, computed above */
-				if (!r->cs) {
-					hermite(r, dt, y, j / 4.0, r->ys);
-					yj = r->ys;
-				}
-				hi = ta + j / 4.0 * dt;
-				if (guards_at(r, hi, yj, r->gh)) return CSF_ODE_STOPPED;
-			} else {
-				hi = tb;
-				memcpy(r->gh, r->gb, ng * sizeof *r->gh);
-			}
-			for (size_t k = 0; k < ng; k++) found |= r->ga[k] >= 0 && r->gh[k] < 0;
-			if (!found) lo = hi;
-		}
-		if (!found) {
-			memcpy(r->ga, r->gb, ng * sizeof *r->ga);
-			memcpy(r->fa, r->fb, n * sizeof *r->fa);
+		r->last_h = *t - ta;
+		if ((st = step_events(r, ode, ta, *t, y, &best, &which, msg, msglen))) return st;
+		if (which < 0) {
 			same = 0;
-			continue;
-		}
-		/* the earliest crossing among the guards negative at hi, each bracketed on exact states */
-		double best = tb;
-		long which = -1;
-		for (size_t k = 0; k < ng; k++) {
-			if (!(r->ga[k] >= 0 && r->gh[k] < 0)) continue;
-			/* the exact state's guards at lo and hi (the interpolant only pointed here) */
-			double l = lo, gl = r->ga[k], u = hi, gu = r->gh[k];
-			if (lo > ta) {
-				if ((st = substep_guards(r, ode, ta, tb, y, lo, msg, msglen))) return st;
-				if (r->gs[k] < 0) l = ta; /* already below at lo: the crossing is earlier */
-				else gl = r->gs[k];
-			}
-			if (hi < tb) {
-				if ((st = substep_guards(r, ode, ta, tb, y, hi, msg, msglen))) return st;
-				gu = r->gs[k];
-				if (gu >= 0) { /* not below on the exact state: try the step's end */
-					u = tb, gu = r->gb[k];
-					if (gu >= 0) continue;
-				}
-			}
-			double tk;
-			if ((st = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, &tk, msg, msglen))) return st;
-			if (tk < best || which < 0) {
-				best = tk, which = (long)k;
-				memcpy(r->ye, r->ys, n * sizeof *r->ye);
-			}
-		}
-		if (which < 0) { /* the interpolant's alarm was false */
-			memcpy(r->ga, r->gb, ng * sizeof *r->ga);
-			memcpy(r->fa, r->fb, n * sizeof *r->fa);
 			continue;
 		}
 		memcpy(y, r->ye, n * sizeof *y);
 		*t = best;
-		r->last = which;
-		r->last_src = which < (long)p->nevents ? p->events[which].src
-		                                      : csf_contacts_src(r->cs, (uint32_t)(which - (long)p->nevents) / 2);
 		if (t1 - best <= location_tol(p)) { /* at an output time: its row shows the state before the event */
 			*t = t1;
 			r->pending = 1;
 			return CSF_ODE_OK;
 		}
 		if (take_event(r, ode, best, y)) return CSF_ODE_STOPPED;
-		if (best - ta <= 1e-12 * (1 + fabs(best))) {
-			if (++same > 1000) {
-				snprintf(msg, msglen, "%lu events without time advancing", same);
-				return CHATTER;
-			}
-		} else {
-			same = 0;
-		}
+		if ((st = chatter(&same, ta, best, msg, msglen))) return st;
 	}
+	return CSF_ODE_OK;
+}
+
+/*
+ * A method with a continuous extension (csf_ode_dense): the integrator, at
+ * (r->ti, r->yi), steps as far as its error control allows towards the
+ * last output time, past tk, and the state y at tk is computed from the
+ * last step's extension (or is its end), never by shortening a step to end
+ * at tk. With events, a step is cut at its earliest event: the integrator
+ * stops there, the rows before it come from the step's extension, and the
+ * event is taken (modes, impacts, a restart) before the next step
+ * (r->pending). An event within location_tol before an output time is moved
+ * to it: the row shows the state before the event. On entry with events,
+ * r->ga and r->fa hold the guards and derivative at (r->ti, r->yi) unless
+ * an event is pending there.
+ */
+static int advance_dense(run *r, csf_ode *ode, double tk, double *y, char *msg, size_t msglen)
+{
+	const csf_prog *p = r->p;
+	size_t n = p->ny;
+	unsigned long same = 0, work = 0;
+	int events = p->nevents || p->ncrules;
+	while (r->ti < tk) {
+		double ta = r->ti, te;
+		long which;
+		if (++work > MAX_WORK) return TOO_MUCH;
+		if (r->pending && take_event(r, ode, r->ti, r->yi)) return CSF_ODE_STOPPED;
+		if (events) memcpy(r->ya, r->yi, n * sizeof *y);
+		int st = csf_ode_step(ode, &r->ti, r->tend, 0, 0, r->yi, msg, msglen);
+		if (st == CSF_ODE_STOPPED && r->ti < tk) {
+			/* a derivative not finite within the step: step to the row instead, so that every row
+			   before the failure is written (the step from the row on fails again) */
+			r->fail = 0;
+			csf_ode_restart(ode);
+			st = csf_ode_step(ode, &r->ti, tk, 0, 0, r->yi, msg, msglen);
+		}
+		if (st != CSF_ODE_OK) return st;
+		r->last_h = r->ti - ta;
+		if (!events) continue;
+		if ((st = step_events(r, ode, ta, r->ti, r->yi, &te, &which, msg, msglen))) return st;
+		if (which < 0) {
+			same = 0;
+			continue;
+		}
+		double row = ceil(te / p->by) * p->by; /* the first output time at or after the event */
+		if (row < te) row += p->by;
+		if (row - te <= location_tol(p) && row <= r->ti) te = row;
+		r->ti = te;
+		memcpy(r->yi, r->ye, n * sizeof *y);
+		r->pending = 1;
+		if ((st = chatter(&same, ta, te, msg, msglen))) return st;
+	}
+	if (tk == r->ti) memcpy(y, r->yi, n * sizeof *y);
+	else if (csf_ode_dense_eval(ode, tk, y)) return CSF_ODE_STOPPED;
 	return CSF_ODE_OK;
 }
 
@@ -667,9 +766,19 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		status = 2;
 		goto done;
 	}
+	/* The last k with k*by <= till, allowing for till/by's rounding. */
+	double kmax = floor(p->till / p->by);
+	if ((kmax + 1) * p->by <= p->till * (1 + 1e-12)) kmax += 1;
+	r.tend = kmax * p->by;
 	if (p->ny) {
-		ode = csf_ode_new(o->method, o->fixed, p->ny, p->by, o->tol, p->yscale, p->vpair, rhs, p->jtan ? jac : NULL, &r, msg,
-		                  sizeof msg);
+		/* a dense method steps as far as its error control allows (--hmax caps it), the others
+		   to each output time; with events, steps of at most by, so that a guard that dips below
+		   zero and back is not missed between the points each step looks at (events, below) */
+		int unbounded = !o->fixed && csf_method_dense(o->method) && !events;
+		double hmax = unbounded ? (r.tend > p->by ? r.tend : p->by) : p->by;
+		if (o->hmax > 0 && o->hmax < hmax) hmax = o->hmax;
+		ode = csf_ode_new(o->method, o->fixed, p->ny, p->by, hmax, o->tol, p->yscale, p->vpair, rhs,
+		                  p->jtan ? jac : NULL, &r, msg, sizeof msg);
 		if (!ode) {
 			fprintf(err, "error: %s\n", msg);
 			status = 2;
@@ -685,7 +794,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	double fixed_h = ode ? csf_ode_fixed_step(ode, p->by, o->step) : p->by;
 	/* a train of bounces that would end within zeno is at rest; the integrator's accuracy (contact.c) */
 	r.zeno = 1e-6 * p->by;
-	r.tol = o->tol > 0 ? o->tol : CSF_DEFAULT_TOL;
+	r.tol = o->tol > 0 ? o->tol : csf_method_tol(o->method);
 	if (events) {
 		/* the modes at t = 0: each comparison's side, contacts at rest or colliding */
 		if (update_modes(&r, 0, y) || (p->ny && guards_at(&r, 0, y, r.ga))) {
@@ -700,10 +809,15 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		}
 		memcpy(r.fa, r.fs, p->ny * sizeof *r.fa);
 	}
-
-	/* The last k with k*by <= till, allowing for till/by's rounding. */
-	double kmax = floor(p->till / p->by);
-	if ((kmax + 1) * p->by <= p->till * (1 + 1e-12)) kmax += 1;
+	r.dense = ode && !fixed && csf_ode_dense(ode);
+	if (r.dense) { /* the integrator's own state, apart from the rows' */
+		if (!(r.yi = malloc(p->ny * sizeof *r.yi))) {
+			fprintf(err, "error: out of memory\n");
+			status = 2;
+			goto done;
+		}
+		memcpy(r.yi, y, p->ny * sizeof *y);
+	}
 
 	double t = 0;
 	for (double k = 0; k <= kmax; k++) {
@@ -711,9 +825,10 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		if (ode && tk > t) {
 			unsigned long before, rej;
 			csf_ode_stats(ode, &before, &rej);
-			int st = events ? advance_events(&r, ode, &t, tk, fixed, fixed_h, y, msg, sizeof msg)
-			         : fixed ? csf_ode_advance_fixed(ode, &t, tk, fixed_h, y, msg, sizeof msg)
-			               : advance_plain(&r, ode, &t, tk, y, msg, sizeof msg);
+			int st = r.dense  ? advance_dense(&r, ode, tk, y, msg, sizeof msg)
+			         : events ? advance_events(&r, ode, &t, tk, fixed, fixed_h, y, msg, sizeof msg)
+			         : fixed  ? csf_ode_advance_fixed(ode, &t, tk, fixed_h, y, msg, sizeof msg)
+			                  : advance_plain(&r, ode, &t, tk, y, msg, sizeof msg);
 			unsigned long after;
 			csf_ode_stats(ode, &after, &rej);
 			if (!fixed && !warned && csf_ode_explicit(ode) && after - before > 10000 && st != TOO_MUCH) {
@@ -737,7 +852,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			}
 			if (st == TOO_MUCH) {
 				char tb[32], ta[32], hb[32];
-				csf_fmt_double(tb, t);
+				csf_fmt_double(tb, r.dense ? r.ti : t);
 				csf_fmt_double(ta, tk - p->by);
 				csf_fmt_double(hb, r.last_h);
 				if (r.nevents) report_event_src(p, r.last_src, err);
@@ -754,7 +869,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			}
 			if (st == CHATTER) {
 				char tb[32];
-				csf_fmt_double(tb, t);
+				csf_fmt_double(tb, r.dense ? r.ti : t);
 				report_event_src(p, r.last_src, err);
 				fprintf(err,
 				        "error: at t=%s the conditions switch back and forth without time advancing (%s): "
@@ -766,7 +881,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			}
 			if (st == CSF_ODE_FAILED) {
 				char tb[32];
-				csf_fmt_double(tb, t);
+				csf_fmt_double(tb, r.dense ? r.ti : t);
 				fprintf(err,
 				        "error: integration failed at t=%s: %s (the step size collapsed: the solution may be "
 				        "singular there, or the problem stiff; try another --method or a smaller 'by')\n",
@@ -832,6 +947,7 @@ done:
 	free(r.gh);
 	free(work);
 	free(y);
+	free(r.yi);
 	free(r.m);
 	return finish(out, err, status);
 }

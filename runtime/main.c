@@ -16,10 +16,12 @@
 static const char vm_usage[] =
 	"usage: csfvm [--method NAME] [--tol EPS] MODEL.csfb\n"
 	"Runs a compiled CSF model and writes its watched variables as CSV on stdout.\n"
-	"  --method NAME  ODE stepper: rk8pd (default), rk2, rk4, rkf45, rkck,\n"
+	"  --method NAME  ODE stepper: dop853 (default), rk8pd, rk2, rk4, rkf45, rkck,\n"
 	"                 msadams; implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp,\n"
 	"                 bsimp, msbdf; symplectic, fixed steps (--step): verlet\n"
 	"  --tol EPS      local error bound per internal step (default 1e-10)\n"
+	"  --hmax H       internal steps of at most H seconds (dop853 steps past the\n"
+	"                 output times and computes the rows from its dense output)\n"
 	"  --fixed        no error control: internal steps of 'by' (or --step H)\n"
 	"  --step H       fixed internal steps of at most H seconds\n"
 	"  --stats        steps, evaluations and time on stderr at the end\n"
@@ -30,11 +32,11 @@ static const char vm_usage[] =
 static const char exe_usage[] =
 	"usage: %s [--method NAME] [--tol EPS]\n"
 	"Runs the CSF model compiled into this program and writes its watched variables as CSV on stdout.\n"
-	"  --method NAME  ODE stepper: rk8pd (default), rk2, rk4, rkf45, rkck,\n"
+	"  --method NAME  ODE stepper: dop853 (default), rk8pd, rk2, rk4, rkf45, rkck,\n"
 	"                 msadams; implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp,\n"
 	"                 bsimp, msbdf; symplectic, fixed steps (--step): verlet\n"
 	"  --tol EPS      local error bound per internal step (default 1e-10)\n"
-	"  --fixed, --step H, --stats, --compare-methods: as csfvm(1)\n"
+	"  --hmax H, --fixed, --step H, --stats, --compare-methods: as csfvm(1)\n"
 	"  --help, --version\n";
 
 unsigned char *csf_read_file(const char *path, size_t *len)

@@ -14,6 +14,7 @@
 #include <gsl/gsl_odeiv2.h>
 
 #include "csf.h"
+#include "dop853.h"
 #include "ode.h"
 
 
@@ -22,19 +23,23 @@ static const struct method {
 	const gsl_odeiv2_step_type *const *type;
 	int jacobian;  /* the stepper uses the Jacobian */
 	int multistep; /* cannot take fixed steps */
+	int dense;     /* has a continuous extension: steps past the output times (csf_ode_dense_eval) */
+	double tol;    /* the default local error bound (the work-precision benchmark: the cheapest that keeps
+	                  every problem with an exact answer within 1e-6) */
 } methods[] = {
-	{ "rk8pd", &gsl_odeiv2_step_rk8pd, 0, 0 },
-	{ "rk2", &gsl_odeiv2_step_rk2, 0, 0 },
-	{ "rk4", &gsl_odeiv2_step_rk4, 0, 0 },
-	{ "rkf45", &gsl_odeiv2_step_rkf45, 0, 0 },
-	{ "rkck", &gsl_odeiv2_step_rkck, 0, 0 },
-	{ "rk1imp", &gsl_odeiv2_step_rk1imp, 1, 0 },
-	{ "rk2imp", &gsl_odeiv2_step_rk2imp, 1, 0 },
-	{ "rk4imp", &gsl_odeiv2_step_rk4imp, 1, 0 },
-	{ "bsimp", &gsl_odeiv2_step_bsimp, 1, 0 },
-	{ "msadams", &gsl_odeiv2_step_msadams, 0, 1 },
-	{ "msbdf", &gsl_odeiv2_step_msbdf, 1, 1 },
-	{ "verlet", NULL, 0, 0 }, /* velocity Verlet, written here: symplectic, fixed steps */
+	{ "dop853", &csf_step_dop853, 0, 0, 1, 1e-12 }, /* Dormand-Prince 8(5,3) with dense output (dop853.c) */
+	{ "rk8pd", &gsl_odeiv2_step_rk8pd, 0, 0, 0, CSF_DEFAULT_TOL },
+	{ "rk2", &gsl_odeiv2_step_rk2, 0, 0, 0, CSF_DEFAULT_TOL },
+	{ "rk4", &gsl_odeiv2_step_rk4, 0, 0, 0, CSF_DEFAULT_TOL },
+	{ "rkf45", &gsl_odeiv2_step_rkf45, 0, 0, 0, CSF_DEFAULT_TOL },
+	{ "rkck", &gsl_odeiv2_step_rkck, 0, 0, 0, CSF_DEFAULT_TOL },
+	{ "rk1imp", &gsl_odeiv2_step_rk1imp, 1, 0, 0, CSF_DEFAULT_TOL },
+	{ "rk2imp", &gsl_odeiv2_step_rk2imp, 1, 0, 0, CSF_DEFAULT_TOL },
+	{ "rk4imp", &gsl_odeiv2_step_rk4imp, 1, 0, 0, CSF_DEFAULT_TOL },
+	{ "bsimp", &gsl_odeiv2_step_bsimp, 1, 0, 0, CSF_DEFAULT_TOL },
+	{ "msadams", &gsl_odeiv2_step_msadams, 0, 1, 0, CSF_DEFAULT_TOL },
+	{ "msbdf", &gsl_odeiv2_step_msbdf, 1, 1, 0, CSF_DEFAULT_TOL },
+	{ "verlet", NULL, 0, 0, 0, CSF_DEFAULT_TOL }, /* velocity Verlet, written here: symplectic, fixed steps */
 };
 
 const char *csf_method_name(size_t i) { return i < sizeof methods / sizeof methods[0] ? methods[i].name : NULL; }
@@ -50,6 +55,18 @@ int csf_method_contacts(const char *method)
 {
 	const struct method *m = method ? find_method(method) : &methods[0];
 	return m && m->type;
+}
+
+double csf_method_tol(const char *method)
+{
+	const struct method *m = method ? find_method(method) : &methods[0];
+	return m ? m->tol : CSF_DEFAULT_TOL;
+}
+
+int csf_method_dense(const char *method)
+{
+	const struct method *m = method ? find_method(method) : &methods[0];
+	return m && m->dense;
 }
 
 struct csf_ode {
@@ -84,7 +101,7 @@ static int gsl_jac(double t, const double y[], double *dfdy, double dfdt[], void
 	return o->jac(t, y, dfdy, dfdt, o->ctx) ? GSL_EBADFUNC : GSL_SUCCESS;
 }
 
-csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double hmax, double tol, const double *scale,
+csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double hmax, double tol, const double *scale,
                      const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err, size_t errlen)
 {
 	gsl_set_error_handler_off();
@@ -101,7 +118,7 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double hmax, doubl
 		snprintf(err, errlen, "method '%s' needs a Jacobian, and this program has none", m->name);
 		return NULL;
 	}
-	if (tol <= 0) tol = CSF_DEFAULT_TOL;
+	if (tol <= 0) tol = m->tol;
 	csf_ode *o = calloc(1, sizeof *o);
 	if (!o) {
 		snprintf(err, errlen, "out of memory");
@@ -133,12 +150,13 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double hmax, doubl
 	}
 	/* error control as driver_alloc_y_new (a_y = 1, a_dydt = 0), with the absolute
 	   tolerance of each component scaled to its unit */
-	o->drv = gsl_odeiv2_driver_alloc_scaled_new(&o->sys, *m->type, hmax, tol, tol, 1.0, 0.0, scale);
+	o->drv = gsl_odeiv2_driver_alloc_scaled_new(&o->sys, *m->type, h0 < hmax ? h0 : hmax, tol, tol, 1.0, 0.0, scale);
 	if (!o->drv || gsl_odeiv2_driver_set_hmax(o->drv, hmax) != GSL_SUCCESS) {
 		snprintf(err, errlen, "cannot set up the integrator");
 		csf_ode_free(o);
 		return NULL;
 	}
+	if (m->dense) csf_dop853_set_scale(o->drv->s, scale); /* its error norm weighs components as the control does */
 	return o;
 }
 
@@ -276,6 +294,18 @@ int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out
 	}
 	gsl_odeiv2_step_reset(o->sub);
 	return gsl_odeiv2_step_apply(o->sub, t, h, out, o->yerr, NULL, NULL, &o->sys) != GSL_SUCCESS;
+}
+
+int csf_ode_dense(const csf_ode *o) { return o->m->dense; }
+
+int csf_ode_dense_eval(csf_ode *o, double tc, double *out)
+{
+	double t0, h;
+	csf_dop853_last_step(o->drv->s, &t0, &h);
+	if (csf_dop853_dense_prepare(o->drv->s, &o->sys) != GSL_SUCCESS) return 1;
+	double theta = h != 0 ? (tc - t0) / h : 1;
+	csf_dop853_dense_eval(o->drv->s, theta < 0 ? 0 : theta > 1 ? 1 : theta, out);
+	return 0;
 }
 
 void csf_ode_restart(csf_ode *o)

@@ -19,18 +19,32 @@ enum { CSF_ODE_OK = 0, CSF_ODE_STOPPED = 1, CSF_ODE_FAILED = 2 };
 
 /*
  * A new integrator for n state variables with the named method (NULL for the
- * default; with fixed, a method that can take fixed steps), internal steps
- * never longer than hmax (but for a step stretched by at most 1e-4 of its
- * length to end at the time asked for), local error bound tol (relative, and
- * absolute times scale[i] for component i; <= 0 for the default). Returns
- * NULL and writes a reason to err for an unknown method or when memory runs
- * out.
+ * default; with fixed, a method that can take fixed steps), a first step of
+ * h0 (at most hmax) and internal steps never longer than hmax (but for a
+ * step stretched by at most 1e-4 of its length to end at the time asked
+ * for), local error bound tol (relative, and absolute times scale[i] for
+ * component i; <= 0 for the default). Returns NULL and writes a reason to
+ * err for an unknown method or when memory runs out.
  */
-csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double hmax, double tol, const double *scale,
+csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double hmax, double tol, const double *scale,
                      const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err, size_t errlen);
 
 /* Can the named method run a model with contacts (a method with a step of its own: not verlet)? */
 int csf_method_contacts(const char *method);
+
+/*
+ * Has the named method (NULL: the default) a continuous extension, so that
+ * it steps past the output times and computes the rows from it (dop853)?
+ */
+int csf_method_dense(const char *method);
+int csf_ode_dense(const csf_ode *o);
+
+/*
+ * The state at time tc within the last adaptive step of a dense method
+ * (clamped to the step), from its continuous extension: the first call for
+ * a step costs the method's extra evaluations. 0, or 1 if one failed.
+ */
+int csf_ode_dense_eval(csf_ode *o, double tc, double *out);
 
 /*
  * Advances (*t, y) to exactly t1 in equal steps of at most h, without error
@@ -65,8 +79,9 @@ void csf_ode_restart(csf_ode *o);
 /* Steps taken and rejected so far. */
 void csf_ode_stats(const csf_ode *o, unsigned long *steps, unsigned long *rejected);
 
-/* The default local error bound. */
+/* The default local error bound of every method but dop853, and dop853's (csf_method_tol). */
 #define CSF_DEFAULT_TOL 1e-10
+double csf_method_tol(const char *method);
 
 /*
  * The fixed step to take for outputs every by: --step (step > 0, at most by),
