@@ -48,6 +48,11 @@ EMITC_FAST_CFLAGS=${EMITC_FAST_CFLAGS:--O3 -march=native -fno-math-errno}
 NBODY_FAST_CFLAGS=${NBODY_FAST_CFLAGS:--O3 -march=native -fno-math-errno -ffp-contract=off}
 SIZE_N=16 # bodies of the small model whose executable is compared with NB2_N's
 
+# The hand-written programs integrate as csfvm's rk8pd does (ref.h): GSL's rk8pd,
+# steps of at most by ending on every output time. csfvm and the emit-c
+# programs run that method, so that all compute the same numbers.
+METHOD="--method rk8pd"
+
 CSFC=$BUILD/csfc
 CSFVM=$BUILD/csfvm
 for p in "$CSFC" "$CSFVM" "$BIN/nbody" "$BIN/nbody_pow" "$BIN/nbody_fast" "$BIN/chain" "$BIN/timeit"; do
@@ -177,9 +182,9 @@ same() {
 nbrun() {
 	# shellcheck disable=SC2086 # WATCH is a list of numbers
 	case $1 in
-	csfvm) timed "$2" "$CSFVM" "$TMP/$NB${3:+.$3}.csfb" ;;
-	emit-c) timed "$2" "$BIN/$NBGEN" ;;
-	emit-c-fast) timed "$2" "$BIN/${NBGEN}_fast" ;;
+	csfvm) timed "$2" "$CSFVM" $METHOD "$TMP/$NB${3:+.$3}.csfb" ;;
+	emit-c) timed "$2" "$BIN/$NBGEN" $METHOD ;;
+	emit-c-fast) timed "$2" "$BIN/${NBGEN}_fast" $METHOD ;;
 	nbody.c) timed "$2" "$BIN/nbody" "$NBIC" "${3:-$NBTILL}" "$NBBY" $WATCH ;;
 	nbody.c-pow) timed "$2" "$BIN/nbody_pow" "$NBIC" "${3:-$NBTILL}" "$NBBY" $WATCH ;;
 	nbody.c-fast) timed "$2" "$BIN/nbody_fast" "$NBIC" "${3:-$NBTILL}" "$NBBY" $WATCH ;;
@@ -227,13 +232,13 @@ nbscene() {
 	say "  built $BIN/${NBGEN}_fast in $s s"
 
 	# Agreement (and warm-up): one untimed run of each, compared value by value.
-	"$CSFVM" "$TMP/$NB.csfb" > "$TMP/$NB.csfvm.csv"
+	"$CSFVM" $METHOD "$TMP/$NB.csfb" > "$TMP/$NB.csfvm.csv"
 	# shellcheck disable=SC2086
 	"$BIN/nbody" --stats "$NBIC" "$NBTILL" "$NBBY" $WATCH > "$TMP/$NB.nbody.c.csv" 2> "$TMP/$NB.stats"
 	# shellcheck disable=SC2086
 	"$BIN/nbody_fast" "$NBIC" "$NBTILL" "$NBBY" $WATCH > "$TMP/$NB.nbody.c-fast.csv"
-	"$BIN/$NBGEN" > "$TMP/$NB.emit-c.csv"
-	"$BIN/${NBGEN}_fast" > "$TMP/$NB.emit-c-fast.csv"
+	"$BIN/$NBGEN" $METHOD > "$TMP/$NB.emit-c.csv"
+	"$BIN/${NBGEN}_fast" $METHOD > "$TMP/$NB.emit-c-fast.csv"
 	cmp -s "$TMP/$NB.csfvm.csv" "$TMP/$NB.emit-c.csv" ||
 		{ say "run.sh: the csfc --emit-c program's output differs from csfvm's ($TMP/$NB.emit-c.csv, $TMP/$NB.csfvm.csv)"; exit 1; }
 	say "agreement: csfc --emit-c program and csfvm outputs byte-identical: yes"
@@ -312,15 +317,15 @@ record "emitc_$CH" "csfc --emit-c + cc $EMITC_CFLAGS" "$s" 1
 chrun() { # PROGRAM OUTFILE : one timed chain run, prints the wall seconds
 	# shellcheck disable=SC2086 # CHWATCH is a list of numbers
 	case $1 in
-	csfvm) timed "$2" "$CSFVM" "$TMP/$CH.csfb" ;;
-	emit-c) timed "$2" "$BIN/$CHGEN" ;;
+	csfvm) timed "$2" "$CSFVM" $METHOD "$TMP/$CH.csfb" ;;
+	emit-c) timed "$2" "$BIN/$CHGEN" $METHOD ;;
 	chain.c) timed "$2" "$BIN/chain" "$CHIC" "$CH_TILL" "$CH_BY" $CHWATCH ;;
 	esac
 }
 CHPROGS="csfvm emit-c chain.c"
 
-"$CSFVM" "$TMP/$CH.csfb" > "$TMP/$CH.csfvm.csv"
-"$BIN/$CHGEN" > "$TMP/$CH.emit-c.csv"
+"$CSFVM" $METHOD "$TMP/$CH.csfb" > "$TMP/$CH.csfvm.csv"
+"$BIN/$CHGEN" $METHOD > "$TMP/$CH.emit-c.csv"
 # shellcheck disable=SC2086
 "$BIN/chain" --stats "$CHIC" "$CH_TILL" "$CH_BY" $CHWATCH > "$TMP/$CH.chain.c.csv" 2> "$TMP/$CH.stats"
 cat "$TMP/$CH.stats" >&2

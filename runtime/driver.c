@@ -817,6 +817,12 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			goto done;
 		}
 		memcpy(r.yi, y, p->ny * sizeof *y);
+		/* free steps start at the scene's own size, not at by */
+		if (!events && csf_ode_first_step(ode, 0, y)) {
+			report_nonfinite(p, CSF_SEC_RHS, r.m, 0, "a state derivative", o->fixed, err);
+			status = 1;
+			goto done;
+		}
 	}
 
 	double t = 0;

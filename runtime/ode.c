@@ -80,6 +80,7 @@ struct csf_ode {
 	double *yerr;
 	unsigned long fixed_steps;
 	unsigned long past_steps, past_rejected; /* GSL's counts before the last restart */
+	const double *scale;       /* each component's absolute tolerance, in units of tol */
 	const uint32_t *vpair;     /* verlet: 1 + velocity index of each position component */
 	double *acc;               /* verlet: the derivative at the current point */
 	double acc_t;
@@ -125,6 +126,7 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 		return NULL;
 	}
 	o->tol = tol;
+	o->scale = scale;
 	o->m = m;
 	o->n = n;
 	o->sys = (gsl_odeiv2_system){ gsl_rhs, jac ? gsl_jac : NULL, n, o };
@@ -297,6 +299,37 @@ int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out
 }
 
 int csf_ode_dense(const csf_ode *o) { return o->m->dense; }
+
+/* The root mean square of v_i / (tol (scale_i + |y_i|)): the error control's measure. */
+static double wrms(const csf_ode *o, const double *v, const double *y)
+{
+	double s = 0;
+	for (size_t i = 0; i < o->n; i++) {
+		double r = v[i] / (o->tol * (o->scale[i] + fabs(y[i])));
+		s += r * r;
+	}
+	return o->n ? sqrt(s / (double)o->n) : 0;
+}
+
+int csf_ode_first_step(csf_ode *o, double t, const double *y)
+{
+	size_t n = o->n;
+	gsl_odeiv2_driver *d = o->drv;
+	if (!d || work(o)) return 0;
+	double *f0 = o->k, *y1 = f0 + n, *f1 = y1 + n;
+	if (o->f(t, y, f0, o->ctx)) return 1;
+	double d0 = wrms(o, y, y), d1 = wrms(o, f0, y);
+	double h0 = d0 < 1e-5 || d1 < 1e-5 ? 1e-6 : 0.01 * d0 / d1;
+	if (h0 > d->hmax) h0 = d->hmax;
+	for (size_t i = 0; i < n; i++) y1[i] = y[i] + h0 * f0[i];
+	if (o->f(t + h0, y1, f1, o->ctx)) return 1;
+	for (size_t i = 0; i < n; i++) f1[i] -= f0[i];
+	double d2 = wrms(o, f1, y) / h0, dm = d1 > d2 ? d1 : d2;
+	double h1 = dm <= 1e-15 ? fmax(1e-6, h0 * 1e-3) : pow(0.01 / dm, 1.0 / (gsl_odeiv2_step_order(d->s) + 1.0));
+	double h = 100 * h0 < h1 ? 100 * h0 : h1;
+	d->h = h < d->hmax ? h : d->hmax;
+	return 0;
+}
 
 int csf_ode_dense_eval(csf_ode *o, double tc, double *out)
 {

@@ -40,6 +40,14 @@ int csf_method_dense(const char *method);
 int csf_ode_dense(const csf_ode *o);
 
 /*
+ * Chooses the first adaptive step from (t, y), instead of the h0 given to
+ * csf_ode_new: Hairer's estimate (Solving ODEs I, II.4) from f at y and at
+ * a small Euler step, so that a smooth scene starts with a step of its own
+ * size (two evaluations). 0, or 1 if f stopped.
+ */
+int csf_ode_first_step(csf_ode *o, double t, const double *y);
+
+/*
  * The state at time tc within the last adaptive step of a dense method
  * (clamped to the step), from its continuous extension: the first call for
  * a step costs the method's extra evaluations. 0, or 1 if one failed.
