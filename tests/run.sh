@@ -218,9 +218,24 @@ u=0
 "$CSFVM" "$T/does-not-exist.csfb" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm on a missing file: not exit 2"; }
 "$CSFVM" --method nosuch "$T/h.csfb" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm --method nosuch: not exit 2"; }
 "$CSFVM" --tol -1 "$T/h.csfb" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm --tol -1: not exit 2"; }
+"$CSFVM" --hmax 0 "$T/h.csfb" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm --hmax 0: not exit 2"; }
 "$CSFVM" --fixed --method msbdf "$T/h.csfb" >/dev/null 2>"$T/err"; [ $? -eq 2 ] && grep -q "one-step method" "$T/err" ||
 	{ u=1; bad "csfvm --fixed --method msbdf: not exit 2 with a reason"; }
 [ $u -eq 0 ] && ok
+
+# 5b'. dop853 steps past the rows (steps over the run of the harmonic oscillator:
+#      7 s, rows every 0.05 s), and --hmax caps its step: at 0.05 s, at least one
+#      step a row, the rows still exact to 1e-9 (its checker)
+m=tests/e2e/harmonic_oscillator.csf
+if "$CSFC" "$m" -o "$T/ho.csfb" 2>"$T/err" && "$CSFVM" --stats "$T/ho.csfb" >"$T/ho1.csv" 2>"$T/ho1.err" &&
+	"$CSFVM" --stats --hmax 0.05 "$T/ho.csfb" >"$T/ho2.csv" 2>"$T/ho2.err" &&
+	awk -F, -f "${m%.csf}.check" "$T/ho2.csv" >"$T/chk" 2>&1; then
+	s1=$(sed -n 's/.*, \([0-9]*\) steps .*/\1/p' "$T/ho1.err")
+	s2=$(sed -n 's/.*, \([0-9]*\) steps .*/\1/p' "$T/ho2.err")
+	if [ "${s1:-0}" -gt 0 ] && [ "$s1" -lt 140 ] && [ "${s2:-0}" -ge 140 ]; then ok; else bad "--hmax: $s1 steps free, $s2 with --hmax 0.05 (140 rows)"; fi
+else
+	bad "--hmax: $(head -n 2 "$T/err" "$T/ho2.err" "$T/chk")"
+fi
 
 # 5c. output errors are reported: a full disk, a closed pipe
 printf 'object p: x = 1\nrule: x'"'"' = 1\ninc t till 100000 by 1 watch x\n' >"$T/long.csf"
