@@ -30,7 +30,7 @@
 #   PEERS_CSF_METHODS  csfvm's methods (default: every method `csfvm --help`
 #               lists, except the fixed-step ones, which take no tolerance)
 #   PEERS_SCIPY_METHODS  (default: RK45 DOP853 Radau BDF LSODA)
-#   PEERS_TOLS  tolerances, loosest first (default 1e-3 ... 1e-12)
+#   PEERS_TOLS  tolerances, loosest first (default 1e-3 ... 1e-13)
 #   PEERS_LEVELS  the accuracies of the summary (default 1e-4 ... 1e-10)
 #   PEERS_NB_LEVEL  the accuracy of the n-body evaluations target (1e-6)
 #   PEERS_LIMIT wall seconds a single process may take (`timeout`); a run
@@ -59,7 +59,7 @@ PEERS_PROBLEMS=${PEERS_PROBLEMS:-harmonic kepler_e05 kepler_e09 linear_drag stif
 PEERS_NB_TILL=${PEERS_NB_TILL:-2}
 PEERS_NB_BY=${PEERS_NB_BY:-0.05}
 PEERS_SCIPY_METHODS=${PEERS_SCIPY_METHODS:-RK45 DOP853 Radau BDF LSODA}
-PEERS_TOLS=${PEERS_TOLS:-1e-3 1e-4 1e-5 1e-6 1e-7 1e-8 1e-9 1e-10 1e-11 1e-12}
+PEERS_TOLS=${PEERS_TOLS:-1e-3 1e-4 1e-5 1e-6 1e-7 1e-8 1e-9 1e-10 1e-11 1e-12 1e-13}
 PEERS_LEVELS=${PEERS_LEVELS:-1e-4 1e-5 1e-6 1e-7 1e-8 1e-9 1e-10}
 PEERS_NB_LEVEL=${PEERS_NB_LEVEL:-1e-6}
 PEERS_LIMIT=${PEERS_LIMIT:-10}

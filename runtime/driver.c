@@ -33,6 +33,19 @@ void csf_fmt_double(char buf[32], double x)
 	}
 }
 
+/* The value of option name, argv[i], into *x: a positive finite number, or a usage error (-1). */
+static int positive(char **argv, int i, const char *name, const char *what, double *x)
+{
+	char *end;
+	errno = 0;
+	*x = strtod(argv[i], &end);
+	if (*end || errno || !(*x > 0) || !isfinite(*x)) {
+		fprintf(stderr, "%s: %s needs a positive number%s, not '%s'\n", argv[0], name, what, argv[i]);
+		return -1;
+	}
+	return 0;
+}
+
 int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int npos, int *npos_out,
                    const char *usage)
 {
@@ -58,30 +71,12 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 				return 2;
 			}
 		} else if (strcmp(a, "--tol") == 0 && i + 1 < argc) {
-			char *end;
-			errno = 0;
-			o->tol = strtod(argv[++i], &end);
-			if (*end || errno || !(o->tol > 0) || !isfinite(o->tol)) {
-				fprintf(stderr, "%s: --tol needs a positive number, not '%s'\n", argv[0], argv[i]);
-				return 2;
-			}
+			if (positive(argv, ++i, "--tol", "", &o->tol)) return 2;
 		} else if (strcmp(a, "--step") == 0 && i + 1 < argc) {
-			char *end;
-			errno = 0;
-			o->step = strtod(argv[++i], &end);
+			if (positive(argv, ++i, "--step", " of seconds", &o->step)) return 2;
 			o->fixed = 1;
-			if (*end || errno || !(o->step > 0) || !isfinite(o->step)) {
-				fprintf(stderr, "%s: --step needs a positive number of seconds, not '%s'\n", argv[0], argv[i]);
-				return 2;
-			}
 		} else if (strcmp(a, "--hmax") == 0 && i + 1 < argc) {
-			char *end;
-			errno = 0;
-			o->hmax = strtod(argv[++i], &end);
-			if (*end || errno || !(o->hmax > 0) || !isfinite(o->hmax)) {
-				fprintf(stderr, "%s: --hmax needs a positive number of seconds, not '%s'\n", argv[0], argv[i]);
-				return 2;
-			}
+			if (positive(argv, ++i, "--hmax", " of seconds", &o->hmax)) return 2;
 		} else if (strcmp(a, "--fixed") == 0) {
 			o->fixed = 1;
 		} else if (strcmp(a, "--stats") == 0) {
