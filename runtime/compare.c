@@ -61,7 +61,7 @@ static double difference(const char *a, const char *b)
 
 int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *err)
 {
-	static const char *const methods[] = { "dop853", "rk8pd", "rkck", "rkf45", "rk4", "rk2", "msadams", "bsimp", "rk4imp", "msbdf" };
+	static const char *const methods[] = { "dop853", "dopri5", "rk8pd", "rkck", "rkf45", "rk4", "rk2", "msadams", "bsimp", "rk4imp", "msbdf" };
 	static const double tols[] = { 1e-4, 1e-6, 1e-8, 1e-10, 1e-12 };
 	csf_opts o;
 	int st;

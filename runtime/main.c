@@ -16,7 +16,7 @@
 static const char vm_usage[] =
 	"usage: csfvm [--method NAME] [--tol EPS] MODEL.csfb\n"
 	"Runs a compiled CSF model and writes its watched variables as CSV on stdout.\n"
-	"  --method NAME  ODE stepper: dop853 (default), rk8pd, rk2, rk4, rkf45, rkck,\n"
+	"  --method NAME  ODE stepper: dop853 (default), dopri5, rk8pd, rk2, rk4, rkf45, rkck,\n"
 	"                 msadams; implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp,\n"
 	"                 bsimp, msbdf; symplectic, fixed steps (--step): verlet\n"
 	"  --tol EPS      local error bound per internal step (default 1e-10)\n"
@@ -32,7 +32,7 @@ static const char vm_usage[] =
 static const char exe_usage[] =
 	"usage: %s [--method NAME] [--tol EPS]\n"
 	"Runs the CSF model compiled into this program and writes its watched variables as CSV on stdout.\n"
-	"  --method NAME  ODE stepper: dop853 (default), rk8pd, rk2, rk4, rkf45, rkck,\n"
+	"  --method NAME  ODE stepper: dop853 (default), dopri5, rk8pd, rk2, rk4, rkf45, rkck,\n"
 	"                 msadams; implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp,\n"
 	"                 bsimp, msbdf; symplectic, fixed steps (--step): verlet\n"
 	"  --tol EPS      local error bound per internal step (default 1e-10)\n"

@@ -15,6 +15,7 @@
 
 #include "csf.h"
 #include "dop853.h"
+#include "dopri5.h"
 #include "ode.h"
 
 
@@ -28,6 +29,7 @@ static const struct method {
 	                  every problem with an exact answer within 1e-6) */
 } methods[] = {
 	{ "dop853", &csf_step_dop853, 0, 0, 1, 1e-12 }, /* Dormand-Prince 8(5,3) with dense output (dop853.c) */
+	{ "dopri5", &csf_step_dopri5, 0, 0, 1, CSF_DEFAULT_TOL }, /* Dormand-Prince 5(4), its free extension (dopri5.c) */
 	{ "rk8pd", &gsl_odeiv2_step_rk8pd, 0, 0, 0, CSF_DEFAULT_TOL },
 	{ "rk2", &gsl_odeiv2_step_rk2, 0, 0, 0, CSF_DEFAULT_TOL },
 	{ "rk4", &gsl_odeiv2_step_rk4, 0, 0, 0, CSF_DEFAULT_TOL },
@@ -158,7 +160,7 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 		csf_ode_free(o);
 		return NULL;
 	}
-	if (m->dense) csf_dop853_set_scale(o->drv->s, scale); /* its error norm weighs components as the control does */
+	if (*m->type == csf_step_dop853) csf_dop853_set_scale(o->drv->s, scale); /* its error norm weighs components as the control does */
 	return o;
 }
 
@@ -334,10 +336,15 @@ int csf_ode_first_step(csf_ode *o, double t, const double *y)
 int csf_ode_dense_eval(csf_ode *o, double tc, double *out)
 {
 	double t0, h;
-	csf_dop853_last_step(o->drv->s, &t0, &h);
-	if (csf_dop853_dense_prepare(o->drv->s, &o->sys) != GSL_SUCCESS) return 1;
+	gsl_odeiv2_step *s = o->drv->s;
+	int five = *o->m->type == csf_step_dopri5;
+	if (five) csf_dopri5_last_step(s, &t0, &h);
+	else csf_dop853_last_step(s, &t0, &h);
+	if ((five ? csf_dopri5_dense_prepare(s, &o->sys) : csf_dop853_dense_prepare(s, &o->sys)) != GSL_SUCCESS) return 1;
 	double theta = h != 0 ? (tc - t0) / h : 1;
-	csf_dop853_dense_eval(o->drv->s, theta < 0 ? 0 : theta > 1 ? 1 : theta, out);
+	theta = theta < 0 ? 0 : theta > 1 ? 1 : theta;
+	if (five) csf_dopri5_dense_eval(s, theta, out);
+	else csf_dop853_dense_eval(s, theta, out);
 	return 0;
 }
 

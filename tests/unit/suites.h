@@ -23,6 +23,7 @@ Suite *emit_c_suite(void);
 Suite *jac_suite(void);
 Suite *loops_suite(void);
 Suite *dop853_suite(void);
+Suite *dopri5_suite(void);
 
 /*
  * Compiles source text (file name "t.csf") to a verified program in *p.

@@ -1,0 +1,675 @@
+/*
+ * The DOPRI5 stepper (runtime/dopri5.c): its coefficient table, read back
+ * through the stepper itself and held against the order conditions; the
+ * order of a step, of the global error and of the continuous extension,
+ * measured against exact solutions; the stepper under GSL's own
+ * evolve/control/driver, next to rkf45; a failing evaluation.
+ */
+#include <math.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+
+#include "suites.h"
+#include "dopri5.h"
+
+/* ---- the table, read back ----
+ *
+ * With y0 = 0, h = 1 and a system whose n-th evaluation returns the unit
+ * vector e_n whatever its arguments, stage n is evaluated at t = c_n and
+ * y = sum_j a_nj e_j: the row a_n itself, exactly. The result y1 is b, yerr
+ * is the error's weights e = b - b4, and the continuous extension at theta
+ * is its weights b(theta). So the tests see the table the stepper computes
+ * with, not a copy of it.
+ */
+
+enum { NK = 7, NSTAGE = 6 };
+
+typedef struct {
+	int calls;
+	double t[NK], y[NK][NK];
+} probe;
+
+static int probe_f(double t, const double y[], double dydt[], void *params)
+{
+	probe *p = params;
+	ck_assert_int_lt(p->calls, NK);
+	p->t[p->calls] = t;
+	memcpy(p->y[p->calls], y, NK * sizeof *y);
+	for (int i = 0; i < NK; i++) dydt[i] = i == p->calls;
+	p->calls++;
+	return GSL_SUCCESS;
+}
+
+#define NTHETA 5
+static const double thetas[NTHETA] = { 0.1, 0.25, 0.5, 0.8, 0.95 };
+
+typedef struct {
+	long double a[NK][NK], c[NK], b[NK], e[NK];
+	long double bt[NTHETA][NK]; /* the continuous extension's weights at thetas */
+} tableau;
+
+static void read_tableau(tableau *tb)
+{
+	probe p = { 0 };
+	gsl_odeiv2_system sys = { probe_f, NULL, NK, &p };
+	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(csf_step_dopri5, NK);
+	double y[NK] = { 0 }, yerr[NK], dydt[NK];
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 1, y, yerr, NULL, dydt, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(p.calls, NSTAGE + 1);
+	ck_assert_int_eq(csf_dopri5_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(p.calls, NK); /* the extension costs no evaluation */
+	for (int n = 0; n < NK; n++) {
+		tb->c[n] = p.t[n];
+		for (int j = 0; j < NK; j++) tb->a[n][j] = p.y[n][j];
+	}
+	for (int j = 0; j < NK; j++) {
+		tb->b[j] = y[j];
+		tb->e[j] = yerr[j];
+		ck_assert(p.y[NSTAGE][j] == y[j]); /* the end stage is evaluated at y1 */
+		ck_assert(dydt[j] == (j == NSTAGE)); /* and is dydt_out */
+	}
+	for (int k = 0; k < NTHETA; k++) {
+		double yt[NK];
+		csf_dopri5_dense_eval(s, thetas[k], yt);
+		for (int j = 0; j < NK; j++) tb->bt[k][j] = yt[j];
+	}
+	gsl_odeiv2_step_free(s);
+}
+
+START_TEST(test_table_shape)
+{
+	tableau tb;
+	read_tableau(&tb);
+	for (int n = 0; n < NK; n++)
+		for (int j = n; j < NK; j++) ck_assert_msg(tb.a[n][j] == 0, "a[%d][%d] not explicit", n, j);
+	/* b is the last stage's row (first same as last), with b_1 = 0 and b_6 = 0 */
+	for (int j = 0; j < NK; j++) ck_assert(tb.b[j] == tb.a[NSTAGE][j]);
+	ck_assert(tb.b[1] == 0 && tb.b[6] == 0 && tb.e[1] == 0 && tb.e[6] != 0);
+	/* the published c: 1/5, 3/10, 4/5, 8/9, 1, 1 */
+	ck_assert(tb.c[0] == 0 && tb.c[1] == 0.2 && tb.c[2] == 0.3 && tb.c[3] == 0.8);
+	ck_assert(tb.c[4] == 8.0 / 9 && tb.c[5] == 1 && tb.c[6] == 1);
+	/* a few published values, to the rounding of the fraction */
+	ck_assert(tb.a[2][1] == 9.0 / 40 && tb.a[5][4] == -5103.0 / 18656 && tb.b[0] == 35.0 / 384);
+	ck_assert(tb.e[0] == 71.0 / 57600 && tb.e[6] == -1.0 / 40);
+	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(csf_step_dopri5, 1);
+	ck_assert_str_eq(gsl_odeiv2_step_name(s), "dopri5");
+	ck_assert_uint_eq(gsl_odeiv2_step_order(s), 5);
+	gsl_odeiv2_step_free(s);
+}
+END_TEST
+
+/* Row sums: sum_j a_nj = c_n for every stage, to the rounding of the terms (1e-15 relative to sum_j |a_nj|, up to 30 in row 5). */
+START_TEST(test_row_sums)
+{
+	tableau tb;
+	read_tableau(&tb);
+	for (int n = 1; n < NK; n++) {
+		long double sum = 0, mag = 0;
+		for (int j = 0; j < n; j++) {
+			sum += tb.a[n][j];
+			mag += fabsl(tb.a[n][j]);
+		}
+		ck_assert_msg(fabsl(sum - tb.c[n]) <= 1e-15 * mag, "row %d: sum %.20Lg, c %.20Lg", n, sum, tb.c[n]);
+	}
+}
+END_TEST
+
+/*
+ * Order conditions. A tree's stage vector g approximates a monomial
+ * coef t^deg at t = c_i: c^k is t^k, A g is the integral of g's monomial,
+ * g o g' the product. Its condition is then sum_i w_i g_i = the integral of
+ * the monomial from 0 to theta: coef theta^(deg+1) / (deg+1), for a tree
+ * of order deg + 1 (b, theta = 1: the step; b(theta): the extension).
+ * mag is the same sum in absolute values, the scale of its rounding.
+ */
+typedef struct {
+	long double v[NK], mag[NK];
+	int deg;
+	long double coef;
+} gvec;
+
+static gvec g_c(const tableau *tb, int k)
+{
+	gvec g = { .deg = k, .coef = 1 };
+	for (int i = 0; i < NK; i++) g.v[i] = g.mag[i] = powl(tb->c[i], k);
+	return g;
+}
+
+static gvec g_a(const tableau *tb, gvec u)
+{
+	gvec g = { .deg = u.deg + 1, .coef = u.coef / (u.deg + 1) };
+	for (int i = 0; i < NK; i++)
+		for (int j = 0; j < i; j++) {
+			g.v[i] += tb->a[i][j] * u.v[j];
+			g.mag[i] += fabsl(tb->a[i][j]) * u.mag[j];
+		}
+	return g;
+}
+
+static gvec g_mul(gvec u, gvec w)
+{
+	gvec g = { .deg = u.deg + w.deg, .coef = u.coef * w.coef };
+	for (int i = 0; i < NK; i++) {
+		g.v[i] = u.v[i] * w.v[i];
+		g.mag[i] = u.mag[i] * w.mag[i];
+	}
+	return g;
+}
+
+#define NTREES 17
+
+/* The trees checked: all 17 of order <= 5 (1, 1, 2, 4 and 9 of orders 1 to 5). */
+static int trees(const tableau *tb, gvec *g)
+{
+	int n = 0;
+	gvec c1 = g_c(tb, 1), c2 = g_c(tb, 2), ac = g_a(tb, c1), aac = g_a(tb, ac);
+	for (int k = 0; k <= 4; k++) g[n++] = g_c(tb, k); /* bushy: sum b c^k = 1/(k+1) */
+	g[n++] = ac;                                      /* sum b a c = 1/6 */
+	g[n++] = g_mul(c1, ac);                           /* order 4: sum b c a c = 1/8 */
+	g[n++] = g_a(tb, c2);
+	g[n++] = aac;
+	g[n++] = g_mul(c2, ac); /* order 5 */
+	g[n++] = g_mul(c1, g_a(tb, c2));
+	g[n++] = g_mul(c1, aac);
+	g[n++] = g_mul(ac, ac); /* sum b (a c)^2 = 1/20 */
+	g[n++] = g_a(tb, g_c(tb, 3));
+	g[n++] = g_a(tb, g_mul(c1, ac));
+	g[n++] = g_a(tb, g_a(tb, c2));
+	g[n++] = g_a(tb, aac);
+	ck_assert_int_eq(n, NTREES);
+	return n;
+}
+
+/* Checks sum_i w_i g_i against its exact value at theta for the trees up to maxorder; returns the largest error. */
+static long double check_conditions(const tableau *tb, const long double *w, long double theta, int maxorder,
+                                    double tol, const char *what)
+{
+	gvec g[NTREES];
+	int n = trees(tb, g), checked = 0;
+	long double worst = 0;
+	for (int k = 0; k < n; k++) {
+		if (g[k].deg + 1 > maxorder) continue;
+		long double phi = 0, exact = g[k].coef * powl(theta, g[k].deg + 1) / (g[k].deg + 1);
+		for (int i = 0; i < NK; i++) phi += w[i] * g[k].v[i];
+		ck_assert_msg(fabsl(phi - exact) <= tol, "%s, tree %d (order %d): %.17Lg, exact %.17Lg", what, k,
+		              g[k].deg + 1, phi, exact);
+		worst = fmaxl(worst, fabsl(phi - exact));
+		checked++;
+	}
+	ck_assert_int_ge(checked, maxorder >= 5 ? 17 : 8);
+	return worst;
+}
+
+START_TEST(test_order_conditions)
+{
+	tableau tb;
+	read_tableau(&tb);
+	check_conditions(&tb, tb.b, 1, 5, 1e-13, "b");
+	/* and no more: the order-6 quadrature condition fails */
+	long double q6 = 0;
+	for (int i = 0; i < NK; i++) q6 += tb.b[i] * powl(tb.c[i], 5);
+	ck_assert(fabsl(q6 - 1.0L / 6) > 1e-5);
+}
+END_TEST
+
+/*
+ * e = b - b4: b4 satisfies the conditions to order 4 if and only if e gives
+ * 0 on every tree of order <= 4. On the order-5 quadrature tree it does
+ * not: the estimate is of order 4 (yerr ~ h^5), not more.
+ */
+START_TEST(test_embedded_order4)
+{
+	tableau tb;
+	read_tableau(&tb);
+	gvec g[NTREES];
+	int n = trees(&tb, g), checked = 0;
+	long double scale = 0;
+	for (int i = 0; i < NK; i++) scale += fabsl(tb.e[i]);
+	ck_assert(scale > 0);
+	for (int k = 0; k < n; k++) {
+		if (g[k].deg + 1 > 4) continue;
+		long double phi = 0, mag = 0;
+		for (int i = 0; i < NK; i++) {
+			phi += tb.e[i] * g[k].v[i];
+			mag += fabsl(tb.e[i]) * g[k].mag[i];
+		}
+		ck_assert_msg(fabsl(phi) <= 1e-14 * mag, "tree %d (order %d): %Lg of %Lg", k, g[k].deg + 1, phi, mag);
+		checked++;
+	}
+	ck_assert_int_eq(checked, 8);
+	long double q5 = 0;
+	for (int i = 0; i < NK; i++) q5 += tb.e[i] * powl(tb.c[i], 4);
+	ck_assert(fabsl(q5) > 1e-4 * scale);
+}
+END_TEST
+
+/*
+ * The continuous extension's weights b(theta) satisfy the conditions of
+ * order <= 4 at every theta; not those of order 5 (the order-5 quadrature
+ * condition fails at theta = 0.5), while at theta = 1 they are b's.
+ */
+START_TEST(test_dense_conditions)
+{
+	tableau tb;
+	read_tableau(&tb);
+	for (int k = 0; k < NTHETA; k++) check_conditions(&tb, tb.bt[k], thetas[k], 4, 1e-13, "b(theta)");
+	long double q5 = 0;
+	for (int i = 0; i < NK; i++) q5 += tb.bt[2][i] * powl(tb.c[i], 4);
+	ck_assert(fabsl(q5 - powl(0.5L, 5) / 5) > 1e-6);
+}
+END_TEST
+
+/* ---- convergence on problems with known solutions ---- */
+
+typedef struct {
+	double lambda;
+	int calls, fail_at; /* fail_at >= 0: that evaluation returns GSL_EBADFUNC */
+} counter;
+
+static int count_call(counter *n)
+{
+	return n->calls++ == n->fail_at ? GSL_EBADFUNC : GSL_SUCCESS;
+}
+
+/* y' = lambda y */
+static int growth_f(double t, const double y[], double dydt[], void *params)
+{
+	(void)t;
+	counter *n = params;
+	dydt[0] = n->lambda * y[0];
+	return count_call(n);
+}
+
+/* the harmonic oscillator x'' = -lambda^2 x as (x, v) */
+static int osc_f(double t, const double y[], double dydt[], void *params)
+{
+	(void)t;
+	counter *n = params;
+	dydt[0] = n->lambda * y[1];
+	dydt[1] = -n->lambda * y[0];
+	return count_call(n);
+}
+
+/* x = cos(lambda t), v = -sin(lambda t) */
+static void osc_exact(double lambda, double t, double *y)
+{
+	y[0] = cos(lambda * t);
+	y[1] = -sin(lambda * t);
+}
+
+/*
+ * y' = 10 y at h = 0.025, 0.0125, 0.00625 is y' = y at h = 0.25, 0.125,
+ * 0.0625. The stability polynomial of DOPRI5 is the exponential's Taylor
+ * polynomial of degree 5 plus z^6 / 600, so a step's error is
+ * z^6 (-1/3600 + z/5040 + ...): at z = 1 the terms nearly cancel (5e-5,
+ * not 2.8e-4), and the ratios from there are far from 64; from z = 0.25
+ * (5.6e-8) down to 0.0625 (1.5e-11, still far above the rounding of y1)
+ * they are not.
+ */
+#define LAMBDA 10.0
+
+static double step_error(double h, double *yerr_out)
+{
+	counter n = { LAMBDA, 0, -1 };
+	gsl_odeiv2_system sys = { growth_f, NULL, 1, &n };
+	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(csf_step_dopri5, 1);
+	double y = 1, yerr, dydt;
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, h, &y, &yerr, NULL, &dydt, &sys), GSL_SUCCESS);
+	ck_assert(dydt == LAMBDA * y); /* FSAL: f at the result */
+	gsl_odeiv2_step_free(s);
+	*yerr_out = fabs(yerr);
+	return fabs(y - exp(LAMBDA * h));
+}
+
+START_TEST(test_step_order)
+{
+	double e[3], ye[3];
+	for (int k = 0; k < 3; k++) e[k] = step_error(0.025 / (1 << k), &ye[k]);
+	for (int k = 0; k < 2; k++) {
+		/* h^6: 64 per halving; 2^5.5 leaves room for the next terms */
+		ck_assert_msg(e[k] / e[k + 1] >= pow(2, 5.5), "step error ratio %g (%g, %g)", e[k] / e[k + 1], e[k],
+		              e[k + 1]);
+		/* the estimate behaves like h^5 */
+		ck_assert_msg(ye[k] / ye[k + 1] >= pow(2, 4.5), "yerr ratio %g (%g, %g)", ye[k] / ye[k + 1], ye[k],
+		              ye[k + 1]);
+	}
+	/* the estimate is an estimate: not below the true error, not far above */
+	ck_assert(ye[0] >= e[0] && ye[0] <= 1e4 * e[0]);
+}
+END_TEST
+
+/* The relative error at t = 1 of y' = 10 y, y(0) = 1, in n fixed steps (n >= 40: lambda h <= 0.25, as above). */
+static double global_error(int n)
+{
+	counter c = { LAMBDA, 0, -1 };
+	gsl_odeiv2_system sys = { growth_f, NULL, 1, &c };
+	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(csf_step_dopri5, 1);
+	double y = 1, yerr, dydt_in = LAMBDA, dydt_out;
+	for (int k = 0; k < n; k++) {
+		ck_assert_int_eq(gsl_odeiv2_step_apply(s, (double)k / n, 1.0 / n, &y, &yerr, &dydt_in, &dydt_out, &sys),
+		                 GSL_SUCCESS);
+		dydt_in = dydt_out;
+	}
+	gsl_odeiv2_step_free(s);
+	ck_assert_int_eq(c.calls, 6 * n); /* 5 stages and the end per step: the first stage is dydt_in */
+	return fabs(y / exp(LAMBDA) - 1);
+}
+
+START_TEST(test_global_order)
+{
+	double e[3];
+	for (int k = 0; k < 3; k++) e[k] = global_error(40 << k);
+	for (int k = 0; k < 2; k++)
+		ck_assert_msg(e[k] / e[k + 1] >= pow(2, 4.5), "global error ratio %g (%g, %g)", e[k] / e[k + 1], e[k],
+		              e[k + 1]);
+}
+END_TEST
+
+/*
+ * The largest error of the continuous extension at 100 points inside one
+ * step of h from t0, against the exact solution; checks that theta = 0 and
+ * 1 give y0 and y1 exactly, and that it costs no evaluation.
+ */
+static double dense_error(int osc, double lambda, double t0, double h)
+{
+	counter n = { lambda, 0, -1 };
+	gsl_odeiv2_system sys = { osc ? osc_f : growth_f, NULL, osc ? 2 : 1, &n };
+	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(csf_step_dopri5, sys.dimension);
+	double y0[2], y[2], yerr[2], dydt[2], yt[2], ex[2] = { 0, 0 };
+	if (osc)
+		osc_exact(lambda, t0, y0);
+	else
+		y0[0] = exp(lambda * t0);
+	memcpy(y, y0, sizeof y);
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, t0, h, y, yerr, NULL, dydt, &sys), GSL_SUCCESS);
+	double tl, hl;
+	csf_dopri5_last_step(s, &tl, &hl);
+	ck_assert(tl == t0 && hl == h);
+	int calls = n.calls;
+	ck_assert_int_eq(csf_dopri5_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_dopri5_dense_prepare(s, NULL), GSL_SUCCESS);
+	ck_assert_int_eq(n.calls, calls);
+	double err = 0;
+	for (int k = 1; k <= 100; k++) {
+		double theta = k / 101.0, t = t0 + theta * h;
+		csf_dopri5_dense_eval(s, theta, yt);
+		if (osc)
+			osc_exact(lambda, t, ex);
+		else
+			ex[0] = exp(lambda * t);
+		for (size_t i = 0; i < sys.dimension; i++) err = fmax(err, fabs(yt[i] - ex[i]) / fabs(y0[0]));
+	}
+	csf_dopri5_dense_eval(s, 0, yt);
+	for (size_t i = 0; i < sys.dimension; i++) ck_assert(yt[i] == y0[i]);
+	csf_dopri5_dense_eval(s, 1, yt);
+	for (size_t i = 0; i < sys.dimension; i++) ck_assert(yt[i] == y[i]);
+	gsl_odeiv2_step_free(s);
+	return err;
+}
+
+/*
+ * The interpolant's error is O(h^5): 32 per halving, 2^4 leaves room (for
+ * y' = 10 y, lambda h from 0.5 to 0.25 gives 22, still short of the limit).
+ */
+static void check_dense_order(int osc, double lambda, double t0, double h)
+{
+	double e[3];
+	for (int k = 0; k < 3; k++) e[k] = dense_error(osc, lambda, t0, h / (1 << k));
+	for (int k = 0; k < 2; k++)
+		ck_assert_msg(e[k] / e[k + 1] >= 16, "%s: dense error ratio %g (%g, %g)", osc ? "oscillator" : "growth",
+		              e[k] / e[k + 1], e[k], e[k + 1]);
+}
+
+START_TEST(test_dense_order)
+{
+	check_dense_order(0, LAMBDA, 0.0, 0.1);
+	check_dense_order(1, 1.0, 0.3, 1.0);
+}
+END_TEST
+
+/* ---- under GSL's evolve, control and driver ---- */
+
+typedef struct {
+	unsigned long steps, rejected;
+	int calls;
+	double err;
+} run_stats;
+
+/* The oscillator over 10 periods with GSL's driver at 1e-8 (absolute and relative). */
+static run_stats drive(const gsl_odeiv2_step_type *type)
+{
+	counter n = { 1.0, 0, -1 };
+	gsl_odeiv2_system sys = { osc_f, NULL, 2, &n };
+	gsl_odeiv2_driver *d = gsl_odeiv2_driver_alloc_y_new(&sys, type, 1e-3, 1e-8, 1e-8);
+	ck_assert_ptr_nonnull(d);
+	double t = 0, t1 = 20 * M_PI, y[2] = { 1, 0 }, ex[2];
+	ck_assert_int_eq(gsl_odeiv2_driver_apply(d, &t, t1, y), GSL_SUCCESS);
+	ck_assert(t == t1);
+	osc_exact(1.0, t1, ex);
+	run_stats r = { d->n, d->e->failed_steps, n.calls, fmax(fabs(y[0] - ex[0]), fabs(y[1] - ex[1])) };
+	gsl_odeiv2_driver_free(d);
+	return r;
+}
+
+START_TEST(test_driver)
+{
+	run_stats dp = drive(csf_step_dopri5), rkf = drive(gsl_odeiv2_step_rkf45);
+	ck_assert_msg(dp.err < 1e-6, "dopri5: error %g", dp.err);
+	ck_assert_msg(rkf.err < 1e-6, "rkf45: error %g", rkf.err);
+	/*
+	 * A 5(4) pair like rkf45, and no more evaluations in all: with GSL 2.7,
+	 * 621 steps and 40 rejected (3967 evaluations; a retry keeps its k0)
+	 * against rkf45's 680 and 40 (4321), errors 2.0e-7 and 4.1e-7. GSL's
+	 * standard control, which grows the step up to 5 times, rejects about as
+	 * often with either.
+	 */
+	ck_assert_msg(dp.calls <= rkf.calls, "dopri5 %lu steps (%d calls), rkf45 %lu (%d)", dp.steps, dp.calls, rkf.steps,
+	              rkf.calls);
+	ck_assert_msg(dp.rejected <= dp.steps / 10, "dopri5: %lu of %lu steps rejected", dp.rejected, dp.steps);
+}
+END_TEST
+
+/*
+ * Step by step with evolve: after each accepted step the continuous
+ * extension is that step's (last_step), its ends are the step's, and its
+ * midpoint is about as accurate as the steps.
+ */
+START_TEST(test_evolve_dense)
+{
+	counter n = { 1.0, 0, -1 };
+	gsl_odeiv2_system sys = { osc_f, NULL, 2, &n };
+	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(csf_step_dopri5, 2);
+	gsl_odeiv2_control *c = gsl_odeiv2_control_y_new(1e-8, 1e-8);
+	gsl_odeiv2_evolve *e = gsl_odeiv2_evolve_alloc(2);
+	double t = 0, t1 = 20 * M_PI, h = 1e-3, y[2] = { 1, 0 }, ym[2], ex[2], worst = 0;
+	int steps = 0;
+	while (t < t1) {
+		double tb = t, yb[2] = { y[0], y[1] };
+		ck_assert_int_eq(gsl_odeiv2_evolve_apply(e, c, s, &sys, &t, t1, &h, y), GSL_SUCCESS);
+		double t0, hs;
+		csf_dopri5_last_step(s, &t0, &hs);
+		ck_assert(t0 == tb && tb + hs == t);
+		int calls = n.calls;
+		ck_assert_int_eq(csf_dopri5_dense_prepare(s, &sys), GSL_SUCCESS);
+		ck_assert_int_eq(n.calls, calls);
+		csf_dopri5_dense_eval(s, 0, ym);
+		ck_assert(ym[0] == yb[0] && ym[1] == yb[1]);
+		csf_dopri5_dense_eval(s, 1, ym);
+		ck_assert(ym[0] == y[0] && ym[1] == y[1]);
+		csf_dopri5_dense_eval(s, 0.5, ym);
+		osc_exact(1.0, t0 + 0.5 * hs, ex);
+		worst = fmax(worst, fmax(fabs(ym[0] - ex[0]), fabs(ym[1] - ex[1])));
+		steps++;
+	}
+	ck_assert_msg(worst < 1e-6, "dense error %g", worst);
+	ck_assert_int_gt(steps, 20);
+	gsl_odeiv2_evolve_free(e);
+	gsl_odeiv2_control_free(c);
+	gsl_odeiv2_step_free(s);
+}
+END_TEST
+
+/* ---- a failing evaluation ---- */
+
+/* Every evaluation of a step in turn fails (the first is f(t, y) when there is no dydt_in, else the second stage). */
+START_TEST(test_failing_evaluation)
+{
+	int with_in = _i >= NSTAGE + 1, fail_at = with_in ? _i - (NSTAGE + 1) : _i;
+	counter n = { 1.0, 0, fail_at };
+	gsl_odeiv2_system sys = { osc_f, NULL, 2, &n };
+	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(csf_step_dopri5, 2);
+	const double y0[2] = { 0.6, -0.8 }, dydt_in[2] = { -0.8, -0.6 };
+	double y[2] = { 0.6, -0.8 }, yerr[2] = { 7, 7 }, dydt[2] = { 7, 7 };
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, y, yerr, with_in ? dydt_in : NULL, dydt, &sys), GSL_EBADFUNC);
+	ck_assert_int_eq(n.calls, fail_at + 1);
+	ck_assert(memcmp(y, y0, sizeof y) == 0);
+	ck_assert(yerr[0] == 7 && yerr[1] == 7 && dydt[0] == 7 && dydt[1] == 7);
+	/* no continuous extension of a step that failed */
+	ck_assert_int_eq(csf_dopri5_dense_prepare(s, &sys), GSL_EFAILED);
+	gsl_odeiv2_step_free(s);
+}
+END_TEST
+
+/* A failed apply after a good one: no extension of either, and the next step from the same point evaluates k0 afresh. */
+START_TEST(test_failing_after_success)
+{
+	counter n = { 1.0, 0, -1 };
+	gsl_odeiv2_system sys = { osc_f, NULL, 2, &n };
+	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(csf_step_dopri5, 2), *r = gsl_odeiv2_step_alloc(csf_step_dopri5, 2);
+	double y[2] = { 0.6, -0.8 }, yerr[2], a[2], b[2];
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, y, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	double y1[2] = { y[0], y[1] };
+	n.fail_at = n.calls + 3;
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0.5, 0.5, y, yerr, NULL, NULL, &sys), GSL_EBADFUNC);
+	ck_assert(y[0] == y1[0] && y[1] == y1[1]);
+	ck_assert_int_eq(csf_dopri5_dense_prepare(s, &sys), GSL_EFAILED);
+	n.fail_at = -1;
+	int calls = n.calls;
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0.5, 0.5, y, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(n.calls, calls + NSTAGE + 1);
+	double yr[2] = { y1[0], y1[1] };
+	ck_assert_int_eq(gsl_odeiv2_step_apply(r, 0.5, 0.5, yr, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	ck_assert(y[0] == yr[0] && y[1] == yr[1]);
+	ck_assert_int_eq(csf_dopri5_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_dopri5_dense_prepare(r, &sys), GSL_SUCCESS);
+	csf_dopri5_dense_eval(s, 0.3, a);
+	csf_dopri5_dense_eval(r, 0.3, b);
+	ck_assert(a[0] == b[0] && a[1] == b[1]);
+	gsl_odeiv2_step_free(s);
+	gsl_odeiv2_step_free(r);
+}
+END_TEST
+
+/* Misuse: another stepper type, a system of another dimension, no apply yet. */
+START_TEST(test_misuse)
+{
+	counter n = { 1.0, 0, -1 };
+	gsl_odeiv2_system sys = { osc_f, NULL, 2, &n }, sys1 = { growth_f, NULL, 1, &n };
+	gsl_odeiv2_step *rk = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rkf45, 2), *s = gsl_odeiv2_step_alloc(csf_step_dopri5, 2);
+	ck_assert_int_eq(csf_dopri5_dense_prepare(rk, &sys), GSL_EINVAL);
+	ck_assert_int_eq(csf_dopri5_dense_prepare(s, &sys1), GSL_EINVAL);
+	ck_assert_int_eq(csf_dopri5_dense_prepare(s, &sys), GSL_EFAILED);
+	double y[2] = { 1, 2 };
+	csf_dopri5_dense_eval(s, 0.5, y); /* not prepared: NaN, not a stale value */
+	ck_assert(isnan(y[0]) && isnan(y[1]));
+	double t0 = 1, h = 1;
+	csf_dopri5_last_step(rk, &t0, &h);
+	ck_assert(t0 == 0 && h == 0);
+	gsl_odeiv2_step_free(rk);
+	gsl_odeiv2_step_free(s);
+}
+END_TEST
+
+/*
+ * A first step costs 7 evaluations (k0..k5 and k6 = f at its end), its
+ * extension none; the next step, from where it ended, starts from k6
+ * (first same as last): 6; a step tried again from the same start keeps
+ * its k0: 6; and the results are those of steps from scratch.
+ */
+START_TEST(test_fsal)
+{
+	counter n = { 1.0, 0, -1 };
+	gsl_odeiv2_system sys = { osc_f, NULL, 2, &n };
+	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(csf_step_dopri5, 2), *r = gsl_odeiv2_step_alloc(csf_step_dopri5, 2);
+	double y[2] = { 0.6, -0.8 }, yr[2] = { 0.6, -0.8 }, yerr[2], a[2], b[2];
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, y, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(n.calls, NSTAGE + 1);
+	ck_assert_int_eq(csf_dopri5_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(n.calls, NSTAGE + 1);
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0.5, 0.5, y, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(n.calls, 2 * NSTAGE + 1);
+	double y2[2] = { y[0], y[1] };
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 1.0, 0.5, y2, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(n.calls, 3 * NSTAGE + 1);
+	double y3[2] = { y[0], y[1] }; /* tried again from 1.0, shorter */
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 1.0, 0.25, y3, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(n.calls, 4 * NSTAGE + 1);
+	/* a step from neither end: k0 afresh */
+	double y4[2] = { 0.6, -0.8 };
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 3.0, 0.25, y4, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(n.calls, 5 * NSTAGE + 2);
+	/* the same two first steps, each on a fresh stepper: the same values */
+	ck_assert_int_eq(gsl_odeiv2_step_apply(r, 0, 0.5, yr, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	gsl_odeiv2_step_reset(r);
+	ck_assert_int_eq(gsl_odeiv2_step_apply(r, 0.5, 0.5, yr, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	ck_assert(y[0] == yr[0] && y[1] == yr[1]);
+	ck_assert_int_eq(csf_dopri5_dense_prepare(r, &sys), GSL_SUCCESS);
+	gsl_odeiv2_step_reset(s);
+	double ys[2] = { 0.6, -0.8 };
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, ys, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0.5, 0.5, ys, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_dopri5_dense_prepare(s, &sys), GSL_SUCCESS);
+	csf_dopri5_dense_eval(s, 0.7, a);
+	csf_dopri5_dense_eval(r, 0.7, b);
+	ck_assert(a[0] == b[0] && a[1] == b[1]);
+	gsl_odeiv2_step_free(s);
+	gsl_odeiv2_step_free(r);
+}
+END_TEST
+
+/* The driver passes the failure on. */
+static int fails_late_f(double t, const double y[], double dydt[], void *params)
+{
+	dydt[0] = y[1];
+	dydt[1] = -y[0];
+	(void)params;
+	return t > 2 ? GSL_EBADFUNC : GSL_SUCCESS;
+}
+
+START_TEST(test_failing_driver)
+{
+	gsl_odeiv2_system sys = { fails_late_f, NULL, 2, NULL };
+	gsl_odeiv2_driver *d = gsl_odeiv2_driver_alloc_y_new(&sys, csf_step_dopri5, 1e-3, 1e-10, 1e-10);
+	double t = 0, y[2] = { 1, 0 };
+	ck_assert_int_eq(gsl_odeiv2_driver_apply(d, &t, 5, y), GSL_EBADFUNC);
+	ck_assert(t <= 2);
+	ck_assert(fabs(y[0] - cos(t)) < 1e-8 && fabs(y[1] + sin(t)) < 1e-8); /* the last accepted state */
+	gsl_odeiv2_driver_free(d);
+}
+END_TEST
+
+Suite *dopri5_suite(void)
+{
+	gsl_set_error_handler_off();
+	Suite *s = suite_create("dopri5");
+	TCase *tc = tcase_create("dopri5");
+	tcase_add_test(tc, test_table_shape);
+	tcase_add_test(tc, test_row_sums);
+	tcase_add_test(tc, test_order_conditions);
+	tcase_add_test(tc, test_embedded_order4);
+	tcase_add_test(tc, test_dense_conditions);
+	tcase_add_test(tc, test_step_order);
+	tcase_add_test(tc, test_global_order);
+	tcase_add_test(tc, test_dense_order);
+	tcase_add_test(tc, test_driver);
+	tcase_add_test(tc, test_evolve_dense);
+	tcase_add_loop_test(tc, test_failing_evaluation, 0, 2 * NSTAGE + 1);
+	tcase_add_test(tc, test_failing_after_success);
+	tcase_add_test(tc, test_misuse);
+	tcase_add_test(tc, test_fsal);
+	tcase_add_test(tc, test_failing_driver);
+	suite_add_tcase(s, tc);
+	return s;
+}
