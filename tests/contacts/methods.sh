@@ -1,6 +1,6 @@
 #!/bin/sh
 # tests/contacts/methods.sh CSFC CSFVM DIR - every scene of contacts under
-# every integration method: the mechanics examples, a ball dropped on a
+# every integration method (the dense dop853 and dopri5 too): the mechanics examples, a ball dropped on a
 # resting ball and a ball lifted off the floor. Each run must finish (exit 0, every row) and every row must
 # be within 1e-6 of the exact motion (the scene's checker), or 1e-4 for the
 # multistep msadams and msbdf, whose accuracy at the default tolerance is
@@ -18,7 +18,7 @@ for m in examples/bouncing_ball examples/collision examples/incline examples/new
 		fail=$((fail + 1)); echo "FAIL: $m: does not compile: $(head -n 1 "$T/mm.err")"; continue
 	fi
 	uses=$(sed -n '1s/^# uses: //p' "$m.check")
-	for method in rk8pd rk2 rk4 rkf45 rkck rk1imp rk2imp rk4imp bsimp msadams msbdf; do
+	for method in dop853 dopri5 rk8pd rk2 rk4 rkf45 rkck rk1imp rk2imp rk4imp bsimp msadams msbdf; do
 		scale=1
 		case $method in msadams | msbdf) scale=100 ;; esac
 		if ! "$CSFVM" --method $method "$T/mm.csfb" >"$T/mm.csv" 2>"$T/mm.err"; then
