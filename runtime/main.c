@@ -19,8 +19,9 @@ static const char vm_usage[] =
 	"  --method NAME  ODE stepper: dop853 (default), dopri5, rk8pd, rk2, rk4, rkf45, rkck,\n"
 	"                 msadams; implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp,\n"
 	"                 bsimp, msbdf; symplectic, fixed steps (--step): verlet\n"
-	"  --tol EPS      local error bound per internal step (default 1e-10)\n"
-	"  --hmax H       internal steps of at most H seconds (dop853 steps past the\n"
+	"  --tol EPS      local error bound per internal step (default 1e-12 for dop853,\n"
+	"                 1e-10 for the others)\n"
+	"  --hmax H       internal steps of at most H seconds (dop853 and dopri5 step past the\n"
 	"                 output times and computes the rows from its dense output)\n"
 	"  --fixed        no error control: internal steps of 'by' (or --step H)\n"
 	"  --step H       fixed internal steps of at most H seconds\n"
@@ -35,7 +36,8 @@ static const char exe_usage[] =
 	"  --method NAME  ODE stepper: dop853 (default), dopri5, rk8pd, rk2, rk4, rkf45, rkck,\n"
 	"                 msadams; implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp,\n"
 	"                 bsimp, msbdf; symplectic, fixed steps (--step): verlet\n"
-	"  --tol EPS      local error bound per internal step (default 1e-10)\n"
+	"  --tol EPS      local error bound per internal step (default 1e-12 for dop853,\n"
+	"                 1e-10 for the others)\n"
 	"  --hmax H, --fixed, --step H, --stats, --compare-methods: as csfvm(1)\n"
 	"  --help, --version\n";
 
