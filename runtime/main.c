@@ -22,7 +22,7 @@ static const char vm_usage[] =
 	"  --tol EPS      local error bound per internal step (default 1e-12 for dop853,\n"
 	"                 1e-10 for the others)\n"
 	"  --hmax H       internal steps of at most H seconds (dop853 and dopri5 step past the\n"
-	"                 output times and computes the rows from its dense output)\n"
+	"                 output times and compute the rows from their dense output)\n"
 	"  --fixed        no error control: internal steps of 'by' (or --step H)\n"
 	"  --step H       fixed internal steps of at most H seconds\n"
 	"  --stats        steps, evaluations and time on stderr at the end\n"
