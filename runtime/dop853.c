@@ -16,8 +16,10 @@
  * err / |err5|, so that its per-component test on yerr follows Hairer's.
  *
  * The dense output needs 3 more stages k13..k15, evaluated on request
- * (csf_dop853_dense_prepare) only, since most steps are never
- * interpolated. The extension is Hairer's
+ * (csf_erk_dense_prepare) only, since most steps are never
+ * interpolated. The stepping, first same as last and the extension are
+ * erk.c's, shared with dopri5.c; this file has the tables and the error
+ * estimate. The extension is Hairer's
  *   y(t0 + s h) = y0 + s (F0 + s' (F1 + s (F2 + s' (F3 + s (F4 + s' (F5 + s F6))))))
  * with s' = 1 - s, F0 = y1 - y0, F1 = h k0 - F0, F2 = F0 - h k12 - F1 and
  * F3..F6 = h sum_j d_rj k_j.
@@ -33,19 +35,16 @@
  */
 #include <float.h>
 #include <math.h>
-#include <stdlib.h>
-#include <string.h>
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 
 #include "dop853.h"
+#include "erk.h"
 
 enum {
 	NSTAGE = 12, /* stages of a step: k0..k11 */
-	KEND = 12,   /* k12 = f(t + h, y1) */
 	NK = 16,     /* with the dense stages k13..k15 */
-	NF = 7,      /* coefficient vectors F0..F6 of the continuous extension */
 };
 
 static const double a[NK][NK] = {
@@ -180,65 +179,6 @@ static const double bhh0 = 0.244094488188976377952755905512;
 static const double bhh8 = 0.733846688281611857341361741547;
 static const double bhh11 = 0.220588235294117647058823529412e-1;
 
-#define B (a[KEND]) /* the 8th-order weights: k12's row, since y1 is its argument */
-
-typedef struct {
-	size_t dim;
-	double *k[NK];
-	double *f[NF];      /* the continuous extension */
-	double *y0, *y1;    /* the last step's start and result */
-	double *ysum;       /* work: a stage's argument, or sum b_j k_j */
-	const double *scale;
-	double t0, h;       /* the last successful step */
-	int ok;             /* k, y0, y1 belong to (t0, h): the last apply succeeded */
-	int have_end;       /* k12 is f(t0 + h, y1) */
-	int dense;          /* f[] is ready */
-} dop853_state;
-
-/* out[i] = sum over j < n of w[j] k[j][i], the nonzero w[j] only, j ascending. */
-static void combine(size_t dim, const double *w, int n, double *const *k, double *out)
-{
-	int first = 1;
-	for (int j = 0; j < n; j++) {
-		if (w[j] == 0) continue;
-		const double wj = w[j], *kj = k[j];
-		if (first)
-			for (size_t i = 0; i < dim; i++) out[i] = wj * kj[i];
-		else
-			for (size_t i = 0; i < dim; i++) out[i] += wj * kj[i];
-		first = 0;
-	}
-	if (first) memset(out, 0, dim * sizeof *out);
-}
-
-/* k[s] = f(t0 + c_s h, y0 + h sum_j a_sj k_j). */
-static int stage(dop853_state *st, const gsl_odeiv2_system *sys, int s, double t0, double h)
-{
-	double *y = st->ysum;
-	combine(st->dim, a[s], s, st->k, y);
-	for (size_t i = 0; i < st->dim; i++) y[i] = st->y0[i] + h * y[i];
-	return GSL_ODEIV_FN_EVAL(sys, t0 + c[s] * h, y, st->k[s]);
-}
-
-static void *dop853_alloc(size_t dim)
-{
-	dop853_state *st = calloc(1, sizeof *st);
-	size_t n = dim ? dim : 1;
-	double *mem = calloc((NK + NF + 3) * n, sizeof *mem);
-	if (!st || !mem) {
-		free(st);
-		free(mem);
-		return NULL;
-	}
-	st->dim = dim;
-	for (int j = 0; j < NK; j++) st->k[j] = mem + (size_t)j * n;
-	for (int r = 0; r < NF; r++) st->f[r] = mem + (size_t)(NK + r) * n;
-	st->y0 = mem + (size_t)(NK + NF) * n;
-	st->y1 = st->y0 + n;
-	st->ysum = st->y1 + n;
-	return st;
-}
-
 /*
  * The factor q = e5 / sqrt(e5^2 + 0.01 e3^2) that turns err5 into Hairer's
  * error, e5 and e3 the weighted norms of err5 and err3. The weights are
@@ -247,13 +187,13 @@ static void *dop853_alloc(size_t dim)
  * divided by 0. The sums of squares are scaled by their largest term, so
  * that a large error cannot overflow them; the norms' common 1/n cancels.
  */
-static double weight_scale(const dop853_state *st, size_t i)
+static double weight_scale(const csf_erk_state *st, size_t i)
 {
 	double sk = (st->scale ? st->scale[i] : 1.0) + fmax(fabs(st->y0[i]), fabs(st->y1[i]));
 	return sk > 0 ? sk : 1.0;
 }
 
-static double err_factor(const dop853_state *st, const double *err5, const double *err3)
+static double err_factor(const csf_erk_state *st, const double *err5, const double *err3)
 {
 	double m = 0;
 	for (size_t i = 0; i < st->dim; i++) {
@@ -276,173 +216,32 @@ static double err_factor(const dop853_state *st, const double *err5, const doubl
  * is bsum minus the 3rd-order combination; it goes into ysum's place once
  * bsum has been read.
  */
-static void error_estimate(dop853_state *st, double h, double *bsum, double *yerr)
+static void error_estimate(const csf_erk_state *st, double h, double *bsum, double *yerr)
 {
 	double *err5 = yerr, *err3 = bsum;
 	double *const *k = st->k;
-	combine(st->dim, e5, NSTAGE, k, err5);
+	csf_erk_combine(st->dim, e5, NSTAGE, k, err5);
 	for (size_t i = 0; i < st->dim; i++) err3[i] = bsum[i] - bhh0 * k[0][i] - bhh8 * k[8][i] - bhh11 * k[11][i];
 	double q = err_factor(st, err5, err3);
 	for (size_t i = 0; i < st->dim; i++) yerr[i] = h * (err5[i] * q);
 }
 
-static int dop853_apply(void *vstate, size_t dim, double t, double h, double y[], double yerr[],
-                        const double dydt_in[], double dydt_out[], const gsl_odeiv2_system *sys)
-{
-	dop853_state *st = vstate;
-	int status;
-	/* first same as last: a step from where the last one ended starts from its k12 */
-	int fsal = !dydt_in && st->ok && st->have_end && t == st->t0 + st->h && memcmp(y, st->y1, dim * sizeof *y) == 0;
-	/* and a step tried again from the same start (a shorter one, the last rejected) keeps its k0 */
-	int again = !dydt_in && st->ok && t == st->t0 && memcmp(y, st->y0, dim * sizeof *y) == 0;
-	if (fsal) memcpy(st->k[0], st->k[KEND], dim * sizeof *y);
-	/* from here on, k, y0 and y1 are this step's: what they held is gone */
-	st->ok = st->have_end = st->dense = 0;
-	memcpy(st->y0, y, dim * sizeof *y);
-	if (dydt_in)
-		memcpy(st->k[0], dydt_in, dim * sizeof *dydt_in);
-	else if (!fsal && !again && (status = GSL_ODEIV_FN_EVAL(sys, t, st->y0, st->k[0])) != GSL_SUCCESS)
-		return status;
-	for (int s = 1; s < NSTAGE; s++)
-		if ((status = stage(st, sys, s, t, h)) != GSL_SUCCESS) return status;
-	combine(dim, B, NSTAGE, st->k, st->ysum);
-	for (size_t i = 0; i < dim; i++) st->y1[i] = st->y0[i] + h * st->ysum[i];
-	/* k12: the next step's k0, dydt_out and a stage of the continuous extension */
-	if ((status = GSL_ODEIV_FN_EVAL(sys, t + h, st->y1, st->k[KEND])) != GSL_SUCCESS) return status;
-	st->have_end = 1;
-	/* y, yerr and dydt_out are written only now that nothing can fail */
-	error_estimate(st, h, st->ysum, yerr);
-	memcpy(y, st->y1, dim * sizeof *y);
-	if (dydt_out) memcpy(dydt_out, st->k[KEND], dim * sizeof *dydt_out);
-	st->t0 = t;
-	st->h = h;
-	st->ok = 1;
-	return GSL_SUCCESS;
-}
+static const csf_erk_method dop853 = {
+	"dop853", 8, NSTAGE, NK, 4, &a[0][0], c, &d[0][0], error_estimate,
+};
 
-static int dop853_set_driver(void *vstate, const gsl_odeiv2_driver *drv)
-{
-	(void)vstate;
-	(void)drv;
-	return GSL_SUCCESS;
-}
-
-static int dop853_reset(void *vstate, size_t dim)
-{
-	dop853_state *st = vstate;
-	size_t n = dim ? dim : 1;
-	memset(st->k[0], 0, (NK + NF + 3) * n * sizeof *st->k[0]);
-	st->ok = st->have_end = st->dense = 0;
-	st->t0 = st->h = 0;
-	return GSL_SUCCESS;
-}
-
-static unsigned int dop853_order(void *vstate)
-{
-	(void)vstate;
-	return 8;
-}
-
-static void dop853_free(void *vstate)
-{
-	dop853_state *st = vstate;
-	if (!st) return;
-	free(st->k[0]);
-	free(st);
-}
+static void *dop853_alloc(size_t dim) { return csf_erk_alloc(&dop853, dim); }
 
 static const gsl_odeiv2_step_type dop853_type = {
 	"dop853",
 	0, /* no dydt_in: GSL's evolve would evaluate it for every step, where k12 of the step before serves */
 	1, /* gives exact dydt_out */
 	dop853_alloc,
-	dop853_apply,
-	dop853_set_driver,
-	dop853_reset,
-	dop853_order,
-	dop853_free,
+	csf_erk_apply,
+	csf_erk_set_driver,
+	csf_erk_reset,
+	csf_erk_order,
+	csf_erk_free,
 };
 
 const gsl_odeiv2_step_type *csf_step_dop853 = &dop853_type;
-
-static dop853_state *state_of(const gsl_odeiv2_step *s)
-{
-	return s && s->type == &dop853_type ? s->state : NULL;
-}
-
-void csf_dop853_set_scale(gsl_odeiv2_step *s, const double *scale)
-{
-	dop853_state *st = state_of(s);
-	if (st) st->scale = scale;
-}
-
-/* F0..F6 of the continuous extension from the 16 stages. */
-static void dense_coefficients(dop853_state *st)
-{
-	const double h = st->h;
-	double *const *f = st->f;
-	for (size_t i = 0; i < st->dim; i++) {
-		f[0][i] = st->y1[i] - st->y0[i];
-		f[1][i] = h * st->k[0][i] - f[0][i];
-		f[2][i] = f[0][i] - h * st->k[KEND][i] - f[1][i];
-	}
-	for (int r = 0; r < 4; r++) {
-		combine(st->dim, d[r], NK, st->k, f[3 + r]);
-		for (size_t i = 0; i < st->dim; i++) f[3 + r][i] *= h;
-	}
-}
-
-int csf_dop853_dense_prepare(gsl_odeiv2_step *s, const gsl_odeiv2_system *sys)
-{
-	dop853_state *st = state_of(s);
-	if (!st || !sys || sys->dimension != st->dim) return GSL_EINVAL;
-	if (!st->ok) return GSL_EFAILED;
-	if (st->dense) return GSL_SUCCESS;
-	int status;
-	if (!st->have_end) {
-		if ((status = GSL_ODEIV_FN_EVAL(sys, st->t0 + st->h, st->y1, st->k[KEND])) != GSL_SUCCESS) return status;
-		st->have_end = 1;
-	}
-	for (int j = KEND + 1; j < NK; j++)
-		if ((status = stage(st, sys, j, st->t0, st->h)) != GSL_SUCCESS) return status;
-	dense_coefficients(st);
-	st->dense = 1;
-	return GSL_SUCCESS;
-}
-
-/*
- * Horner's scheme from the inside out, P = F1 + s (F2 + s' (... + s F6)),
- * then y0 + s (F0 + s' P) in the first half of the step and the same
- * polynomial written as y1 - s' (F0 - s P) in the second: each form is
- * exact at its own end (y0 + 0, y1 - 0), where the other would add
- * the rounding of F0 = y1 - y0.
- */
-void csf_dop853_dense_eval(const gsl_odeiv2_step *s, double theta, double *y)
-{
-	const dop853_state *st = state_of(s);
-	if (!st) return;
-	if (!st->dense) { /* misuse: no value rather than a stale one */
-		for (size_t i = 0; i < st->dim; i++) y[i] = NAN;
-		return;
-	}
-	const double s1 = 1.0 - theta;
-	double *const *f = st->f;
-	for (size_t i = 0; i < st->dim; i++) {
-		double p = f[5][i] + theta * f[6][i];
-		p = f[4][i] + s1 * p;
-		p = f[3][i] + theta * p;
-		p = f[2][i] + s1 * p;
-		p = f[1][i] + theta * p;
-		if (theta <= 0.5)
-			y[i] = st->y0[i] + theta * (f[0][i] + s1 * p);
-		else
-			y[i] = st->y1[i] - s1 * (f[0][i] - theta * p);
-	}
-}
-
-void csf_dop853_last_step(const gsl_odeiv2_step *s, double *t0, double *h)
-{
-	const dop853_state *st = state_of(s);
-	*t0 = st ? st->t0 : 0;
-	*h = st ? st->h : 0;
-}

@@ -16,6 +16,7 @@
 #include "csf.h"
 #include "dop853.h"
 #include "dopri5.h"
+#include "erk.h"
 #include "ode.h"
 
 
@@ -160,7 +161,7 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 		csf_ode_free(o);
 		return NULL;
 	}
-	if (*m->type == csf_step_dop853) csf_dop853_set_scale(o->drv->s, scale); /* its error norm weighs components as the control does */
+	if (m->dense) csf_erk_set_scale(o->drv->s, scale); /* dop853's error norm weighs components as the control does */
 	return o;
 }
 
@@ -337,14 +338,10 @@ int csf_ode_dense_eval(csf_ode *o, double tc, double *out)
 {
 	double t0, h;
 	gsl_odeiv2_step *s = o->drv->s;
-	int five = *o->m->type == csf_step_dopri5;
-	if (five) csf_dopri5_last_step(s, &t0, &h);
-	else csf_dop853_last_step(s, &t0, &h);
-	if ((five ? csf_dopri5_dense_prepare(s, &o->sys) : csf_dop853_dense_prepare(s, &o->sys)) != GSL_SUCCESS) return 1;
+	csf_erk_last_step(s, &t0, &h);
+	if (csf_erk_dense_prepare(s, &o->sys) != GSL_SUCCESS) return 1;
 	double theta = h != 0 ? (tc - t0) / h : 1;
-	theta = theta < 0 ? 0 : theta > 1 ? 1 : theta;
-	if (five) csf_dopri5_dense_eval(s, theta, out);
-	else csf_dop853_dense_eval(s, theta, out);
+	csf_erk_dense_eval(s, theta < 0 ? 0 : theta > 1 ? 1 : theta, out);
 	return 0;
 }
 

@@ -13,6 +13,7 @@
 
 #include "suites.h"
 #include "dop853.h"
+#include "erk.h"
 
 /* ---- the table, read back ----
  *
@@ -58,7 +59,7 @@ static void read_tableau(tableau *tb)
 	double y[NK] = { 0 }, yerr[NK], dydt[NK];
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 1, y, yerr, NULL, dydt, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(p.calls, NSTAGE + 1);
-	ck_assert_int_eq(csf_dop853_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(p.calls, NK);
 	for (int n = 0; n < NK; n++) {
 		tb->c[n] = p.t[n];
@@ -71,7 +72,7 @@ static void read_tableau(tableau *tb)
 	}
 	for (int k = 0; k < NTHETA; k++) {
 		double yt[NK];
-		csf_dop853_dense_eval(s, thetas[k], yt);
+		csf_erk_dense_eval(s, thetas[k], yt);
 		for (int j = 0; j < NK; j++) tb->bt[k][j] = yt[j];
 	}
 	gsl_odeiv2_step_free(s);
@@ -388,26 +389,26 @@ static double dense_error(int osc, double lambda, double t0, double h)
 	memcpy(y, y0, sizeof y);
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, t0, h, y, yerr, NULL, dydt, &sys), GSL_SUCCESS);
 	double tl, hl;
-	csf_dop853_last_step(s, &tl, &hl);
+	csf_erk_last_step(s, &tl, &hl);
 	ck_assert(tl == t0 && hl == h);
 	int calls = n.calls;
-	ck_assert_int_eq(csf_dop853_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(n.calls, calls + 3);
-	ck_assert_int_eq(csf_dop853_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(n.calls, calls + 3);
 	double err = 0;
 	for (int k = 1; k <= 100; k++) {
 		double theta = k / 101.0, t = t0 + theta * h;
-		csf_dop853_dense_eval(s, theta, yt);
+		csf_erk_dense_eval(s, theta, yt);
 		if (osc)
 			osc_exact(lambda, t, ex);
 		else
 			ex[0] = exp(lambda * t);
 		for (size_t i = 0; i < sys.dimension; i++) err = fmax(err, fabs(yt[i] - ex[i]) / fabs(y0[0]));
 	}
-	csf_dop853_dense_eval(s, 0, yt);
+	csf_erk_dense_eval(s, 0, yt);
 	for (size_t i = 0; i < sys.dimension; i++) ck_assert(yt[i] == y0[i]);
-	csf_dop853_dense_eval(s, 1, yt);
+	csf_erk_dense_eval(s, 1, yt);
 	for (size_t i = 0; i < sys.dimension; i++) ck_assert(yt[i] == y[i]);
 	gsl_odeiv2_step_free(s);
 	return err;
@@ -439,7 +440,7 @@ static void scaled_yerr(const double *scale, double *yerr)
 	counter n = { 1.0, 0, -1 };
 	gsl_odeiv2_system sys = { osc_f, NULL, 2, &n };
 	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(csf_step_dop853, 2);
-	csf_dop853_set_scale(s, scale);
+	csf_erk_set_scale(s, scale);
 	double y[2] = { 0.6, -0.8 }, dydt[2];
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, y, yerr, NULL, dydt, &sys), GSL_SUCCESS);
 	gsl_odeiv2_step_free(s);
@@ -514,21 +515,21 @@ START_TEST(test_evolve_dense)
 	gsl_odeiv2_control *c = gsl_odeiv2_control_y_new(1e-10, 1e-10);
 	gsl_odeiv2_evolve *e = gsl_odeiv2_evolve_alloc(2);
 	static const double scale[2] = { 1, 1 };
-	csf_dop853_set_scale(s, scale);
+	csf_erk_set_scale(s, scale);
 	double t = 0, t1 = 20 * M_PI, h = 1e-3, y[2] = { 1, 0 }, ym[2], ex[2], worst = 0;
 	int steps = 0;
 	while (t < t1) {
 		double tb = t, yb[2] = { y[0], y[1] };
 		ck_assert_int_eq(gsl_odeiv2_evolve_apply(e, c, s, &sys, &t, t1, &h, y), GSL_SUCCESS);
 		double t0, hs;
-		csf_dop853_last_step(s, &t0, &hs);
+		csf_erk_last_step(s, &t0, &hs);
 		ck_assert(t0 == tb && tb + hs == t);
-		ck_assert_int_eq(csf_dop853_dense_prepare(s, &sys), GSL_SUCCESS);
-		csf_dop853_dense_eval(s, 0, ym);
+		ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
+		csf_erk_dense_eval(s, 0, ym);
 		ck_assert(ym[0] == yb[0] && ym[1] == yb[1]);
-		csf_dop853_dense_eval(s, 1, ym);
+		csf_erk_dense_eval(s, 1, ym);
 		ck_assert(ym[0] == y[0] && ym[1] == y[1]);
-		csf_dop853_dense_eval(s, 0.5, ym);
+		csf_erk_dense_eval(s, 0.5, ym);
 		osc_exact(1.0, t0 + 0.5 * hs, ex);
 		worst = fmax(worst, fmax(fabs(ym[0] - ex[0]), fabs(ym[1] - ex[1])));
 		steps++;
@@ -557,7 +558,7 @@ START_TEST(test_failing_evaluation)
 	ck_assert(memcmp(y, y0, sizeof y) == 0);
 	ck_assert(yerr[0] == 7 && yerr[1] == 7 && dydt[0] == 7 && dydt[1] == 7);
 	/* no continuous extension of a step that failed */
-	ck_assert_int_eq(csf_dop853_dense_prepare(s, &sys), GSL_EFAILED);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_EFAILED);
 	gsl_odeiv2_step_free(s);
 }
 END_TEST
@@ -572,12 +573,12 @@ START_TEST(test_failing_dense_stage)
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, y, yerr, NULL, dydt, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(gsl_odeiv2_step_apply(r, 0, 0.5, yr, yerr, NULL, dydt, &sys), GSL_SUCCESS);
 	n.fail_at = n.calls + _i; /* one of the 3 dense stages */
-	ck_assert_int_eq(csf_dop853_dense_prepare(s, &sys), GSL_EBADFUNC);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_EBADFUNC);
 	n.fail_at = -1;
-	ck_assert_int_eq(csf_dop853_dense_prepare(s, &sys), GSL_SUCCESS);
-	ck_assert_int_eq(csf_dop853_dense_prepare(r, &sys), GSL_SUCCESS);
-	csf_dop853_dense_eval(s, 0.3, a);
-	csf_dop853_dense_eval(r, 0.3, b);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(r, &sys), GSL_SUCCESS);
+	csf_erk_dense_eval(s, 0.3, a);
+	csf_erk_dense_eval(r, 0.3, b);
 	ck_assert(a[0] == b[0] && a[1] == b[1]);
 	gsl_odeiv2_step_free(s);
 	gsl_odeiv2_step_free(r);
@@ -598,7 +599,7 @@ START_TEST(test_fsal)
 	double y[2] = { 0.6, -0.8 }, yr[2] = { 0.6, -0.8 }, yerr[2], a[2], b[2];
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, y, yerr, NULL, NULL, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(n.calls, NSTAGE + 1);
-	ck_assert_int_eq(csf_dop853_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(n.calls, NSTAGE + 4);
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0.5, 0.5, y, yerr, NULL, NULL, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(n.calls, 2 * NSTAGE + 4);
@@ -613,14 +614,14 @@ START_TEST(test_fsal)
 	gsl_odeiv2_step_reset(r);
 	ck_assert_int_eq(gsl_odeiv2_step_apply(r, 0.5, 0.5, yr, yerr, NULL, NULL, &sys), GSL_SUCCESS);
 	ck_assert(y[0] == yr[0] && y[1] == yr[1]);
-	ck_assert_int_eq(csf_dop853_dense_prepare(r, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(r, &sys), GSL_SUCCESS);
 	gsl_odeiv2_step_reset(s);
 	double ys[2] = { 0.6, -0.8 };
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, ys, yerr, NULL, NULL, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0.5, 0.5, ys, yerr, NULL, NULL, &sys), GSL_SUCCESS);
-	ck_assert_int_eq(csf_dop853_dense_prepare(s, &sys), GSL_SUCCESS);
-	csf_dop853_dense_eval(s, 0.7, a);
-	csf_dop853_dense_eval(r, 0.7, b);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
+	csf_erk_dense_eval(s, 0.7, a);
+	csf_erk_dense_eval(r, 0.7, b);
 	ck_assert(a[0] == b[0] && a[1] == b[1]);
 	gsl_odeiv2_step_free(s);
 	gsl_odeiv2_step_free(r);

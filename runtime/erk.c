@@ -1,0 +1,208 @@
+/*
+ * erk.c - explicit Runge-Kutta pairs with a continuous extension as GSL
+ * odeiv2 step types, for the tables of dop853.c and dopri5.c (erk.h).
+ *
+ * A step evaluates k0..k(nstage-1) and the end stage k(nstage) =
+ * f(t + h, y1), which is the exact dydt_out, a stage of the continuous
+ * extension and the next step's k0 (first same as last: GSL's evolve, which
+ * would evaluate a dydt_in for every step, is told the method takes none;
+ * a step from where the last ended reuses it, and a step tried again from
+ * the same start its k0). The extension's own stages are evaluated on
+ * request only (csf_erk_dense_prepare), since most steps are never
+ * interpolated.
+ *
+ * Every sum runs over its stages in ascending order, skipping zero
+ * coefficients, so that results do not depend on the compiler (the project
+ * builds with -ffp-contract=off).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+
+#include "erk.h"
+
+void csf_erk_combine(size_t dim, const double *w, int n, double *const *k, double *out)
+{
+	int first = 1;
+	for (int j = 0; j < n; j++) {
+		if (w[j] == 0) continue;
+		const double wj = w[j], *kj = k[j];
+		if (first)
+			for (size_t i = 0; i < dim; i++) out[i] = wj * kj[i];
+		else
+			for (size_t i = 0; i < dim; i++) out[i] += wj * kj[i];
+		first = 0;
+	}
+	if (first) memset(out, 0, dim * sizeof *out);
+}
+
+/* k[s] = f(t0 + c_s h, y0 + h sum_j a_sj k_j). */
+static int stage(csf_erk_state *st, const gsl_odeiv2_system *sys, int s, double t0, double h)
+{
+	double *y = st->ysum;
+	csf_erk_combine(st->dim, st->m->a + (size_t)s * (size_t)st->m->nk, s, st->k, y);
+	for (size_t i = 0; i < st->dim; i++) y[i] = st->y0[i] + h * y[i];
+	return GSL_ODEIV_FN_EVAL(sys, t0 + st->m->c[s] * h, y, st->k[s]);
+}
+
+/* Vectors of one state: the nk stages, the extension's 3 + nd, y0, y1 and ysum. */
+static size_t nvectors(const csf_erk_method *m) { return (size_t)m->nk + 3 + (size_t)m->nd + 3; }
+
+void *csf_erk_alloc(const csf_erk_method *m, size_t dim)
+{
+	size_t n = dim ? dim : 1, nf = 3 + (size_t)m->nd;
+	csf_erk_state *st = calloc(1, sizeof *st);
+	double **v = calloc((size_t)m->nk + nf, sizeof *v);
+	double *mem = calloc(nvectors(m) * n, sizeof *mem);
+	if (!st || !v || !mem) {
+		free(st);
+		free(v);
+		free(mem);
+		return NULL;
+	}
+	st->m = m;
+	st->dim = dim;
+	st->k = v;
+	st->f = v + m->nk;
+	for (size_t j = 0; j < (size_t)m->nk + nf; j++) v[j] = mem + j * n;
+	st->y0 = mem + ((size_t)m->nk + nf) * n;
+	st->y1 = st->y0 + n;
+	st->ysum = st->y1 + n;
+	return st;
+}
+
+int csf_erk_apply(void *vstate, size_t dim, double t, double h, double y[], double yerr[], const double dydt_in[],
+                  double dydt_out[], const gsl_odeiv2_system *sys)
+{
+	csf_erk_state *st = vstate;
+	const csf_erk_method *m = st->m;
+	int status, end = m->nstage;
+	/* first same as last: a step from where the last one ended starts from its end stage */
+	int fsal = !dydt_in && st->ok && st->have_end && t == st->t0 + st->h && memcmp(y, st->y1, dim * sizeof *y) == 0;
+	/* and a step tried again from the same start (a shorter one, the last rejected) keeps its k0 */
+	int again = !dydt_in && st->ok && t == st->t0 && memcmp(y, st->y0, dim * sizeof *y) == 0;
+	if (fsal) memcpy(st->k[0], st->k[end], dim * sizeof *y);
+	/* from here on, k, y0 and y1 are this step's: what they held is gone */
+	st->ok = st->have_end = st->dense = 0;
+	memcpy(st->y0, y, dim * sizeof *y);
+	if (dydt_in)
+		memcpy(st->k[0], dydt_in, dim * sizeof *dydt_in);
+	else if (!fsal && !again && (status = GSL_ODEIV_FN_EVAL(sys, t, st->y0, st->k[0])) != GSL_SUCCESS)
+		return status;
+	for (int s = 1; s < end; s++)
+		if ((status = stage(st, sys, s, t, h)) != GSL_SUCCESS) return status;
+	csf_erk_combine(dim, m->a + (size_t)end * (size_t)m->nk, end, st->k, st->ysum);
+	for (size_t i = 0; i < dim; i++) st->y1[i] = st->y0[i] + h * st->ysum[i];
+	if ((status = GSL_ODEIV_FN_EVAL(sys, t + h, st->y1, st->k[end])) != GSL_SUCCESS) return status;
+	st->have_end = 1;
+	/* y, yerr and dydt_out are written only now that nothing can fail */
+	m->error(st, h, st->ysum, yerr);
+	memcpy(y, st->y1, dim * sizeof *y);
+	if (dydt_out) memcpy(dydt_out, st->k[end], dim * sizeof *dydt_out);
+	st->t0 = t;
+	st->h = h;
+	st->ok = 1;
+	return GSL_SUCCESS;
+}
+
+int csf_erk_set_driver(void *vstate, const gsl_odeiv2_driver *drv)
+{
+	(void)vstate;
+	(void)drv;
+	return GSL_SUCCESS;
+}
+
+int csf_erk_reset(void *vstate, size_t dim)
+{
+	csf_erk_state *st = vstate;
+	memset(st->k[0], 0, nvectors(st->m) * (dim ? dim : 1) * sizeof *st->k[0]);
+	st->ok = st->have_end = st->dense = 0;
+	st->t0 = st->h = 0;
+	return GSL_SUCCESS;
+}
+
+unsigned int csf_erk_order(void *vstate) { return ((csf_erk_state *)vstate)->m->order; }
+
+void csf_erk_free(void *vstate)
+{
+	csf_erk_state *st = vstate;
+	if (!st) return;
+	free(st->k[0]);
+	free(st->k);
+	free(st);
+}
+
+static csf_erk_state *state_of(const gsl_odeiv2_step *s)
+{
+	return s && s->type->apply == csf_erk_apply ? s->state : NULL;
+}
+
+void csf_erk_set_scale(gsl_odeiv2_step *s, const double *scale)
+{
+	csf_erk_state *st = state_of(s);
+	if (st) st->scale = scale;
+}
+
+int csf_erk_dense_prepare(gsl_odeiv2_step *s, const gsl_odeiv2_system *sys)
+{
+	csf_erk_state *st = state_of(s);
+	const csf_erk_method *m = st ? st->m : NULL;
+	int status, end = m ? m->nstage : 0;
+	/* sys may be NULL for a method whose extension has no stages of its own */
+	if (!st || (sys ? sys->dimension != st->dim : m->nk > end + 1)) return GSL_EINVAL;
+	if (!st->ok) return GSL_EFAILED;
+	if (st->dense) return GSL_SUCCESS;
+	for (int j = end + 1; j < m->nk; j++)
+		if ((status = stage(st, sys, j, st->t0, st->h)) != GSL_SUCCESS) return status;
+	const double h = st->h;
+	double *const *f = st->f;
+	for (size_t i = 0; i < st->dim; i++) {
+		f[0][i] = st->y1[i] - st->y0[i];
+		f[1][i] = h * st->k[0][i] - f[0][i];
+		f[2][i] = f[0][i] - h * st->k[end][i] - f[1][i];
+	}
+	for (int r = 0; r < m->nd; r++) {
+		csf_erk_combine(st->dim, m->d + (size_t)r * (size_t)m->nk, m->nk, st->k, f[3 + r]);
+		for (size_t i = 0; i < st->dim; i++) f[3 + r][i] *= h;
+	}
+	st->dense = 1;
+	return GSL_SUCCESS;
+}
+
+/*
+ * Horner's scheme from the inside out, P = F1 + s (F2 + s' (F3 + ...)),
+ * the factor of F_r being s for r even and s' for r odd; then
+ * y0 + s (F0 + s' P) in the first half of the step and the same
+ * polynomial written as y1 - s' (F0 - s P) in the second: each form is
+ * exact at its own end (y0 + 0, y1 - 0), where the other would add the
+ * rounding of F0 = y1 - y0.
+ */
+void csf_erk_dense_eval(const gsl_odeiv2_step *s, double theta, double *y)
+{
+	const csf_erk_state *st = state_of(s);
+	if (!st) return;
+	if (!st->dense) { /* misuse: no value rather than a stale one */
+		for (size_t i = 0; i < st->dim; i++) y[i] = NAN;
+		return;
+	}
+	const double s1 = 1.0 - theta;
+	const int last = 2 + st->m->nd;
+	double *const *f = st->f;
+	for (size_t i = 0; i < st->dim; i++) {
+		double p = f[last][i];
+		for (int r = last; r > 1; r--) p = f[r - 1][i] + (r % 2 ? s1 : theta) * p;
+		if (theta <= 0.5)
+			y[i] = st->y0[i] + theta * (f[0][i] + s1 * p);
+		else
+			y[i] = st->y1[i] - s1 * (f[0][i] - theta * p);
+	}
+}
+
+void csf_erk_last_step(const gsl_odeiv2_step *s, double *t0, double *h)
+{
+	const csf_erk_state *st = state_of(s);
+	*t0 = st ? st->t0 : 0;
+	*h = st ? st->h : 0;
+}
