@@ -16,6 +16,7 @@
 
 #include "csf.h"
 #include "ode.h"
+#include "spectrum.h"
 
 void csf_fmt_double(char buf[32], double x)
 {
@@ -123,6 +124,7 @@ typedef struct run {
 	csf_contacts *cs; /* with contacts: the candidate pairs (contact.c) */
 	unsigned long nchoices, ncand, maxcand; /* for --stats: the choices of candidates, their sum and largest */
 	int nomem; /* memory ran out */
+	struct guard *g; /* the stability guard, or NULL */
 } run;
 
 static int rhs(double t, const double *y, double *dydt, void *ctx)
@@ -553,10 +555,260 @@ static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const 
  * (impacts change y), the integrator restarts, and r->ga and r->fa hold the
  * guards and derivative there. 0, or 1 if a derivative was not finite.
  */
+/*
+ * The stability guard. A fixed step is stable for a scene only while h
+ * lambda stays in the method's stability region for its fastest modes
+ * (csf_ode_stable_step); an explicit adaptive method on a stiff scene is
+ * held by that region to steps far shorter than its accuracy needs. The
+ * guard estimates the dominant eigenvalues of df/dy (spectrum.c) from
+ * Jacobian-vector products: the JAC section run with the tangent of the
+ * state set to v, or with contacts (whose forces have no tangent code) a
+ * difference of the RHS along v. It looks at the start, after every
+ * event, and then again as often as keeps its cost near 2.5 % of the
+ * run's evaluations, more often as a fixed step nears the limit. It
+ * halts a fixed step past the limit (exit 1, before the step's rows),
+ * shortens verlet's own step, warns of stiffness, and feeds --stats.
+ * Its decisions depend on counts of evaluations, never on the clock, so
+ * that csfvm and a generated program halt at the same step.
+ */
+typedef struct guard {
+	csf_spectrum *sp;
+	FILE *err;
+	double *y, *f0, *yd, *fd; /* the state looked at, f there; with differences, a state along v and f there */
+	double t;
+	int exact;                 /* J v from the JAC section, not by differences */
+	int check_step;            /* a fixed step of an explicit method: halt past the limit */
+	int auto_step;             /* verlet's own step (no --step), from the tolerance and the time scale */
+	double vfrac;              /* verlet: sqrt(tol / 1e-4) */
+	double user_step;          /* --step */
+	int detect_stiff;          /* an explicit adaptive method: warn when stability holds its steps */
+	int fixed;                 /* fixed steps */
+	int stats;
+	int due;                   /* look after the next step (an event happened) */
+	int stiff_hits;
+	double h;                  /* the fixed step (the longest a row's interval is cut into) */
+	double span;               /* the run's length */
+	unsigned long nexact;      /* J v products by the JAC section */
+	double next;               /* look when guard_evals reaches this */
+	unsigned long next_step;   /* fixed steps: look after this many */
+	unsigned long steps, checks;
+	double seconds;
+	/* what it saw */
+	csf_eigs last;
+	double rho_max, ratio, ratio_rho, hrho, hlim_rho; /* fixed: the largest h / largest stable step, at rho */
+	int ratio_exact, have_ratio;
+	int warned; /* of stiffness */
+} guard;
+
+/* J v in the coordinates y_i / yscale_i (J's eigenvalues are the same in any). */
+static int jvp(void *ctx, const double *v, double *jv)
+{
+	run *r = ctx;
+	guard *g = r->g;
+	const csf_prog *p = r->p;
+	uint32_t n = p->ny;
+	if (g->exact) {
+		double *m = r->m, *tan = m + p->jtan;
+		m[p->tslot] = g->t;
+		memcpy(m + p->ystart, g->y, n * sizeof *m);
+		for (uint32_t i = 0; i < n; i++) tan[p->ystart + i] = v[i] * p->yscale[i];
+		tan[p->tslot] = 0;
+		r->exec(p, CSF_SEC_JAC, m, m + p->ystart, m + p->dstart);
+		for (uint32_t i = 0; i < n; i++) jv[i] = tan[p->dstart + i] / p->yscale[i];
+		g->nexact++;
+		return 0;
+	}
+	/* forward difference: v has unit length, the step sqrt(eps) of the state's size */
+	double size = 0;
+	for (uint32_t i = 0; i < n; i++) size += (g->y[i] / p->yscale[i]) * (g->y[i] / p->yscale[i]);
+	double e = sqrt(DBL_EPSILON) * (1 + sqrt(size));
+	for (uint32_t i = 0; i < n; i++) g->yd[i] = g->y[i] + e * v[i] * p->yscale[i];
+	if (rhs(g->t, g->yd, g->fd, r)) return 1;
+	for (uint32_t i = 0; i < n; i++) jv[i] = (g->fd[i] - g->f0[i]) / (e * p->yscale[i]);
+	return 0;
+}
+
+/* The run's evaluations so far, the guard's own included: an RHS counts 1, a product by the JAC section 2. */
+static double guard_evals(const run *r) { return (double)r->nrhs + 2.0 * (double)r->g->nexact; }
+
+/* x rounded down to one significant digit: a step to suggest. */
+static double round_down(double x)
+{
+	double e = pow(10, floor(log10(x))), d = floor(x / e * (1 + 1e-12));
+	return d * e;
+}
+
+/* A ratio or a count as a person writes it: 350, 1e6, 2.5e6. */
+static void fmt_ratio(char buf[32], double x)
+{
+	if (x < 1e4) {
+		snprintf(buf, 32, "%.0f", x);
+		return;
+	}
+	char m[16];
+	int ex = (int)floor(log10(x));
+	double mant = x / pow(10, ex);
+	if (mant >= 9.95) mant /= 10, ex++;
+	snprintf(m, sizeof m, "%.2g", mant);
+	snprintf(buf, 32, "%se%d", m, ex);
+}
+
+/*
+ * The largest stable step for the dominant eigenvalues e. verlet's come
+ * in pairs +-lambda; a real pair is a mode that grows by itself, which
+ * limits no step, but a slower oscillation beside it does: the most
+ * negative eigenvalue of J^2 gives it.
+ */
+static double stable_step(run *r, csf_ode *ode, const csf_eigs *e)
+{
+	guard *g = r->g;
+	double h = INFINITY;
+	for (int i = 0; i < e->n; i++)
+		if (i == 0 || e->im[i] != -e->im[0]) /* a complex pair's second is the first's conjugate */
+			h = fmin(h, csf_ode_stable_step(ode, g->fixed, e->re[i], e->im[i], g->span));
+	if (csf_ode_fixed_only(ode) && h == INFINITY && e->rho > 0) {
+		double mu;
+		if (csf_spectrum_lowest_square(g->sp, jvp, r, e->rho * e->rho, &mu) == 0 && mu < 0)
+			h = csf_ode_stable_step(ode, g->fixed, 0, sqrt(-mu), g->span);
+	}
+	return h;
+}
+
+/* How the dominant eigenvalues lie: on the imaginary axis, the real axis, or neither. */
+static const char *eig_kind(const csf_eigs *e)
+{
+	int re = 1, im = 1;
+	for (int i = 0; i < e->n; i++) {
+		re &= fabs(e->im[i]) <= 1e-3 * e->rho;
+		im &= fabs(e->re[i]) <= 1e-3 * e->rho;
+	}
+	return e->rho == 0 ? "zero" : im ? "imaginary" : re ? "real" : "complex";
+}
+
+/*
+ * Looks at the scene at (t, y) after a step of h (0 at the start).
+ * Returns 1 after writing why the run must halt, else 0. A state where an
+ * estimate cannot be made (a derivative not finite nearby) is passed
+ * over: the integration reports what is wrong there.
+ */
+static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h)
+{
+	guard *g = r->g;
+	const csf_prog *p = r->p;
+	struct timespec c0, c1;
+	clock_gettime(CLOCK_MONOTONIC, &c0);
+	double before = guard_evals(r), margin = 1;
+	int halt = 0;
+	g->due = 0;
+	g->checks++;
+	g->t = t;
+	memcpy(g->y, y, p->ny * sizeof *y);
+	csf_eigs e;
+	if ((!g->exact && rhs(t, y, g->f0, r)) || csf_spectrum_dominant(g->sp, jvp, r, &e)) {
+		r->fail = 0;
+		goto out;
+	}
+	g->last = e;
+	if (e.rho > g->rho_max) g->rho_max = e.rho;
+	if ((g->stats || g->detect_stiff) && (!g->have_ratio || e.rho > 1.5 * g->ratio_rho)) {
+		double ratio;
+		int exact;
+		if (csf_spectrum_ratio(g->sp, jvp, r, &ratio, &exact) == 0 && (!g->have_ratio || ratio > g->ratio)) {
+			g->ratio = ratio, g->ratio_exact = exact, g->have_ratio = 1;
+		}
+		g->ratio_rho = e.rho;
+		r->fail = 0;
+	}
+	if (!g->fixed && !g->detect_stiff) goto out;
+	double hs = stable_step(r, ode, &e);
+	r->fail = 0;
+	if (g->fixed) {
+		double hc = g->h; /* the step to judge */
+		if (g->auto_step && h == 0) {
+			/* verlet's own step: the fraction sqrt(tol / 1e-4) of the smaller of by and the fastest
+			   time scale (a step the tolerance asks for, judged as asked, before a row's interval
+			   is cut into equal steps) */
+			double tau = e.rho > 0 ? fmin(p->by, 1 / e.rho) : p->by;
+			hc = g->vfrac * tau;
+			g->h = p->by / ceil(p->by / fmin(hc, p->by) * (1 - 1e-12));
+		}
+		if (hs < INFINITY && g->h / hs > g->hrho) g->hrho = g->h / hs, g->hlim_rho = hs * e.rho;
+		margin = hs < INFINITY ? 1 - g->h / hs : 1;
+		if (g->check_step && hc >= hs * (1 - 1e-6)) { /* at the limit nothing decays: refused too */
+			char hb[32], tb[32], why[96] = "", tolb[64] = "";
+			snprintf(hb, sizeof hb, "%.3g", hc);
+			csf_fmt_double(tb, t);
+			if (g->user_step > 0 && fabs(g->user_step - hc) > 1e-12 * hc)
+				snprintf(why, sizeof why, " (from --step %g)", g->user_step);
+			if (g->auto_step && h == 0) {
+				double tau = e.rho > 0 ? fmin(p->by, 1 / e.rho) : p->by;
+				snprintf(why, sizeof why, " (verlet's step for --tol %g)", g->vfrac * g->vfrac * 1e-4);
+				snprintf(tolb, sizeof tolb, ", --tol %g", round_down(0.81e-4 * (hs / tau) * (hs / tau)));
+			}
+			fprintf(g->err,
+			        "error: %s%s%sstep %s s%s is %s the stability limit of %s for this scene (fastest time scale "
+			        "%.3g s; largest stable step %.3g s): use --step %g%s or an adaptive method\n",
+			        h > 0 ? "at t=" : "", h > 0 ? tb : "", h > 0 ? ", " : "", hb, why, hc < hs ? "at" : "beyond",
+			        csf_ode_method(ode), 1 / e.rho,
+			        hs, round_down(0.9 * hs), tolb);
+			halt = 1;
+		}
+	} else if (h > 0 && hs < INFINITY && h >= 0.8 * hs && (r->tend - t) / h > 1000 && ++g->stiff_hits >= 2) {
+		/* two looks at steps held near the stability limit, with many steps to go */
+		char tb[32], rb[64] = "";
+		csf_fmt_double(tb, t);
+		if (g->have_ratio && g->ratio > 0) {
+			char x[32];
+			fmt_ratio(x, g->ratio);
+			snprintf(rb, sizeof rb, ", stiffness ratio %s%s", g->ratio_exact ? "" : "about ", x);
+		}
+		char more[32];
+		fmt_ratio(more, (r->tend - t) / h);
+		fprintf(g->err,
+		        "warning: at t=%s, after %lu steps, the problem looks stiff: the explicit method %s is held to steps "
+		        "of %.3g s by its stability (fastest time scale %.3g s%s) and needs some %s more; an implicit method "
+		        "is not: try --method msbdf or --method bsimp\n",
+		        tb, g->steps, csf_ode_method(ode), h, 1 / e.rho, rb, more);
+		g->detect_stiff = 0;
+		g->warned = 1;
+	}
+out:
+	/* the next look: after 40 times this one's cost, sooner near the limit */
+	/* the next look: after 40 times this one's cost (in evaluations, or in fixed steps: at most
+	   every 2 / (h rho) steps, as the fastest time scale may change as fast as the motion), sooner
+	   near the limit */
+	double now = guard_evals(r), near = margin < 0.5 ? fmax(margin, 0) / 0.5 : 1;
+	g->next = now + 40 * (now - before) * near;
+	if (g->fixed) {
+		double per_step = g->steps ? (double)r->nrhs / (double)g->steps : 1, hr = g->h * g->rho_max;
+		double every = 40 * (now - before) / fmax(per_step, 1);
+		if (hr > 0 && 2 / hr < every) every = 2 / hr;
+		g->next_step = g->steps + (unsigned long)fmax(1, floor(every * near));
+	}
+	clock_gettime(CLOCK_MONOTONIC, &c1);
+	g->seconds += (double)(c1.tv_sec - c0.tv_sec) + 1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
+	return halt;
+}
+
+typedef struct watch_ctx { run *r; csf_ode *ode; } watch_ctx;
+
+/* After every step: a look when one is due (csf_watch_fn). */
+static int guard_watch(void *ctx, double t, const double *y, double h)
+{
+	watch_ctx *w = ctx;
+	guard *g = w->r->g;
+	g->steps++;
+	if (!g->due && (g->fixed ? g->steps < g->next_step
+	                         : guard_evals(w->r) < g->next && !(g->detect_stiff && g->steps % 20 == 0 && g->steps <= 200)))
+		return 0;
+	return guard_check(w->r, w->ode, t, y, h);
+}
+
 static int take_event(run *r, csf_ode *ode, double t, double *y)
 {
 	r->nevents++;
 	r->pending = 0;
+	if (r->g) r->g->due = 1; /* the scene may have changed: look again after the next step */
 	if (update_modes(r, t, y)) return 1;
 	csf_ode_restart(ode);
 	if (guards_at(r, t, y, r->ga)) return 1;
@@ -767,6 +1019,8 @@ static int advance_dense(run *r, csf_ode *ode, double tk, double *y, char *msg, 
 int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *err)
 {
 	run r = { .p = p, .exec = exec };
+	guard gd = { 0 };
+	watch_ctx wc = { &r, NULL };
 	double *y = NULL;
 	int warned = 0, fixed = 0;
 	struct timespec t0, t1;
@@ -837,6 +1091,34 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 
 	fixed = ode && (o->fixed || csf_ode_fixed_only(ode));
 	double fixed_h = ode ? csf_ode_fixed_step(ode, p->by, o->step) : p->by;
+	int verlet = ode && csf_ode_fixed_only(ode);
+	if (ode) {
+		gd.fixed = fixed;
+		gd.check_step = fixed && csf_ode_explicit(ode);
+		gd.auto_step = verlet && o->step <= 0;
+		gd.user_step = o->step;
+		gd.vfrac = sqrt((o->tol > 0 ? o->tol : csf_method_tol("verlet")) / 1e-4);
+		gd.detect_stiff = !fixed && csf_ode_explicit(ode);
+		gd.stats = o->stats;
+	}
+	if (gd.check_step || gd.auto_step || gd.detect_stiff || gd.stats) {
+		size_t n = p->ny;
+		gd.sp = csf_spectrum_new(n);
+		gd.y = malloc(4 * n * sizeof *gd.y);
+		if (!gd.sp || !gd.y) {
+			fprintf(err, "error: out of memory\n");
+			status = 2;
+			goto done;
+		}
+		gd.f0 = gd.y + n, gd.yd = gd.f0 + n, gd.fd = gd.yd + n;
+		gd.exact = p->jtan && !p->ncrules;
+		gd.err = err;
+		gd.span = r.tend;
+		gd.h = p->by / ceil(p->by / fixed_h * (1 - 1e-12)); /* the step a row's interval is cut into */
+		r.g = &gd;
+		wc.ode = ode;
+		csf_ode_watch(ode, guard_watch, &wc);
+	}
 	/* a train of bounces that would end within zeno is at rest; the integrator's accuracy (contact.c) */
 	r.zeno = 1e-6 * p->by;
 	r.tol = o->tol > 0 ? o->tol : csf_method_tol(o->method);
@@ -870,6 +1152,14 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		}
 	}
 
+	if (r.g) { /* the first look, before any step */
+		if (guard_check(&r, ode, 0, y, 0)) {
+			status = 1;
+			goto done;
+		}
+		if (gd.auto_step) fixed_h = gd.h;
+	}
+
 	double t = 0;
 	for (double k = 0; k <= kmax; k++) {
 		double tk = k * p->by;
@@ -882,7 +1172,8 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			                  : advance_plain(&r, ode, &t, tk, y, msg, sizeof msg);
 			unsigned long after;
 			csf_ode_stats(ode, &after, &rej);
-			if (!fixed && !warned && csf_ode_explicit(ode) && after - before > 10000 && st != TOO_MUCH) {
+			if (!fixed && !warned && !gd.warned && csf_ode_explicit(ode) && after - before > 10000 &&
+			    st != TOO_MUCH) {
 				char tb[32];
 				csf_fmt_double(tb, tk);
 				fprintf(err,
@@ -890,6 +1181,10 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 				        "try --method msbdf or --method bsimp\n",
 				        after - before, csf_ode_method(ode), tb);
 				warned = 1;
+			}
+			if (st == CSF_ODE_HALTED) { /* the guard said why */
+				status = 1;
+				goto done;
 			}
 			if (st == CSF_ODE_STOPPED && r.nomem) {
 				fprintf(err, "error: out of memory\n");
@@ -989,6 +1284,27 @@ done:
 		        r.nevents, cand,
 		        (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
 	}
+	if (o->stats && r.g && gd.checks) {
+		char rb[64] = "", hb[160] = "";
+		if (gd.have_ratio && gd.ratio > 0) {
+			char x[32];
+			fmt_ratio(x, gd.ratio);
+			snprintf(rb, sizeof rb, ", stiffness ratio %s%s", gd.ratio_exact ? "" : "about ", x);
+		}
+		if (fixed && gd.hrho > 0)
+			snprintf(hb, sizeof hb, "; step %g s: h*rho %.3g against %s's limit %.3g there (largest stable step %.3g s)",
+			         gd.h, gd.h * gd.rho_max, csf_ode_method(ode), gd.hlim_rho, gd.h / gd.hrho);
+		else if (fixed)
+			snprintf(hb, sizeof hb, "; step %g s: h*rho %.3g, %s not limited there", gd.h, gd.h * gd.rho_max,
+			         csf_ode_method(ode));
+		fprintf(err,
+		        "stats: stability: rho %.3g 1/s (fastest time scale %.3g s, dominant eigenvalues %s)%s%s; %lu looks, "
+		        "%lu Jacobian-vector products, %.6f s\n",
+		        gd.rho_max, gd.rho_max > 0 ? 1 / gd.rho_max : INFINITY, eig_kind(&gd.last), rb, hb, gd.checks,
+		        csf_spectrum_products(gd.sp), gd.seconds);
+	}
+	csf_spectrum_free(gd.sp);
+	free(gd.y);
 	csf_ode_free(ode);
 	if (r.cs) ((csf_prog *)p)->crun = NULL;
 	csf_contacts_free(r.cs);

@@ -5,6 +5,7 @@
  * handler is switched off; every status is checked and turned into a CSF
  * error. The method table is the one list of steppers CSF offers.
  */
+#include <complex.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <math.h>
@@ -72,6 +73,9 @@ int csf_method_dense(const char *method)
 	return m && m->dense;
 }
 
+/* The most coefficients of a stability polynomial: more than the most stages (rk8pd's 13) plus one. */
+enum { NSTAB = 16 };
+
 struct csf_ode {
 	gsl_odeiv2_system sys;
 	gsl_odeiv2_driver *drv;
@@ -91,6 +95,13 @@ struct csf_ode {
 	csf_rhs_fn f;
 	csf_jac_fn jac;
 	void *ctx;
+	csf_watch_fn watch;        /* called after every step (csf_ode_watch) */
+	void *watch_ctx;
+	double hcap;               /* fixed steps: at most this long from now on (csf_ode_cap_step; 0: none) */
+	double stab[NSTAB];        /* the stability polynomial's coefficients (stability_poly) */
+	int nstab, stab_fixed;     /* how many (0: not yet computed), and for fixed steps or not */
+	double complex last_u;     /* the last csf_ode_stable_step: its direction, allowance and answer */
+	double last_allow, last_s;
 };
 
 static int gsl_rhs(double t, const double y[], double dydt[], void *params)
@@ -222,6 +233,8 @@ int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y,
 		snprintf(err, errlen, "out of memory");
 		return CSF_ODE_FAILED;
 	}
+again:
+	if (o->hcap > 0 && o->hcap < h) h = o->hcap;
 	double t0 = *t, span = t1 - t0;
 	double steps = ceil(span / h * (1 - 1e-12));
 	if (steps < 1) steps = 1;
@@ -247,6 +260,8 @@ int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y,
 		}
 		o->fixed_steps++;
 		*t = tb;
+		if (o->watch && o->watch(o->watch_ctx, tb, y, tb - ta)) return CSF_ODE_HALTED;
+		if (tb < t1 && o->hcap > 0 && o->hcap < (tb - ta) * (1 - 1e-12)) goto again; /* the rest in shorter steps */
 	}
 	return CSF_ODE_OK;
 }
@@ -268,8 +283,9 @@ int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *
 	   longer than what is left ends exactly at t1 (evolve_apply's last step). */
 	double left = t1 - *t;
 	if (d->h <= left && left <= d->h * (1 + 1e-4)) d->h = nextafter(left, INFINITY);
+	double ta = *t;
 	int st = gsl_odeiv2_evolve_apply(d->e, d->c, d->s, &o->sys, t, t1, &d->h, y);
-	if (st == GSL_SUCCESS) return CSF_ODE_OK;
+	if (st == GSL_SUCCESS) return o->watch && o->watch(o->watch_ctx, *t, y, *t - ta) ? CSF_ODE_HALTED : CSF_ODE_OK;
 	if (st == GSL_EBADFUNC) return CSF_ODE_STOPPED;
 	snprintf(err, errlen, "%s", gsl_strerror(st));
 	return CSF_ODE_FAILED;
@@ -377,6 +393,107 @@ double csf_ode_fixed_step(const csf_ode *o, double by, double step)
 }
 
 const char *csf_ode_method(const csf_ode *o) { return o->m->name; }
+
+void csf_ode_watch(csf_ode *o, csf_watch_fn fn, void *ctx)
+{
+	o->watch = fn;
+	o->watch_ctx = ctx;
+}
+
+void csf_ode_cap_step(csf_ode *o, double h) { o->hcap = h; }
+
+/* y' = N y with N the shift, N e_j = e_(j+1), for stability_poly. */
+static int shift_rhs(double t, const double y[], double dydt[], void *params)
+{
+	(void)t, (void)params;
+	dydt[0] = 0;
+	for (int j = 1; j < NSTAB; j++) dydt[j] = y[j - 1];
+	return GSL_SUCCESS;
+}
+
+/*
+ * The method's stability polynomial R(z) = sum c_j z^j, the factor one
+ * step multiplies y by on y' = lambda y, z = h lambda, in o->stab: for
+ * the classical rk4 of fixed steps 1/j!, for a GSL stepper measured by
+ * one step of h = 1 on y' = N y (N the shift) from e_0, which ends at
+ * R(N) e_0 = (c_0, c_1, ...): the polynomial of the code that runs, not
+ * of a table that might not match it (GSL's rk2 takes the third-order
+ * solution; its rk4, two half steps). 0, or -1 when memory runs out.
+ */
+static int stability_poly(csf_ode *o, int fixed)
+{
+	memset(o->stab, 0, sizeof o->stab);
+	if (fixed && *o->m->type == gsl_odeiv2_step_rk4) {
+		for (int j = 0, f = 1; j <= 4; j++, f *= j ? j : 1) o->stab[j] = 1.0 / f;
+		o->nstab = 5;
+		return 0;
+	}
+	gsl_odeiv2_system sys = { shift_rhs, NULL, NSTAB, NULL };
+	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(*o->m->type, NSTAB);
+	double yerr[NSTAB];
+	if (!s) return -1;
+	o->stab[0] = 1;
+	int st = gsl_odeiv2_step_apply(s, 0, 1, o->stab, yerr, NULL, NULL, &sys);
+	gsl_odeiv2_step_free(s);
+	if (st != GSL_SUCCESS) return -1;
+	o->nstab = NSTAB;
+	return 0;
+}
+
+/*
+ * How much faster than the exact solution one step grows the mode of
+ * eigenvalue lambda, z = h lambda, as a logarithm: log |R(z)| against
+ * the growth e^max(0, Re z) of a mode that grows by itself. verlet
+ * advances x'' = mu x (mu = lambda^2, eigenvalues +-lambda) by a factor
+ * r with r^2 - (2 + z^2) r + 1 = 0, against e^|Re z|.
+ */
+static double excess(const csf_ode *o, double complex z)
+{
+	if (!o->m->type) {
+		double complex b = 2 + z * z, d = csqrt(b * b - 4);
+		return log(fmax(cabs((b + d) / 2), cabs((b - d) / 2))) - fabs(creal(z));
+	}
+	double complex r = 0;
+	for (int j = o->nstab - 1; j >= 0; j--) r = r * z + o->stab[j];
+	return log(cabs(r)) - fmax(0, creal(z));
+}
+
+double csf_ode_stable_step(csf_ode *o, int fixed, double re, double im, double span)
+{
+	double mag = hypot(re, im);
+	if (o->m->jacobian) return INFINITY;
+	if (o->m->multistep) return NAN;
+	if (!(mag > 0) || !(span > 0)) return INFINITY;
+	if (o->m->type && (!o->nstab || o->stab_fixed != fixed)) {
+		if (stability_poly(o, fixed)) return NAN;
+		o->stab_fixed = fixed;
+		o->last_s = 0;
+	}
+	double complex u = CMPLX(re / mag, fabs(im) / mag); /* R has real coefficients: |R(conj z)| = |R(z)| */
+	/* s = h |lambda| is stable while the mode grows by at most 1 % more than it should over the
+	   span/h steps of the run: a method that is weakly unstable near the axis (rk8pd's factor on
+	   the imaginary axis at s = 0.5 is 1 + 2.5e-11) is held to what that costs the run */
+	double allow = log(1.01) / (mag * span);
+	if (o->last_s > 0 && cabs(u - o->last_u) <= 1e-9 && fabs(allow - o->last_allow) <= 0.1 * allow)
+		return o->last_s / mag; /* the same direction as last time (a scene that keeps its spectrum) */
+#define UNSTABLE(s) (excess(o, (s) * u) > allow * (s) + 1e-12)
+	const double ds = 0.02, smax = 40; /* the regions of explicit methods end before 10 */
+	double lo = 0;
+	while (lo < smax && !UNSTABLE(lo + ds)) lo += ds;
+	if (lo >= smax) {
+		lo = INFINITY;
+	} else {
+		double hi = lo + ds;
+		for (int i = 0; i < 60 && hi - lo > 1e-12 * hi; i++) {
+			double mid = (lo + hi) / 2;
+			if (UNSTABLE(mid)) hi = mid;
+			else lo = mid;
+		}
+	}
+	o->last_u = u, o->last_allow = allow, o->last_s = lo;
+#undef UNSTABLE
+	return lo / mag;
+}
 
 void csf_ode_free(csf_ode *o)
 {

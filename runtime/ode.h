@@ -15,7 +15,15 @@ typedef int (*csf_jac_fn)(double t, const double *y, double *dfdy, double *dfdt,
 
 typedef struct csf_ode csf_ode;
 
-enum { CSF_ODE_OK = 0, CSF_ODE_STOPPED = 1, CSF_ODE_FAILED = 2 };
+enum { CSF_ODE_OK = 0, CSF_ODE_STOPPED = 1, CSF_ODE_FAILED = 2, CSF_ODE_HALTED = 3 };
+
+/*
+ * Called after every step the integrator takes (fixed, or an accepted
+ * adaptive step; not the substeps of csf_ode_substep), with the time and
+ * state at its end and its length. Returns 0 to go on, non-zero to halt
+ * (the step returns CSF_ODE_HALTED).
+ */
+typedef int (*csf_watch_fn)(void *ctx, double t, const double *y, double h);
 
 /*
  * A new integrator for n state variables with the named method (NULL for the
@@ -102,6 +110,27 @@ int csf_ode_fixed_only(const csf_ode *o);
 
 /* Is the method explicit (no Jacobian)? */
 int csf_ode_explicit(const csf_ode *o);
+
+/* Calls fn after every step from now on (NULL: none). */
+void csf_ode_watch(csf_ode *o, csf_watch_fn fn, void *ctx);
+
+/*
+ * Fixed steps are at most h from now on, the rest of an interval that
+ * csf_ode_advance_fixed is stepping included (0: no cap).
+ */
+void csf_ode_cap_step(csf_ode *o, double h);
+
+/*
+ * The largest stable step of the method (fixed: as csf_ode_advance_fixed
+ * takes it) for a mode of eigenvalue re + i im of df/dy in a run of span
+ * seconds: the largest h such that, for every step up to h, the method
+ * grows the mode by at most 1 % more over the run's span/h steps than
+ * the exact solution does (one step's factor: the stability polynomial
+ * R(h lambda) against e^max(0, Re h lambda); verlet's, on x'' = lambda^2 x).
+ * INFINITY when no step is unstable (implicit methods, a mode that only
+ * grows), NaN when unknown (msadams, whose order varies).
+ */
+double csf_ode_stable_step(csf_ode *o, int fixed, double re, double im, double span);
 
 /* The method's name. */
 const char *csf_ode_method(const csf_ode *o);

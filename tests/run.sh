@@ -272,6 +272,10 @@ if "$CSFC" tests/e2e/kepler.csf -o "$T/k.csfb" 2>"$T/err" && "$CSFVM" --compare-
 #     finishes, and within a bound the tolerance implies of the exact solution
 if CSF_BUILD="$B" sh tests/methods_tol.sh >"$T/mt" 2>&1; then ok; else bad "methods and tolerances: $(grep FAIL "$T/mt" | head -n 3)"; fi
 
+# 5g'. the stability guard: fixed steps past the limit refused, limits against the
+#      analytic ones, a pendulum halted when it turns unstable, stiffness warned early
+if sh tests/stability/check.sh "$CSFC" "$CSFVM" "$T" >"$T/stab" 2>&1; then ok; else bad "stability: $(grep FAIL "$T/stab" | head -n 3)"; fi
+
 # 5h. a ball dropped onto floors and inclines anywhere, at every output interval:
 #     every row against the exact motion (tests/contacts/drop.sh)
 if sh tests/contacts/drop.sh "$CSFC" "$CSFVM" "$T" >"$T/drop" 2>&1; then ok; else bad "contacts: $(grep FAIL "$T/drop" | head -n 3)"; fi

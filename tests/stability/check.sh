@@ -1,0 +1,96 @@
+#!/bin/sh
+# tests/stability/check.sh CSFC CSFVM DIR - the stability guard against known answers:
+#  - a fixed step past the limit is refused before its rows (rk4 --step 0.5, and
+#    verlet's own step at --tol 1e-3, on the oscillator), and the same scenes at a
+#    stable step match the exact solution;
+#  - the largest stable step reported is within 2 % of the analytic limit for each
+#    fixed-step method, on the imaginary axis (oscillator) and the real axis (decay);
+#  - implicit methods are not limited;
+#  - a pendulum from near the top with verlet at 0.7 s halts when its swing makes the
+#    step unstable, not before (every row before is stable, the next step is not);
+#  - explicit adaptive methods on a stiff scene (eigenvalues -1, -1e6) warn within
+#    the first 100 steps, naming the stiffness ratio 1e6;
+#  - --stats reports rho, the stiffness ratio and h*rho against the limit.
+# Prints one line per failure and, last, "N passed, N failed".
+CSFC=$1 CSFVM=$2 T=$3
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+D=tests/stability
+for s in oscillator decay pendulum_top; do "$CSFC" $D/$s.csf -o "$T/st_$s.csfb" || bad "$s does not compile"; done
+"$CSFC" tests/runtime/stiff_warning.csf -o "$T/st_stiff.csfb" || bad "stiff_warning does not compile"
+
+# run SCENE ARGS...: exit status in $st, stdout in $T/st.csv, stderr in $T/st.err
+run() { s=$1; shift; timeout 60 "$CSFVM" "$@" "$T/st_$s.csfb" >"$T/st.csv" 2>"$T/st.err"; st=$?; }
+rows() { echo $(($(wc -l <"$T/st.csv") - 1)); }
+
+# 1. the two refusals of the issue, word for word where the numbers are exact
+run oscillator --method rk4 --fixed --step 0.5
+if [ $st -eq 1 ] && [ "$(rows)" -eq 0 ] && grep -Fxq "error: step 0.5 s is beyond the stability limit of rk4 for this scene (fastest time scale 0.125 s; largest stable step 0.354 s): use --step 0.3 or an adaptive method" "$T/st.err"
+then ok; else bad "rk4 --step 0.5: exit $st, $(rows) rows, $(cat "$T/st.err")"; fi
+run oscillator --method verlet --tol 1e-3
+if [ $st -eq 1 ] && [ "$(rows)" -eq 0 ] && grep -q "^error: step 0.395 s (verlet's step for --tol 0.001) is beyond the stability limit of verlet for this scene (fastest time scale 0.125 s; largest stable step 0.25 s): use --step 0.2, --tol 0.0003 or an adaptive method$" "$T/st.err"
+then ok; else bad "verlet --tol 1e-3: exit $st, $(rows) rows, $(cat "$T/st.err")"; fi
+
+# 2. the largest stable step each method reports, against the analytic limit
+limit() { # SCENE METHOD EXPECTED: a step of 0.5 s, past every limit here
+	run $1 --method $2 --fixed --step 0.5
+	got=$(sed -n 's/.*largest stable step \([0-9.e+-]*\) s.*/\1/p' "$T/st.err")
+	if [ $st -eq 1 ] && awk -v g="$got" -v e=$3 'BEGIN { d = g / e - 1; exit !(g != "" && d < 0.02 && d > -0.02) }'
+	then ok; else bad "$1 $2: largest stable step '$got', expected $3 within 2 % (exit $st: $(head -n 1 "$T/st.err"))"; fi
+}
+limit oscillator rk4 0.35355
+limit oscillator verlet 0.25
+limit oscillator rk2 0.21651
+limit decay rk4 0.27853
+limit decay rk2 0.25127
+
+# 3. implicit methods are not limited; stable steps match the exact solution
+for m in rk4imp bsimp; do
+	run oscillator --method $m --fixed --step 0.5
+	if [ $st -eq 0 ] && [ "$(rows)" -eq 21 ]; then ok; else bad "$m --fixed --step 0.5: exit $st, $(head -n 1 "$T/st.err")"; fi
+done
+exact_osc() { # TOL: every row of x and v within TOL of the exact motion
+	awk -F, -v tol=$1 'NR > 1 { ex = 0.1 * cos(8 * $1); ev = -0.8 * sin(8 * $1)
+		d = $2 - ex; if (d < 0) d = -d; e = $5 - ev; if (e < 0) e = -e; if (d > tol || e > 8 * tol) bad = 1; n++ }
+		END { exit bad || n != 21 }' "$T/st.csv"
+}
+run oscillator --method rk4 --fixed --step 0.01
+if [ $st -eq 0 ] && exact_osc 1e-5; then ok; else bad "oscillator rk4 --step 0.01: not the exact motion (exit $st)"; fi
+run oscillator --method verlet
+if [ $st -eq 0 ] && exact_osc 1e-6; then ok; else bad "oscillator verlet: not the exact motion (exit $st)"; fi
+run decay --method rk4 --fixed --step 0.01
+if [ $st -eq 0 ] && awk -F, 'NR > 1 { d = $2 - exp(-10 * $1); if (d < 0) d = -d; if (d > 1e-4 * exp(-10 * $1)) bad = 1; n++ } END { exit bad || n != 11 }' "$T/st.csv"
+then ok; else bad "decay rk4 --step 0.01: not the exact solution (exit $st)"; fi
+
+# 4. the pendulum: halts at the first step that ends where h^2 (g/L) cos(theta) >= 4
+run pendulum_top --method verlet --step 0.7
+th=$(sed -n 's/^error: at t=\([0-9.e+-]*\), step 0.7 s is beyond the stability limit of verlet.*/\1/p' "$T/st.err")
+if [ $st -eq 1 ] && [ -n "$th" ] && awk -F, -v th="$th" '
+	function a(x) { return -9.80665 * sin(x) }
+	NR > 1 { if (cos($2) >= 0.83243) early = 1; t = $1; x = $2; w = $3; n++ }
+	END {   # one verlet step of 0.7 s from the last row: the state the guard refused
+		h = 0.7; x1 = x + h * w + h * h / 2 * a(x)
+		exit !(n >= 2 && !early && cos(x1) >= 0.83243 && (th - t - h) ^ 2 < 1e-18) }' "$T/st.csv"
+then ok; else bad "pendulum verlet --step 0.7: exit $st, halt at '$th', $(rows) rows: $(head -n 1 "$T/st.err")"; fi
+
+# 5. stiff: every explicit adaptive method warns within 100 steps, naming the ratio
+for m in dop853 dopri5 rk8pd rkf45 rkck; do
+	run stiff --method $m
+	n=$(sed -n 's/^warning: at t=[^,]*, after \([0-9]*\) steps, the problem looks stiff.*stiffness ratio 1e6).*/\1/p' "$T/st.err")
+	if [ $st -eq 0 ] && [ -n "$n" ] && [ "$n" -le 100 ] && grep -q "try --method msbdf or --method bsimp" "$T/st.err"
+	then ok; else bad "stiff $m: exit $st, warned after '$n' steps: $(head -n 1 "$T/st.err")"; fi
+done
+run stiff --method msbdf
+if [ $st -eq 0 ] && ! grep -q "looks stiff" "$T/st.err"; then ok; else bad "stiff msbdf: exit $st, $(head -n 1 "$T/st.err")"; fi
+
+# 6. --stats
+run oscillator --method rk4 --fixed --step 0.1 --stats
+if [ $st -eq 0 ] && grep -q "^stats: stability: rho 8 1/s (fastest time scale 0.125 s, dominant eigenvalues imaginary), stiffness ratio 1; step 0.1 s: h\*rho 0.8 against rk4's limit 2.83 there (largest stable step 0.354 s)" "$T/st.err"
+then ok; else bad "oscillator --stats: $(grep stability "$T/st.err")"; fi
+run stiff --method msbdf --stats
+if [ $st -eq 0 ] && grep -q "^stats: stability: rho 1e+06 1/s (fastest time scale 1e-06 s, dominant eigenvalues real), stiffness ratio 1e6;" "$T/st.err"
+then ok; else bad "stiff --stats: $(grep stability "$T/st.err")"; fi
+
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]
