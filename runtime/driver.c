@@ -571,6 +571,9 @@ static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const 
  * Its decisions depend on counts of evaluations, never on the clock, so
  * that csfvm and a generated program halt at the same step.
  */
+/* A look costs at most 1 / LOOK_EVERY of the evaluations before it (but for those a fixed step needs). */
+enum { LOOK_EVERY = 50 };
+
 typedef struct guard {
 	csf_spectrum *sp;
 	FILE *err;
@@ -685,6 +688,19 @@ static const char *eig_kind(const csf_eigs *e)
 	return e->rho == 0 ? "zero" : im ? "imaginary" : re ? "real" : "complex";
 }
 
+/* The stiffness ratio at the state looked at, kept when the largest yet. 0, or 1 if it cannot be computed. */
+static int guard_ratio(run *r, double rho)
+{
+	guard *g = r->g;
+	double ratio;
+	int exact, st = csf_spectrum_ratio(g->sp, jvp, r, &ratio, &exact);
+	r->fail = 0;
+	g->ratio_rho = rho;
+	if (st) return 1;
+	if (!g->have_ratio || ratio > g->ratio) g->ratio = ratio, g->ratio_exact = exact, g->have_ratio = 1;
+	return 0;
+}
+
 /*
  * Looks at the scene at (t, y) after a step of h (0 at the start).
  * Returns 1 after writing why the run must halt, else 0. A state where an
@@ -698,27 +714,21 @@ static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h
 	struct timespec c0, c1;
 	clock_gettime(CLOCK_MONOTONIC, &c0);
 	double before = guard_evals(r), margin = 1;
+	/* a look for a fixed step is as long as it needs; another spends at most its share of the run */
+	int maxprod = g->fixed ? 1000 : (int)fmin(1000, fmax(3, before / LOOK_EVERY / 2));
 	int halt = 0;
 	g->due = 0;
 	g->checks++;
 	g->t = t;
 	memcpy(g->y, y, p->ny * sizeof *y);
 	csf_eigs e;
-	if ((!g->exact && rhs(t, y, g->f0, r)) || csf_spectrum_dominant(g->sp, jvp, r, &e)) {
+	if ((!g->exact && rhs(t, y, g->f0, r)) || csf_spectrum_dominant(g->sp, jvp, r, maxprod, &e)) {
 		r->fail = 0;
 		goto out;
 	}
 	g->last = e;
 	if (e.rho > g->rho_max) g->rho_max = e.rho;
-	if ((g->stats || g->detect_stiff) && (!g->have_ratio || e.rho > 1.5 * g->ratio_rho)) {
-		double ratio;
-		int exact;
-		if (csf_spectrum_ratio(g->sp, jvp, r, &ratio, &exact) == 0 && (!g->have_ratio || ratio > g->ratio)) {
-			g->ratio = ratio, g->ratio_exact = exact, g->have_ratio = 1;
-		}
-		g->ratio_rho = e.rho;
-		r->fail = 0;
-	}
+	if (g->stats && (!g->have_ratio || e.rho > 1.5 * g->ratio_rho)) guard_ratio(r, e.rho);
 	if (!g->fixed && !g->detect_stiff) goto out;
 	double hs = stable_step(r, ode, &e);
 	r->fail = 0;
@@ -753,8 +763,10 @@ static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h
 			        hs, round_down(0.9 * hs), tolb);
 			halt = 1;
 		}
-	} else if (h > 0 && hs < INFINITY && h >= 0.8 * hs && (r->tend - t) / h > 1000 && ++g->stiff_hits >= 2) {
-		/* two looks at steps held near the stability limit, with many steps to go */
+	} else if (h > 0 && hs < INFINITY && h >= 0.8 * hs && (r->tend - t) / h > 1000 &&
+	           ((!g->have_ratio && guard_ratio(r, e.rho)) || g->ratio >= 100 || ++g->stiff_hits >= 2)) {
+		/* steps held near the stability limit, with many steps to go: stiff if the spectrum spans
+		   100 times or more, or (a spread that cannot be measured) when a second look agrees */
 		char tb[32], rb[64] = "";
 		csf_fmt_double(tb, t);
 		if (g->have_ratio && g->ratio > 0) {
@@ -774,14 +786,14 @@ static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h
 	}
 out:
 	/* the next look: after 40 times this one's cost, sooner near the limit */
-	/* the next look: after 40 times this one's cost (in evaluations, or in fixed steps: at most
-	   every 2 / (h rho) steps, as the fastest time scale may change as fast as the motion), sooner
-	   near the limit */
+	/* the next look: after LOOK_EVERY times this one's cost in evaluations, or with fixed steps
+	   at most every 2 / (h rho) steps (the fastest time scale may change as fast as the motion)
+	   and sooner near the limit */
 	double now = guard_evals(r), near = margin < 0.5 ? fmax(margin, 0) / 0.5 : 1;
-	g->next = now + 40 * (now - before) * near;
+	g->next = now + LOOK_EVERY * (now - before);
 	if (g->fixed) {
 		double per_step = g->steps ? (double)r->nrhs / (double)g->steps : 1, hr = g->h * g->rho_max;
-		double every = 40 * (now - before) / fmax(per_step, 1);
+		double every = LOOK_EVERY * (now - before) / fmax(per_step, 1);
 		if (hr > 0 && 2 / hr < every) every = 2 / hr;
 		g->next_step = g->steps + (unsigned long)fmax(1, floor(every * near));
 	}
@@ -798,9 +810,7 @@ static int guard_watch(void *ctx, double t, const double *y, double h)
 	watch_ctx *w = ctx;
 	guard *g = w->r->g;
 	g->steps++;
-	if (!g->due && (g->fixed ? g->steps < g->next_step
-	                         : guard_evals(w->r) < g->next && !(g->detect_stiff && g->steps % 20 == 0 && g->steps <= 200)))
-		return 0;
+	if (g->fixed ? g->steps < g->next_step && !g->due : guard_evals(w->r) < g->next) return 0;
 	return guard_check(w->r, w->ode, t, y, h);
 }
 
@@ -808,7 +818,7 @@ static int take_event(run *r, csf_ode *ode, double t, double *y)
 {
 	r->nevents++;
 	r->pending = 0;
-	if (r->g) r->g->due = 1; /* the scene may have changed: look again after the next step */
+	if (r->g) r->g->due = 1; /* the scene may have changed: with fixed steps, look after the next one */
 	if (update_modes(r, t, y)) return 1;
 	csf_ode_restart(ode);
 	if (guards_at(r, t, y, r->ga)) return 1;
@@ -1152,7 +1162,9 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		}
 	}
 
-	if (r.g) { /* the first look, before any step */
+	if (r.g && !gd.fixed) /* the first look when the run has spent LOOK_EVERY times what one may cost */
+		gd.next = LOOK_EVERY * 2.0 * (p->ny < 12 ? p->ny + 1 : 12);
+	if (r.g && gd.fixed) { /* the first look, before any step */
 		if (guard_check(&r, ode, 0, y, 0)) {
 			status = 1;
 			goto done;
@@ -1303,6 +1315,9 @@ done:
 		        gd.rho_max, gd.rho_max > 0 ? 1 / gd.rho_max : INFINITY, eig_kind(&gd.last), rb, hb, gd.checks,
 		        csf_spectrum_products(gd.sp), gd.seconds);
 	}
+	if (o->stats && r.g && !gd.checks)
+		fprintf(err, "stats: stability: not looked at (the run ended before its first look, after %.0f evaluations)\n",
+		        gd.next);
 	csf_spectrum_free(gd.sp);
 	free(gd.y);
 	csf_ode_free(ode);

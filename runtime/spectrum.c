@@ -104,7 +104,7 @@ static void eig2(double a, double b, double c, double d, csf_eigs *e)
 	}
 }
 
-int csf_spectrum_dominant(csf_spectrum *s, csf_jvp_fn f, void *ctx, csf_eigs *e)
+int csf_spectrum_dominant(csf_spectrum *s, csf_jvp_fn f, void *ctx, int maxprod, csf_eigs *e)
 {
 	size_t n = s->n;
 	double *v = s->v, *w = s->w, *z = s->z, *q = s->q;
@@ -118,6 +118,7 @@ int csf_spectrum_dominant(csf_spectrum *s, csf_jvp_fn f, void *ctx, csf_eigs *e)
 		wn = norm(n, w);
 	}
 	double prev = -1;
+	int maxit = maxprod - 1 < 2 ? 2 : maxprod - 1 > MAXIT ? MAXIT : maxprod - 1;
 	for (int it = 0;; it++) {
 		if (!(wn > 0)) { /* J is zero on the Krylov space of v */
 			*e = (csf_eigs){ .n = 1 };
@@ -143,7 +144,7 @@ int csf_spectrum_dominant(csf_spectrum *s, csf_jvp_fn f, void *ctx, csf_eigs *e)
 		}
 		/* converged: the plane of v and J v nearly invariant, or rho no longer changing */
 		if (res <= 1e-3 * fmax(e->rho, 1e-300) || (prev >= 0 && fabs(e->rho - prev) <= 1e-6 * e->rho) ||
-		    it + 1 >= MAXIT)
+		    it + 1 >= maxit)
 			break;
 		prev = e->rho;
 		for (size_t i = 0; i < n; i++) v[i] = w[i] / wn, w[i] = z[i] / wn;

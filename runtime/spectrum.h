@@ -28,9 +28,10 @@ void csf_spectrum_free(csf_spectrum *s);
  * pair +-a, or a complex pair) by power iteration, each iterate's span
  * with the next (two-dimensional Arnoldi) giving the pair. Starts from
  * the last call's direction, so that tracking a slowly changing J costs a
- * few products. 0, or -1 when a product failed.
+ * few products; at most maxprod of them (at least 3, at most 41), fewer
+ * once the estimate has converged. 0, or -1 when a product failed.
  */
-int csf_spectrum_dominant(csf_spectrum *s, csf_jvp_fn f, void *ctx, csf_eigs *e);
+int csf_spectrum_dominant(csf_spectrum *s, csf_jvp_fn f, void *ctx, int maxprod, csf_eigs *e);
 
 /*
  * The smallest (most negative) eigenvalue mu of J^2 when J^2's spectrum
