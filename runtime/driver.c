@@ -572,7 +572,7 @@ static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const 
  * that csfvm and a generated program halt at the same step.
  */
 /* A look costs at most 1 / LOOK_EVERY of the evaluations before it (but for those a fixed step needs). */
-enum { LOOK_EVERY = 50 };
+enum { LOOK_EVERY = 100 };
 
 typedef struct guard {
 	csf_spectrum *sp;
@@ -591,6 +591,7 @@ typedef struct guard {
 	int stiff_hits;
 	double h;                  /* the fixed step (the longest a row's interval is cut into) */
 	double span;               /* the run's length */
+	double smin;               /* fixed steps: the method's least limit of h |lambda| on the two axes */
 	unsigned long nexact;      /* J v products by the JAC section */
 	double next;               /* look when guard_evals reaches this */
 	unsigned long next_step;   /* fixed steps: look after this many */
@@ -713,7 +714,7 @@ static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h
 	const csf_prog *p = r->p;
 	struct timespec c0, c1;
 	clock_gettime(CLOCK_MONOTONIC, &c0);
-	double before = guard_evals(r), margin = 1;
+	double before = guard_evals(r);
 	/* a look for a fixed step is as long as it needs; another spends at most its share of the run */
 	int maxprod = g->fixed ? 1000 : (int)fmin(1000, fmax(3, before / LOOK_EVERY / 2));
 	int halt = 0;
@@ -743,7 +744,10 @@ static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h
 			g->h = p->by / ceil(p->by / fmin(hc, p->by) * (1 - 1e-12));
 		}
 		if (hs < INFINITY && g->h / hs > g->hrho) g->hrho = g->h / hs, g->hlim_rho = hs * e.rho;
-		margin = hs < INFINITY ? 1 - g->h / hs : 1;
+		if (!(g->smin > 0) && e.rho > 0) { /* the least h |lambda| limit on the two axes, once */
+			double sr = csf_ode_stable_step(ode, 1, -e.rho, 0, g->span), si = csf_ode_stable_step(ode, 1, 0, e.rho, g->span);
+			g->smin = fmin(sr, si) * e.rho;
+		}
 		if (g->check_step && hc >= hs * (1 - 1e-6)) { /* at the limit nothing decays: refused too */
 			char hb[32], tb[32], why[96] = "", tolb[64] = "";
 			snprintf(hb, sizeof hb, "%.3g", hc);
@@ -785,17 +789,17 @@ static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h
 		g->warned = 1;
 	}
 out:
-	/* the next look: after 40 times this one's cost, sooner near the limit */
-	/* the next look: after LOOK_EVERY times this one's cost in evaluations, or with fixed steps
-	   at most every 2 / (h rho) steps (the fastest time scale may change as fast as the motion)
-	   and sooner near the limit */
-	double now = guard_evals(r), near = margin < 0.5 ? fmax(margin, 0) / 0.5 : 1;
+	/* the next look: after LOOK_EVERY times this one's cost in evaluations; with fixed steps,
+	   sooner as h rho nears the method's least limit on either axis (the direction of the
+	   eigenvalues may turn, as a pendulum's do), every step past half of it */
+	double now = guard_evals(r);
 	g->next = now + LOOK_EVERY * (now - before);
 	if (g->fixed) {
-		double per_step = g->steps ? (double)r->nrhs / (double)g->steps : 1, hr = g->h * g->rho_max;
+		double per_step = g->steps ? (double)r->nrhs / (double)g->steps : 1;
 		double every = LOOK_EVERY * (now - before) / fmax(per_step, 1);
-		if (hr > 0 && 2 / hr < every) every = 2 / hr;
-		g->next_step = g->steps + (unsigned long)fmax(1, floor(every * near));
+		if (g->smin > 0 && g->h * g->rho_max > 0.5 * g->smin)
+			every *= fmax(0, 1 - g->h * g->rho_max / g->smin) / 0.5;
+		g->next_step = g->steps + (unsigned long)fmax(1, floor(every));
 	}
 	clock_gettime(CLOCK_MONOTONIC, &c1);
 	g->seconds += (double)(c1.tv_sec - c0.tv_sec) + 1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
