@@ -23,9 +23,10 @@ static const char vm_usage[] =
 	"                 1e-10 for the others)\n"
 	"  --hmax H       internal steps of at most H seconds (dop853 and dopri5 step past the\n"
 	"                 output times and compute the rows from their dense output)\n"
-	"  --fixed        no error control: internal steps of 'by' (or --step H)\n"
+	"  --fixed        no error control: internal steps of 'by' (or --step H); a step\n"
+	"                 past the method's stability limit for the scene is refused\n"
 	"  --step H       fixed internal steps of at most H seconds\n"
-	"  --stats        steps, evaluations and time on stderr at the end\n"
+	"  --stats        steps, evaluations, time and the fastest time scale on stderr\n"
 	"  --compare-methods  run the scene with every method and several tolerances;\n"
 	"                 print time and the difference from the most accurate run\n"
 	"  --help, --version\n";
@@ -70,7 +71,7 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 {
 	csf_opts o;
 	int pos[1], npos;
-	char usage[1024];
+	char usage[2048];
 	if (image) snprintf(usage, sizeof usage, exe_usage, argv[0]);
 	else snprintf(usage, sizeof usage, "%s", vm_usage);
 	int st = csf_parse_opts(argc, argv, 1, &o, pos, image ? 0 : 1, &npos, usage);
