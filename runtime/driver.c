@@ -598,7 +598,7 @@ typedef struct guard {
 	unsigned long steps, checks;
 	double seconds;
 	/* what it saw */
-	csf_eigs last;
+	csf_eigs last, at_max; /* the last look's eigenvalues, and those of the largest rho */
 	double rho_max, ratio, ratio_rho, hrho, hlim_rho; /* fixed: the largest h / largest stable step, at rho */
 	int ratio_exact, have_ratio;
 	int warned; /* of stiffness */
@@ -668,7 +668,7 @@ static double stable_step(run *r, csf_ode *ode, const csf_eigs *e)
 	guard *g = r->g;
 	double h = INFINITY;
 	for (int i = 0; i < e->n; i++)
-		if (i == 0 || e->im[i] != -e->im[0]) /* a complex pair's second is the first's conjugate */
+		if (i == 0 || e->im[0] == 0 || e->im[i] != -e->im[0]) /* a complex pair's second: the first's conjugate */
 			h = fmin(h, csf_ode_stable_step(ode, g->fixed, e->re[i], e->im[i], g->span));
 	if (csf_ode_fixed_only(ode) && h == INFINITY && e->rho > 0) {
 		double mu;
@@ -694,7 +694,9 @@ static int guard_ratio(run *r, double rho)
 {
 	guard *g = r->g;
 	double ratio;
-	int exact, st = csf_spectrum_ratio(g->sp, jvp, r, &ratio, &exact);
+	/* zero: below sqrt(eps) of the largest, 10 times over, for exact products; differences,
+	   good to some sqrt(eps), leave the fourth root */
+	int exact, st = csf_spectrum_ratio(g->sp, jvp, r, g->exact ? 1.5e-7 : 1e-3, &ratio, &exact);
 	r->fail = 0;
 	g->ratio_rho = rho;
 	if (st) return 1;
@@ -728,7 +730,7 @@ static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h
 		goto out;
 	}
 	g->last = e;
-	if (e.rho > g->rho_max) g->rho_max = e.rho;
+	if (e.rho > g->rho_max) g->rho_max = e.rho, g->at_max = e;
 	if (g->stats && (!g->have_ratio || e.rho > 1.5 * g->ratio_rho)) guard_ratio(r, e.rho);
 	if (!g->fixed && !g->detect_stiff) goto out;
 	double hs = stable_step(r, ode, &e);
@@ -1316,7 +1318,7 @@ done:
 		fprintf(err,
 		        "stats: stability: rho %.3g 1/s (fastest time scale %.3g s, dominant eigenvalues %s)%s%s; %lu looks, "
 		        "%lu Jacobian-vector products, %.6f s\n",
-		        gd.rho_max, gd.rho_max > 0 ? 1 / gd.rho_max : INFINITY, eig_kind(&gd.last), rb, hb, gd.checks,
+		        gd.rho_max, gd.rho_max > 0 ? 1 / gd.rho_max : INFINITY, eig_kind(&gd.at_max), rb, hb, gd.checks,
 		        csf_spectrum_products(gd.sp), gd.seconds);
 	}
 	if (o->stats && r.g && !gd.checks)

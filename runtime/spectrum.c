@@ -180,7 +180,7 @@ int csf_spectrum_lowest_square(csf_spectrum *s, csf_jvp_fn f, void *ctx, double 
 	return st;
 }
 
-int csf_spectrum_ratio(csf_spectrum *s, csf_jvp_fn f, void *ctx, double *ratio, int *exact)
+int csf_spectrum_ratio(csf_spectrum *s, csf_jvp_fn f, void *ctx, double zero, double *ratio, int *exact)
 {
 	size_t n = s->n, m = n < ARNOLDI ? n : ARNOLDI, k;
 	double *Q = malloc((m + 1) * n * sizeof *Q), H[(ARNOLDI + 1) * ARNOLDI] = { 0 };
@@ -221,7 +221,7 @@ int csf_spectrum_ratio(csf_spectrum *s, csf_jvp_fn f, void *ctx, double *ratio, 
 			for (size_t i = 0; i < k; i++) big = fmax(big, gsl_complex_abs(gsl_vector_complex_get(ev, i)));
 			for (size_t i = 0; i < k; i++) {
 				double a = gsl_complex_abs(gsl_vector_complex_get(ev, i));
-				if (a > 1e-10 * big) small = fmin(small, a);
+				if (a > zero * big) small = fmin(small, a);
 			}
 			*ratio = big > 0 ? big / small : 0;
 			st = 0;

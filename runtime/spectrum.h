@@ -45,10 +45,13 @@ int csf_spectrum_lowest_square(csf_spectrum *s, csf_jvp_fn f, void *ctx, double 
  * The stiffness ratio: largest over smallest nonzero |eigenvalue|, from
  * the Ritz values of an Arnoldi process of min(n, 16) steps; *exact is
  * set when that spans the whole space (n <= 16: the ratio of J's
- * eigenvalues themselves), else the ratio is an estimate. 0 with *ratio
- * = 0 when every eigenvalue is zero; -1 when a product or memory failed.
+ * eigenvalues themselves), else the ratio is an estimate. An eigenvalue
+ * below zero times the largest counts as zero: rounding moves a zero
+ * eigenvalue of a Jordan block (free motion: x' = v, v' = 0) by about the
+ * square root of the products' relative error. 0 with *ratio = 0 when
+ * every eigenvalue is zero; -1 when a product or memory failed.
  */
-int csf_spectrum_ratio(csf_spectrum *s, csf_jvp_fn f, void *ctx, double *ratio, int *exact);
+int csf_spectrum_ratio(csf_spectrum *s, csf_jvp_fn f, void *ctx, double zero, double *ratio, int *exact);
 
 /* The products computed so far. */
 unsigned long csf_spectrum_products(const csf_spectrum *s);

@@ -5,6 +5,7 @@
 #    stable step match the exact solution;
 #  - the largest stable step reported is within 2 % of the analytic limit for each
 #    fixed-step method, on the imaginary axis (oscillator) and the real axis (decay);
+#    a real pair +-a limits rk4 by its decaying member and verlet not at all;
 #  - implicit methods are not limited;
 #  - a pendulum from near the top with verlet at 0.7 s halts when its swing makes the
 #    step unstable, not before (every row before is stable, the next step is not);
@@ -17,7 +18,7 @@ pass=0 fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 D=tests/stability
-for s in oscillator decay pendulum_top; do "$CSFC" $D/$s.csf -o "$T/st_$s.csfb" || bad "$s does not compile"; done
+for s in oscillator decay saddle pendulum_top; do "$CSFC" $D/$s.csf -o "$T/st_$s.csfb" || bad "$s does not compile"; done
 "$CSFC" tests/runtime/stiff_warning.csf -o "$T/st_stiff.csfb" || bad "stiff_warning does not compile"
 
 # run SCENE ARGS...: exit status in $st, stdout in $T/st.csv, stderr in $T/st.err
@@ -44,6 +45,13 @@ limit oscillator verlet 0.25
 limit oscillator rk2 0.21651
 limit decay rk4 0.27853
 limit decay rk2 0.25127
+# a real pair +-2: the decaying member limits rk4 (step 2 s, by 2 s); verlet is not limited
+run saddle --method rk4 --fixed --step 2
+got=$(sed -n 's/.*largest stable step \([0-9.e+-]*\) s.*/\1/p' "$T/st.err")
+if [ $st -eq 1 ] && awk -v g="$got" 'BEGIN { d = g / 1.3926 - 1; exit !(g != "" && d < 0.02 && d > -0.02) }'
+then ok; else bad "saddle rk4: largest stable step '$got', expected 1.3926 (exit $st: $(head -n 1 "$T/st.err"))"; fi
+run saddle --method verlet --step 2
+if [ $st -eq 0 ] && [ "$(rows)" -eq 3 ]; then ok; else bad "saddle verlet --step 2: exit $st, $(head -n 1 "$T/st.err")"; fi
 
 # 3. implicit methods are not limited; stable steps match the exact solution
 for m in rk4imp bsimp; do
