@@ -7,6 +7,7 @@
 #   make bench      benchmarks; results under bench/results, summary in bench/README.md
 #   make bench-peers  CSF beside SciPy's solve_ivp (installs python3-scipy: deps-peers)
 #   make install    PREFIX=/usr/local DESTDIR=
+#   make uninstall  the same PREFIX and DESTDIR: removes what install put there
 
 PREFIX ?= /usr/local
 DESTDIR ?=
@@ -123,11 +124,27 @@ install: all
 	install -m 644 stdlib/mechanics/*.csf $(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics/
 	install -m 644 man/csfc.1 man/csfvm.1 $(DESTDIR)$(PREFIX)/share/man/man1/
 	install -m 644 man/csf.5 $(DESTDIR)$(PREFIX)/share/man/man5/
+	install -d $(DESTDIR)$(PREFIX)/share/doc/csf/examples
+	install -m 644 examples/*.csf $(DESTDIR)$(PREFIX)/share/doc/csf/examples/
 	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig
 	printf '%s\n' 'prefix=$(PREFIX)' 'libdir=$${prefix}/lib' 'includedir=$${prefix}/include' '' \
 		'Name: csfrt' 'Description: CSF runtime library (integrator driver, loader, output) for generated models' \
 		'Version: 0.1.0' 'Requires.private: gsl' 'Cflags: -I$${includedir}/csf -ffp-contract=off' \
 		'Libs: -L$${libdir} -lcsfrt -lgsl -lgslcblas -lm' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/csfrt.pc
+
+# removes exactly what install put there (and the directories it made, when empty)
+uninstall:
+	rm -f $(DESTDIR)$(PREFIX)/bin/csfc $(DESTDIR)$(PREFIX)/bin/csfvm $(DESTDIR)$(PREFIX)/lib/libcsfrt.a \
+		$(DESTDIR)$(PREFIX)/lib/pkgconfig/csfrt.pc \
+		$(DESTDIR)$(PREFIX)/include/csf/csf.h $(DESTDIR)$(PREFIX)/include/csf/csf_ops.h \
+		$(DESTDIR)$(PREFIX)/include/csf/opcodes.def \
+		$(DESTDIR)$(PREFIX)/share/man/man1/csfc.1 $(DESTDIR)$(PREFIX)/share/man/man1/csfvm.1 \
+		$(DESTDIR)$(PREFIX)/share/man/man5/csf.5
+	rm -f $(addprefix $(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics/,$(notdir $(wildcard stdlib/mechanics/*.csf)))
+	rm -f $(addprefix $(DESTDIR)$(PREFIX)/share/doc/csf/examples/,$(notdir $(wildcard examples/*.csf)))
+	-rmdir $(DESTDIR)$(PREFIX)/include/csf $(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics \
+		$(DESTDIR)$(PREFIX)/share/csf/stdlib $(DESTDIR)$(PREFIX)/share/csf \
+		$(DESTDIR)$(PREFIX)/share/doc/csf/examples $(DESTDIR)$(PREFIX)/share/doc/csf 2>/dev/null
 
 bench: all
 	$(MAKE) -C bench BUILD=$(abspath $(BUILD))
@@ -138,4 +155,4 @@ bench-peers: all deps-peers
 clean:
 	rm -rf build build-san
 
-.PHONY: all deps deps-peers demo test check install bench bench-peers clean
+.PHONY: all deps deps-peers demo test check install uninstall bench bench-peers clean

@@ -18,6 +18,7 @@
 #define CSF_H
 
 #include <stdint.h>
+#include <signal.h>
 #include <stdio.h>
 
 #include "csf_ops.h"
@@ -267,6 +268,15 @@ long csf_contacts_find(csf_contacts *c, const double *m, const double *const *ys
  */
 void csf_contacts_commit(csf_contacts *c, const double *m, double *const *g, const double *const *gy, int ng);
 
+enum { CSF_PROGRESS_AUTO = 0, CSF_PROGRESS_ON = 1, CSF_PROGRESS_OFF = 2 };
+
+/*
+ * The signal (SIGINT, SIGTERM) that asked the run to end, 0 if none:
+ * csf_main's handlers set it; csf_run ends after the current row, with
+ * the --stats line, and returns 128 + the signal's number.
+ */
+extern volatile sig_atomic_t csf_signal;
+
 /* Run-time options, parsed identically by csfvm and generated executables. */
 typedef struct csf_opts {
 	const char *method; /* ODE stepper name, NULL for the default */
@@ -276,6 +286,7 @@ typedef struct csf_opts {
 	double hmax;        /* --hmax H: the longest internal step (<= 0: no cap but the run's length; by for
 	                       the methods that step to each output time) */
 	int stats;          /* --stats: a summary on stderr at the end */
+	int progress;       /* CSF_PROGRESS_AUTO (on a terminal), _ON (--progress), _OFF (--no-progress) */
 	int compare;        /* --compare-methods */
 	/* filled in by csf_run: */
 	unsigned long run_steps, run_rhs;

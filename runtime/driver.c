@@ -10,9 +10,11 @@
 #include <errno.h>
 #include <float.h>
 #include <math.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "csf.h"
 #include "ode.h"
@@ -34,15 +36,35 @@ void csf_fmt_double(char buf[32], double x)
 	}
 }
 
-/* The value of option name, argv[i], into *x: a positive finite number, or a usage error (-1). */
-static int positive(char **argv, int i, const char *name, const char *what, double *x)
+/* The value v of option name into *x: a positive finite number, or a usage error (-1). */
+static int positive(const char *prog, const char *v, const char *name, const char *what, double *x)
 {
 	char *end;
 	errno = 0;
-	*x = strtod(argv[i], &end);
-	if (*end || errno || !(*x > 0) || !isfinite(*x)) {
-		fprintf(stderr, "%s: %s needs a positive number%s, not '%s'\n", argv[0], name, what, argv[i]);
+	*x = strtod(v, &end);
+	if (end == v || *end || errno || !(*x > 0) || !isfinite(*x)) {
+		fprintf(stderr, "%s: %s needs a positive number%s, not '%s'\n", prog, name, what, v);
 		return -1;
+	}
+	return 0;
+}
+
+/*
+ * Is argv[*i] option name with a value, as "name VALUE" (the next
+ * argument, *i moves past it) or "name=VALUE"? The value into *val.
+ */
+static int opt_value(int argc, char **argv, int *i, const char *name, const char **val)
+{
+	const char *a = argv[*i];
+	size_t n = strlen(name);
+	if (strncmp(a, name, n) != 0) return 0;
+	if (a[n] == '=') {
+		*val = a + n + 1;
+		return 1;
+	}
+	if (a[n] == '\0' && *i + 1 < argc) {
+		*val = argv[++*i];
+		return 1;
 	}
 	return 0;
 }
@@ -53,7 +75,7 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 	memset(o, 0, sizeof *o);
 	*npos_out = 0;
 	for (int i = first; i < argc; i++) {
-		const char *a = argv[i];
+		const char *a = argv[i], *v;
 		if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
 			fputs(usage, stdout);
 			return 1;
@@ -61,8 +83,8 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 			const char *slash = strrchr(argv[0], '/');
 			printf("%s %s\n", slash ? slash + 1 : argv[0], CSF_VERSION_STRING);
 			return 1;
-		} else if (strcmp(a, "--method") == 0 && i + 1 < argc) {
-			o->method = argv[++i];
+		} else if (opt_value(argc, argv, &i, "--method", &v)) {
+			o->method = v;
 			int known = 0;
 			for (size_t k = 0; csf_method_name(k); k++) known |= strcmp(csf_method_name(k), o->method) == 0;
 			if (!known) {
@@ -71,17 +93,21 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 				fprintf(stderr, ")\n");
 				return 2;
 			}
-		} else if (strcmp(a, "--tol") == 0 && i + 1 < argc) {
-			if (positive(argv, ++i, "--tol", "", &o->tol)) return 2;
-		} else if (strcmp(a, "--step") == 0 && i + 1 < argc) {
-			if (positive(argv, ++i, "--step", " of seconds", &o->step)) return 2;
+		} else if (opt_value(argc, argv, &i, "--tol", &v)) {
+			if (positive(argv[0], v, "--tol", "", &o->tol)) return 2;
+		} else if (opt_value(argc, argv, &i, "--step", &v)) {
+			if (positive(argv[0], v, "--step", " of seconds", &o->step)) return 2;
 			o->fixed = 1;
-		} else if (strcmp(a, "--hmax") == 0 && i + 1 < argc) {
-			if (positive(argv, ++i, "--hmax", " of seconds", &o->hmax)) return 2;
+		} else if (opt_value(argc, argv, &i, "--hmax", &v)) {
+			if (positive(argv[0], v, "--hmax", " of seconds", &o->hmax)) return 2;
 		} else if (strcmp(a, "--fixed") == 0) {
 			o->fixed = 1;
 		} else if (strcmp(a, "--stats") == 0) {
 			o->stats = 1;
+		} else if (strcmp(a, "--progress") == 0) {
+			o->progress = CSF_PROGRESS_ON;
+		} else if (strcmp(a, "--no-progress") == 0) {
+			o->progress = CSF_PROGRESS_OFF;
 		} else if (strcmp(a, "--compare-methods") == 0) {
 			o->compare = 1;
 		} else if (a[0] == '-' && a[1] != '\0') {
@@ -125,7 +151,43 @@ typedef struct run {
 	unsigned long nchoices, ncand, maxcand; /* for --stats: the choices of candidates, their sum and largest */
 	int nomem; /* memory ran out */
 	struct guard *g; /* the stability guard, or NULL */
+	FILE *err;
+	int prog, shown;  /* the progress line: drawn, and on the screen now */
+	struct timespec start, drawn; /* when the run started, and the line was last drawn */
+	unsigned long rows; /* rows written */
 } run;
+
+volatile sig_atomic_t csf_signal;
+
+/*
+ * The progress line (a terminal's stderr, or --progress): "t = T of TILL s
+ * (P %), R rows/s, ETA E s", redrawn in place at most 10 times a second,
+ * the first time after 0.1 s (a short run shows none).
+ */
+static void progress(run *r, double t)
+{
+	struct timespec now;
+	clock_gettime(CLOCK_MONOTONIC, &now);
+	if ((double)(now.tv_sec - r->drawn.tv_sec) + 1e-9 * (double)(now.tv_nsec - r->drawn.tv_nsec) < 0.1) return;
+	r->drawn = now;
+	double el = (double)(now.tv_sec - r->start.tv_sec) + 1e-9 * (double)(now.tv_nsec - r->start.tv_nsec);
+	double frac = r->tend > 0 ? fmin(1, t / r->tend) : 1;
+	char eta[48] = "";
+	if (frac > 0 && frac < 1) snprintf(eta, sizeof eta, ", ETA %.0f s", el * (1 - frac) / frac);
+	fprintf(r->err, "\r\033[Kt = %.4g of %g s (%.0f %%), %.0f rows/s%s", t, r->tend, 100 * frac,
+	        (double)r->rows / el, eta);
+	fflush(r->err);
+	r->shown = 1;
+}
+
+/* Erases the progress line, before a message or at the end. */
+static void progress_off(run *r)
+{
+	if (!r->shown) return;
+	fputs("\r\033[K", r->err);
+	fflush(r->err);
+	r->shown = 0;
+}
 
 static int rhs(double t, const double *y, double *dydt, void *ctx)
 {
@@ -277,10 +339,17 @@ static int write_row(const csf_prog *p, const double *m, double t, FILE *out)
 	return ferror(out) ? -1 : 0;
 }
 
-static int finish(FILE *out, FILE *err, int status)
+/*
+ * Flushes out: its error (werr, from a row, or fflush's) is reported with
+ * status 2, but for a reader that went away (EPIPE: `csfvm ... | head`),
+ * which ends the run quietly as it ends cat, with the status of SIGPIPE.
+ */
+static int finish(FILE *out, FILE *err, int status, int werr)
 {
 	if (fflush(out) != 0 || ferror(out)) {
-		fprintf(err, "error: cannot write output: %s\n", strerror(errno));
+		int e = werr ? werr : errno;
+		if (e == EPIPE) return 128 + SIGPIPE;
+		fprintf(err, "error: cannot write output: %s\n", strerror(e));
 		return 2;
 	}
 	return status;
@@ -751,6 +820,7 @@ static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h
 			g->smin = fmin(sr, si) * e.rho;
 		}
 		if (g->check_step && hc >= hs * (1 - 1e-6)) { /* at the limit nothing decays: refused too */
+			progress_off(r);
 			char hb[32], tb[32], why[96] = "", tolb[64] = "";
 			snprintf(hb, sizeof hb, "%.3g", hc);
 			csf_fmt_double(tb, t);
@@ -782,6 +852,7 @@ static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h
 		}
 		char more[32];
 		fmt_ratio(more, (r->tend - t) / h);
+		progress_off(r);
 		fprintf(g->err,
 		        "warning: at t=%s, after %lu steps, the problem looks stiff: the explicit method %s is held to steps "
 		        "of %.3g s by its stability (fastest time scale %.3g s%s) and needs some %s more; an implicit method "
@@ -810,11 +881,14 @@ out:
 
 typedef struct watch_ctx { run *r; csf_ode *ode; } watch_ctx;
 
-/* After every step: a look when one is due (csf_watch_fn). */
-static int guard_watch(void *ctx, double t, const double *y, double h)
+/* After every step (csf_watch_fn): a signal halts the run; the progress line; a look when one is due. */
+static int step_watch(void *ctx, double t, const double *y, double h)
 {
 	watch_ctx *w = ctx;
+	if (csf_signal) return 1;
+	if (w->r->prog) progress(w->r, t);
 	guard *g = w->r->g;
+	if (!g) return 0;
 	g->steps++;
 	if (g->fixed ? g->steps < g->next_step && !g->due : guard_evals(w->r) < g->next) return 0;
 	return guard_check(w->r, w->ode, t, y, h);
@@ -1042,8 +1116,11 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	struct timespec t0, t1;
 	clock_gettime(CLOCK_MONOTONIC, &t0);
 	csf_ode *ode = NULL;
-	int status = 0;
+	int status = 0, werr = 0;
 	char msg[256];
+	r.err = err;
+	r.start = r.drawn = t0;
+	r.prog = o->progress == CSF_PROGRESS_ON || (o->progress == CSF_PROGRESS_AUTO && isatty(fileno(err)));
 
 	r.m = malloc((p->nmem ? p->nmem : 1) * sizeof(double));
 	y = malloc((p->ny ? p->ny : 1) * sizeof(double));
@@ -1132,8 +1209,10 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		gd.span = r.tend;
 		gd.h = p->by / ceil(p->by / fixed_h * (1 - 1e-12)); /* the step a row's interval is cut into */
 		r.g = &gd;
+	}
+	if (ode) {
 		wc.ode = ode;
-		csf_ode_watch(ode, guard_watch, &wc);
+		csf_ode_watch(ode, step_watch, &wc);
 	}
 	/* a train of bounces that would end within zeno is at rest; the integrator's accuracy (contact.c) */
 	r.zeno = 1e-6 * p->by;
@@ -1181,6 +1260,8 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	double t = 0;
 	for (double k = 0; k <= kmax; k++) {
 		double tk = k * p->by;
+		if (csf_signal) break; /* after the last whole row */
+		if (r.prog) progress(&r, t);
 		if (ode && tk > t) {
 			unsigned long before, rej;
 			csf_ode_stats(ode, &before, &rej);
@@ -1190,6 +1271,8 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			                  : advance_plain(&r, ode, &t, tk, y, msg, sizeof msg);
 			unsigned long after;
 			csf_ode_stats(ode, &after, &rej);
+			if (st == CSF_ODE_HALTED && csf_signal) break;
+			if (st != CSF_ODE_OK) progress_off(&r);
 			if (!fixed && !warned && !gd.warned && csf_ode_explicit(ode) && after - before > 10000 &&
 			    st != TOO_MUCH) {
 				char tb[32];
@@ -1260,6 +1343,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		memcpy(r.m + p->ystart, y, p->ny * sizeof(double));
 		int a = exec(p, CSF_SEC_OUT, r.m, r.m + p->ystart, r.m + p->dstart);
 		if (a >= 0) {
+			progress_off(&r);
 			const csf_src *s = &p->srcs[p->asserts[a].src];
 			char tb[32];
 			csf_fmt_double(tb, tk);
@@ -1272,14 +1356,21 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		for (uint32_t i = 0; i < p->ny; i++) bad |= !isfinite(r.m[p->ystart + i]);
 		for (uint32_t i = 0; i < p->ncols; i++) bad |= !isfinite(r.m[p->cols[i].slot]);
 		if (bad) {
+			progress_off(&r);
 			csf_vm_exec(p, CSF_SEC_OUT, r.m, r.m + p->ystart, r.m + p->dstart); /* every value, for the report */
 			report_nonfinite(p, CSF_SEC_OUT, r.m, tk, "a watched or state value", o->fixed, err);
 			status = 1;
 			goto done;
 		}
-		if (write_row(p, r.m, tk, out)) break;
+		if (write_row(p, r.m, tk, out)) {
+			werr = errno;
+			break;
+		}
+		r.rows++;
 	}
+	if (csf_signal && !status) status = 128 + csf_signal;
 done:
+	progress_off(&r);
 	clock_gettime(CLOCK_MONOTONIC, &t1);
 	{
 		unsigned long steps = 0, rejected = 0;
@@ -1337,5 +1428,5 @@ done:
 	free(y);
 	free(r.yi);
 	free(r.m);
-	return finish(out, err, status);
+	return finish(out, err, status, werr);
 }

@@ -14,7 +14,7 @@
 #include "csf.h"
 
 static const char vm_usage[] =
-	"usage: csfvm [--method NAME] [--tol EPS] MODEL.csfb\n"
+	"usage: csfvm [--method NAME] [--tol EPS] MODEL.csfb  (- reads standard input)\n"
 	"Runs a compiled CSF model and writes its watched variables as CSV on stdout.\n"
 	"  --method NAME  ODE stepper: dop853 (default), dopri5, rk8pd, rk2, rk4, rkf45, rkck,\n"
 	"                 msadams; implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp,\n"
@@ -27,6 +27,7 @@ static const char vm_usage[] =
 	"                 past the method's stability limit for the scene is refused\n"
 	"  --step H       fixed internal steps of at most H seconds\n"
 	"  --stats        steps, evaluations, time and the fastest time scale on stderr\n"
+	"  --progress, --no-progress  a progress line on stderr (default: on a terminal)\n"
 	"  --compare-methods  run the scene with every method and several tolerances;\n"
 	"                 print time and the difference from the most accurate run\n"
 	"  --help, --version\n";
@@ -39,12 +40,14 @@ static const char exe_usage[] =
 	"                 bsimp, msbdf; symplectic, fixed steps (--step): verlet\n"
 	"  --tol EPS      local error bound per internal step (default 1e-12 for dop853,\n"
 	"                 1e-10 for the others)\n"
-	"  --hmax H, --fixed, --step H, --stats, --compare-methods: as csfvm(1)\n"
+	"  --hmax H, --fixed, --step H, --stats, --progress, --no-progress,\n"
+	"  --compare-methods: as csfvm(1)\n"
 	"  --help, --version\n";
 
 unsigned char *csf_read_file(const char *path, size_t *len)
 {
-	FILE *f = fopen(path, "rb");
+	int in = strcmp(path, "-") == 0;
+	FILE *f = in ? stdin : fopen(path, "rb");
 	if (!f) return NULL;
 	size_t cap = 1 << 16, n = 0;
 	unsigned char *buf = malloc(cap);
@@ -57,7 +60,7 @@ unsigned char *csf_read_file(const char *path, size_t *len)
 	}
 	int bad = !buf || ferror(f);
 	int e = errno;
-	fclose(f);
+	if (!in) fclose(f);
 	if (bad) {
 		free(buf);
 		errno = e ? e : EIO;
@@ -65,6 +68,18 @@ unsigned char *csf_read_file(const char *path, size_t *len)
 	}
 	*len = n;
 	return buf;
+}
+
+/* SIGINT, SIGTERM: csf_run ends after the current row (csf_signal). */
+static void on_signal(int sig) { csf_signal = sig; }
+
+/* Text (no NUL or other control bytes but white space in the first 4 KiB), as a .csf file is. */
+static int looks_like_source(const unsigned char *b, size_t len)
+{
+	if (!b || len == 0) return 0;
+	for (size_t i = 0; i < len && i < 4096; i++)
+		if (b[i] < 0x20 && b[i] != '\n' && b[i] != '\t' && b[i] != '\r') return 0;
+	return 1;
 }
 
 int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len, csf_exec_fn exec)
@@ -93,13 +108,29 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 	csf_prog p;
 	char err[256];
 	if (csf_decode(image ? image : buf, len, &p, err, sizeof err)) {
-		fprintf(stderr, "%s: %s: invalid bytecode: %s\n", image ? argv[0] : "csfvm", path, err);
+		const char *name = strcmp(path, "-") == 0 ? "standard input" : path;
+		fprintf(stderr, "%s: %s: invalid bytecode: %s\n", image ? argv[0] : "csfvm", name, err);
+		if (!image && looks_like_source(buf, len))
+			fprintf(stderr, "csfvm: hint: %s looks like CSF source; compile it with csfc first: csfc %s -o MODEL.csfb\n",
+			        name, strcmp(path, "-") == 0 ? "-" : path);
 		free(buf);
 		return 2;
 	}
 	free(buf);
+	/* a write to a closed pipe is an error csf_run sees (EPIPE), and ends quietly */
 	signal(SIGPIPE, SIG_IGN);
+	struct sigaction sa;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = on_signal;
+	sa.sa_flags = SA_RESTART;
+	sigemptyset(&sa.sa_mask);
+	sigaction(SIGINT, &sa, NULL);
+	sigaction(SIGTERM, &sa, NULL);
 	st = o.compare ? csf_compare_methods(&p, exec, stdout, stderr) : csf_run(&p, exec, &o, stdout, stderr);
 	csf_prog_free(&p);
+	if (st == 128 + SIGPIPE) { /* as cat: killed by the signal the closed pipe sent */
+		signal(SIGPIPE, SIG_DFL);
+		raise(SIGPIPE);
+	}
 	return st;
 }
