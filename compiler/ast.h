@@ -49,7 +49,7 @@ struct Eqn {
 typedef struct ObjRef { Loc loc; char *name; int index; } ObjRef; /* name, or index >= 0 */
 typedef struct WatchItem { Loc loc; char *obj; char *prop; } WatchItem; /* obj may be NULL */
 
-typedef enum StmtKind { S_GLOBAL, S_PROP, S_OBJKIND, S_DEF, S_VECDECL, S_RULE, S_ASSERT, S_START } StmtKind;
+typedef enum StmtKind { S_GLOBAL, S_PROP, S_OBJKIND, S_DEF, S_VECDECL, S_RULE, S_ASSERT, S_STOP, S_START } StmtKind;
 
 typedef struct Stmt Stmt;
 struct Stmt {

@@ -394,6 +394,14 @@ static void emit_body(Gen *G, Inst *I)
 		emit_op(G, CSF_OP_ASSERT, c, csf_rel((uint32_t)I->assert_index, G->loop ? 1 : 0), 0, 0);
 		return;
 	}
+	if (I->isstop) { /* its comparison as an event of the RHS, marked terminal */
+		uint32_t first = G->nevents;
+		G->evinst = I;
+		emit(G, I->cond);
+		G->evinst = NULL;
+		for (uint32_t k = first; k < G->nevents; k++) G->events[k].kind |= CSF_EVENT_TERMINAL;
+		return;
+	}
 	if (I->isderiv) {
 		Assign *a = I->then.v[0];
 		emit_into(G, a->e, var_operand(G, a->var, 0) + (G->p->dstart - G->p->ystart));
@@ -450,7 +458,7 @@ static void emit_inst(Gen *G, Inst *I)
 		G->code[top[l] + 3] = pc(G);
 	}
 	G->loop = 0;
-	if (I->isassert) return;
+	if (I->isassert || I->isstop) return;
 	if (I->isderiv) {
 		Var *v = ((Assign *)I->then.v[0])->var;
 		add_targets(G, I, v, G->p->dstart + (var_slot(G, v) - G->p->ystart), (uint32_t)I->src, xprintf("%s'", v->name));
@@ -896,7 +904,7 @@ int gen_program(Model *M, csf_prog *p)
 	/* What is needed: derivatives for RHS; watches and assertions for OUT. */
 	for (int i = 0; i < M->insts.n; i++) {
 		Inst *I = M->insts.v[i];
-		if (I->isderiv) mark(G, I, CSF_SEC_RHS);
+		if (I->isderiv || I->isstop) mark(G, I, CSF_SEC_RHS);
 		if (I->isassert) mark(G, I, CSF_SEC_OUT);
 	}
 	for (int i = 0; i < M->cols.n; i++) {

@@ -129,6 +129,7 @@ static void yyerror(YYLoc *l, Parser *P, const char *msg);
 %token <str> PROTECTED "protected name"
 %token USING "'using'"
 %token OBJECT "'object'" DEF "'def'" GLOBAL "'global'" RULE "'rule'" FOR "'for'"
+%token STOP "'stop'" WHEN "'when'"
 %token IF "'if'" ELSE "'else'" ASSERT "'assert'" VECTOR "'vector'" INC "'inc'"
 %token TILL "'till'" BY "'by'" WATCH "'watch'" AND "'and'" OR "'or'" NOT "'not'"
 %token EQEQ "'=='" NE "'!='" LE "'<='" GE "'>='"
@@ -197,6 +198,9 @@ stmt:
 	}
 	| ASSERT expr {
 		$$ = stmt(S_ASSERT, @$); $$->cond = $2; $$->text = text_from(LOC(@2));
+	}
+	| STOP WHEN expr {
+		$$ = stmt(S_STOP, @$); $$->cond = $3; $$->text = text_from(LOC(@3));
 	}
 	| INC IDENT till by {
 		$$ = stmt(S_START, @$); $$->var = $2; $$->name_loc = LOC(@2); $$->till = $3; $$->by = $4;

@@ -1008,8 +1008,9 @@ static int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 			for (int j = 1; j <= k; j++) T.cur[j] = M->objects.v[nobj - 1 - k + j - 1];
 			stmt_applies(s, T.cur, k + 1, &missing);
 		}
-		if (missing) error_at(s->loc, "this %s applies to no object: none has '%s'", s->kind == S_ASSERT ? "assertion" : "rule", missing);
-		else error_at(s->loc, "this %s applies to no object", s->kind == S_ASSERT ? "assertion" : "rule");
+		const char *what = s->kind == S_ASSERT ? "assertion" : s->kind == S_STOP ? "stop condition" : "rule";
+		if (missing) error_at(s->loc, "this %s applies to no object: none has '%s'", what, missing);
+		else error_at(s->loc, "this %s applies to no object", what);
 		return -1;
 	}
 	return T.count;
@@ -1758,6 +1759,27 @@ static void inst_assert(Stmt *s, Object **bind, int nbind)
 	vec_push(cur_insts, I);
 }
 
+/*
+ * stop when COND: a terminal event. COND is one comparison, located in
+ * time like a conditional rule's; its instance is computed in RHS (where
+ * the runtime reads the guards), never in OUT.
+ */
+static void inst_stop(Stmt *s, Object **bind, int nbind)
+{
+	Inst *I = new_inst(s, bind, nbind);
+	I->isstop = 1;
+	I->src = cur_src;
+	I->cond = build_cond(I, s->cond, "a stop condition");
+	if (!I->cond) return;
+	int op = I->cond->k == R_OP ? I->cond->op : -1;
+	if (op != CSF_OP_LT && op != CSF_OP_LE && op != CSF_OP_GT && op != CSF_OP_GE) {
+		error_at(s->cond->loc, "a stop condition must be one comparison (<, <=, > or >=), located in time as it "
+		                       "becomes true (for 'A or B', write 'stop when A' and 'stop when B')");
+		return;
+	}
+	vec_push(cur_insts, I);
+}
+
 /* ---- the watch list ---- */
 
 static void add_col(Var *v, const char *label, int member)
@@ -1859,7 +1881,8 @@ static void check_sections(Stmt *stmts)
 	int section = 0; /* 0 objects, 1 rules, 2 start */
 	Stmt *start = NULL;
 	for (Stmt *s = stmts; s; s = s->next) {
-		int sec = s->kind == S_START ? 2 : (s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_VECDECL) ? 1 : 0;
+		int sec = s->kind == S_START ? 2
+		          : (s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_STOP || s->kind == S_VECDECL) ? 1 : 0;
 		if (start) {
 			error_at(s->loc, "the start directive ('inc ...') must be the last statement");
 			note_at(start->loc, "start directive here");
@@ -1891,7 +1914,7 @@ static Model *resolve(Stmt *stmts)
 		if (s->kind == S_START) start = s;
 		if (s->kind == S_VECDECL)
 			for (int i = 0; i < s->names.n; i++) map_put(&vector_decls, s->names.v[i], s);
-		if (s->kind == S_RULE || s->kind == S_ASSERT) vec_push(&M->stmts, s);
+		if (s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_STOP) vec_push(&M->stmts, s);
 		if (s->kind == S_RULE) vec_push(&rules, s);
 	}
 	if (!start) {
@@ -1957,9 +1980,9 @@ static Model *resolve(Stmt *stmts)
 	}
 	for (int i = 0; i < M->stmts.n; i++) {
 		Stmt *s = M->stmts.v[i];
-		if (s->kind != S_ASSERT) continue;
+		if (s->kind != S_ASSERT && s->kind != S_STOP) continue;
 		cur_src = add_src(s->loc, s->text);
-		for_each_binding(s, inst_assert);
+		for_each_binding(s, s->kind == S_STOP ? inst_stop : inst_assert);
 	}
 	build_watch(start);
 	/* by shape, a temporary of a pair lives for one iteration of its rule's loop */
@@ -2012,7 +2035,8 @@ void sema_explain(Model *Mo, FILE *f)
 	for (int i = 0; i < Mo->stmts.n; i++) {
 		Stmt *s = Mo->stmts.v[i];
 		Source *src = sources.v[s->loc.file];
-		fprintf(f, "%s:%d: %s%s\n", src->path, s->loc.line, s->kind == S_ASSERT ? "assert " : "", s->text);
+		fprintf(f, "%s:%d: %s%s\n", src->path, s->loc.line,
+		        s->kind == S_ASSERT ? "assert " : s->kind == S_STOP ? "stop when " : "", s->text);
 		int n = 0;
 		for (int k = 0; k < Mo->insts.n; k++) {
 			Inst *I = Mo->insts.v[k];
@@ -2030,9 +2054,10 @@ void sema_explain(Model *Mo, FILE *f)
 				else fprintf(f, "%s%s", b == 1 ? " with " : ", ", o->name);
 			}
 			if (I->isassert) fprintf(f, ": checked at every output step");
+			else if (I->isstop) fprintf(f, ": ends the run at the instant it becomes true (a terminal event)");
 			else fprintf(f, ": %s%s", I->isderiv ? "" : "solves for ", I->why ? I->why : "?");
-			if (!I->isassert && !I->needed[0] && !I->needed[1]) fprintf(f, "; left out: nothing needs it");
-			else if (!I->isassert)
+			if (!I->isassert && !I->isstop && !I->needed[0] && !I->needed[1]) fprintf(f, "; left out: nothing needs it");
+			else if (!I->isassert && !I->isstop)
 				fprintf(f, "; computed in %s", I->needed[0] && I->needed[1] ? "rhs and out" : I->needed[0] ? "rhs" : "out");
 			fputc('\n', f);
 		}

@@ -92,7 +92,7 @@ struct Inst {
 	Stmt *st;
 	Object **bind;   /* $0, $1, ... */
 	int nbind;
-	int isassert, isderiv, isF;
+	int isassert, isstop, isderiv, isF;
 	RExpr *cond;     /* conditional rule or assertion */
 	Vec then, els;   /* of Assign*: the branches (a plain rule uses then) */
 	Vec targets;     /* of Var*: every variable it determines (union of branches) */

@@ -570,7 +570,7 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 	}
 	for (uint32_t i = 0; i < p->nevents; i++) {
 		const csf_event *e = &p->events[i];
-		if (e->kind > 1 || !slot_ok(p, e->value, 1) || !slot_ok(p, e->mode, 1) || e->src >= p->nsrcs)
+		if (e->kind > (1 | CSF_EVENT_TERMINAL) || !slot_ok(p, e->value, 1) || !slot_ok(p, e->mode, 1) || e->src >= p->nsrcs)
 			return fail(err, errlen, "event %lu out of range", (unsigned long)i);
 	}
 	if (verify_contacts(p, err, errlen)) return -1;

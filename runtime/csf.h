@@ -99,6 +99,8 @@ typedef struct csf_line { uint32_t pc, src; } csf_line;
  * before the first evaluation) and switches it only at the located crossing.
  */
 typedef struct csf_event { uint32_t kind, value, mode, src; } csf_event;
+/* kind | CSF_EVENT_TERMINAL: a 'stop when' condition, which ends the run at its crossing */
+#define CSF_EVENT_TERMINAL 2u
 
 /*
  * The contact routine's tables (mechanics/rules, rules 1 to 4; contact.c).

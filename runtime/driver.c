@@ -150,6 +150,9 @@ typedef struct run {
 	csf_contacts *cs; /* with contacts: the candidate pairs (contact.c) */
 	unsigned long nchoices, ncand, maxcand; /* for --stats: the choices of candidates, their sum and largest */
 	int nomem; /* memory ran out */
+	double stop_t; /* a 'stop when' condition ended the run at stop_t: the statement stop_src's */
+	uint32_t stop_src;
+	int stopped;
 	struct guard *g; /* the stability guard, or NULL */
 	FILE *err;
 	int prog, shown;  /* the progress line: drawn, and on the screen now */
@@ -363,7 +366,7 @@ static int finish(FILE *out, FILE *err, int status, int werr)
  * both advances: more than MAX_WORK steps (and events) in one output
  * interval (TOO_MUCH), a run that cannot get on, halted instead of hanging.
  */
-enum { CHATTER = 10, TOO_MUCH = 11, MAX_WORK = 1000000 };
+enum { CHATTER = 10, TOO_MUCH = 11, TERMINAL = 12, MAX_WORK = 1000000 };
 
 /*
  * A guard is a continuous function of t and the state that is >= 0 while
@@ -408,7 +411,7 @@ static void free_modes(run *r, double t, const double *y)
 	for (uint32_t i = 0; i < p->nevents; i++) {
 		const csf_event *e = &p->events[i];
 		double v = r->m[e->value];
-		r->m[e->mode] = (e->kind ? v >= 0 : v > 0) ? 1 : 0;
+		r->m[e->mode] = (e->kind & 1 ? v >= 0 : v > 0) ? 1 : 0;
 	}
 }
 
@@ -894,14 +897,34 @@ static int step_watch(void *ctx, double t, const double *y, double h)
 	return guard_check(w->r, w->ode, t, y, h);
 }
 
+/* After the modes were set at t from scratch: a 'stop when' condition already true ends the run there. */
+static void stop_now(run *r, double t)
+{
+	const csf_prog *p = r->p;
+	for (uint32_t i = 0; i < p->nevents && !r->stopped; i++)
+		if (p->events[i].kind & CSF_EVENT_TERMINAL && r->m[p->events[i].mode] > 0)
+			r->stopped = 1, r->stop_t = t, r->stop_src = p->events[i].src;
+}
+
+/*
+ * Takes the event r->last at (t, y): the modes brought up to date, the
+ * integrator restarted. A 'stop when' condition's ends the run instead:
+ * TERMINAL, with its time in r->stop_t. 0, or CSF_ODE_STOPPED when a
+ * derivative is not finite.
+ */
 static int take_event(run *r, csf_ode *ode, double t, double *y)
 {
 	r->nevents++;
 	r->pending = 0;
+	if (r->last >= 0 && r->last < (long)r->p->nevents && r->p->events[r->last].kind & CSF_EVENT_TERMINAL) {
+		r->stop_src = r->last_src;
+		r->stop_t = t;
+		return TERMINAL;
+	}
 	if (r->g) r->g->due = 1; /* the scene may have changed: with fixed steps, look after the next one */
-	if (update_modes(r, t, y)) return 1;
+	if (update_modes(r, t, y)) return CSF_ODE_STOPPED;
 	csf_ode_restart(ode);
-	if (guards_at(r, t, y, r->ga)) return 1;
+	if (guards_at(r, t, y, r->ga)) return CSF_ODE_STOPPED;
 	memcpy(r->fa, r->fs, r->p->ny * sizeof *r->fa);
 	return 0;
 }
@@ -1025,13 +1048,14 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 	const csf_prog *p = r->p;
 	size_t n = p->ny;
 	unsigned long same = 0, work = 0;
-	if (r->pending && take_event(r, ode, *t, y)) return CSF_ODE_STOPPED;
+	int st;
+	if (r->pending && (st = take_event(r, ode, *t, y))) return st;
 	while (*t < t1) {
 		double ta = *t, best;
 		long which;
 		if (++work > MAX_WORK) return TOO_MUCH;
 		memcpy(r->ya, y, n * sizeof *y);
-		int st = csf_ode_step(ode, t, t1, fixed, h, y, msg, msglen);
+		st = csf_ode_step(ode, t, t1, fixed, h, y, msg, msglen);
 		if (st != CSF_ODE_OK) return st;
 		r->last_h = *t - ta;
 		if ((st = step_events(r, ode, ta, *t, y, &best, &which, msg, msglen))) return st;
@@ -1046,7 +1070,7 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 			r->pending = 1;
 			return CSF_ODE_OK;
 		}
-		if (take_event(r, ode, best, y)) return CSF_ODE_STOPPED;
+		if ((st = take_event(r, ode, best, y))) return st;
 		if ((st = chatter(&same, ta, best, msg, msglen))) return st;
 	}
 	return CSF_ODE_OK;
@@ -1075,9 +1099,13 @@ static int advance_dense(run *r, csf_ode *ode, double tk, double *y, char *msg, 
 		double ta = r->ti, te;
 		long which;
 		if (++work > MAX_WORK) return TOO_MUCH;
-		if (r->pending && take_event(r, ode, r->ti, r->yi)) return CSF_ODE_STOPPED;
+		int st;
+		if (r->pending && (st = take_event(r, ode, r->ti, r->yi))) {
+			if (st == TERMINAL) memcpy(y, r->yi, n * sizeof *y);
+			return st;
+		}
 		if (events) memcpy(r->ya, r->yi, n * sizeof *y);
-		int st = csf_ode_step(ode, &r->ti, r->tend, 0, 0, r->yi, msg, msglen);
+		st = csf_ode_step(ode, &r->ti, r->tend, 0, 0, r->yi, msg, msglen);
 		if (st == CSF_ODE_STOPPED && r->ti < tk) {
 			/* a derivative not finite within the step: step to the row instead, so that every row
 			   before the failure is written (the step from the row on fails again) */
@@ -1230,6 +1258,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			goto done;
 		}
 		memcpy(r.fa, r.fs, p->ny * sizeof *r.fa);
+		stop_now(&r, 0); /* a 'stop when' condition true at the start: the row at t = 0 is the last */
 	}
 	r.dense = ode && !fixed && csf_ode_dense(ode);
 	if (r.dense) { /* the integrator's own state, apart from the rows' */
@@ -1263,6 +1292,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		if (csf_signal) break; /* after the last whole row */
 		if (r.prog) progress(&r, t);
 		if (ode && tk > t) {
+			double trow = t; /* the last row's time */
 			unsigned long before, rej;
 			csf_ode_stats(ode, &before, &rej);
 			int st = r.dense  ? advance_dense(&r, ode, tk, y, msg, sizeof msg)
@@ -1272,6 +1302,12 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			unsigned long after;
 			csf_ode_stats(ode, &after, &rej);
 			if (st == CSF_ODE_HALTED && csf_signal) break;
+			if (st == TERMINAL) { /* a 'stop when' condition: the last row at its instant */
+				r.stopped = 1;
+				if (r.stop_t <= trow) break; /* at the last row's time: that row was the last */
+				tk = r.stop_t;
+				st = CSF_ODE_OK;
+			}
 			if (st != CSF_ODE_OK) progress_off(&r);
 			if (!fixed && !warned && !gd.warned && csf_ode_explicit(ode) && after - before > 10000 &&
 			    st != TOO_MUCH) {
@@ -1338,7 +1374,10 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			}
 		}
 		t = tk;
-		if (events && !ode) free_modes(&r, tk, y); /* no state: the conditions depend on t alone */
+		if (events && !ode) { /* no state: the conditions depend on t alone, and are looked at on the rows */
+			free_modes(&r, tk, y);
+			stop_now(&r, tk);
+		}
 		r.m[p->tslot] = tk;
 		memcpy(r.m + p->ystart, y, p->ny * sizeof(double));
 		int a = exec(p, CSF_SEC_OUT, r.m, r.m + p->ystart, r.m + p->dstart);
@@ -1367,6 +1406,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			break;
 		}
 		r.rows++;
+		if (r.stopped) break;
 	}
 	if (csf_signal && !status) status = 128 + csf_signal;
 done:
@@ -1411,6 +1451,13 @@ done:
 		        "%lu Jacobian-vector products, %.6f s\n",
 		        gd.rho_max, gd.rho_max > 0 ? 1 / gd.rho_max : INFINITY, eig_kind(&gd.at_max), rb, hb, gd.checks,
 		        csf_spectrum_products(gd.sp), gd.seconds);
+	}
+	if (o->stats && r.stopped) {
+		char tb[32];
+		csf_fmt_double(tb, r.stop_t);
+		const csf_src *s = &p->srcs[r.stop_src];
+		fprintf(err, "stats: stopped at t=%s by %s:%lu: stop when %s\n", tb, csf_str(p, p->files[s->file]),
+		        (unsigned long)s->line, csf_str(p, s->text));
 	}
 	if (o->stats && r.g && !gd.checks)
 		fprintf(err, "stats: stability: not looked at (the run ended before its first look, after %.0f evaluations)\n",

@@ -282,7 +282,7 @@ START_TEST(test_contact_tables_verified)
 		{ &ru->first0, 0xFFFFFFFFu, "contact rule" },       /* and one that wraps */
 		{ &ru->n0, 0, "contact rule" },                     /* `for`: not one $0 for each $1 */
 		{ &p.events[0].mode, p.nmem, "event" },
-		{ &p.events[0].kind, 2, "event" },
+		{ &p.events[0].kind, 4, "event" }, /* 0 to 3: strict or not, terminal or not */
 	};
 	/* n0 = 0 is fine for a rule without `for`: the n0 defect is checked with every = 0 */
 	expect_defects(&p, d, sizeof d / sizeof d[0] - 3);
