@@ -1,7 +1,8 @@
 # CSF - build, test, install.
 #
-#   make            build build/csfc, build/csfvm, build/libcsfrt.a
+#   make            build build/csfc, build/csfvm, build/libcsfrt.a, build/csfview
 #   make deps       install missing Debian packages (apt-get, as root)
+#   make deps-chromium  headless Chromium, only for the browser test of csfview
 #   make demo       deps + build + compile and run an example
 #   make check      every test, then the whole suite again under ASan/UBSan
 #   make bench      benchmarks; results under bench/results, summary in bench/README.md
@@ -16,7 +17,12 @@ CC ?= cc
 CFLAGS ?= -O2 -g
 SAN ?=
 
-DEB_PACKAGES = gcc make libgsl-dev check re2c bison pkg-config gnuplot-nox
+DEB_PACKAGES = gcc make libgsl-dev check re2c bison pkg-config gnuplot-nox $(VIEW_PACKAGES)
+# what csfview needs at run time: the JavaScript it inlines into its pages
+# (gnuplot-nox, for its static plots, is above)
+VIEW_PACKAGES = libjs-three libjs-dygraphs
+# only for the browser test of csfview's page (tests/view/check.sh skips without it)
+CHROMIUM_PACKAGES = chromium
 PEER_PACKAGES = python3-scipy
 , := ,
 SANFLAGS = $(if $(SAN),-fsanitize=address$(,)undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
@@ -31,7 +37,7 @@ CC_SRC = compiler/util.c compiler/units.c compiler/layout.c compiler/sema.c comp
 CC_GEN = $(BUILD)/lex.c $(BUILD)/parse.c
 CC_OBJ = $(CC_SRC:compiler/%.c=$(BUILD)/cc/%.o) $(BUILD)/cc/lex.o $(BUILD)/cc/parse.o
 
-all: $(BUILD)/csfc $(BUILD)/csfvm $(BUILD)/libcsfrt.a
+all: $(BUILD)/csfc $(BUILD)/csfvm $(BUILD)/libcsfrt.a $(BUILD)/csfview
 
 $(BUILD)/rt/%.o: runtime/%.c runtime/*.h runtime/opcodes.def
 	@mkdir -p $(@D)
@@ -66,6 +72,11 @@ $(BUILD)/csfvm: $(BUILD)/rt/csfvm.o $(BUILD)/libcsfrt.a
 $(BUILD)/rt/csfvm.o: runtime/csfvm.c runtime/*.h runtime/opcodes.def
 	@mkdir -p $(@D)
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
+
+# csfview, a shell script: the in-tree copy reads its page template from viewer/
+$(BUILD)/csfview: viewer/csfview.sh
+	@mkdir -p $(@D)
+	sed 's|@VIEWDIR@|$(CURDIR)/viewer|' $< >$@.tmp && chmod 755 $@.tmp && mv $@.tmp $@
 
 # ---- tests ----
 
@@ -110,19 +121,33 @@ deps:
 deps-peers:
 	@$(call deb_install,deps-peers,$(PEER_PACKAGES))
 
+# csfview's run-time packages alone (they are in make deps too)
+deps-view:
+	@$(call deb_install,deps-view,$(VIEW_PACKAGES) gnuplot-nox)
+
+# only for the headless-browser test of csfview (big; make check skips that test without it)
+deps-chromium:
+	@$(call deb_install,deps-chromium,$(CHROMIUM_PACKAGES))
+
 demo: deps
 	$(MAKE) all
 	$(BUILD)/csfc examples/projectile.csf -o $(BUILD)/projectile.csfb
 	$(BUILD)/csfvm $(BUILD)/projectile.csfb | head -n 12
+	$(BUILD)/csfvm $(BUILD)/projectile.csfb | $(BUILD)/csfview --scene examples/projectile.csf -o $(BUILD)/projectile.html
+	@echo "the run, plotted and animated: $(abspath $(BUILD)/projectile.html)"
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/csf \
 		$(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/man/man5
 	install -m 755 $(BUILD)/csfc $(BUILD)/csfvm $(DESTDIR)$(PREFIX)/bin/
+	install -d $(DESTDIR)$(PREFIX)/share/csf/viewer
+	sed 's|@VIEWDIR@|$(PREFIX)/share/csf/viewer|' viewer/csfview.sh >$(DESTDIR)$(PREFIX)/bin/csfview
+	chmod 755 $(DESTDIR)$(PREFIX)/bin/csfview
+	install -m 644 viewer/view.html viewer/view.js $(DESTDIR)$(PREFIX)/share/csf/viewer/
 	install -m 644 $(BUILD)/libcsfrt.a $(DESTDIR)$(PREFIX)/lib/
 	install -m 644 runtime/csf.h runtime/csf_ops.h runtime/opcodes.def $(DESTDIR)$(PREFIX)/include/csf/
 	install -m 644 stdlib/mechanics/*.csf $(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics/
-	install -m 644 man/csfc.1 man/csfvm.1 $(DESTDIR)$(PREFIX)/share/man/man1/
+	install -m 644 man/csfc.1 man/csfvm.1 man/csfview.1 $(DESTDIR)$(PREFIX)/share/man/man1/
 	install -m 644 man/csf.5 $(DESTDIR)$(PREFIX)/share/man/man5/
 	install -d $(DESTDIR)$(PREFIX)/share/doc/csf/examples
 	install -m 644 examples/*.csf $(DESTDIR)$(PREFIX)/share/doc/csf/examples/
@@ -134,7 +159,9 @@ install: all
 
 # removes exactly what install put there (and the directories it made, when empty)
 uninstall:
-	rm -f $(DESTDIR)$(PREFIX)/bin/csfc $(DESTDIR)$(PREFIX)/bin/csfvm $(DESTDIR)$(PREFIX)/lib/libcsfrt.a \
+	rm -f $(DESTDIR)$(PREFIX)/bin/csfc $(DESTDIR)$(PREFIX)/bin/csfvm $(DESTDIR)$(PREFIX)/bin/csfview \
+		$(DESTDIR)$(PREFIX)/share/csf/viewer/view.html $(DESTDIR)$(PREFIX)/share/csf/viewer/view.js \
+		$(DESTDIR)$(PREFIX)/share/man/man1/csfview.1 $(DESTDIR)$(PREFIX)/lib/libcsfrt.a \
 		$(DESTDIR)$(PREFIX)/lib/pkgconfig/csfrt.pc \
 		$(DESTDIR)$(PREFIX)/include/csf/csf.h $(DESTDIR)$(PREFIX)/include/csf/csf_ops.h \
 		$(DESTDIR)$(PREFIX)/include/csf/opcodes.def \
@@ -142,7 +169,7 @@ uninstall:
 		$(DESTDIR)$(PREFIX)/share/man/man5/csf.5
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics/,$(notdir $(wildcard stdlib/mechanics/*.csf)))
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/share/doc/csf/examples/,$(notdir $(wildcard examples/*.csf)))
-	-rmdir $(DESTDIR)$(PREFIX)/include/csf $(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics \
+	-rmdir $(DESTDIR)$(PREFIX)/include/csf $(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics $(DESTDIR)$(PREFIX)/share/csf/viewer \
 		$(DESTDIR)$(PREFIX)/share/csf/stdlib $(DESTDIR)$(PREFIX)/share/csf \
 		$(DESTDIR)$(PREFIX)/share/doc/csf/examples $(DESTDIR)$(PREFIX)/share/doc/csf 2>/dev/null
 
@@ -155,4 +182,4 @@ bench-peers: all deps-peers
 clean:
 	rm -rf build build-san
 
-.PHONY: all deps deps-peers demo test check install uninstall bench bench-peers clean
+.PHONY: all deps deps-peers deps-view deps-chromium demo test check install uninstall bench bench-peers clean

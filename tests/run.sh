@@ -18,7 +18,9 @@
 #     -fno-math-errno).
 #  5. hostile bytecode, bad usage, output errors, install, a 300-body scene,
 #     every method at every tolerance (tests/methods_tol.sh), contacts
-#     (tests/contacts/), many objects (tests/many/: 100 balls in a box).
+#     (tests/contacts/), many objects (tests/many/: 100 balls in a box),
+#     csfview's pages and plots (tests/view/; in headless Chromium where it
+#     is installed, else a SKIP line).
 # The last line is "N passed, N failed".
 set -u
 B=$(cd "${CSF_BUILD:-build}" && pwd)
@@ -28,12 +30,13 @@ trap 'rm -rf "$T"' EXIT
 # every process a test starts has a time limit (a hang fails its test, exit 124)
 LIMIT=${CSF_TEST_LIMIT:-300}
 mkdir "$T/bin"
-for tool in csfc csfvm; do
+for tool in csfc csfvm csfview; do
 	printf '#!/bin/sh\nexec timeout %s "%s" "$@"\n' "$LIMIT" "$B/$tool" >"$T/bin/$tool"
 	chmod +x "$T/bin/$tool"
 done
 CSFC=$T/bin/csfc
 CSFVM=$T/bin/csfvm
+CSFVIEW=$T/bin/csfview
 pass=0
 fail=0
 ok() { pass=$((pass + 1)); }
@@ -300,6 +303,10 @@ if sh tests/many/box.sh "$CSFC" "$CSFVM" "$T" >"$T/box" 2>&1; then ok; else bad 
 # 5i. every contact scene under every method: each finishes, exact to 1e-6 (tests/contacts/methods.sh)
 if sh tests/contacts/methods.sh "$CSFC" "$CSFVM" "$T" >"$T/mm" 2>&1; then ok; else bad "contacts and methods: $(grep FAIL "$T/mm" | head -n 3)"; fi
 
+# 5n. csfview: the page, the static plots, decimation; the page in headless Chromium (tests/view/check.sh)
+if sh tests/view/check.sh "$CSFC" "$CSFVM" "$CSFVIEW" "$T" >"$T/view" 2>&1; then ok; else bad "csfview: $(grep FAIL "$T/view" | head -n 3)"; fi
+grep '^SKIP' "$T/view"
+
 # 5e. make install into a staging directory; the installed csfc finds the standard library
 if make -s install BUILD="${CSF_BUILD:-build}" PREFIX=/usr DESTDIR="$T/stage" >/dev/null 2>"$T/err" &&
 	(cd "$T" && "$T/stage/usr/bin/csfc" "$TOP/examples/projectile.csf" -o "$T/p.csfb") 2>"$T/err" &&
@@ -313,6 +320,10 @@ if (cd "$T" && "$T/stage/usr/bin/csfc" --emit-c "$TOP/examples/projectile.csf" -
 	PKG_CONFIG_SYSROOT_DIR="$T/stage" PKG_CONFIG_PATH="$T/stage/usr/lib/pkgconfig" \
 		sh -c 'cc ${CFLAGS:-} "$1" -o "$2" $(pkg-config --cflags --libs csfrt)' sh "$T/p.c" "$T/pexe2" 2>>"$T/err" &&
 	"$T/pexe2" >"$T/p3.out" && cmp -s "$T/p1.out" "$T/p3.out"; then ok; else bad "installed --emit-c / pkg-config: $(head -n 2 "$T/err")"; fi
+# the installed csfview writes a page from its own copy of the viewer
+if "$T/stage/usr/bin/csfview" -o "$T/p.html" "$T/p1.out" 2>"$T/err" && grep -q '^/\* view.js - ' "$T/p.html" &&
+	[ -f "$T/stage/usr/share/man/man1/csfview.1" ] && [ -f "$T/stage/usr/share/csf/viewer/view.js" ]; then ok
+else bad "installed csfview: $(head -n 1 "$T/err")"; fi
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
