@@ -33,7 +33,7 @@ LDFLAGS_SAN = $(if $(SAN),-fsanitize=address$(,)undefined)
 
 RT_SRC = runtime/bytecode.c runtime/vm.c runtime/driver.c runtime/ode.c runtime/contact.c runtime/main.c runtime/compare.c runtime/erk.c runtime/dop853.c runtime/dopri5.c runtime/spectrum.c
 RT_OBJ = $(RT_SRC:runtime/%.c=$(BUILD)/rt/%.o)
-CC_SRC = compiler/util.c compiler/units.c compiler/layout.c compiler/sema.c compiler/gen.c compiler/emit_c.c compiler/dims.c
+CC_SRC = compiler/util.c compiler/units.c compiler/layout.c compiler/sema.c compiler/gen.c compiler/emit_c.c compiler/dims.c compiler/lint.c
 CC_GEN = $(BUILD)/lex.c $(BUILD)/parse.c
 CC_OBJ = $(CC_SRC:compiler/%.c=$(BUILD)/cc/%.o) $(BUILD)/cc/lex.o $(BUILD)/cc/parse.o
 

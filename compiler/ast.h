@@ -47,7 +47,8 @@ struct Eqn {
 };
 
 typedef struct ObjRef { Loc loc; char *name; int index; } ObjRef; /* name, or index >= 0 */
-typedef struct WatchItem { Loc loc; char *obj; char *prop; } WatchItem; /* obj may be NULL */
+/* obj may be NULL; comp: a vector's component (x, y or z), or NULL for the whole variable */
+typedef struct WatchItem { Loc loc; char *obj; char *prop; char *comp; } WatchItem;
 
 typedef enum StmtKind { S_GLOBAL, S_PROP, S_OBJKIND, S_DEF, S_VECDECL, S_RULE, S_ASSERT, S_STOP, S_START } StmtKind;
 

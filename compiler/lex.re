@@ -82,10 +82,19 @@ static int line_start(Lexer *L, Token *t)
 		int col = 0;
 		while (p < L->lim && *p == ' ') p++, col++;
 		if (p < L->lim && *p == '\t') {
-			L->cur = p;
-			while (L->cur < L->lim && *L->cur != '\n') L->cur++;
-			error_tok(L, t, p, xstrdup("tabs are not allowed in indentation; indent with spaces"));
-			return -1;
+			/* one error, and the line is left out as if blank: the blocks around it go on, and
+			   the parser sees no token it could stumble on (no cascade of errors) */
+			set_loc(L, t, p);
+			error_at(t->loc, "tabs are not allowed in indentation; indent with spaces");
+			while (p < L->lim && *p != '\n') p++;
+			if (p >= L->lim) {
+				L->cur = p;
+				return 0;
+			}
+			L->cur = p + 1;
+			L->line++;
+			L->line_start = L->cur;
+			continue;
 		}
 		const char *q = p;
 		while (q < L->lim && (*q == ' ' || *q == '\t' || *q == '\r')) q++;

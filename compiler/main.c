@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "csfc.h"
+#include "lint.h"
 #include "ast.h"
 #include "sema.h"
 #include "gen.h"
@@ -15,13 +16,14 @@
 #include "emit_c.h"
 
 static const char usage[] =
-	"usage: csfc [options] MODEL.csf\n"
+	"usage: csfc [options] MODEL.csf   (- reads standard input)\n"
 	"Compiles a CSF model to bytecode (MODEL.csfb).\n"
-	"  -o FILE            write the bytecode to FILE\n"
+	"  -o FILE            write the bytecode to FILE (- for standard output)\n"
 	"  -I DIR             add DIR to the search path of 'using'\n"
 	"  --units SYSTEM     mks (default), cgs or fps: the units of bare numbers and of the output\n"
 	"  --explain          print what every rule solves for, and what is left out\n"
 	"  --dump-bytecode    print the compiled code as a listing\n"
+	"  -Werror            make every warning an error; -w: no warnings\n"
 	"  --emit-c           translate to C: with -o NAME.c write the source, otherwise\n"
 	"                     build an executable (with $CC $CFLAGS, libcsfrt and GSL)\n"
 	"  --help, --version\n";
@@ -59,9 +61,35 @@ static int write_file(const char *path, const unsigned char *buf, size_t len)
 	return bad ? -1 : 0;
 }
 
+/*
+ * Is argv[*i] option name with a value, as "name VALUE" (the next argument;
+ * *i moves past it) or "name=VALUE"? The value into *val.
+ */
+static int opt_value(int argc, char **argv, int *i, const char *name, const char **val)
+{
+	const char *a = argv[*i];
+	size_t n = strlen(name);
+	if (strncmp(a, name, n) != 0) return 0;
+	if (a[n] == '=') {
+		*val = a + n + 1;
+		return 1;
+	}
+	if (a[n] == '\0' && *i + 1 < argc) {
+		*val = argv[++*i];
+		return 1;
+	}
+	return 0;
+}
+
+/* Writes buf to standard output (-o -). */
+static int write_stdout(const unsigned char *buf, size_t len)
+{
+	return fwrite(buf, 1, len, stdout) != len || fflush(stdout) != 0 ? -1 : 0;
+}
+
 static int run(int argc, char **argv)
 {
-	const char *in = NULL, *out = NULL;
+	const char *in = NULL, *out = NULL, *v;
 	int explain = 0, dump = 0, emit = 0;
 	for (int i = 1; i < argc; i++) {
 		const char *a = argv[i];
@@ -71,14 +99,18 @@ static int run(int argc, char **argv)
 		} else if (!strcmp(a, "--version")) {
 			printf("csfc %s\n", CSF_VERSION_STRING);
 			return 0;
-		} else if (!strcmp(a, "-o") && i + 1 < argc) {
-			out = argv[++i];
+		} else if (opt_value(argc, argv, &i, "-o", &v)) {
+			out = v;
+		} else if (!strcmp(a, "-Werror")) {
+			diag_werror = 1;
+		} else if (!strcmp(a, "-w")) {
+			diag_nowarn = 1;
 		} else if (!strcmp(a, "-I") && i + 1 < argc) {
 			vec_push(&opts.incdirs, argv[++i]);
 		} else if (!strncmp(a, "-I", 2) && a[2]) {
 			vec_push(&opts.incdirs, (void *)(a + 2));
-		} else if (!strcmp(a, "--units") && i + 1 < argc) {
-			const char *u = argv[++i];
+		} else if (opt_value(argc, argv, &i, "--units", &v)) {
+			const char *u = v;
 			if (!strcmp(u, "mks")) opts.units = UNITS_MKS;
 			else if (!strcmp(u, "cgs")) opts.units = UNITS_CGS;
 			else if (!strcmp(u, "fps")) opts.units = UNITS_FPS;
@@ -106,6 +138,11 @@ static int run(int argc, char **argv)
 		fputs(usage, stderr);
 		return 2;
 	}
+	if (!strcmp(in, "-") && !out && !explain && !dump) {
+		fprintf(stderr, "csfc: the model comes from standard input: name the output with -o FILE (-o - for "
+		                "standard output)\n");
+		return 2;
+	}
 	opts.stdlib = find_stdlib();
 	if (src_load(in) < 0) {
 		if (errno == EFBIG) {
@@ -116,12 +153,18 @@ static int run(int argc, char **argv)
 		fprintf(stderr, "csfc: cannot read %s: %s\n", in, strerror(errno));
 		return 2;
 	}
+	if (!strcmp(in, "-")) ((Source *)sources.v[0])->path = "<stdin>";
 	Stmt *stmts = parse_file(0);
 	if (diag_errors) return 1;
 	Model *M = sema_run(stmts);
 	if (diag_errors) return 1;
 	csf_prog p;
 	gen_program(M, &p);
+	lint_model(M);
+	if (diag_errors) { /* -Werror */
+		csf_prog_free(&p);
+		return 1;
+	}
 	if (explain) sema_explain(M, stdout);
 	char err[256];
 	if (csf_verify(&p, err, sizeof err)) {
@@ -161,7 +204,7 @@ static int run(int argc, char **argv)
 		}
 	} else {
 		if (!out) out = xprintf("%s.csfb", stem);
-		if (write_file(out, buf, len)) {
+		if (!strcmp(out, "-") ? write_stdout(buf, len) : write_file(out, buf, len)) {
 			fprintf(stderr, "csfc: cannot write %s: %s\n", out, strerror(errno));
 			st = 2;
 		}

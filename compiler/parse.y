@@ -8,6 +8,7 @@
  */
 %code requires {
 #include "csfc.h"
+#include "lint.h"
 #include "ast.h"
 typedef struct YYLoc { int file, first_line, first_column, last_line, last_column; } YYLoc;
 #define YYLLOC_DEFAULT(Cur, Rhs, N) \
@@ -37,6 +38,7 @@ const char *layout_token_text(Parser *P);
 }
 
 %code {
+#include <ctype.h>
 #include <string.h>
 static Loc LOC(YYLoc l) { return (Loc){ l.file, l.first_line, l.first_column }; }
 static Expr *bin(int op, Expr *a, Expr *b, YYLoc l)
@@ -293,6 +295,9 @@ watches:
 watch:
 	  IDENT              { $$ = xalloc(sizeof *$$); $$->loc = LOC(@1); $$->prop = $1; }
 	| IDENT '.' IDENT    { $$ = xalloc(sizeof *$$); $$->loc = LOC(@1); $$->obj = $1; $$->prop = $3; }
+	| IDENT '.' IDENT '.' IDENT {
+		$$ = xalloc(sizeof *$$); $$->loc = LOC(@1); $$->obj = $1; $$->prop = $3; $$->comp = $5;
+	}
 	;
 
 expr:
@@ -377,6 +382,18 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, Parser *P)
 	if (got == YYSYMBOL_INDENT) {
 		error_at(l, "unexpected indentation");
 		return 0;
+	}
+	if (got == YYSYMBOL_IDENT && text && l.col > 1) {
+		/* a name right after a number or a ')': a unit CSF does not know */
+		char *line = src_line(l.file, l.line);
+		int c = l.col - 2;
+		while (c > 0 && (line[c] == ' ' || line[c] == '\t')) c--;
+		if (c >= 0 && (isdigit((unsigned char)line[c]) || line[c] == ')' || line[c] == '.')) {
+			const char *s = suggest_unit(text);
+			if (s) error_at(l, "unknown unit '%s'; did you mean '%s'?", text, s);
+			else error_at(l, "unknown unit '%s' (csf(5), UNITS, lists them)", text);
+			return 0;
+		}
 	}
 	char buf[512];
 	size_t k = (size_t)snprintf(buf, sizeof buf, "syntax error: unexpected %s", yysymbol_name(got));

@@ -29,6 +29,7 @@
 
 #include "csfc.h"
 #include "sema.h"
+#include "lint.h"
 #include "csf.h"
 #include "parse.h"
 
@@ -1237,6 +1238,16 @@ static void register_temp(Var *t)
 	vec_push(&M->temps, t);
 }
 
+/* A property of the instance's objects or a global within a few edits of name (a misspelling), or NULL. */
+static const char *near_name(Inst *I, const char *name)
+{
+	Vec c = { 0 };
+	for (int b = 0; b < I->nbind; b++)
+		for (int j = 0; j < I->bind[b]->props.n; j++) vec_push(&c, ((Var *)I->bind[b]->props.v[j])->name);
+	for (int j = 0; j < M->globals.n; j++) vec_push(&c, ((Var *)M->globals.v[j])->name);
+	return suggest_name(name, (const char *const *)c.v, c.n);
+}
+
 /*
  * Resolves one equation of instance I: chooses the target among the
  * undetermined variables, solves for it, records the assignment. Returns
@@ -1273,6 +1284,16 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 	for (int i = 0; i < reads.n; i++) {
 		Var *v = reads.v[i];
 		if (v != x && v->kind == V_TEMP && !determined(v)) {
+			/* two unknowns, one of them most often a misspelt property or global */
+			for (int k = 0; k < 2; k++) {
+				Var *u = k ? v : x;
+				const char *s = u->kind == V_TEMP ? near_name(I, u->name) : NULL;
+				if (s) {
+					error_at(q->loc, "unknown name '%s' in rule \"%s\"%s%s; did you mean '%s'?", u->name, q->text,
+					         I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", s);
+					return NULL;
+				}
+			}
 			error_at(q->loc, "rule \"%s\" is unresolvable%s%s: it solves for %s but also reads %s, which no earlier rule determines",
 			         q->text, I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", x->name, v->name);
 			return NULL;
@@ -1734,7 +1755,9 @@ static void resolve_deriv(Inst *I)
 	for (int i = 0; i < I->reads.n; i++) {
 		Var *w = I->reads.v[i];
 		if (w->kind == V_TEMP && !determined(w)) {
-			error_at(q->loc, "rule \"%s\" is unresolvable: it reads '%s', which no rule determines", q->text, w->name);
+			const char *s = near_name(I, w->name);
+			if (s) error_at(q->loc, "unknown name '%s' in rule \"%s\"; did you mean '%s'?", w->name, q->text, s);
+			else error_at(q->loc, "rule \"%s\" is unresolvable: it reads '%s', which no rule determines", q->text, w->name);
 			return;
 		}
 	}
@@ -1807,6 +1830,26 @@ static Var *watch_var(Object *o, const char *name, int *member)
 	return v;
 }
 
+/* Column label.comp of vector v (the watch item w names a component), or an error. */
+static void add_comp(WatchItem *w, Var *v, const char *label, int member)
+{
+	const char *c = w->comp;
+	if (!v->isvec) {
+		error_at(w->loc, "'%s' is a scalar: it has no component '%s'", label, c);
+		return;
+	}
+	if (strlen(c) != 1 || c[0] < 'x' || c[0] > 'z') {
+		error_at(w->loc, "'%s' is not a component of a vector: watch %s.x, %s.y or %s.z", c, label, label, label);
+		return;
+	}
+	WatchCol *col = xalloc(sizeof *col);
+	col->var = v;
+	col->comp = c[0] - 'x';
+	col->member = member;
+	col->name = xprintf("%s.%s", label, c);
+	vec_push(&M->cols, col);
+}
+
 static void build_watch(Stmt *st)
 {
 	int member;
@@ -1819,6 +1862,23 @@ static void build_watch(Stmt *st)
 	}
 	for (int i = 0; i < st->watch.n; i++) {
 		WatchItem *w = st->watch.v[i];
+		if (w->obj && !w->comp && !map_get(&objects_by_name, w->obj) &&
+		    (map_get(&prop_names, w->obj) || map_get(&globals_by_name, w->obj))) {
+			/* PROP.c: that component of every object's PROP (or of a global) */
+			WatchItem c = *w;
+			c.obj = NULL, c.prop = w->obj, c.comp = w->prop;
+			Var *g = map_get(&globals_by_name, c.prop);
+			if (g) {
+				add_comp(&c, g, g->name, 0);
+				continue;
+			}
+			for (int j = 0; j < M->objects.n; j++) {
+				Object *o = M->objects.v[j];
+				Var *v = watch_var(o, c.prop, &member);
+				if (v) add_comp(&c, v, xprintf("%s.%s", o->name, c.prop), member);
+			}
+			continue;
+		}
 		if (w->obj) {
 			Object *o = map_get(&objects_by_name, w->obj);
 			if (!o && (map_get(&prop_names, w->obj) || map_get(&globals_by_name, w->obj))) {
@@ -1835,7 +1895,8 @@ static void build_watch(Stmt *st)
 				error_at(w->loc, "object '%s' has no property or temporary '%s'", o->name, w->prop);
 				continue;
 			}
-			add_col(v, xprintf("%s.%s", o->name, w->prop), member);
+			if (w->comp) add_comp(w, v, xprintf("%s.%s", o->name, w->prop), member);
+			else add_col(v, xprintf("%s.%s", o->name, w->prop), member);
 			continue;
 		}
 		if (strcmp(w->prop, "t") == 0) continue; /* t is always the first column */
@@ -1864,7 +1925,8 @@ static double const_time(Expr *x, double dflt, const char *what)
 	RExpr *r = const_value(x, NULL, &ok);
 	if (!ok) return dflt;
 	if (r->isvec || !isfinite(r->c[0]) || r->c[0] < 0) {
-		error_at(x->loc, "'%s' needs a finite, non-negative time", what);
+		if (!strcmp(what, "by")) error_at(x->loc, "'by' must be a positive time");
+		else error_at(x->loc, "'%s' needs a finite, non-negative time", what);
 		return dflt;
 	}
 	if (r->dimk == DK_KNOWN && (r->dim[0] != 0 || r->dim[1] != 0 || r->dim[2] != 1)) {

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "csfc.h"
+#include "lint.h"
 #include "ast.h"
 #include "csf.h"
 
@@ -227,6 +228,28 @@ void error_plain(const char *fmt, ...)
 	fputc('\n', out);
 	va_end(ap);
 	diag_errors++;
+}
+
+int diag_warnings, diag_werror, diag_nowarn;
+
+void warn_at(Loc l, const char *fmt, ...)
+{
+	if (diag_nowarn) return;
+	va_list ap;
+	va_start(ap, fmt);
+	if (diag_werror) { /* -Werror: an error, which says why */
+		va_list aq;
+		va_copy(aq, ap);
+		int n = vsnprintf(NULL, 0, fmt, aq);
+		va_end(aq);
+		char *msg = xalloc((size_t)n + 1);
+		vsnprintf(msg, (size_t)n + 1, fmt, ap);
+		error_at(l, "%s [-Werror]", msg);
+	} else {
+		vdiag(l, "warning", fmt, ap);
+		diag_warnings++;
+	}
+	va_end(ap);
 }
 
 /* ---- a string map ---- */

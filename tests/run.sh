@@ -283,6 +283,10 @@ if sh tests/stability/check.sh "$CSFC" "$CSFVM" "$T" >"$T/stab" 2>&1; then ok; e
 #       - is standard input, --opt=value, the progress line (tests/unix/check.sh)
 if sh tests/unix/check.sh "$CSFC" "$CSFVM" "$T" >"$T/unix" 2>&1; then ok; else bad "unix: $(grep FAIL "$T/unix" | head -n 3)"; fi
 
+# 5g3. csfc's warnings (-Werror, -w), suggestions for misspelt names and units, no cascade
+#       after a bad indentation, - as standard input and output, watched components (tests/warn/check.sh)
+if sh tests/warn/check.sh "$CSFC" "$CSFVM" "$T" >"$T/warn" 2>&1; then ok; else bad "warnings: $(grep FAIL "$T/warn" | head -n 3)"; fi
+
 # 5h. a ball dropped onto floors and inclines anywhere, at every output interval:
 #     every row against the exact motion (tests/contacts/drop.sh)
 if sh tests/contacts/drop.sh "$CSFC" "$CSFVM" "$T" >"$T/drop" 2>&1; then ok; else bad "contacts: $(grep FAIL "$T/drop" | head -n 3)"; fi

@@ -1,0 +1,185 @@
+/*
+ * lint.c - warnings: models that compile but do not say what their author
+ * meant (a misspelt property, a force that nothing sums, a rule whose result
+ * nothing reads, a rule that overrides a value the user gave).
+ *
+ * They look at the compiled model (after gen_program: which rules each
+ * section needs is known then), once, so that the resolver's silent first
+ * pass (sema_run) cannot lose or repeat them. Only statements of the user's
+ * own files are warned about, never the standard library's. Warnings never
+ * change the exit status, unless -Werror makes them errors (util.c).
+ */
+#include <string.h>
+
+#include "csfc.h"
+#include "lint.h"
+#include "sema.h"
+
+/* The edit distance of a and b (insertions, deletions, substitutions), at most cap + 1. */
+int edit_distance(const char *a, const char *b, int cap)
+{
+	size_t n = strlen(a), m = strlen(b);
+	if ((n > m ? n - m : m - n) > (size_t)cap) return cap + 1;
+	if (m > 64) return cap + 1;
+	int row[65];
+	for (size_t j = 0; j <= m; j++) row[j] = (int)j;
+	for (size_t i = 1; i <= n; i++) {
+		int diag = row[0], best;
+		row[0] = (int)i;
+		best = row[0];
+		for (size_t j = 1; j <= m; j++) {
+			int up = row[j], v = diag + (a[i - 1] != b[j - 1]);
+			if (up + 1 < v) v = up + 1;
+			if (row[j - 1] + 1 < v) v = row[j - 1] + 1;
+			diag = up;
+			row[j] = v;
+			if (v < best) best = v;
+		}
+		if (best > cap) return cap + 1;
+	}
+	return row[m] > cap ? cap + 1 : row[m];
+}
+
+const char *suggest_name(const char *name, const char *const *cands, int n)
+{
+	/* a near miss of a name of 3 letters or more (one or two letters are too many names' near
+	   misses): at most 2 edits; a name that begins with a candidate counts as 1, as the symbol
+	   of a word does (mass: m, velocity: v, position: pos) */
+	if (strlen(name) < 3) return NULL;
+	int cap = 2, best = cap + 1;
+	const char *pick = NULL;
+	for (int i = 0; i < n; i++) {
+		if (!cands[i] || !*cands[i] || !strcmp(cands[i], name)) continue;
+		int d = edit_distance(name, cands[i], cap);
+		if (!strncmp(name, cands[i], strlen(cands[i])) && d > 1) d = 1;
+		if (d < best || (d == best && pick && strlen(cands[i]) > strlen(pick))) best = d, pick = cands[i];
+	}
+	return best <= cap ? pick : NULL;
+}
+
+const char *suggest_unit(const char *name)
+{
+	/* "mps", "kmph", "mps2": X per Y */
+	size_t n = strlen(name);
+	Unit u;
+	for (size_t i = 1; i + 1 < n && n < 32; i++) {
+		if (name[i] != 'p') continue;
+		char x[32], y[32];
+		memcpy(x, name, i);
+		x[i] = 0;
+		strcpy(y, name + i + 1);
+		size_t ny = strlen(y);
+		int sq = ny > 1 && (y[ny - 1] == '2' || y[ny - 1] == '3');
+		char pw = sq ? y[ny - 1] : 0;
+		if (sq) y[ny - 1] = 0;
+		if (unit_lookup(x, &u) && unit_lookup(y, &u))
+			return pw ? xprintf("%s/%s^%c", x, y, pw) : xprintf("%s/%s", x, y);
+	}
+	const char *c[64];
+	int nc = 0;
+	for (const UnitInfo *p = unit_table; p->name && nc < 64; p++) c[nc++] = p->name;
+	return suggest_name(name, c, nc);
+}
+
+/* Is the statement or definition at l in one of the user's files (not the standard library)? */
+static int users(Loc l)
+{
+	if (l.file < 0 || l.file >= sources.n) return 0;
+	const char *path = ((Source *)sources.v[l.file])->path, *lib = opts.stdlib;
+	return !(lib && *lib && !strncmp(path, lib, strlen(lib)));
+}
+
+static int has(const Vec *v, const void *x)
+{
+	for (int i = 0; i < v->n; i++)
+		if (v->v[i] == x) return 1;
+	return 0;
+}
+
+/* Once per place: several objects, or a shape's members, share a statement or a kind's line. */
+static int first_at(Vec *seen, Loc l)
+{
+	for (int i = 0; i < seen->n; i++) {
+		Loc *s = seen->v[i];
+		if (s->file == l.file && s->line == l.line && s->col == l.col) return 0;
+	}
+	Loc *c = xalloc(sizeof *c);
+	*c = l;
+	vec_push(seen, c);
+	return 1;
+}
+
+static int is_force(const Var *v)
+{
+	return v->dimk == DK_KNOWN && v->dim[0] == 1 && v->dim[1] == 1 && v->dim[2] == -2;
+}
+
+void lint_model(Model *M)
+{
+	Vec read = { 0 }, seen = { 0 };
+	int rf_read = 0;
+	for (int i = 0; i < M->insts.n; i++) {
+		Inst *I = M->insts.v[i];
+		for (int k = 0; k < I->reads.n; k++) vec_push(&read, sema_canon(I->reads.v[k]));
+		rf_read |= I->rf_reads.n > 0;
+	}
+	for (int i = 0; i < M->cols.n; i++) vec_push(&read, sema_canon(((WatchCol *)M->cols.v[i])->var));
+	for (int i = 0; i < M->cbodies.n; i++) {
+		ContactBody *b = M->cbodies.v[i];
+		for (int f = 0; f < CSF_CF_N; f++)
+			if (b->f[f]) vec_push(&read, sema_canon(b->f[f]));
+	}
+
+	/* a property the user set that nothing reads: a misspelling, most often */
+	for (int i = 0; i < M->objects.n; i++) {
+		Object *o = M->objects.v[i];
+		for (int j = 0; j < o->props.n; j++) {
+			Var *p = o->props.v[j];
+			if (p->from_kind || p->state || has(&read, sema_canon(p)) || !users(p->loc)) continue;
+			if (!first_at(&seen, p->loc)) continue;
+			const char **c = xalloc(((size_t)o->props.n + 1) * sizeof *c);
+			int nc = 0;
+			for (int k = 0; k < o->props.n; k++) {
+				Var *q = o->props.v[k];
+				if (q != p && (q->from_kind || has(&read, sema_canon(q)) || q->state)) c[nc++] = q->name;
+			}
+			const char *s = suggest_name(p->name, c, nc);
+			if (s) warn_at(p->loc, "property '%s' of object '%s' is never read; did you mean '%s'?", p->name, o->name, s);
+			else warn_at(p->loc, "property '%s' of object '%s' is never read", p->name, o->name);
+		}
+	}
+
+	/* forces that no rule sums */
+	if (!rf_read)
+		for (int i = 0; i < M->insts.n; i++) {
+			Inst *I = M->insts.v[i];
+			if (!I->isF || !users(I->st->loc)) continue;
+			warn_at(I->st->loc, "rules with attribute F are summed by no rule ('RF' is never read), so no force "
+			                    "moves anything; hint: using mechanics/rules");
+			break;
+		}
+
+	for (int i = 0; i < M->insts.n; i++) {
+		Inst *I = M->insts.v[i];
+		if (I->isassert || I->isstop || I->isderiv || !users(I->st->loc)) continue;
+		/* a rule whose result nothing reads (what --explain calls left out) */
+		if (!I->needed[0] && !I->needed[1] && I->targets.n && !(I->isF && !rf_read) && first_at(&seen, I->st->loc)) {
+			Var *v = I->targets.v[0];
+			int temps = 1;
+			for (int k = 0; k < I->targets.n; k++) temps &= ((Var *)I->targets.v[k])->kind == V_TEMP;
+			if (temps)
+				warn_at(I->st->loc, "rule determines '%s', which nothing reads%s", v->name,
+				        !I->st->attr && is_force(v) ? " (a force? write 'rule F: ...' to add it to RF)" : "");
+		}
+		/* a rule that overrides a value the user gave */
+		for (int k = 0; k < I->targets.n; k++) {
+			Var *v = sema_canon(I->targets.v[k]);
+			if ((v->kind != V_PROP && v->kind != V_GLOBAL) || v->from_kind || v->state || !users(v->loc)) continue;
+			/* once per statement and variable: the statement's line, the variable's place as the column */
+			Loc key = { I->st->loc.file, -I->st->loc.line, v->loc.line * 1000 + v->loc.col };
+			if (!first_at(&seen, key)) continue;
+			warn_at(I->st->loc, "this rule solves for %s '%s', which has the initial value given at line %d: the "
+			                    "rule overrides it", v->kind == V_GLOBAL ? "the global" : "property", v->name, v->loc.line);
+		}
+	}
+}
