@@ -4,6 +4,7 @@
 #   make deps       install missing Debian packages (apt-get, as root)
 #   make deps-chromium  headless Chromium, only for the browser test of csfview
 #   make demo       deps + build + compile and run an example
+#   make MPI=1      also build/csfvm-mpi, csfvm whose sweeps run across MPI ranks (make deps-mpi)
 #   make check      every test, then the whole suite again under ASan/UBSan
 #   make bench      benchmarks; results under bench/results, summary in bench/README.md
 #   make bench-peers  CSF beside SciPy's solve_ivp (installs python3-scipy: deps-peers)
@@ -24,6 +25,11 @@ VIEW_PACKAGES = libjs-three libjs-dygraphs
 # only for the browser test of csfview's page (tests/view/check.sh skips without it)
 CHROMIUM_PACKAGES = chromium
 PEER_PACKAGES = python3-scipy
+# only for csfvm-mpi (make MPI=1) and its test (skipped without them)
+MPI_PACKAGES = libopenmpi-dev openmpi-bin
+MPI ?=
+MPICC ?= mpicc
+HAVE_MPICC := $(shell command -v $(MPICC) 2>/dev/null)
 , := ,
 SANFLAGS = $(if $(SAN),-fsanitize=address$(,)undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
 CSF_CFLAGS = -std=c11 -Wall -Wextra -ffp-contract=off -D_DEFAULT_SOURCE $(SANFLAGS)
@@ -31,13 +37,13 @@ CPPFLAGS_ALL = -Iruntime -Icompiler -I$(BUILD)
 LDLIBS_GSL = $(shell pkg-config --libs gsl 2>/dev/null || echo -lgsl -lgslcblas) -lm
 LDFLAGS_SAN = $(if $(SAN),-fsanitize=address$(,)undefined)
 
-RT_SRC = runtime/bytecode.c runtime/vm.c runtime/driver.c runtime/ode.c runtime/contact.c runtime/main.c runtime/compare.c runtime/erk.c runtime/dop853.c runtime/dopri5.c runtime/spectrum.c
+RT_SRC = runtime/bytecode.c runtime/vm.c runtime/driver.c runtime/ode.c runtime/contact.c runtime/main.c runtime/compare.c runtime/units.c runtime/param.c runtime/sweep.c runtime/erk.c runtime/dop853.c runtime/dopri5.c runtime/spectrum.c
 RT_OBJ = $(RT_SRC:runtime/%.c=$(BUILD)/rt/%.o)
 CC_SRC = compiler/util.c compiler/units.c compiler/layout.c compiler/sema.c compiler/gen.c compiler/emit_c.c compiler/dims.c compiler/lint.c
 CC_GEN = $(BUILD)/lex.c $(BUILD)/parse.c
 CC_OBJ = $(CC_SRC:compiler/%.c=$(BUILD)/cc/%.o) $(BUILD)/cc/lex.o $(BUILD)/cc/parse.o
 
-all: $(BUILD)/csfc $(BUILD)/csfvm $(BUILD)/libcsfrt.a $(BUILD)/csfview
+all: $(BUILD)/csfc $(BUILD)/csfvm $(BUILD)/libcsfrt.a $(BUILD)/csfview $(if $(MPI),$(BUILD)/csfvm-mpi)
 
 $(BUILD)/rt/%.o: runtime/%.c runtime/*.h runtime/opcodes.def
 	@mkdir -p $(@D)
@@ -73,6 +79,10 @@ $(BUILD)/rt/csfvm.o: runtime/csfvm.c runtime/*.h runtime/opcodes.def
 	@mkdir -p $(@D)
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
 
+# csfvm-mpi: csfvm with sweeps across MPI ranks; only this program needs MPI
+$(BUILD)/csfvm-mpi: runtime/sweep_mpi.c runtime/*.h $(BUILD)/libcsfrt.a
+	$(MPICC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+
 # csfview, a shell script: the in-tree copy reads its page template from viewer/
 $(BUILD)/csfview: viewer/csfview.sh
 	@mkdir -p $(@D)
@@ -94,7 +104,8 @@ $(BUILD)/unit-tests: $(TEST_OBJ) $(CC_OBJ) $(BUILD)/libcsfrt.a
 $(BUILD)/fuzz-bytecode: tests/fuzz_bytecode.c $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
 
-test: all $(BUILD)/unit-tests $(BUILD)/fuzz-bytecode
+# the MPI sweep test runs where Open MPI is installed (tests/sweep/check.sh says SKIP otherwise)
+test: all $(BUILD)/unit-tests $(BUILD)/fuzz-bytecode $(if $(HAVE_MPICC),$(BUILD)/csfvm-mpi)
 	CSF_STDLIB=$(CURDIR)/stdlib $(BUILD)/unit-tests
 	CSF_BUILD=$(BUILD) CFLAGS="$(CFLAGS) $(SANFLAGS)" sh tests/run.sh
 
@@ -120,6 +131,10 @@ deps:
 # only for make bench-peers (not needed by make, make check or make bench)
 deps-peers:
 	@$(call deb_install,deps-peers,$(PEER_PACKAGES))
+
+# only for csfvm-mpi (make MPI=1) and its test
+deps-mpi:
+	@$(call deb_install,deps-mpi,$(MPI_PACKAGES))
 
 # csfview's run-time packages alone (they are in make deps too)
 deps-view:
@@ -173,7 +188,7 @@ uninstall:
 		$(DESTDIR)$(PREFIX)/share/csf/stdlib $(DESTDIR)$(PREFIX)/share/csf \
 		$(DESTDIR)$(PREFIX)/share/doc/csf/examples $(DESTDIR)$(PREFIX)/share/doc/csf 2>/dev/null
 
-bench: all
+bench: all $(if $(HAVE_MPICC),$(BUILD)/csfvm-mpi)
 	$(MAKE) -C bench BUILD=$(abspath $(BUILD))
 
 bench-peers: all deps-peers
@@ -182,4 +197,4 @@ bench-peers: all deps-peers
 clean:
 	rm -rf build build-san
 
-.PHONY: all deps deps-peers deps-view deps-chromium demo test check install uninstall bench bench-peers clean
+.PHONY: all deps deps-mpi deps-peers deps-view deps-chromium demo test check install uninstall bench bench-peers clean

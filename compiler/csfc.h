@@ -61,10 +61,8 @@ extern FILE *diag_out;
 /* ---- units (units.c) ---- */
 enum { DIM_L, DIM_M, DIM_T, DIM_A, NDIM };
 typedef struct Unit { double factor; signed char dim[NDIM]; } Unit;
-/* Looks up a unit name; returns 1 and fills *u if known. */
+/* Looks up a unit name in the runtime's unit table (csf_unit_table); returns 1 and fills *u if known. */
 int unit_lookup(const char *name, Unit *u);
-typedef struct UnitInfo { const char *name; double factor; signed char dim[NDIM]; const char *source; } UnitInfo;
-extern const UnitInfo unit_table[];
 
 /* ---- tokens (lex.re, layout.c) ---- */
 typedef struct Token {

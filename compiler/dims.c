@@ -44,18 +44,12 @@ static const struct system {
 
 double dims_to_system(double si, const double d[3])
 {
-	const struct system *s = &systems[opts.units];
-	double v = si;
-	for (int i = 0; i < 3; i++) {
-		/* divide by base^d one factor at a time: exact for the common small exponents */
-		int n = (int)d[i];
-		if (n == d[i] && abs(n) <= 8) {
-			for (int k = 0; k < abs(n); k++) v = n > 0 ? v / s->base[i] : v * s->base[i];
-		} else {
-			v /= pow(s->base[i], d[i]);
-		}
-	}
-	return v;
+	return csf_units_to_system(si, d, systems[opts.units].base);
+}
+
+void dims_system_base(double base[3])
+{
+	memcpy(base, systems[opts.units].base, sizeof systems[opts.units].base);
 }
 
 static int dim_zero(const double d[3]) { return d[0] == 0 && d[1] == 0 && d[2] == 0; }

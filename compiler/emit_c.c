@@ -11,9 +11,9 @@
  *
  *   state, derivative  GSL's arrays y and dydt, read and written directly
  *                      (unless a section needs them in m: see direct below);
- *   constant           a slot no code writes and the runtime never sees: a
- *                      literal, printed so that it reads back to the same
- *                      double;
+ *   constant           a slot no code writes and the runtime never sees (nor
+ *                      -D sets): a literal, printed so that it reads back
+ *                      to the same double;
  *   local              a slot only code writes and reads, always written
  *                      before it is read within one C function, never
  *                      through a loop index, and never seen by the runtime:
@@ -141,6 +141,11 @@ static void scan_slots(Slots *S)
 	}
 	for (uint32_t i = 0; i < p->ncbodies; i++)
 		for (int k = 0; k < CSF_CF_N; k++) mark_ext(S, p->cbodies[i].s[k], 3);
+	/* what -D can set is read from m, not compiled in as a literal */
+	for (uint32_t i = 0; i < p->nprops; i++)
+		if (!*csf_str(p, p->pclasses[p->props[i].cls].why)) mark_ext(S, p->props[i].slot, p->props[i].width);
+	for (uint32_t i = 0; i < p->nglobals; i++)
+		if (!*csf_str(p, p->pclasses[p->globals[i].cls].why)) mark_ext(S, p->globals[i].slot, p->globals[i].width);
 	for (int sec = 0; sec < CSF_NSEC; sec++) {
 		const uint32_t *code = p->code[sec];
 		Loops L = { .depth = 0 };

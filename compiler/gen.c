@@ -38,6 +38,9 @@ typedef struct Gen {
 	uint32_t nstrs, capstrs;
 	Vec *Finsts; /* per object index: its F instances */
 	Map strmap;  /* string -> offset + 1 */
+	Map pclass;  /* parameter class key -> index + 1 */
+	csf_pclass *pclasses;
+	uint32_t npclasses, cappclasses;
 	struct { RExpr *e; uint32_t slot; } cse[64]; /* within one equation: values computed so far */
 	int ncse;
 	Map consts;  /* constant bits -> slot + 1 */
@@ -113,6 +116,64 @@ static uint32_t var_slot(Gen *G, Var *v)
 		memcpy(G->mem + m->slot, m->init, w * sizeof(double));
 	}
 	return (uint32_t)v->slot;
+}
+
+/*
+ * Why -D cannot set the initial value of global or property v, or "" if it
+ * can: a value folded at compile time into another, or computed from
+ * others, or one that decided which contacts exist, or a variable a rule
+ * computes (its initial value is never read). The initial value of a state
+ * variable is its value at t = 0, and can be set.
+ */
+static const char *param_why(Var *v)
+{
+	Var *r = sema_canon(v);
+	const char *on = v->fix_obj ? v->fix_obj : "", *dot = v->fix_obj ? "." : "";
+	switch (v->fix) {
+	case FIX_FOLDED:
+		return xprintf("its value is folded at compile time into the value of %s%s%s (line %d)", on, dot, v->fix_name,
+		               v->fix_line);
+	case FIX_DERIVED:
+		return xprintf("its value is computed at compile time from %s%s%s (line %d)", on, dot,
+		               v->fix_name, v->fix_line);
+	case FIX_RUN: return xprintf("its value is folded at compile time into the run's '%s' (line %d)", v->fix_name, v->fix_line);
+	case FIX_CONTACT: return "its value 0 decided at compile time that it never touches another point";
+	}
+	if (r->det && !r->state)
+		return xprintf("a rule computes it (%s:%d); it is not an input",
+		               ((Source *)sources.v[r->det->st->loc.file])->path, r->det->st->loc.line);
+	return "";
+}
+
+/*
+ * The parameter class (csf_pclass) of global or property v: its dimension,
+ * unit, and param_why. The strings of a class already known are released:
+ * a million objects' properties take no memory but their classes'.
+ */
+static uint32_t param_class(Gen *G, Var *v)
+{
+	Var *r = sema_canon(v);
+	const Var *d = v->dimk == DK_KNOWN ? v : r;
+	int known = d->dimk == DK_KNOWN;
+	for (int pass = 0;; pass++) {
+		ArenaMark mark = arena_mark();
+		const char *unit = known ? dims_unit(d->dim) : "", *why = param_why(v);
+		char *key = xprintf("%d %.17g %.17g %.17g %s\x01%s", known, known ? d->dim[0] : 0, known ? d->dim[1] : 0,
+		                    known ? d->dim[2] : 0, unit, why);
+		uintptr_t k = (uintptr_t)map_get(&G->pclass, key);
+		if (k || pass == 0) {
+			arena_release(mark);
+			if (k) return (uint32_t)(k - 1);
+			continue;
+		}
+		/* a new class (second pass, its strings kept) */
+		G->pclasses = grow(G->pclasses, &G->cappclasses, G->npclasses + 1, sizeof *G->pclasses);
+		csf_pclass *c = &G->pclasses[G->npclasses];
+		*c = (csf_pclass){ str_intern(G, unit), str_intern(G, why), (uint32_t)known, { 0, 0, 0 } };
+		if (known) memcpy(c->dim, d->dim, sizeof c->dim);
+		map_put(&G->pclass, key, (void *)(uintptr_t)(++G->npclasses));
+		return G->npclasses - 1;
+	}
 }
 
 /* The operand word for v read at place ($n) of the instance being emitted: relative to
@@ -1043,6 +1104,16 @@ int gen_program(Model *M, csf_prog *p)
 		                  (uint32_t)(w->member * (w->var->isvec ? 3 : 1) + w->comp);
 	}
 
+	/* The globals, every one in memory so that -D can set it. */
+	p->nglobals = (uint32_t)M->globals.n;
+	p->globals = calloc(p->nglobals + 1, sizeof *p->globals);
+	if (!p->globals) exit(2);
+	for (int i = 0; i < M->globals.n; i++) {
+		Var *g = M->globals.v[i];
+		p->globals[i] = (csf_global){ str_intern(G, g->name), var_slot(G, g), g->isvec ? 3u : 1u, param_class(G, g) };
+	}
+	dims_system_base(p->ubase);
+
 	/* The object table: every object and the properties the program keeps in memory. */
 	p->nobjects = (uint32_t)M->objects.n;
 	p->objects = calloc(p->nobjects + 1, sizeof *p->objects);
@@ -1059,8 +1130,11 @@ int gen_program(Model *M, csf_prog *p)
 	if (!p->props) exit(2);
 	for (int i = 0; i < props.n; i++) {
 		Var *v = props.v[i];
-		p->props[i] = (csf_prop){ (uint32_t)v->obj->index, str_intern(G, v->name), (uint32_t)v->slot, v->isvec ? 3u : 1u };
+		p->props[i] = (csf_prop){ (uint32_t)v->obj->index, str_intern(G, v->name), (uint32_t)v->slot, v->isvec ? 3u : 1u,
+		                          param_class(G, v) };
 	}
+	p->npclasses = G->npclasses;
+	p->pclasses = G->pclasses ? G->pclasses : calloc(1, sizeof *p->pclasses);
 
 	/* Scratch goes last; relocate scratch operands. */
 	uint32_t base = alloc_mem(G, G->max_scratch, NULL);

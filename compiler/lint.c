@@ -77,7 +77,7 @@ const char *suggest_unit(const char *name)
 	}
 	const char *c[64];
 	int nc = 0;
-	for (const UnitInfo *p = unit_table; p->name && nc < 64; p++) c[nc++] = p->name;
+	for (const csf_unit *p = csf_unit_table; p->name && nc < 64; p++) c[nc++] = p->name;
 	return suggest_name(name, c, nc);
 }
 

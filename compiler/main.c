@@ -165,7 +165,10 @@ static int run(int argc, char **argv)
 		csf_prog_free(&p);
 		return 1;
 	}
-	if (explain) sema_explain(M, stdout);
+	if (explain) {
+		sema_explain(M, stdout);
+		csf_params_list(&p, stdout);
+	}
 	char err[256];
 	if (csf_verify(&p, err, sizeof err)) {
 		fprintf(stderr, "csfc: internal error: generated code does not verify: %s\n", err);

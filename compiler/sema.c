@@ -186,6 +186,10 @@ typedef struct Ctx {
 	Vec *pending;      /* Var* temporaries read but not yet existing */
 	int failed;
 	int key_nbind;     /* how much of the binding keys a temporary: 1 for `for` rules, all for $n tuples */
+	int fold;          /* init: the values it reads are folded into (FIX_FOLDED or FIX_RUN) ... */
+	const char *fold_obj, *fold_name; /* ... this value, */
+	int fold_line;     /* defined on this line (see Var.fix) */
+	Var *first_read;   /* init: the first global or property it read */
 } Ctx;
 
 static void add_unique(Vec *v, void *x)
@@ -228,6 +232,13 @@ static RExpr *var_ref(Ctx *C, Var *v, Loc l, int place)
 			C->failed = 1;
 			return rconst(0, l);
 		}
+		if (C->fold && !v->fix) {
+			v->fix = C->fold;
+			v->fix_obj = C->fold_obj;
+			v->fix_name = C->fold_name;
+			v->fix_line = C->fold_line;
+		}
+		if (!C->first_read) C->first_read = v;
 		return rvarconst(v, l);
 	}
 	RExpr *e = rnew(R_VAR, l);
@@ -583,12 +594,23 @@ static void predefine(void)
 	predefine_const("pi", 0, (double[3]){ M_PI, 0, 0 }, 0, 0, 0);
 }
 
-static RExpr *const_value(Expr *x, Object *self, int *ok)
+/*
+ * The constant value of x, the value of obj.name (obj NULL: the global
+ * name; fold FIX_RUN: the run's name) defined on line. The values it reads
+ * are folded into it, so -D cannot set them (Var.fix); *read, if not NULL,
+ * gets the first one it read (NULL: none, it is a literal).
+ */
+static RExpr *const_value(Expr *x, Object *obj, const char *name, int fold, int line, int *ok, Var **read)
 {
 	Ctx C = { 0 };
 	C.init = 1;
-	C.self = self;
+	C.self = obj;
+	C.fold = fold;
+	C.fold_obj = obj ? obj->name : NULL;
+	C.fold_name = name;
+	C.fold_line = line;
 	RExpr *r = build(&C, x);
+	if (read) *read = C.first_read;
 	*ok = !C.failed;
 	if (*ok && (r->k != R_CONST || r->isbool)) {
 		error_at(x->loc, r->isbool ? "a value cannot be a condition" : "this value is not known at compile time");
@@ -615,6 +637,19 @@ static Object *get_object(const char *name, Loc l)
 	return o;
 }
 
+/* v's value, defined on line, is computed from read's (if not NULL): -D cannot set it. */
+static void fix_derived(Var *v, Var *read, int line)
+{
+	if (!read || v->fix == FIX_FOLDED) {
+		if (!read && v->fix == FIX_DERIVED) v->fix = FIX_NONE;
+		return;
+	}
+	v->fix = FIX_DERIVED;
+	v->fix_obj = read->obj ? read->obj->name : NULL;
+	v->fix_name = read->name;
+	v->fix_line = line;
+}
+
 /* May constant r replace the value of v (a kind's default, a predefined constant)? Same type, same dimension. */
 static int override_ok(Loc l, const char *what, Var *v, RExpr *r)
 {
@@ -638,10 +673,11 @@ static void set_prop(Object *o, Stmt *s, int from_kind)
 		return;
 	}
 	int ok;
+	Var *read;
 	/* the value's expression is folded to a constant and then not needed: one object's
 	   values take no memory from the next's */
 	ArenaMark mark = arena_mark();
-	RExpr rv = *const_value(s->value, o, &ok), *r = &rv;
+	RExpr rv = *const_value(s->value, o, s->prop, FIX_FOLDED, s->prop_loc.line, &ok, &read), *r = &rv;
 	arena_release(mark);
 	if (!ok) return;
 	if (s->isvec && !r->isvec) {
@@ -659,6 +695,7 @@ static void set_prop(Object *o, Stmt *s, int from_kind)
 		memcpy(p->init, r->c, sizeof p->init);
 		p->loc = s->prop_loc;
 		p->from_kind = from_kind;
+		fix_derived(p, read, s->prop_loc.line);
 		if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
 		return;
 	}
@@ -672,6 +709,7 @@ static void set_prop(Object *o, Stmt *s, int from_kind)
 	p->slot = -1;
 	p->order = def_counter++;
 	p->from_kind = from_kind;
+	fix_derived(p, read, s->prop_loc.line);
 	if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
 	vec_push(&o->props, p);
 	map_put(&o->props_by_name, p->name, p);
@@ -685,17 +723,20 @@ static void build_objects(Stmt *stmts)
 		case S_GLOBAL: {
 			if (!check_name(s->name, s->name_loc, "a global")) break;
 			int ok;
-			RExpr *r = const_value(s->value, NULL, &ok);
+			Var *read;
+			RExpr *r = const_value(s->value, NULL, s->name, FIX_FOLDED, s->name_loc.line, &ok, &read);
 			if (!ok) break;
 			Var *g = map_get(&globals_by_name, s->name);
 			if (g) {
 				if (!override_ok(s->value->loc, xprintf("'%s'", s->name), g, r)) break;
 				memcpy(g->init, r->c, sizeof g->init);
 				g->loc = s->name_loc;
+				fix_derived(g, read, s->name_loc.line);
 			} else if (map_get(&objects_by_name, s->name) || map_get(&prop_names, s->name)) {
 				error_at(s->name_loc, "'%s' already names an object or a property", s->name);
 			} else {
 				Var *ng = new_global(s->name, r->isvec, r->c, s->name_loc);
+				fix_derived(ng, read, s->name_loc.line);
 				set_dim(ng, r->dimk == DK_KNOWN ? DK_KNOWN : DK_UNKNOWN, r->dim);
 			}
 			break;
@@ -1530,11 +1571,18 @@ static Contact *new_contact(Stmt *s, int every)
 	return r;
 }
 
+/* A radius of 0 decided at compile time that two points never touch: -D cannot change it. */
+static void contact_radius_fixed(Var *r)
+{
+	if (r && !r->isvec && r->init[0] == 0 && !r->fix) r->fix = FIX_CONTACT;
+}
+
 /* Rule s with `for`: the pair (bind[0], bind[1]), unless it is two points (they never touch). */
 static void inst_contact(Stmt *s, Object **bind, int nbind)
 {
 	CPair c;
 	if (nbind < 2 || !contact_binding(s, bind[0], bind[1], &c)) return;
+	for (int k = 0; k < 2 && !c.plane; k++) contact_radius_fixed(c.f[k][CSF_CF_R]);
 	if (!c.plane && !(c.f[0][CSF_CF_R]->init[0] + c.f[1][CSF_CF_R]->init[0] > 0)) return;
 	Contact *r = new_contact(s, 0);
 	vec_push(&r->b0, contact_cbody(c.a, 0, c.f[0]));
@@ -1567,6 +1615,7 @@ static Body *contact_bodies(Stmt *s)
 			B[i].bad[k] = !contact_body(&c, k, geo, s, 0) || !contact_integrated(&c, k);
 			if (k) B[i].plane = c.plane;
 			B[i].r[k] = geo[1]->init[0];
+			if (!B[i].plane || !k) contact_radius_fixed(geo[1]);
 			memcpy(B[i].f[k], c.f[k], sizeof B[i].f[k]);
 		}
 	}
@@ -1922,7 +1971,7 @@ static double const_time(Expr *x, double dflt, const char *what)
 {
 	if (!x) return dflt;
 	int ok;
-	RExpr *r = const_value(x, NULL, &ok);
+	RExpr *r = const_value(x, NULL, what, FIX_RUN, x->loc.line, &ok, NULL);
 	if (!ok) return dflt;
 	if (r->isvec || !isfinite(r->c[0]) || r->c[0] < 0) {
 		if (!strcmp(what, "by")) error_at(x->loc, "'by' must be a positive time");

@@ -44,7 +44,16 @@ typedef struct Var {
 	int dimk;        /* DK_UNKNOWN until known (dims.c) */
 	double dim[3];   /* exponents of length, mass, time */
 	int pair;        /* temps: of a tuple of objects ($1), not of one object */
+	/* globals, props: why -D cannot set the initial value (gen.c words it): FIX_FOLDED, its value is
+	   folded into that of fix_obj.fix_name (fix_obj NULL: the global fix_name) on line fix_line;
+	   FIX_DERIVED, it is computed from fix_obj.fix_name's; FIX_RUN, folded into the run's fix_name
+	   (till, by); FIX_CONTACT, its value 0 left contacts out */
+	int fix;
+	const char *fix_obj, *fix_name;
+	int fix_line;
 } Var;
+
+enum { FIX_NONE, FIX_FOLDED, FIX_DERIVED, FIX_RUN, FIX_CONTACT };
 
 struct Object {
 	char *name;
@@ -174,6 +183,8 @@ const char *dims_unit(const double d[3]);
 const char *dims_describe(const double d[3]);
 /* Converts an SI factor of dimension d to the unit system in use. */
 double dims_to_system(double si, const double d[3]);
+/* The unit system in use: its units of length, mass and time in SI (csf_prog.ubase). */
+void dims_system_base(double base[3]);
 
 /* Evaluates an instruction on constant operands with the runtime's own functions.
  * in: operand values (3 doubles each); out: result (3 doubles). */

@@ -20,7 +20,8 @@
 #include "csf.h"
 #include "bytecode.h"
 
-_Static_assert(sizeof(csf_src) == 12 && sizeof(csf_col) == 8 && sizeof(csf_assert) == 8 && sizeof(csf_prop) == 16 &&
+_Static_assert(sizeof(csf_src) == 12 && sizeof(csf_col) == 8 && sizeof(csf_assert) == 8 && sizeof(csf_prop) == 20 &&
+               sizeof(csf_global) == 16 &&
                sizeof(csf_target) == 20 && sizeof(csf_line) == 8 && sizeof(csf_cbody) == 4 * (3 + CSF_CF_N) &&
                sizeof(csf_crule) == 24, "tables are arrays of u32");
 
@@ -138,7 +139,18 @@ int csf_encode(const csf_prog *p, unsigned char **out, size_t *len)
 	put_u32(&w, p->nobjects);
 	put_u32s(&w, p->objects, p->nobjects);
 	put_u32(&w, p->nprops);
-	put_u32s(&w, (const uint32_t *)p->props, 4 * (size_t)p->nprops);
+	put_u32s(&w, (const uint32_t *)p->props, 5 * (size_t)p->nprops);
+	for (int i = 0; i < 3; i++) put_f64(&w, p->ubase[i]);
+	put_u32(&w, p->nglobals);
+	put_u32s(&w, (const uint32_t *)p->globals, 4 * (size_t)p->nglobals);
+	put_u32(&w, p->npclasses);
+	for (uint32_t i = 0; i < p->npclasses; i++) {
+		const csf_pclass *c = &p->pclasses[i];
+		put_u32(&w, c->unit);
+		put_u32(&w, c->why);
+		put_u32(&w, c->known);
+		for (int k = 0; k < 3; k++) put_f64(&w, c->dim[k]);
+	}
 	put_u32(&w, p->nevents);
 	put_u32s(&w, (const uint32_t *)p->events, 4 * (size_t)p->nevents);
 	put_u32(&w, p->ncbodies);
@@ -275,6 +287,18 @@ int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, siz
 	ARR(p->nasserts, p->asserts, sizeof(csf_assert));
 	ARR(p->nobjects, p->objects, 4);
 	ARR(p->nprops, p->props, sizeof(csf_prop));
+	for (int i = 0; i < 3; i++) bad = bad || get_f64(&r, &p->ubase[i]);
+	ARR(p->nglobals, p->globals, sizeof(csf_global));
+	/* a class is 3 u32 and 3 doubles (36 bytes in the file) */
+	bad = bad || get_u32(&r, &p->npclasses) || (size_t)p->npclasses > r.left / 36 ||
+	      !(p->pclasses = malloc(p->npclasses ? p->npclasses * sizeof *p->pclasses : 1));
+	for (uint32_t i = 0; !bad && i < p->npclasses; i++) {
+		csf_pclass *c = &p->pclasses[i];
+		get_u32(&r, &c->unit);
+		get_u32(&r, &c->why);
+		get_u32(&r, &c->known);
+		for (int k = 0; k < 3; k++) get_f64(&r, &c->dim[k]);
+	}
 	ARR(p->nevents, p->events, sizeof(csf_event));
 	ARR(p->ncbodies, p->cbodies, sizeof(csf_cbody));
 	ARR(p->ncmembers, p->cmembers, 4);
@@ -565,8 +589,22 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 		if (!STR_OK(p->objects[i])) return fail(err, errlen, "object %lu out of range", (unsigned long)i);
 	for (uint32_t i = 0; i < p->nprops; i++) {
 		const csf_prop *q = &p->props[i];
-		if (q->object >= p->nobjects || !STR_OK(q->name) || (q->width != 1 && q->width != 3) || !slot_ok(p, q->slot, q->width))
+		if (q->object >= p->nobjects || !STR_OK(q->name) || (q->width != 1 && q->width != 3) ||
+		    !slot_ok(p, q->slot, q->width) || q->cls >= p->npclasses)
 			return fail(err, errlen, "property %lu out of range", (unsigned long)i);
+	}
+	for (int k = 0; k < 3; k++)
+		if (!(p->ubase[k] > 0) || !isfinite(p->ubase[k])) return fail(err, errlen, "unit system out of range");
+	for (uint32_t i = 0; i < p->npclasses; i++) {
+		const csf_pclass *c = &p->pclasses[i];
+		int ok = STR_OK(c->unit) && STR_OK(c->why) && c->known <= 1;
+		for (int k = 0; k < 3; k++) ok = ok && isfinite(c->dim[k]) && fabs(c->dim[k]) <= 64;
+		if (!ok) return fail(err, errlen, "parameter class %lu out of range", (unsigned long)i);
+	}
+	for (uint32_t i = 0; i < p->nglobals; i++) {
+		const csf_global *g = &p->globals[i];
+		if (!STR_OK(g->name) || (g->width != 1 && g->width != 3) || !slot_ok(p, g->slot, g->width) || g->cls >= p->npclasses)
+			return fail(err, errlen, "global %lu out of range", (unsigned long)i);
 	}
 	for (uint32_t i = 0; i < p->nevents; i++) {
 		const csf_event *e = &p->events[i];
@@ -602,6 +640,8 @@ void csf_prog_free(csf_prog *p)
 	free(p->asserts);
 	free(p->objects);
 	free(p->props);
+	free(p->globals);
+	free(p->pclasses);
 	free(p->events);
 	free(p->cbodies);
 	free(p->cmembers);

@@ -83,8 +83,23 @@ extern const csf_opinfo csf_opinfo_table[CSF_NOPCODES];
 typedef struct csf_col { uint32_t name, slot; } csf_col;
 /* A source statement: file (index into files), line, its text. */
 typedef struct csf_src { uint32_t file, line, text; } csf_src;
-/* An object property in memory: its object (index into objects), name, slot, width (1 or 3). */
-typedef struct csf_prop { uint32_t object, name, slot, width; } csf_prop;
+/*
+ * An object property in memory: its object (index into objects), name, slot,
+ * width (1 or 3), and its class as a parameter (index into pclasses): what
+ * -D NAME=VALUE needs to set its initial value, or why it cannot.
+ */
+typedef struct csf_prop { uint32_t object, name, slot, width, cls; } csf_prop;
+/* A global constant in memory (predefined or declared): name, slot, width, class (pclasses). */
+typedef struct csf_global { uint32_t name, slot, width, cls; } csf_global;
+/*
+ * A parameter class: the dimension of a value (exponents of length, mass,
+ * time; known 0: a bare number whose dimension nothing fixed, so only a
+ * bare number may replace it), its unit in the model's unit system
+ * ("m/s"; "" when dimensionless), and why (when not "") -D cannot set it:
+ * its value was folded at compile time into another value, it is computed
+ * by a rule, or it chose which contacts exist.
+ */
+typedef struct csf_pclass { uint32_t unit, why, known; double dim[3]; } csf_pclass;
 /* A value a code section computes, in the order it computes them. */
 typedef struct csf_target { uint32_t slot, width, src, name, object; } csf_target;
 /* An assertion: its statement and the object it was checked for. */
@@ -161,6 +176,10 @@ typedef struct csf_prog {
 	csf_contacts *crun; /* during csf_run, the contact routine's state; NULL otherwise (not in the file) */
 	uint32_t *objects; /* object names, in definition order */
 	csf_prop *props;
+	double ubase[3];    /* the model's unit system: its units of length, mass and time in SI */
+	uint32_t nglobals, npclasses;
+	csf_global *globals; /* the globals -D can name */
+	csf_pclass *pclasses;
 	uint32_t *files;
 	csf_src *srcs;
 	csf_assert *asserts;
@@ -189,6 +208,41 @@ int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, siz
 
 /* Verifies a program's tables and code (csf_decode calls it). 0 or -1 + reason. */
 int csf_verify(const csf_prog *p, char *err, size_t errlen);
+
+/*
+ * Parameters (param.c): a value named NAME (a global) or OBJECT.PROP,
+ * found in p's tables; its slot, width and class.
+ */
+typedef struct csf_pref { uint32_t slot, width; const csf_pclass *cls; } csf_pref;
+
+/*
+ * Finds the parameter name (a global or OBJECT.PROP). Returns 0 and fills
+ * *r, or -1 with a one-line reason in err ("unknown name", "ball has no
+ * property x that the run uses").
+ */
+int csf_param_find(const csf_prog *p, const char *name, csf_pref *r, char *err, size_t errlen);
+
+/*
+ * Reads a value for parameter r (named name) from text, as the source writes one: a
+ * number or a vector (x, y, z), each optionally followed by a unit, and a
+ * unit after the whole (`3 m/s`, `(3, 0, 4) m/s`, `90 deg`, `2000 g/s^2`;
+ * a bare number is in the model's units). Checks its kind (scalar or
+ * vector) and dimension, converts it to the model's units into v[0..width).
+ * Returns 0, or -1 with a one-line reason in err naming the expected unit.
+ */
+int csf_param_value(const csf_prog *p, const char *name, const csf_pref *r, const char *text, double v[3], char *err,
+                    size_t errlen);
+
+/*
+ * -D NAME=VALUE: sets the initial value of a global or an object's
+ * property in p->mem0. Returns 0, or -1 with the reason in err
+ * ("-D NAME=VALUE: ..."): an unknown name, a value that cannot be
+ * overridden (and why), a wrong kind or dimension.
+ */
+int csf_param_set(csf_prog *p, const char *assign, char *err, size_t errlen);
+
+/* Lists every parameter of p with its initial value and unit, or why -D cannot set it (csfc --explain). */
+void csf_params_list(const csf_prog *p, FILE *f);
 
 /* Frees everything a decoded or compiler-built program owns. */
 void csf_prog_free(csf_prog *p);
@@ -290,6 +344,15 @@ typedef struct csf_opts {
 	int stats;          /* --stats: a summary on stderr at the end */
 	int progress;       /* CSF_PROGRESS_AUTO (on a terminal), _ON (--progress), _OFF (--no-progress) */
 	int compare;        /* --compare-methods */
+	/* parameters and sweeps (param.c, sweep.c); the strings are argv's, the arrays malloc'd (csf_opts_free) */
+	const char **defs;  /* -D NAME=VALUE, in order */
+	int ndefs;
+	const char **sweeps; /* --sweep NAME=FROM:TO:COUNT [UNIT], in order (the last varies fastest) */
+	int nsweeps;
+	const char *sweep_file; /* --sweep-file FILE.csv */
+	const char *summary;    /* --sweep-summary EXPR */
+	const char *out_dir;    /* --out-dir DIR */
+	long jobs;              /* -j N: worker processes of a sweep (0: the number of online CPUs) */
 	/* filled in by csf_run: */
 	unsigned long run_steps, run_rhs;
 	double run_seconds;
@@ -303,6 +366,38 @@ typedef struct csf_opts {
  */
 int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int npos, int *npos_out,
                    const char *usage);
+
+/* Frees the arrays csf_parse_opts allocated in o. */
+void csf_opts_free(csf_opts *o);
+
+/*
+ * A sweep (sweep.c): the variants of a scene, the Cartesian product of the
+ * --sweep-file rows and the --sweep axes, in that order, the last varying fastest. Each
+ * variant's result is one message (csf_sweep_run) that the writer takes
+ * in variant order (csf_sweep_take); where it was made does not matter.
+ */
+typedef struct csf_sweep csf_sweep;
+/* The number of variants. */
+size_t csf_sweep_count(const csf_sweep *s);
+/* Runs variant i; returns its result message (malloc'd, *len bytes; NULL when memory ran out). */
+unsigned char *csf_sweep_run(csf_sweep *s, size_t i, size_t *len);
+/* Writes the result of variant i, which must be the next in order; 0, or -1 after an error (reported). */
+int csf_sweep_take(csf_sweep *s, size_t i, const unsigned char *msg, size_t len);
+/*
+ * Runs the variants of s elsewhere (csfvm-mpi sets it: sweep_mpi.c):
+ * returns 0 when it did, 1 when it did not (one MPI rank: the sweep forks
+ * its -j workers instead), -1 after an error. NULL in csfvm.
+ */
+extern int (*csf_sweep_distribute)(csf_sweep *s);
+/*
+ * csfvm --sweep / --sweep-file: runs the variants of p (its initial memory,
+ * after -D, is changed) with -j worker processes and writes one CSV to out
+ * (or one file per run under o->out_dir), a failing variant's diagnostics
+ * to err with its run number. Returns the exit status: 0, 1 when a variant
+ * failed (its rows up to the failure are written), 2 on bad options or an
+ * output error.
+ */
+int csf_sweep_main(csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char *prog, FILE *out, FILE *err);
 
 /*
  * Simulates p: integrates the state from t = 0 to till, evaluating OUT at
@@ -333,6 +428,24 @@ int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *er
  * spare byte after the *len bytes read. Returns NULL with errno set on failure.
  */
 unsigned char *csf_read_file(const char *path, size_t *len);
+
+/*
+ * The unit table (units.c), defined once for the compiler and the runtime:
+ * name, factor to SI, exponents of length, mass, time and angle, the
+ * factor's source. Ends with a NULL name.
+ */
+typedef struct csf_unit { const char *name; double factor; signed char dim[4]; const char *source; } csf_unit;
+extern const csf_unit csf_unit_table[];
+/* The unit named by the len bytes at name, or NULL. */
+const csf_unit *csf_unit_find(const char *name, size_t len);
+/*
+ * Parses a unit expression at s (`m/s^2`, `kg*m/(s^2)`, `g/cm^3`): its
+ * factor and dimension into *u, *end past it. Returns 0, or -1 with *why
+ * set to the reason.
+ */
+int csf_unit_parse(const char *s, const char **end, csf_unit *u, const char **why);
+/* Converts si, a value of dimension d (length, mass, time) in SI, to the unit system whose units are base (in SI). */
+double csf_units_to_system(double si, const double d[3], const double base[3]);
 
 /* Formats x so that it reads back to the same double (shortest of %.15g..%.17g). */
 void csf_fmt_double(char buf[32], double x);

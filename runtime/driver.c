@@ -49,6 +49,21 @@ static int positive(const char *prog, const char *v, const char *name, const cha
 	return 0;
 }
 
+/* Appends s to the array *v of *n strings (room for max); -1 when memory runs out. */
+static int push_arg(const char ***v, int *n, const char *s, int max)
+{
+	if (!*v && !(*v = malloc((size_t)max * sizeof **v))) return -1;
+	(*v)[(*n)++] = s;
+	return 0;
+}
+
+void csf_opts_free(csf_opts *o)
+{
+	free(o->defs);
+	free(o->sweeps);
+	o->defs = o->sweeps = NULL;
+}
+
 /*
  * Is argv[*i] option name with a value, as "name VALUE" (the next
  * argument, *i moves past it) or "name=VALUE"? The value into *val.
@@ -110,6 +125,25 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 			o->progress = CSF_PROGRESS_OFF;
 		} else if (strcmp(a, "--compare-methods") == 0) {
 			o->compare = 1;
+		} else if (strncmp(a, "-D", 2) == 0 && (a[2] || i + 1 < argc)) {
+			if (push_arg(&o->defs, &o->ndefs, a[2] ? a + 2 : argv[++i], argc)) return 2;
+		} else if (opt_value(argc, argv, &i, "--sweep", &v)) {
+			if (push_arg(&o->sweeps, &o->nsweeps, v, argc)) return 2;
+		} else if (opt_value(argc, argv, &i, "--sweep-file", &v)) {
+			o->sweep_file = v;
+		} else if (opt_value(argc, argv, &i, "--sweep-summary", &v)) {
+			o->summary = v;
+		} else if (opt_value(argc, argv, &i, "--out-dir", &v)) {
+			o->out_dir = v;
+		} else if ((strncmp(a, "-j", 2) == 0 && (a[2] || i + 1 < argc)) || opt_value(argc, argv, &i, "--jobs", &v)) {
+			if (strncmp(a, "-j", 2) == 0) v = a[2] ? a + 2 : argv[++i];
+			char *end;
+			errno = 0;
+			o->jobs = strtol(v, &end, 10);
+			if (end == v || *end || errno || o->jobs < 1 || o->jobs > 4096) {
+				fprintf(stderr, "%s: -j needs a number of processes from 1 to 4096, not '%s'\n", argv[0], v);
+				return 2;
+			}
 		} else if (a[0] == '-' && a[1] != '\0') {
 			fprintf(stderr, "%s: unknown or incomplete option '%s'\n%s", argv[0], a, usage);
 			return 2;

@@ -30,6 +30,15 @@ static const char vm_usage[] =
 	"  --progress, --no-progress  a progress line on stderr (default: on a terminal)\n"
 	"  --compare-methods  run the scene with every method and several tolerances;\n"
 	"                 print time and the difference from the most accurate run\n"
+	"  -D NAME=VALUE  set a global or OBJECT.PROP before the run, with units as in the\n"
+	"                 source: -D 'ball.v=(3, 0, 4) m/s', -D k=2000 g/s^2\n"
+	"  --sweep 'NAME=FROM:TO:COUNT [UNIT]'  run COUNT values from FROM to TO; several\n"
+	"                 --sweep run their Cartesian product, in one CSV with the swept\n"
+	"                 values as leading columns\n"
+	"  --sweep-file FILE.csv  one variant per row (a header names the parameters)\n"
+	"  --sweep-summary 'max(COL),min(COL),final(COL)'  one row per variant\n"
+	"  --out-dir DIR  one CSV per variant, DIR/run-00001.csv..., and DIR/index.csv\n"
+	"  -j N           N worker processes for a sweep (default: every CPU)\n"
 	"  --help, --version\n";
 
 static const char exe_usage[] =
@@ -41,7 +50,8 @@ static const char exe_usage[] =
 	"  --tol EPS      local error bound per internal step (default 1e-12 for dop853,\n"
 	"                 1e-10 for the others)\n"
 	"  --hmax H, --fixed, --step H, --stats, --progress, --no-progress,\n"
-	"  --compare-methods: as csfvm(1)\n"
+	"  --compare-methods, -D NAME=VALUE, --sweep 'NAME=FROM:TO:COUNT [UNIT]',\n"
+	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, -j N: as csfvm(1)\n"
 	"  --help, --version\n";
 
 unsigned char *csf_read_file(const char *path, size_t *len)
@@ -90,9 +100,17 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 	if (image) snprintf(usage, sizeof usage, exe_usage, argv[0]);
 	else snprintf(usage, sizeof usage, "%s", vm_usage);
 	int st = csf_parse_opts(argc, argv, 1, &o, pos, image ? 0 : 1, &npos, usage);
-	if (st) return st == 1 ? 0 : 2;
-	if (!image && npos != 1) {
-		fputs(usage, stderr);
+	if (st) {
+		csf_opts_free(&o);
+		return st == 1 ? 0 : 2;
+	}
+	const char *prog = image ? argv[0] : "csfvm";
+	int sweep = o.nsweeps || o.sweep_file;
+	if ((!image && npos != 1) || (!sweep && (o.summary || o.out_dir)) || (sweep && o.compare)) {
+		if (!sweep && (o.summary || o.out_dir)) fprintf(stderr, "%s: --sweep-summary and --out-dir need --sweep or --sweep-file\n", prog);
+		else if (sweep && o.compare) fprintf(stderr, "%s: --compare-methods runs one scene, not a sweep\n", prog);
+		else fputs(usage, stderr);
+		csf_opts_free(&o);
 		return 2;
 	}
 	const char *path = image ? argv[0] : argv[pos[0]];
@@ -102,11 +120,12 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		buf = csf_read_file(path, &len);
 		if (!buf) {
 			fprintf(stderr, "csfvm: cannot read %s: %s\n", path, strerror(errno));
+			csf_opts_free(&o);
 			return 2;
 		}
 	}
 	csf_prog p;
-	char err[256];
+	char err[1024];
 	if (csf_decode(image ? image : buf, len, &p, err, sizeof err)) {
 		const char *name = strcmp(path, "-") == 0 ? "standard input" : path;
 		fprintf(stderr, "%s: %s: invalid bytecode: %s\n", image ? argv[0] : "csfvm", name, err);
@@ -114,9 +133,17 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 			fprintf(stderr, "csfvm: hint: %s looks like CSF source; compile it with csfc first: csfc %s -o MODEL.csfb\n",
 			        name, strcmp(path, "-") == 0 ? "-" : path);
 		free(buf);
+		csf_opts_free(&o);
 		return 2;
 	}
 	free(buf);
+	for (int i = 0; i < o.ndefs; i++)
+		if (csf_param_set(&p, o.defs[i], err, sizeof err)) {
+			fprintf(stderr, "%s: %s\n", prog, err);
+			csf_prog_free(&p);
+			csf_opts_free(&o);
+			return 2;
+		}
 	/* a write to a closed pipe is an error csf_run sees (EPIPE), and ends quietly */
 	signal(SIGPIPE, SIG_IGN);
 	struct sigaction sa;
@@ -126,8 +153,10 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 	sigemptyset(&sa.sa_mask);
 	sigaction(SIGINT, &sa, NULL);
 	sigaction(SIGTERM, &sa, NULL);
-	st = o.compare ? csf_compare_methods(&p, exec, stdout, stderr) : csf_run(&p, exec, &o, stdout, stderr);
+	if (sweep) st = csf_sweep_main(&p, exec, &o, prog, stdout, stderr);
+	else st = o.compare ? csf_compare_methods(&p, exec, stdout, stderr) : csf_run(&p, exec, &o, stdout, stderr);
 	csf_prog_free(&p);
+	csf_opts_free(&o);
 	if (st == 128 + SIGPIPE) { /* as cat: killed by the signal the closed pipe sent */
 		signal(SIGPIPE, SIG_DFL);
 		raise(SIGPIPE);

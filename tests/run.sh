@@ -20,7 +20,8 @@
 #     every method at every tolerance (tests/methods_tol.sh), contacts
 #     (tests/contacts/), many objects (tests/many/: 100 balls in a box),
 #     csfview's pages and plots (tests/view/; in headless Chromium where it
-#     is installed, else a SKIP line).
+#     is installed, else a SKIP line), parameters and sweeps (tests/sweep/; MPI
+#     where Open MPI is installed, else a SKIP line).
 # The last line is "N passed, N failed".
 set -u
 B=$(cd "${CSF_BUILD:-build}" && pwd)
@@ -306,6 +307,12 @@ rm -f "$T/big.csf"
 if sh tests/many/box.sh "$CSFC" "$CSFVM" "$T" >"$T/box" 2>&1; then ok; else bad "100 balls in a box: $(grep FAIL "$T/box" | head -n 3)"; fi
 # 5i. every contact scene under every method: each finishes, exact to 1e-6 (tests/contacts/methods.sh)
 if sh tests/contacts/methods.sh "$CSFC" "$CSFVM" "$T" >"$T/mm" 2>&1; then ok; else bad "contacts and methods: $(grep FAIL "$T/mm" | head -n 3)"; fi
+
+# 5o. parameters and sweeps: -D with units against the closed form, the errors, a sweep of 100
+#     variants (-j 1 = -j 2 = each variant's -D run), --out-dir, --sweep-file, --sweep-summary,
+#     a generated program, mpirun -np 3 where Open MPI is installed (tests/sweep/check.sh)
+if timeout "$LIMIT" sh tests/sweep/check.sh "$CSFC" "$CSFVM" "$T" "$B" >"$T/sweep" 2>&1; then ok; else bad "sweeps: $(grep FAIL "$T/sweep" | head -n 3)"; fi
+grep '^SKIP' "$T/sweep"
 
 # 5n. csfview: the page, the static plots, decimation; the page in headless Chromium (tests/view/check.sh)
 if sh tests/view/check.sh "$CSFC" "$CSFVM" "$CSFVIEW" "$T" >"$T/view" 2>&1; then ok; else bad "csfview: $(grep FAIL "$T/view" | head -n 3)"; fi

@@ -51,6 +51,7 @@ csf_prog bare_prog(uint32_t *code, uint32_t n, double *mem0, uint32_t nmem, uint
 	p.strs = "";
 	p.nstrs = 1;
 	p.by = 1;
+	p.ubase[0] = p.ubase[1] = p.ubase[2] = 1; /* mks */
 	p.asserts = a;
 	p.nasserts = nasserts;
 	p.srcs = &s;

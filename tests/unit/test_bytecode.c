@@ -304,6 +304,108 @@ START_TEST(test_contact_tables_verified)
 }
 END_TEST
 
+/* A spring whose constant and mass -D can set; k2 is folded from k, so neither can be. */
+static const char *param_model = "global k = 20 N/m\nglobal k2 = 2 * k\nobject b: m = 1 kg\nobject b: x = 1 m\n"
+                                 "object b: v = 0 m/s\nrule: x' = v\nrule: v' = -k2 * x / m\n"
+                                 "inc t till 1 s by 0.5 s watch b.x\n";
+
+/* The parameter tables: every name, slot, class and the unit system checked (csf_verify); they survive a round trip. */
+START_TEST(test_param_tables_verified)
+{
+	csf_prog p, q;
+	ck_assert_int_eq(compile_string(param_model, &p, NULL), 0);
+	ck_assert_uint_ge(p.nglobals, 2);
+	ck_assert_uint_ge(p.npclasses, 2);
+	defect d[] = {
+		{ &p.props[0].cls, p.npclasses, "property" },
+		{ &p.globals[0].cls, p.npclasses, "global" },
+		{ &p.globals[0].slot, p.nmem, "global" },
+		{ &p.globals[0].slot, p.nmem - 1, "global" }, /* g is a vector */
+		{ &p.globals[0].width, 2, "global" },
+		{ &p.globals[0].name, p.nstrs, "global" },
+		{ &p.pclasses[0].unit, p.nstrs, "parameter class" },
+		{ &p.pclasses[0].why, p.nstrs, "parameter class" },
+		{ &p.pclasses[0].known, 2, "parameter class" },
+	};
+	expect_defects(&p, d, sizeof d / sizeof d[0]);
+	char err[256];
+	double keep = p.ubase[1];
+	p.ubase[1] = 0;
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
+	ck_assert_msg(strstr(err, "unit system") != NULL, "%s", err);
+	p.ubase[1] = keep;
+	keep = p.pclasses[0].dim[2];
+	p.pclasses[0].dim[2] = NAN;
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
+	ck_assert_msg(strstr(err, "parameter class") != NULL, "%s", err);
+	p.pclasses[0].dim[2] = keep;
+	unsigned char *buf;
+	size_t len;
+	ck_assert_int_eq(csf_encode(&p, &buf, &len), 0);
+	ck_assert_int_eq(csf_decode(buf, len, &q, err, sizeof err), 0);
+	ck_assert_uint_eq(q.nglobals, p.nglobals);
+	ck_assert_uint_eq(q.npclasses, p.npclasses);
+	ck_assert(memcmp(q.globals, p.globals, p.nglobals * sizeof *p.globals) == 0);
+	for (uint32_t i = 0; i < p.npclasses; i++)
+		ck_assert(q.pclasses[i].unit == p.pclasses[i].unit && q.pclasses[i].why == p.pclasses[i].why &&
+		          q.pclasses[i].known == p.pclasses[i].known &&
+		          memcmp(q.pclasses[i].dim, p.pclasses[i].dim, sizeof q.pclasses[i].dim) == 0);
+	ck_assert(memcmp(q.ubase, p.ubase, sizeof p.ubase) == 0);
+	free(buf);
+	csf_prog_free(&q);
+	csf_prog_free(&p);
+}
+END_TEST
+
+/* -D: values with units, converted as the compiler converts a literal; the refusals name the reason. */
+static const struct { const char *assign; double want; const char *err; } param_cases[] = {
+	{ "b.m=500 g", 0.5, NULL },
+	{ "b.m = 2", 2, NULL },
+	{ "b.x=(3 ft)", 0, "cannot read" },
+	{ "b.x=3 ft", 0.9144, NULL },
+	{ "b.x=36 km/h", 0, "expected unit m" },
+	{ "b.v=36 km/h", 10, NULL },
+	{ "b.v=1 mph", 0.44704, NULL },
+	{ "k=20", 0, "k cannot be overridden: its value is folded" },
+	{ "k2=20", 0, "k2 cannot be overridden: its value is computed at compile time from k" },
+	{ "g=(0, 0, -1.62) m/s^2", 0, NULL },
+	{ "g=(0, 0, -1.62 m/s^2)", 0, NULL },
+	{ "g=(0, 0, -1.62 kg)", 0, "expected unit m/s^2" },
+	{ "g=(1 m/s^2, 0, 2 kg)", 0, "one dimension" },
+	{ "g=1 m/s^2", 0, "g is a vector" },
+	{ "pi=3 m", 0, "pi is dimensionless" },
+	{ "nope=1", 0, "unknown name 'nope'" },
+	{ "b.nope=1", 0, "no property 'nope'" },
+	{ "c.x=1", 0, "no object 'c'" },
+	{ "b=1", 0, "is an object" },
+	{ "b.m", 0, "expected NAME=VALUE" },
+	{ "b.m=1 kg kg", 0, "cannot read" },
+	{ "b.m=1e999", 0, "cannot read" },
+};
+
+START_TEST(test_param_set)
+{
+	csf_prog p;
+	ck_assert_int_eq(compile_string(param_model, &p, NULL), 0);
+	char err[512];
+	int r = csf_param_set(&p, param_cases[_i].assign, err, sizeof err);
+	if (param_cases[_i].err) {
+		ck_assert_msg(r == -1, "%s accepted", param_cases[_i].assign);
+		ck_assert_msg(strstr(err, param_cases[_i].err) != NULL, "%s: %s", param_cases[_i].assign, err);
+	} else {
+		ck_assert_msg(r == 0, "%s: %s", param_cases[_i].assign, err);
+		char name[32];
+		sscanf(param_cases[_i].assign, "%31[^= ]", name);
+		csf_pref ref;
+		ck_assert_int_eq(csf_param_find(&p, name, &ref, err, sizeof err), 0);
+		double got = ref.width == 3 ? p.mem0[ref.slot + 2] : p.mem0[ref.slot];
+		double want = ref.width == 3 ? -1.62 : param_cases[_i].want;
+		ck_assert_msg(fabs(got - want) <= 1e-15 * fabs(want), "%s: %.17g, want %.17g", param_cases[_i].assign, got, want);
+	}
+	csf_prog_free(&p);
+}
+END_TEST
+
 /* A sphere (radius 0.1 m, restitution 0.5) on a floor 1000 km up, under gravity. */
 static const char *floor_model =
 	"object floor: vector point = (0, 0, 1e6) m\n"
@@ -500,6 +602,8 @@ Suite *bytecode_suite(void)
 	tcase_add_test(tc, test_contact_settle);
 	tcase_add_test(tc, test_contact_broad_phase);
 	tcase_add_test(tc, test_disassembler);
+	tcase_add_test(tc, test_param_tables_verified);
+	tcase_add_loop_test(tc, test_param_set, 0, sizeof param_cases / sizeof param_cases[0]);
 	suite_add_tcase(s, tc);
 	return s;
 }

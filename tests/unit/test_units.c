@@ -71,7 +71,7 @@ END_TEST
 START_TEST(test_extremes)
 {
 	static const double base[3][3] = { { 1, 1, 1 }, { 1e-2, 1e-3, 1 }, { 0.3048, 0.45359237, 1 } };
-	for (const UnitInfo *u = unit_table; u->name; u++) {
+	for (const csf_unit *u = csf_unit_table; u->name; u++) {
 		double d[3] = { u->dim[DIM_L], u->dim[DIM_M], u->dim[DIM_T] };
 		for (int e = -30; e <= 30; e += 3) {
 			double x = 1.2345678901234567 * pow(10, e), si = x * u->factor;

@@ -1,0 +1,209 @@
+/*
+ * param.c - parameters: the initial values -D NAME=VALUE sets.
+ *
+ * The compiler lists what can be set: every global (p->globals) and every
+ * object property the run keeps in memory (p->props), each with a class
+ * (p->pclasses) giving its dimension and unit in the model's unit system,
+ * or why it cannot be set (its value was folded at compile time into
+ * another value, it is computed by a rule, it decided which contacts
+ * exist). A value is read as the source writes one, a number or a vector
+ * with units, converted with the same arithmetic the compiler uses for a
+ * literal (csf_units_to_system of the unit's SI factor, times the number),
+ * so `-D 'ball.v=(3, 0, 4) m/s'` gives the bits `v = (3, 0, 4) m/s` gives.
+ * A bare number is in the model's units and is taken as it is: the values
+ * a sweep prints read back to the same doubles.
+ */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "csf.h"
+
+static int perr(char *err, size_t errlen, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(err, errlen, fmt, ap);
+	va_end(ap);
+	return -1;
+}
+
+int csf_param_find(const csf_prog *p, const char *name, csf_pref *r, char *err, size_t errlen)
+{
+	const char *dot = strchr(name, '.');
+	if (!dot) {
+		for (uint32_t i = 0; i < p->nglobals; i++)
+			if (strcmp(csf_str(p, p->globals[i].name), name) == 0) {
+				*r = (csf_pref){ p->globals[i].slot, p->globals[i].width, &p->pclasses[p->globals[i].cls] };
+				return 0;
+			}
+		for (uint32_t i = 0; i < p->nobjects; i++)
+			if (strcmp(csf_str(p, p->objects[i]), name) == 0)
+				return perr(err, errlen, "'%s' is an object: name one of its properties, %s.PROP", name, name);
+		return perr(err, errlen, "unknown name '%s': the scene has no global of that name", name);
+	}
+	size_t on = (size_t)(dot - name);
+	uint32_t obj = UINT32_MAX;
+	for (uint32_t i = 0; i < p->nobjects && obj == UINT32_MAX; i++)
+		if (strlen(csf_str(p, p->objects[i])) == on && memcmp(csf_str(p, p->objects[i]), name, on) == 0) obj = i;
+	if (obj == UINT32_MAX) return perr(err, errlen, "unknown name '%s': the scene has no object '%.*s'", name, (int)on, name);
+	for (uint32_t i = 0; i < p->nprops; i++)
+		if (p->props[i].object == obj && strcmp(csf_str(p, p->props[i].name), dot + 1) == 0) {
+			*r = (csf_pref){ p->props[i].slot, p->props[i].width, &p->pclasses[p->props[i].cls] };
+			return 0;
+		}
+	return perr(err, errlen, "unknown name '%s': object '%.*s' has no property '%s' that the run uses", name, (int)on,
+	            name, dot + 1);
+}
+
+/* A value being read: where in the text, whether the last opt_unit found a unit, the model's unit system. */
+typedef struct vread {
+	const char *s;
+	int has_unit;
+	const double *base;
+} vread;
+
+static void skip_ws(vread *V) { while (isspace((unsigned char)*V->s)) V->s++; }
+
+/* An optional unit at V->s: its factor in the model's units into *f (1 if none), its dimension checked. */
+static int opt_unit(vread *V, double *f, double dim[3], const char **why)
+{
+	skip_ws(V);
+	*f = 1;
+	dim[0] = dim[1] = dim[2] = 0;
+	if (!isalpha((unsigned char)*V->s) && !(*V->s == '(' && isalpha((unsigned char)V->s[1]))) return 0;
+	csf_unit u;
+	const char *end;
+	if (csf_unit_parse(V->s, &end, &u, why)) return -1;
+	V->s = end;
+	for (int k = 0; k < 3; k++) dim[k] = u.dim[k];
+	*f = csf_units_to_system(u.factor, dim, V->base);
+	V->has_unit = 1;
+	return 0;
+}
+
+static int number(vread *V, double *x)
+{
+	skip_ws(V);
+	char *end;
+	errno = 0;
+	*x = strtod(V->s, &end);
+	if (end == V->s || errno == ERANGE || !isfinite(*x)) return -1;
+	V->s = end;
+	return 0;
+}
+
+int csf_param_value(const csf_prog *p, const char *name, const csf_pref *r, const char *text, double v[3], char *err,
+                    size_t errlen)
+{
+	vread V = { .s = text, .base = p->ubase };
+	const char *why = "expected a number";
+	int n = 1, has[3] = { 0, 0, 0 };
+	double f[3] = { 1, 1, 1 }, d[3][3] = { { 0 } }, of, od[3];
+	skip_ws(&V);
+	if (*V.s == '(') {
+		n = 3;
+		V.s++;
+		for (int k = 0; k < 3; k++) {
+			V.has_unit = 0;
+			if (number(&V, &v[k]) || opt_unit(&V, &f[k], d[k], &why)) goto bad;
+			has[k] = V.has_unit;
+			skip_ws(&V);
+			if (*V.s != (k < 2 ? ',' : ')')) {
+				why = k < 2 ? "expected ',' between a vector's components" : "expected ')' after a vector's third component";
+				goto bad;
+			}
+			V.s++;
+		}
+	} else if (number(&V, &v[0])) {
+		goto bad;
+	}
+	V.has_unit = 0;
+	if (opt_unit(&V, &of, od, &why)) goto bad;
+	skip_ws(&V);
+	if (*V.s) {
+		why = "unexpected text after the value";
+		goto bad;
+	}
+	/* as the compiler folds it: each component times its unit's factor, then the whole times the outer one's */
+	int dim_set = 0;
+	double dim[3] = { 0, 0, 0 };
+	for (int k = 0; k < n; k++) {
+		v[k] = v[k] * f[k] * of;
+		if (!has[k] && !V.has_unit) continue;
+		double t[3] = { d[k][0] + od[0], d[k][1] + od[1], d[k][2] + od[2] };
+		if (dim_set && memcmp(t, dim, sizeof t) != 0)
+			return perr(err, errlen, "'%s': the components of a vector must have one dimension", text);
+		memcpy(dim, t, sizeof t);
+		dim_set = 1;
+	}
+	if ((uint32_t)n != r->width)
+		return perr(err, errlen, "%s is a %s: give %s, not '%s'", name, r->width == 3 ? "vector" : "scalar",
+		            r->width == 3 ? "(x, y, z) and a unit" : "a number and a unit", text);
+	const csf_pclass *c = r->cls;
+	const char *unit = csf_str(p, c->unit);
+	if (dim_set && !c->known && (dim[0] || dim[1] || dim[2]))
+		return perr(err, errlen, "the dimension of %s is not known to the model: give a bare number, not '%s'", name, text);
+	if (dim_set && c->known && memcmp(c->dim, dim, sizeof dim) != 0) {
+		if (!*unit) return perr(err, errlen, "wrong dimension: %s is dimensionless, '%s' is not (expected a bare number)", name, text);
+		return perr(err, errlen, "wrong dimension: %s is in %s, '%s' is not (expected unit %s)", name, unit, text, unit);
+	}
+	for (int k = 0; k < n; k++)
+		if (!isfinite(v[k])) return perr(err, errlen, "'%s' is not a finite value", text);
+	return 0;
+bad:
+	return perr(err, errlen, "cannot read '%s' as a value: %s at '%s'", text, why, V.s);
+}
+
+int csf_param_set(csf_prog *p, const char *assign, char *err, size_t errlen)
+{
+	const char *eq = strchr(assign, '=');
+	if (!eq || eq == assign) return perr(err, errlen, "-D %s: expected NAME=VALUE", assign);
+	char name[256];
+	size_t n = (size_t)(eq - assign);
+	while (n && isspace((unsigned char)assign[n - 1])) n--;
+	if (n >= sizeof name) return perr(err, errlen, "-D %s: name too long", assign);
+	memcpy(name, assign, n);
+	name[n] = '\0';
+	csf_pref r;
+	char why[400];
+	double v[3];
+	if (csf_param_find(p, name, &r, why, sizeof why)) return perr(err, errlen, "-D %s: %s", assign, why);
+	if (*csf_str(p, r.cls->why))
+		return perr(err, errlen, "-D %s: %s cannot be overridden: %s", assign, name, csf_str(p, r.cls->why));
+	if (csf_param_value(p, name, &r, eq + 1, v, why, sizeof why)) return perr(err, errlen, "-D %s: %s", assign, why);
+	memcpy(p->mem0 + r.slot, v, r.width * sizeof(double));
+	return 0;
+}
+
+/* One parameter's line of csf_params_list. */
+static void list_one(const csf_prog *p, FILE *f, const char *obj, const char *name, uint32_t slot, uint32_t width,
+                     const csf_pclass *c)
+{
+	const char *why = csf_str(p, c->why), *unit = csf_str(p, c->unit);
+	fprintf(f, "  %s%s%s = ", obj ? obj : "", obj ? "." : "", name);
+	char b[32];
+	for (uint32_t k = 0; k < width; k++) {
+		csf_fmt_double(b, p->mem0[slot + k]);
+		fprintf(f, "%s%s", width == 3 ? (k ? ", " : "(") : "", b);
+	}
+	fprintf(f, "%s%s%s", width == 3 ? ")" : "", *unit ? " " : "", unit);
+	if (*why) fprintf(f, ": cannot be set: %s", why);
+	else if (!c->known) fputs(" (dimension not known: a bare number)", f);
+	fputc('\n', f);
+}
+
+void csf_params_list(const csf_prog *p, FILE *f)
+{
+	fputs("parameters (csfvm -D NAME=VALUE, --sweep), with their values and units:\n", f);
+	for (uint32_t i = 0; i < p->nglobals; i++)
+		list_one(p, f, NULL, csf_str(p, p->globals[i].name), p->globals[i].slot, p->globals[i].width,
+		         &p->pclasses[p->globals[i].cls]);
+	for (uint32_t i = 0; i < p->nprops; i++)
+		list_one(p, f, csf_str(p, p->objects[p->props[i].object]), csf_str(p, p->props[i].name), p->props[i].slot,
+		         p->props[i].width, &p->pclasses[p->props[i].cls]);
+}

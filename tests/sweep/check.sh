@@ -1,0 +1,164 @@
+#!/bin/sh
+# tests/sweep/check.sh CSFC CSFVM DIR BUILD - parameters and sweeps:
+#  - -D on the launch angle and speed of a projectile with drag (launch.csf),
+#    every row against the closed form (launch.awk); -D with units (deg,
+#    km/h, g/s^2, g, a vector), in mks and cgs, against the closed form;
+#  - a wrong unit, an unknown name, a value folded at compile time or
+#    computed by a rule: exit 2 naming it (and the expected unit);
+#  - a sweep of 100 variants: every row against the closed form; -j 1 and
+#    -j 2 byte-identical; every variant byte-identical to its -D run;
+#  - --out-dir, --sweep-file, --sweep-summary, a failing variant (exit 1,
+#    the others written);
+#  - a generated program (csfc --emit-c) takes -D and --sweep and writes
+#    csfvm's bytes;
+#  - under mpirun -np 3 (BUILD/csfvm-mpi, where Open MPI is installed; SKIP
+#    otherwise) the sweep's bytes are the local run's.
+# Prints one line per failure and, last, "N passed, N failed".
+CSFC=$1 CSFVM=$2 T=$3 B=$4
+HERE=$(dirname "$0")
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+L=$T/launch.csfb S=$T/spring.csfb F=$T/folded.csfb
+"$CSFC" "$HERE/launch.csf" -o "$L" && "$CSFC" "$HERE/spring.csf" -o "$S" && "$CSFC" "$HERE/folded.csf" -o "$F" &&
+	"$CSFC" --units cgs "$HERE/spring.csf" -o "$T/spring-cgs.csfb" || { echo "FAIL: the test scenes do not compile"; exit 1; }
+
+# -D: the closed form for a few angles and speeds, given with units
+dcheck() { # theta(rad) v0(m/s) x0 z0 -D...
+	th=$1 v=$2 x0=$3 z0=$4
+	shift 4
+	if ! "$CSFVM" "$@" "$L" >"$T/d.csv" 2>"$T/d.err"; then bad "-D $*: $(head -n 1 "$T/d.err")"; return; fi
+	if awk -v lead=0 -v theta="$th" -v v0="$v" -v x0="$x0" -v z0="$z0" -v expect=21 -f "$HERE/launch.awk" "$T/d.csv" >"$T/d.chk"; then ok
+	else bad "-D $*: $(head -n 1 "$T/d.chk")"; fi
+}
+dcheck 0.785398163397448 20 0 0
+dcheck 0.523598775598299 10 0 0 -D theta=30deg -D 'v0=36 km/h'
+dcheck 1.2 7.5 0 0 -D theta=1.2 -D v0=7.5
+dcheck 1.0471975511966 30 0 0 -D 'theta=60 deg' -D v0=30m/s
+dcheck 0.785398163397448 20 1 2 -D 'ball.pos=(1, 0, 2) m'
+dcheck 0.785398163397448 20 1 2 -D 'ball.pos=(100 cm, 0, 2000 mm)'
+dcheck 0.785398163397448 20 0.3048 0 -D 'ball.pos=(1, 0, 0) ft'
+dcheck 0.785398163397448 20 0 0 -D 'ball.m=500 g' -D 'ball.b=100 g/s'
+# a spring: k = 2000 g/s^2 = 2 N/m, m = 500 g: x = cos(2 t); in cgs x is in cm
+spring() { # what file scale -D...
+	what=$1 file=$2 scale=$3
+	shift 3
+	if "$CSFVM" "$@" "$file" >"$T/s.csv" 2>"$T/s.err" &&
+		awk -F, -v s="$scale" 'NR > 1 { e = s * cos(2 * $1); d = $2 - e; if (d < 0) d = -d; if (d > 1e-6 * s) { print "t " $1 ": " $2 ", expected " e; exit 1 } n++ }
+			END { if (n != 11) { print n " rows"; exit 1 } }' "$T/s.csv" >"$T/s.chk"; then ok
+	else bad "spring $what: $(cat "$T/s.err" "$T/s.chk" 2>/dev/null | head -n 1)"; fi
+}
+spring mks "$S" 1 -D 'k=2000 g/s^2' -D 'ball.m=500 g'
+spring cgs "$T/spring-cgs.csfb" 100 -D 'k=2000 g/s^2' -D 'ball.m=500 g'
+spring "cgs, N/m and kg" "$T/spring-cgs.csfb" 100 -D 'k=2 N/m' -D 'ball.m=0.5 kg'
+spring "cgs, bare numbers in g and g/s^2" "$T/spring-cgs.csfb" 100 -D k=2000 -D ball.m=500
+spring "--opt=value, -DNAME" "$S" 1 -Dk=2 --method=dopri5 --tol=1e-10 -D ball.m=0.5
+
+# errors: exit 2 naming the value, the expected unit, or why it cannot be set
+derr() { # file pattern -D...
+	file=$1 pat=$2
+	shift 2
+	"$CSFVM" "$@" "$file" >"$T/e.out" 2>"$T/e.err"
+	st=$?
+	if [ $st -eq 2 ] && grep -q -- "$pat" "$T/e.err" && [ ! -s "$T/e.out" ]; then ok
+	else bad "$*: exit $st, stderr '$(head -n 1 "$T/e.err")', expected exit 2 and '$pat'"; fi
+}
+derr "$L" "expected unit m/s" -D 'v0=3 kg'
+derr "$L" "v0 is in m/s" -D 'v0=3 m'
+derr "$L" "expected a bare number" -D 'theta=1 m'
+derr "$L" "unknown name 'nosuch'" -D nosuch=1
+derr "$L" "object 'ball' has no property 'zz'" -D ball.zz=1
+derr "$L" "ball.pos is a vector" -D ball.pos=3
+derr "$L" "cannot read" -D 'v0=fast'
+derr "$L" "unknown unit" -D 'v0=3 furlong'
+derr "$S" "expected unit kg/s^2" -D 'k=3 N'
+derr "$F" "k cannot be overridden: its value is folded at compile time into the value of k2" -D k=1
+derr "$F" "k2 cannot be overridden: its value is computed at compile time from k" -D k2=1
+derr "$F" "ball.q cannot be overridden: its value is computed at compile time from k2" -D ball.q=1
+derr "$F" "ball.a cannot be overridden: a rule computes it" -D 'ball.a=1 m/s^2'
+derr "$L" "v0 is swept twice" --sweep v0=1:2:2 --sweep v0=1:2:2
+derr "$L" "ball.pos is a vector" --sweep ball.pos=1:2:2
+derr "$L" "expected NAME=FROM:TO:COUNT" --sweep v0=1:2
+derr "$L" "not a watched column" --sweep v0=1:2:2 --sweep-summary 'max(ball.v.z)'
+derr "$L" "need --sweep" --sweep-summary 'max(ball.pos.z)'
+
+# a sweep of 100 variants: header, the closed form, -j 1 = -j 2, each variant = its -D run
+SW="--sweep theta=0:90:10deg --sweep v0=5:50:10"
+# shellcheck disable=SC2086 # SW holds the sweep options
+"$CSFVM" $SW -j 1 "$L" >"$T/j1.csv" 2>"$T/j1.err" && "$CSFVM" $SW -j 2 "$L" >"$T/j2.csv" 2>"$T/j2.err" || bad "sweep: $(cat "$T/j1.err" "$T/j2.err" | head -n 1)"
+if [ "$(head -n 1 "$T/j1.csv")" = "theta,v0 [m/s],t,ball.pos.x [m],ball.pos.y [m],ball.pos.z [m]" ]; then ok
+else bad "sweep header: $(head -n 1 "$T/j1.csv")"; fi
+if awk -v lead=2 -v expect=2100 -f "$HERE/launch.awk" "$T/j1.csv" >"$T/j.chk"; then ok; else bad "sweep, closed form: $(head -n 1 "$T/j.chk")"; fi
+if cmp -s "$T/j1.csv" "$T/j2.csv"; then ok; else bad "sweep: -j 1 and -j 2 differ"; fi
+# shellcheck disable=SC2086
+if "$CSFVM" $SW "$L" | cmp -s - "$T/j1.csv"; then ok; else bad "sweep: the default -j differs from -j 1"; fi
+# every variant alone: -D NAME=PRINTED with the printed values
+awk -F, 'NR > 1 && $3 == 0 { print $1 " " $2 }' "$T/j1.csv" >"$T/variants"
+n=0 same=0
+while read -r th v; do
+	n=$((n + 1))
+	"$CSFVM" -D "theta=$th" -D "v0=$v" "$L" | tail -n +2 >"$T/alone.csv"
+	awk -F, -v th="$th" -v v="$v" 'NR > 1 && $1 == th && $2 == v { sub(/^[^,]*,[^,]*,/, ""); print }' "$T/j1.csv" >"$T/part.csv"
+	awk -F, -v th="$th" -v v="$v" 'NR > 1 && $1 == th && $2 == v' "$T/j1.csv" | cut -d, -f1,2 | sort -u | grep -qx "$th,$v" &&
+		cmp -s "$T/alone.csv" "$T/part.csv" && same=$((same + 1))
+done <"$T/variants"
+if [ $n -eq 100 ] && [ $same -eq 100 ]; then ok; else bad "sweep: $same of $n variants equal their -D run (100 expected)"; fi
+
+# --out-dir: one file per run, each its -D run's bytes; the index
+# shellcheck disable=SC2086
+if "$CSFVM" $SW -j 2 --out-dir "$T/runs" "$L" >"$T/od.out" 2>"$T/od.err" && [ ! -s "$T/od.out" ] &&
+	[ "$(wc -l <"$T/runs/index.csv")" -eq 101 ] && [ "$(head -n 1 "$T/runs/index.csv")" = "run,file,status,theta,v0 [m/s]" ] &&
+	line=$(sed -n '38p' "$T/runs/index.csv") && th=$(echo "$line" | cut -d, -f4) && v=$(echo "$line" | cut -d, -f5) &&
+	"$CSFVM" -D "theta=$th" -D "v0=$v" "$L" | cmp -s - "$T/runs/run-00037.csv" &&
+	[ "$(echo "$line" | cut -d, -f1-3)" = "37,run-00037.csv,0" ]; then ok
+else bad "--out-dir: $(head -n 1 "$T/od.err")"; fi
+
+# --sweep-file: rows with units, crossed with a --sweep
+printf 'theta, v0\n30 deg, 36 km/h\n# a comment\n1.2, 7.5 m/s\n' >"$T/params.csv"
+if "$CSFVM" --sweep-file "$T/params.csv" --sweep 'ball.m=0.5:0.5:1 kg' "$L" >"$T/sf.csv" 2>"$T/sf.err" &&
+	[ "$(head -n 1 "$T/sf.csv")" = "theta,v0 [m/s],ball.m [kg],t,ball.pos.x [m],ball.pos.y [m],ball.pos.z [m]" ] &&
+	awk -v lead=3 -v expect=42 -f "$HERE/launch.awk" "$T/sf.csv" >"$T/sf.chk" &&
+	[ "$(awk -F, 'NR == 2 { print $1 "," $2 }' "$T/sf.csv")" = "0.5235987755982988,10" ]; then ok
+else bad "--sweep-file: $(cat "$T/sf.err" "$T/sf.chk" 2>/dev/null | head -n 1)"; fi
+
+# --sweep-summary: one row per variant, the max and final of the rows
+# shellcheck disable=SC2086
+if "$CSFVM" $SW --sweep-summary 'max(ball.pos.z), final(ball.pos.x),min(t)' "$L" >"$T/sum.csv" 2>"$T/sum.err" &&
+	[ "$(head -n 1 "$T/sum.csv")" = "theta,v0 [m/s],max(ball.pos.z) [m],final(ball.pos.x) [m],min(t)" ] &&
+	[ "$(wc -l <"$T/sum.csv")" -eq 101 ] &&
+	awk -F, 'NR == FNR { if (FNR > 1) { key = $1 "," $2; if (!(key in mz) || $6 > mz[key]) mz[key] = $6; fx[key] = $4 } next }
+		FNR > 1 { key = $1 "," $2; if ($3 != mz[key] || $4 != fx[key] || $5 != 0) { print "summary of " key ": " $0; exit 1 } n++ }
+		END { if (n != 100) exit 1 }' "$T/j1.csv" "$T/sum.csv" >"$T/sum.chk"; then ok
+else bad "--sweep-summary: $(cat "$T/sum.err" "$T/sum.chk" 2>/dev/null | head -n 1)"; fi
+
+# a failing variant: reported with its run number, the others written, exit 1
+"$CSFVM" --sweep 'ball.x=1:2:3 m' -j 2 "$F" >"$T/fail.csv" 2>"$T/fail.err"
+st=$?
+if [ $st -eq 1 ] && grep -q "^csfvm: run 2 (ball.x=1.5): .*assertion failed" "$T/fail.err" && grep -q "^csfvm: run 3 (ball.x=2): " "$T/fail.err" &&
+	[ "$(grep -c '^1,' "$T/fail.csv")" -eq 3 ]; then ok
+else bad "failing variant: exit $st, $(head -n 1 "$T/fail.err")"; fi
+
+# a generated program: -D and --sweep as csfvm
+if timeout 120 "$CSFC" --emit-c "$HERE/launch.csf" -o "$T/launch" 2>"$T/ec.err"; then
+	# shellcheck disable=SC2086
+	if timeout 60 "$T/launch" -D theta=30deg -D 'v0=36 km/h' >"$T/g1.csv" && "$CSFVM" -D theta=30deg -D 'v0=36 km/h' "$L" | cmp -s - "$T/g1.csv" &&
+		timeout 60 "$T/launch" $SW -j 2 | cmp -s - "$T/j1.csv"; then ok
+	else bad "generated program: -D or --sweep differs from csfvm"; fi
+	timeout 60 "$T/launch" -D 'v0=1 kg' >/dev/null 2>"$T/ge.err"
+	st=$?
+	if [ $st -eq 2 ] && grep -q "expected unit m/s" "$T/ge.err"; then ok; else bad "generated program: a wrong unit: exit $st"; fi
+else
+	bad "csfc --emit-c launch.csf: $(head -n 1 "$T/ec.err")"
+fi
+
+# MPI: the same sweep under mpirun -np 3 (rank 0 gathers in order)
+if [ -x "$B/csfvm-mpi" ] && command -v mpirun >/dev/null 2>&1; then
+	# shellcheck disable=SC2086
+	if ASAN_OPTIONS=detect_leaks=0 timeout 120 mpirun --allow-run-as-root --oversubscribe -np 3 "$B/csfvm-mpi" $SW "$L" >"$T/mpi.csv" 2>"$T/mpi.err" &&
+		cmp -s "$T/mpi.csv" "$T/j1.csv"; then ok
+	else bad "mpirun -np 3: the output differs from the local run: $(head -n 2 "$T/mpi.err")"; fi
+else
+	echo "SKIP: MPI sweep (no $B/csfvm-mpi or mpirun: make deps-mpi)"
+fi
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]
