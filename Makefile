@@ -6,6 +6,9 @@
 #   make demo       deps + build + compile and run an example
 #   make MPI=1      also build/csfvm-mpi, csfvm whose sweeps run across MPI ranks (make deps-mpi)
 #   make check      every test, then the whole suite again under ASan/UBSan
+#   make fuzz       the fuzz targets (clang, libFuzzer, ASan/UBSan) for FUZZ_SECONDS each
+#                   (default 60); non-zero exit on a finding (tests/fuzz/README.md)
+#   make deps-fuzz  install what make fuzz needs (clang, libfuzzer-14-dev)
 #   make bench      benchmarks; results under bench/results, summary in bench/README.md
 #   make bench-peers  CSF beside SciPy's solve_ivp (installs python3-scipy: deps-peers)
 #   make install    PREFIX=/usr/local DESTDIR=
@@ -30,8 +33,9 @@ MPI_PACKAGES = libopenmpi-dev openmpi-bin
 MPI ?=
 MPICC ?= mpicc
 HAVE_MPICC := $(shell command -v $(MPICC) 2>/dev/null)
+FUZZ_PACKAGES = clang libfuzzer-14-dev
 , := ,
-SANFLAGS = $(if $(SAN),-fsanitize=address$(,)undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+SANFLAGS = $(if $(SAN),-fsanitize=address$(,)undefined$(,)float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer)
 CSF_CFLAGS = -std=c11 -Wall -Wextra -ffp-contract=off -D_DEFAULT_SOURCE $(SANFLAGS)
 CPPFLAGS_ALL = -Iruntime -Icompiler -I$(BUILD)
 LDLIBS_GSL = $(shell pkg-config --libs gsl 2>/dev/null || echo -lgsl -lgslcblas) -lm
@@ -104,14 +108,47 @@ $(BUILD)/unit-tests: $(TEST_OBJ) $(CC_OBJ) $(BUILD)/libcsfrt.a
 $(BUILD)/fuzz-bytecode: tests/fuzz_bytecode.c $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
 
+# the fuzz targets (tests/fuzz/) replayed on the regression corpus by an ordinary main()
+FUZZ_DEFS = -DCSF_FUZZ_STDLIB='"$(CURDIR)/stdlib"'
+
+$(BUILD)/fuzz-replay-csfc: tests/fuzz/fuzz_csfc.c tests/fuzz/replay.c $(CC_OBJ) $(BUILD)/libcsfrt.a
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(FUZZ_DEFS) $(LDFLAGS_SAN) -o $@ tests/fuzz/fuzz_csfc.c \
+		tests/fuzz/replay.c $(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+
+$(BUILD)/fuzz-replay-csfb: tests/fuzz/fuzz_csfb.c tests/fuzz/replay.c $(BUILD)/libcsfrt.a
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ tests/fuzz/fuzz_csfb.c tests/fuzz/replay.c \
+		$(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+
 # the MPI sweep test runs where Open MPI is installed (tests/sweep/check.sh says SKIP otherwise)
-test: all $(BUILD)/unit-tests $(BUILD)/fuzz-bytecode $(if $(HAVE_MPICC),$(BUILD)/csfvm-mpi)
+test: all $(BUILD)/unit-tests $(BUILD)/fuzz-bytecode $(BUILD)/fuzz-replay-csfc $(BUILD)/fuzz-replay-csfb $(if $(HAVE_MPICC),$(BUILD)/csfvm-mpi)
 	CSF_STDLIB=$(CURDIR)/stdlib $(BUILD)/unit-tests
 	CSF_BUILD=$(BUILD) CFLAGS="$(CFLAGS) $(SANFLAGS)" sh tests/run.sh
 
 check:
 	$(MAKE) test
 	$(MAKE) test BUILD=build-san SAN=1 CFLAGS="-O1 -g"
+
+# ---- fuzzing (not part of make check: needs clang) ----
+# make fuzz builds everything with clang, ASan, UBSan and libFuzzer's coverage in FUZZ_BUILD,
+# then tests/fuzz/run.sh runs each target for FUZZ_SECONDS, one process at a time, at nice 19.
+
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_CC ?= clang
+
+$(BUILD)/fuzz-csfc: tests/fuzz/fuzz_csfc.c $(CC_OBJ) $(BUILD)/libcsfrt.a
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(FUZZ_DEFS) -fsanitize=fuzzer $(LDFLAGS_SAN) -o $@ $< \
+		$(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+
+$(BUILD)/fuzz-csfb: tests/fuzz/fuzz_csfb.c $(BUILD)/libcsfrt.a
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -fsanitize=fuzzer $(LDFLAGS_SAN) -o $@ $< \
+		$(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+
+fuzz-targets: $(BUILD)/csfc $(BUILD)/fuzz-csfc $(BUILD)/fuzz-csfb
+
+fuzz:
+	$(MAKE) BUILD=$(FUZZ_BUILD) CC=$(FUZZ_CC) SAN=1 CFLAGS="-O1 -g -fsanitize=fuzzer-no-link" fuzz-targets
+	sh tests/fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 # ---- set-up, demo, install ----
 
@@ -127,6 +164,10 @@ deb_install = missing=""; for p in $(2); do \
 
 deps:
 	@$(call deb_install,deps,$(DEB_PACKAGES))
+
+# only for make fuzz (not needed by make or make check)
+deps-fuzz:
+	@$(call deb_install,deps-fuzz,$(FUZZ_PACKAGES))
 
 # only for make bench-peers (not needed by make, make check or make bench)
 deps-peers:
@@ -195,6 +236,6 @@ bench-peers: all deps-peers
 	$(MAKE) -C bench peers BUILD=$(abspath $(BUILD))
 
 clean:
-	rm -rf build build-san
+	rm -rf build build-san build-fuzz
 
-.PHONY: all deps deps-mpi deps-peers deps-view deps-chromium demo test check install uninstall bench bench-peers clean
+.PHONY: all deps deps-mpi deps-peers deps-view deps-chromium deps-fuzz demo test check fuzz fuzz-targets install uninstall bench bench-peers clean

@@ -34,6 +34,7 @@ struct Expr {
 	Expr *a, *b;
 	Expr **args;
 	int nargs;
+	int depth;   /* levels of the tree below and including this node (at most CSF_MAX_DEPTH + 1) */
 };
 
 typedef struct Eqn Eqn;

@@ -47,16 +47,32 @@ extern Vec sources; /* of Source*, index = Loc.file */
 int src_load(const char *path);
 /* Adds an in-memory source (tests); returns its index. */
 int src_add(const char *name, const char *text);
+/* The same for len bytes of text, which may hold NUL bytes (the fuzz target). */
+int src_add_n(const char *name, const char *text, size_t len);
 /* The text of line `line` of file `file` (without newline), in a fresh string. */
 char *src_line(int file, int line);
 
+/* At most this many errors are reported; then "too many errors" and the compiler stops. */
+#define CSF_MAX_ERRORS 20
 extern int diag_errors;
-/* Reports `file:line:col: error: ...` with the source line and a caret. */
+/* Set by a fatal error (binary input) or past CSF_MAX_ERRORS: nothing more is reported, and the
+ * scanner ends the input. */
+extern int diag_stop;
+/* Reports `file:line:col: error: ...` with the source line (at most 160 bytes of it, around the
+ * column) and a caret. */
 void error_at(Loc l, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* An error after which the compiler stops: the only one reported from here on. */
+void fatal_at(Loc l, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void note_at(Loc l, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* An error with no source position: `csfc: error: ...`. */
 void error_plain(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 extern FILE *diag_out;
+/* Releases all the compiler's memory and forgets every source, diagnostic and interned name:
+ * the state of a fresh process (for compiling many inputs in one, as the fuzz target does). */
+void csfc_reset(void);
+
+/* Expressions nest at most this deep (every pass walks them recursively). */
+#define CSF_MAX_DEPTH 1000
 
 /* ---- units (units.c) ---- */
 enum { DIM_L, DIM_M, DIM_T, DIM_A, NDIM };
@@ -89,6 +105,11 @@ void lex_init(Lexer *L, int file);
 void lex_next(Lexer *L, Token *t);
 /* Parser token code of a keyword, or 0. */
 int lex_keyword(const char *s, size_t n);
+/* The length of the UTF-8 sequence at p (before lim): 1 to 4, or 0 if it is not valid UTF-8
+ * (a stray continuation byte, a truncated or overlong sequence, a surrogate, past U+10FFFF). */
+int lex_utf8_len(const unsigned char *p, const unsigned char *lim);
+/* Forgets the interned spellings (their memory is the arena's). */
+void lex_reset(void);
 
 /* ---- options ---- */
 enum { UNITS_MKS, UNITS_CGS, UNITS_FPS };
@@ -96,7 +117,13 @@ typedef struct Options {
 	int units;          /* the unit system: UNITS_MKS, UNITS_CGS, UNITS_FPS */
 	Vec incdirs;        /* of char*, from -I */
 	const char *stdlib; /* the standard library directory */
+	double max_rows;    /* the most output rows (till/by) a model may ask for: --max-rows */
+	long max_tuples;    /* the most tuples of objects one rule may apply to */
 } Options;
+/* The defaults of max_rows and max_tuples; the bytecode format's own limit of rows. */
+#define CSF_MAX_ROWS 1e7
+#define CSF_MAX_TUPLES 1000000L
+#define CSF_FORMAT_MAX_ROWS 4e15
 extern Options opts;
 
 #endif

@@ -141,6 +141,9 @@ static Aff lin(Aff a, double ka, Aff b, double kb)
 
 /* ---- the constraint walk ---- */
 
+/* The largest exponent of a dimension (m^100): beyond it an expression's dimension is an error. */
+#define DIM_MAX_EXP 100
+
 typedef struct Walk {
 	int report;      /* 0: infer, 1: report mismatches */
 	int progress;
@@ -169,6 +172,8 @@ static void constrain(Walk *W, Aff a, Aff b, Loc l, MsgFn msg, void *ctx)
 	if (d.nu == 1 && !W->report) {
 		Var *v = d.u[0];
 		double k = d.k[0];
+		for (int i = 0; i < 3; i++)
+			if (!(fabs(d.c[i] / k) <= DIM_MAX_EXP)) return; /* left unknown; the expression reports it */
 		v->dimk = DK_KNOWN;
 		for (int i = 0; i < 3; i++) {
 			double x = -d.c[i] / k;
@@ -240,6 +245,21 @@ static Aff one_dim(Walk *W, const Aff *x, RExpr *const *args, int n)
 	return d;
 }
 
+/* r, the dimension of e; one whose exponents (or the coefficients of its unknowns) pass
+ * DIM_MAX_EXP is reported, and not tracked further. */
+static Aff bounded(Walk *W, RExpr *e, Aff r)
+{
+	int big = 0;
+	for (int i = 0; i < 3; i++) big |= !(fabs(r.c[i]) <= DIM_MAX_EXP);
+	for (int i = 0; i < r.nu; i++) big |= !(fabs(r.k[i]) <= DIM_MAX_EXP);
+	if (!big) return r;
+	if (W->report) report(W, e->loc, xprintf("the dimension of this expression has an exponent beyond %d", DIM_MAX_EXP));
+	r.overflow = 1;
+	r.nu = 0;
+	memset(r.c, 0, sizeof r.c);
+	return r;
+}
+
 static Aff walk_op(Walk *W, RExpr *e, Aff *x)
 {
 	switch (e->op) {
@@ -308,7 +328,7 @@ static Aff walk(Walk *W, RExpr *e)
 	case R_OP: {
 		Aff x[3];
 		for (int i = 0; i < e->n; i++) x[i] = walk(W, e->a[i]);
-		return walk_op(W, e, x);
+		return bounded(W, e, walk_op(W, e, x));
 	}
 	}
 	return known(0, 0, 0);

@@ -999,7 +999,7 @@ int gen_program(Model *M, csf_prog *p)
 		}
 	}
 	p->ny = G->nmem - p->ystart;
-	p->dstart = alloc_mem(G, p->ny, NULL);
+	p->dstart = alloc_mem(G, p->ny ? p->ny : 1, NULL); /* a slot even without state: the layout is inside memory */
 	p->yscale = malloc((p->ny ? p->ny : 1) * sizeof *p->yscale);
 	if (!p->yscale) exit(2);
 	/* the state variable of each property name that starts largest, over all objects */
@@ -1021,6 +1021,7 @@ int gen_program(Model *M, csf_prog *p)
 			   of a 1 m one), but not because it starts near zero in this one (a normal
 			   mode's node: cos(pi/2) is 6e-17) */
 			double one = v->dimk == DK_KNOWN ? dims_to_system(1.0, v->dim) : 1.0;
+			if (!(one > 0) || !isfinite(one)) one = 1.0; /* a dimension such as m^100 kg^100 in cgs */
 			double mag = init_mag(map_get(&largest, v->name));
 			if (mag > 0 && mag < one && isfinite(mag)) one = mag;
 			for (int k = 0; k < (v->isvec ? 3 : 1); k++) p->yscale[(uint32_t)v->slot - p->ystart + (uint32_t)k] = one;

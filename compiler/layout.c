@@ -104,52 +104,103 @@ static int starts_factor(Parser *P, int k)
 	return is_unit_name(peek(P, k)) || (peek(P, k)->kind == '(' && is_unit_name(peek(P, k + 1)));
 }
 
-static void unit_expr(Parser *P, Unit *u, char **text);
+/* The spelling of a unit being read, grown by doubling (a unit of many factors is read in linear time). */
+typedef struct UnitText { char *s; size_t n, cap; } UnitText;
+
+static void ut_add(UnitText *t, const char *x)
+{
+	size_t k = strlen(x);
+	if (t->n + k + 1 > t->cap) {
+		size_t cap = t->cap ? t->cap : 32;
+		while (cap < t->n + k + 1) cap *= 2;
+		char *s = xalloc(cap);
+		if (t->n) memcpy(s, t->s, t->n);
+		t->s = s;
+		t->cap = cap;
+	}
+	memcpy(t->s + t->n, x, k + 1);
+	t->n += k;
+}
+
+/* The largest dimension exponent a unit may have (m^64), and the deepest nesting of its parentheses. */
+#define UNIT_MAX_EXP 64
+#define UNIT_MAX_NEST 32
+
+/* The dimension of u := u * v^k, with the exponents checked for overflow, and u's factor (which the
+ * caller has set) checked for range; reports at l, once per unit. */
+static void unit_combine(Unit *u, const Unit *v, int k, Loc l, int *bad)
+{
+	int big = 0;
+	for (int d = 0; d < NDIM; d++) {
+		int e = u->dim[d] + k * v->dim[d];
+		if (e > UNIT_MAX_EXP || e < -UNIT_MAX_EXP) big = 1;
+		else u->dim[d] = (signed char)e;
+	}
+	if (*bad) return;
+	if (big) error_at(l, "the unit's dimension has an exponent beyond %d: too large to be a unit", UNIT_MAX_EXP);
+	else if (!isfinite(u->factor) || u->factor == 0)
+		error_at(l, "the unit's factor is beyond the range of a double: too large or too small to be a unit");
+	else return;
+	*bad = 1;
+}
+
+static void unit_expr(Parser *P, Unit *u, UnitText *text, int nest, int *bad);
 
 /* factor := name | '(' unit ')' , then an optional ^ [-] integer */
-static void unit_factor(Parser *P, Unit *u, char **text)
+static void unit_factor(Parser *P, Unit *u, UnitText *text, int nest, int *bad)
 {
 	Token t = take(P);
+	Unit base = { 1, { 0 } };
 	if (t.kind == '(') {
-		*text = xprintf("%s(", *text);
-		unit_expr(P, u, text);
+		ut_add(text, "(");
+		if (nest == UNIT_MAX_NEST) {
+			if (!*bad) error_at(t.loc, "parentheses in a unit nested more than %d deep", UNIT_MAX_NEST);
+			*bad = 1;
+		} else {
+			unit_expr(P, &base, text, nest + 1, bad);
+		}
 		if (peek(P, 0)->kind == ')') {
 			take(P);
-			*text = xprintf("%s)", *text);
-		} else {
+			ut_add(text, ")");
+		} else if (!*bad) {
 			error_at(peek(P, 0)->loc, "expected ')' in unit");
+			*bad = 1;
 		}
 	} else {
-		unit_lookup(t.text, u);
-		*text = xprintf("%s%s", *text, t.text);
+		unit_lookup(t.text, &base);
+		ut_add(text, t.text);
 	}
 	int neg = peek(P, 1)->kind == '-';
 	Token *n = peek(P, neg ? 2 : 1);
+	int x = 1;
 	if (peek(P, 0)->kind == '^' && n->kind == NUMBER) {
 		take(P);
 		if (neg) take(P);
 		Token e = take(P);
-		double x = neg ? -e.num : e.num;
-		if (x != floor(x) || fabs(x) > 16) {
+		double k = neg ? -e.num : e.num;
+		if (k != floor(k) || fabs(k) > 16) {
 			error_at(e.loc, "a unit exponent must be a whole number between -16 and 16");
-			x = 1;
+			k = 1;
 		}
-		u->factor = pow(u->factor, x);
-		for (int d = 0; d < NDIM; d++) u->dim[d] = (signed char)(u->dim[d] * (int)x);
-		*text = xprintf("%s^%s%s", *text, neg ? "-" : "", e.text);
+		x = (int)k;
+		ut_add(text, "^");
+		if (neg) ut_add(text, "-");
+		ut_add(text, e.text);
 	}
+	*u = (Unit){ x == 1 ? base.factor : pow(base.factor, x), { 0 } };
+	unit_combine(u, &base, x, t.loc, bad);
 }
 
-static void unit_expr(Parser *P, Unit *u, char **text)
+static void unit_expr(Parser *P, Unit *u, UnitText *text, int nest, int *bad)
 {
-	unit_factor(P, u, text);
+	unit_factor(P, u, text, nest, bad);
 	while ((peek(P, 0)->kind == '*' || peek(P, 0)->kind == '/') && starts_factor(P, 1)) {
-		int op = take(P).kind;
+		Token op = take(P);
 		Unit v;
-		*text = xprintf("%s%c", *text, op);
-		unit_factor(P, &v, text);
-		u->factor = op == '*' ? u->factor * v.factor : u->factor / v.factor;
-		for (int d = 0; d < NDIM; d++) u->dim[d] = (signed char)(op == '*' ? u->dim[d] + v.dim[d] : u->dim[d] - v.dim[d]);
+		ut_add(text, op.kind == '*' ? "*" : "/");
+		unit_factor(P, &v, text, nest, bad);
+		u->factor = op.kind == '*' ? u->factor * v.factor : u->factor / v.factor;
+		unit_combine(u, &v, op.kind == '*' ? 1 : -1, op.loc, bad);
 	}
 }
 
@@ -296,11 +347,12 @@ int yylex(YYSTYPE *lval, YYLoc *lloc, Parser *P)
 		P->q[0] = t;
 		P->qn++;
 		Unit un;
-		char *text = xstrdup("");
-		unit_expr(P, &un, &text);
+		UnitText text = { 0 };
+		int bad = 0;
+		unit_expr(P, &un, &text, 0, &bad);
 		t.kind = UNIT;
 		t.unit = un;
-		t.text = text;
+		t.text = text.s;
 		Token *keep = xalloc(sizeof *keep);
 		*keep = t;
 		lval->tok = keep;

@@ -42,11 +42,14 @@ void lex_init(Lexer *L, int file)
 	L->bol = 1;
 }
 
-/* The spelling of a name or number, one copy per distinct spelling (a scene of 100 000 objects
+/* The spellings of names and numbers, one copy per distinct spelling (a scene of 100 000 objects
    spells each object's name five times). */
+static Map spellings;
+
+void lex_reset(void) { spellings = (Map){ 0 }; }
+
 static char *intern(const char *tok, size_t n)
 {
-	static Map spellings;
 	char buf[128];
 	if (n >= sizeof buf) return xstrndup(tok, n);
 	memcpy(buf, tok, n);
@@ -72,6 +75,47 @@ static void error_tok(Lexer *L, Token *t, const char *at, char *msg)
 	t->kind = LEXERROR;
 	t->text = msg;
 	error_at(t->loc, "%s", msg);
+}
+
+int lex_utf8_len(const unsigned char *p, const unsigned char *lim)
+{
+	int n = p[0] < 0x80 ? 1 : p[0] >= 0xC2 && p[0] <= 0xDF ? 2 : p[0] >= 0xE0 && p[0] <= 0xEF ? 3
+	      : p[0] >= 0xF0 && p[0] <= 0xF4 ? 4 : 0;
+	if (!n || lim - p < n) return 0;
+	for (int i = 1; i < n; i++)
+		if ((p[i] & 0xC0) != 0x80) return 0;
+	if ((p[0] == 0xE0 && p[1] < 0xA0) || (p[0] == 0xED && p[1] > 0x9F) || (p[0] == 0xF0 && p[1] < 0x90) ||
+	    (p[0] == 0xF4 && p[1] > 0x8F))
+		return 0;
+	return n;
+}
+
+/* A control character other than tab, CR and newline. */
+static int is_control(unsigned char c) { return (c < 32 && c != '\t' && c != '\r' && c != '\n') || c == 127; }
+
+/* A NUL byte, another control character or invalid UTF-8 at p: the input is not text; one error,
+   and the compiler stops. */
+static void not_text(Lexer *L, Token *t, const char *p)
+{
+	unsigned char c = (unsigned char)*p;
+	set_loc(L, t, p);
+	t->kind = LEXERROR;
+	t->text = "not text";
+	L->cur = L->lim;
+	fatal_at(t->loc, "%s at byte offset %ld: this is not a CSF source (a binary file?)",
+	         !c ? "NUL byte" : is_control(c) ? xprintf("control character 0x%02x", c) : "invalid UTF-8",
+	         (long)(p - L->start));
+}
+
+/* The first control character or invalid UTF-8 in [p, e), or NULL. */
+static const char *find_binary(const char *p, const char *e)
+{
+	while (p < e) {
+		int n = is_control((unsigned char)*p) ? 0 : lex_utf8_len((const unsigned char *)p, (const unsigned char *)e);
+		if (!n) return p;
+		p += n;
+	}
+	return NULL;
 }
 
 /* At the start of a line: skips blank and comment lines, measures indentation. */
@@ -119,6 +163,12 @@ static int line_start(Lexer *L, Token *t)
 void lex_next(Lexer *L, Token *t)
 {
 	memset(t, 0, sizeof *t);
+	if (diag_stop) { /* a fatal error, or too many: the input ends here */
+		L->cur = L->lim;
+		set_loc(L, t, L->cur);
+		t->kind = END;
+		return;
+	}
 	if (L->bol) {
 		int r = line_start(L, t);
 		if (r < 0) return;
@@ -180,6 +230,8 @@ void lex_next(Lexer *L, Token *t)
 				while (e < L->lim && *e != '\n' && *e != '#') e++;
 				L->cur = e;
 				while (e > p && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r')) e--;
+				const char *bad = find_binary(p, e);
+				if (bad) { not_text(L, t, bad); return; }
 				if (e - p >= 2 && *p == '"' && e[-1] == '"') p++, e--;
 				t->text = xstrndup(p, (size_t)(e - p));
 				t->end_col = t->loc.col + (int)(L->cur - tok);
@@ -206,16 +258,13 @@ void lex_next(Lexer *L, Token *t)
 		"<=" { set_loc(L, t, tok); t->kind = LE; goto done; }
 		">=" { set_loc(L, t, tok); t->kind = GE; goto done; }
 		[-+*/^()=,.:<>'] { set_loc(L, t, tok); t->kind = (unsigned char)*tok; goto done; }
-		[\x00] {
-			L->cur = YYCURSOR;
-			error_tok(L, t, tok, xstrdup("NUL character in source"));
-			return;
-		}
 		* {
-			L->cur = YYCURSOR;
 			unsigned char c = (unsigned char)*tok;
-			error_tok(L, t, tok, c >= 32 && c < 127 ? xprintf("unexpected character '%c'", c)
-			                                         : xprintf("unexpected byte 0x%02x", c));
+			int n = is_control(c) ? 0 : lex_utf8_len((const unsigned char *)tok, (const unsigned char *)L->lim);
+			if (!n) { not_text(L, t, tok); return; }
+			L->cur = tok + n;
+			error_tok(L, t, tok, n == 1 ? xprintf("unexpected character '%c'", c)
+			                            : xprintf("unexpected character '%.*s'", n, tok));
 			return;
 		}
 		*/

@@ -5,6 +5,7 @@
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "csfc.h"
@@ -24,6 +25,7 @@ static const char usage[] =
 	"  --explain          print what every rule solves for, and what is left out\n"
 	"  --dump-bytecode    print the compiled code as a listing\n"
 	"  -Werror            make every warning an error; -w: no warnings\n"
+	"  --max-rows N       allow 'till/by' to ask for up to N rows of output (default 1e7)\n"
 	"  --emit-c           translate to C: with -o NAME.c write the source, otherwise\n"
 	"                     build an executable (with $CC $CFLAGS, libcsfrt and GSL)\n"
 	"  --help, --version\n";
@@ -50,15 +52,54 @@ static const char *find_stdlib(void)
 	return NULL;
 }
 
+/*
+ * Writes buf to path. A regular file (or a new one) is written to a temporary file beside it and
+ * renamed over it only when complete, so a failed write (a full disk) leaves the previous file as
+ * it was; the temporary file is the only one ever removed. Anything else (a device, a pipe) is
+ * written in place and never removed. Returns 0, or -1 with errno set.
+ */
 static int write_file(const char *path, const unsigned char *buf, size_t len)
 {
-	FILE *f = fopen(path, "wb");
-	if (!f) return -1;
-	size_t w = fwrite(buf, 1, len, f);
-	int bad = w != len || ferror(f);
-	if (fclose(f) != 0) bad = 1;
-	if (bad) remove(path);
-	return bad ? -1 : 0;
+	struct stat st;
+	char *dest = (char *)path;
+	if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode)) { /* write what the link names, keep the link */
+		char *real = realpath(path, NULL);
+		if (real) {
+			dest = xstrdup(real);
+			free(real);
+		}
+	}
+	int exists = stat(dest, &st) == 0;
+	if (exists && !S_ISREG(st.st_mode)) {
+		FILE *f = fopen(dest, "wb");
+		if (!f) return -1;
+		int bad = fwrite(buf, 1, len, f) != len || ferror(f);
+		int e = errno;
+		if (fclose(f) != 0 && !bad) bad = 1, e = errno;
+		errno = e;
+		return bad ? -1 : 0;
+	}
+	char *tmp = xprintf("%s.XXXXXX", dest);
+	int fd = mkstemp(tmp);
+	if (fd < 0) return -1;
+	mode_t mask = umask(0);
+	umask(mask);
+	int bad = fchmod(fd, exists ? st.st_mode & 07777 : 0666 & ~mask) != 0;
+	for (size_t done = 0; !bad && done < len;) {
+		ssize_t w = write(fd, buf + done, len - done);
+		if (w < 0 && errno == EINTR) continue;
+		if (w <= 0) bad = 1;
+		else done += (size_t)w;
+	}
+	int e = errno;
+	if (close(fd) != 0 && !bad) bad = 1, e = errno;
+	if (!bad && rename(tmp, dest) != 0) bad = 1, e = errno;
+	if (bad) {
+		unlink(tmp);
+		errno = e;
+		return -1;
+	}
+	return 0;
 }
 
 /*
@@ -116,6 +157,16 @@ static int run(int argc, char **argv)
 			else if (!strcmp(u, "fps")) opts.units = UNITS_FPS;
 			else {
 				fprintf(stderr, "csfc: unknown unit system '%s' (mks, cgs or fps)\n", u);
+				return 2;
+			}
+		} else if (opt_value(argc, argv, &i, "--max-rows", &v)) {
+			char *end;
+			const char *n = v;
+			errno = 0;
+			opts.max_rows = strtod(n, &end);
+			if (end == n || *end || errno || !(opts.max_rows >= 1) || !(opts.max_rows <= CSF_FORMAT_MAX_ROWS)) {
+				fprintf(stderr, "csfc: --max-rows needs a number of rows from 1 to %g, not '%s'\n",
+				        CSF_FORMAT_MAX_ROWS, n);
 				return 2;
 			}
 		} else if (!strcmp(a, "--explain")) {
@@ -221,5 +272,10 @@ int main(int argc, char **argv)
 {
 	int st = run(argc, argv);
 	arena_free();
+	/* --help, --explain, --dump-bytecode: their output must have been written */
+	if (fflush(stdout) != 0 || ferror(stdout)) {
+		fprintf(stderr, "csfc: cannot write the output: %s\n", strerror(errno));
+		return 2;
+	}
 	return st;
 }

@@ -41,13 +41,50 @@ const char *layout_token_text(Parser *P);
 #include <ctype.h>
 #include <string.h>
 static Loc LOC(YYLoc l) { return (Loc){ l.file, l.first_line, l.first_column }; }
+/* Sets e's depth from its children's; the first node past CSF_MAX_DEPTH is an error (the later
+ * passes walk expressions recursively, so depth must be bounded). */
+static Expr *nest(Expr *e)
+{
+	int d = 0;
+	if (e->a && e->a->depth > d) d = e->a->depth;
+	if (e->b && e->b->depth > d) d = e->b->depth;
+	for (int i = 0; i < e->nargs; i++)
+		if (e->args[i]->depth > d) d = e->args[i]->depth;
+	e->depth = d > CSF_MAX_DEPTH ? d : d + 1;
+	if (e->depth == CSF_MAX_DEPTH + 1 && d == CSF_MAX_DEPTH)
+		error_at(e->loc, "expression nested more than %d levels deep: split it with temporaries", CSF_MAX_DEPTH);
+	return e;
+}
+/* A list built backwards (each new item in front), in order. */
+static Stmt *stmts_reversed(Stmt *s)
+{
+	Stmt *r = NULL;
+	while (s) {
+		Stmt *n = s->next;
+		s->next = r;
+		r = s;
+		s = n;
+	}
+	return r;
+}
+static Eqn *eqns_reversed(Eqn *q)
+{
+	Eqn *r = NULL;
+	while (q) {
+		Eqn *n = q->next;
+		q->next = r;
+		r = q;
+		q = n;
+	}
+	return r;
+}
 static Expr *bin(int op, Expr *a, Expr *b, YYLoc l)
 {
 	Expr *e = ast_expr(E_BIN, LOC(l));
 	e->op = op;
 	e->a = a;
 	e->b = b;
-	return e;
+	return nest(e);
 }
 static Expr *with_unit(Expr *a, Token *u)
 {
@@ -55,7 +92,7 @@ static Expr *with_unit(Expr *a, Token *u)
 	e->a = a;
 	e->unit = u->unit;
 	e->unit_text = u->text;
-	return e;
+	return nest(e);
 }
 /* The rest of the line from l, without a comment or trailing blanks. */
 static char *text_from(Loc l)
@@ -93,7 +130,7 @@ static Expr *call(ExprKind k, Expr *recv, char *name, Vec *args, YYLoc l)
 	e->name = name;
 	e->args = (Expr **)args->v;
 	e->nargs = args->n;
-	return e;
+	return nest(e);
 }
 static void yyerror(YYLoc *l, Parser *P, const char *msg);
 }
@@ -220,32 +257,26 @@ attr: %empty { $$ = NULL; } | IDENT { $$ = $1; } ;
 
 block:
 	  DEF IDENT ':' NEWLINE INDENT defprops DEDENT {
-		$$ = stmt(S_DEF, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->body = $6;
+		$$ = stmt(S_DEF, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->body = stmts_reversed($6);
 	}
 	| RULE attr ':' IF expr ':' NEWLINE INDENT eqns DEDENT {
-		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->cond = $5; $$->eqns = $9;
+		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->cond = $5; $$->eqns = eqns_reversed($9);
 	}
 	| RULE attr ':' IF expr ':' NEWLINE INDENT eqns DEDENT ELSE ':' NEWLINE INDENT eqns DEDENT {
-		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->cond = $5; $$->eqns = $9; $$->else_eqns = $15; $$->has_else = 1;
+		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->cond = $5; $$->eqns = eqns_reversed($9); $$->else_eqns = eqns_reversed($15); $$->has_else = 1;
 	}
 	| RULE attr FOR objrefs ':' IF expr ':' NEWLINE INDENT eqns DEDENT {
-		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->fors = $4; $$->has_for = 1; $$->cond = $7; $$->eqns = $11;
+		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->fors = $4; $$->has_for = 1; $$->cond = $7; $$->eqns = eqns_reversed($11);
 	}
 	| RULE attr FOR objrefs ':' IF expr ':' NEWLINE INDENT eqns DEDENT ELSE ':' NEWLINE INDENT eqns DEDENT {
-		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->fors = $4; $$->has_for = 1; $$->cond = $7; $$->eqns = $11;
-		$$->else_eqns = $17; $$->has_else = 1;
+		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->fors = $4; $$->has_for = 1; $$->cond = $7; $$->eqns = eqns_reversed($11);
+		$$->else_eqns = eqns_reversed($17); $$->has_else = 1;
 	}
 	;
 
 defprops:
 	  defprop            { $$ = $1; }
-	| defprops defprop   {
-		$$ = $1;
-		if ($2) {
-			if (!$$) $$ = $2;
-			else { Stmt *s = $$; while (s->next) s = s->next; s->next = $2; }
-		}
-	}
+	| defprops defprop   { $$ = $1; if ($2) { $2->next = $$; $$ = $2; } } /* backwards: reversed by block */
 	;
 
 defprop:
@@ -260,7 +291,7 @@ defprop:
 
 eqns:
 	  eqn NEWLINE        { $$ = $1; }
-	| eqns eqn NEWLINE   { $$ = $1; Eqn *q = $$; while (q->next) q = q->next; q->next = $2; }
+	| eqns eqn NEWLINE   { $$ = $2; $$->next = $1; } /* backwards: reversed by block */
 	;
 
 eqn:
@@ -303,7 +334,7 @@ watch:
 expr:
 	  expr OR expr       { $$ = bin(OR, $1, $3, @2); }
 	| expr AND expr      { $$ = bin(AND, $1, $3, @2); }
-	| NOT expr           { $$ = ast_expr(E_NOT, LOC(@1)); $$->a = $2; }
+	| NOT expr           { $$ = ast_expr(E_NOT, LOC(@1)); $$->a = $2; $$ = nest($$); }
 	| expr '<' expr      { $$ = bin('<', $1, $3, @2); }
 	| expr '>' expr      { $$ = bin('>', $1, $3, @2); }
 	| expr LE expr       { $$ = bin(LE, $1, $3, @2); }
@@ -315,34 +346,34 @@ expr:
 	| expr '*' expr      { $$ = bin('*', $1, $3, @2); }
 	| expr '/' expr      { $$ = bin('/', $1, $3, @2); }
 	| expr '^' expr      { $$ = bin('^', $1, $3, @2); }
-	| '-' expr %prec UMINUS { $$ = ast_expr(E_NEG, LOC(@1)); $$->a = $2; }
+	| '-' expr %prec UMINUS { $$ = ast_expr(E_NEG, LOC(@1)); $$->a = $2; $$ = nest($$); }
 	| '+' expr %prec UMINUS { $$ = $2; }
 	| postfix
 	;
 
 postfix:
 	  primary
-	| postfix '.' IDENT  { $$ = ast_expr(E_FIELD, LOC(@3)); $$->a = $1; $$->name = $3; }
+	| postfix '.' IDENT  { $$ = ast_expr(E_FIELD, LOC(@3)); $$->a = $1; $$->name = $3; $$ = nest($$); }
 	| postfix '.' IDENT '(' args ')' { $$ = call(E_METHOD, $1, $3, &$5, @3); }
 	;
 
 primary:
-	  NUMBER             { $$ = ast_expr(E_NUM, LOC(@1)); $$->num = $1; }
-	| NUMBER UNIT        { Expr *n = ast_expr(E_NUM, LOC(@1)); n->num = $1; $$ = with_unit(n, $2); }
-	| IDENT              { $$ = ast_expr(E_NAME, LOC(@1)); $$->name = $1; }
-	| IDENT DOLLAR       { $$ = ast_expr(E_DOLLAR, LOC(@1)); $$->name = $1; $$->n = $2; }
+	  NUMBER             { $$ = ast_expr(E_NUM, LOC(@1)); $$->num = $1; $$->depth = 1; }
+	| NUMBER UNIT        { Expr *n = ast_expr(E_NUM, LOC(@1)); n->num = $1; n->depth = 1; $$ = with_unit(n, $2); }
+	| IDENT              { $$ = ast_expr(E_NAME, LOC(@1)); $$->name = $1; $$->depth = 1; }
+	| IDENT DOLLAR       { $$ = ast_expr(E_DOLLAR, LOC(@1)); $$->name = $1; $$->n = $2; $$->depth = 1; }
 	| IDENT '(' args ')' { $$ = call(E_CALL, NULL, $1, &$3, @1); }
 	| IDENT '(' args ')' UNIT { $$ = with_unit(call(E_CALL, NULL, $1, &$3, @1), $5); }
 	| '(' expr ')'       { $$ = $2; }
 	| '(' expr ')' UNIT  { $$ = with_unit($2, $4); }
 	| '(' expr ',' expr ',' expr ')' {
 		$$ = ast_expr(E_VEC, LOC(@1)); $$->args = xalloc(3 * sizeof(Expr *)); $$->nargs = 3;
-		$$->args[0] = $2; $$->args[1] = $4; $$->args[2] = $6;
+		$$->args[0] = $2; $$->args[1] = $4; $$->args[2] = $6; $$ = nest($$);
 	}
 	| '(' expr ',' expr ',' expr ')' UNIT {
 		Expr *v = ast_expr(E_VEC, LOC(@1)); v->args = xalloc(3 * sizeof(Expr *)); v->nargs = 3;
 		v->args[0] = $2; v->args[1] = $4; v->args[2] = $6;
-		$$ = with_unit(v, $8);
+		$$ = with_unit(nest(v), $8);
 	}
 	;
 
@@ -361,7 +392,10 @@ args1:
 static void yyerror(YYLoc *l, Parser *P, const char *msg)
 {
 	(void)P;
-	error_at(LOC(*l), "%s", msg);
+	if (!strcmp(msg, "memory exhausted")) /* the parser's stack: YYMAXDEPTH */
+		error_at(LOC(*l), "expression nested more than %d levels deep: split it with temporaries", YYMAXDEPTH / 2);
+	else
+		error_at(LOC(*l), "%s", msg);
 }
 
 static int yyreport_syntax_error(const yypcontext_t *ctx, Parser *P)

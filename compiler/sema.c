@@ -988,6 +988,26 @@ static void bind_from(Tuples *T, int j, int after)
 	}
 }
 
+/* An upper bound of the tuples bind_from makes (exact but for $0's exclusion from $1..$k): the objects
+ * fit for $0 times the ascending chains through the lists fit for $1..$k, counted from the last list
+ * back with suffix sums, in O(k n log n). */
+static double count_tuples(const Tuples *T)
+{
+	if (T->k == 0) return T->nfit[0];
+	int nobj = M->objects.n;
+	double *next = xalloc(((size_t)nobj + 1) * sizeof *next), *cur = xalloc(((size_t)nobj + 1) * sizeof *cur);
+	for (int i = T->nfit[T->k]; i >= 0; i--) next[i] = T->nfit[T->k] - i; /* suffix sums of ones */
+	for (int j = T->k - 1; j >= 1; j--) {
+		cur[T->nfit[j]] = 0;
+		for (int i = T->nfit[j] - 1; i >= 0; i--)
+			cur[i] = cur[i + 1] + next[first_greater(T->fit[j + 1], T->nfit[j + 1], T->fit[j][i])];
+		double *x = next;
+		next = cur;
+		cur = x;
+	}
+	return (double)T->nfit[0] * next[0];
+}
+
 /* Calls f for every binding the statement applies to; returns how many, -1 after an error. */
 static int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 {
@@ -1027,7 +1047,7 @@ static int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 	Tuples T = { s, f, k, xalloc((size_t)(k + 1) * sizeof(int *)), xalloc((size_t)(k + 1) * sizeof(int)),
 		     xalloc((size_t)(k + 1) * sizeof(Object *)), 0, 0 };
 	if (shaped && k > 1) unshape("a rule over $1..$k, k > 1");
-	for (int j = 0; j <= k; j++) {
+	for (int j = 0; j <= k && k < nobj; j++) { /* a tuple has k + 1 different objects */
 		T.fit[j] = xalloc((size_t)nobj * sizeof(int));
 		for (int i = 0; i < nobj; i++) {
 			/* by shape: the representatives, and for $1 the second members */
@@ -1036,6 +1056,14 @@ static int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 			if (stmt_applies(s, T.cur, k + 1, &missing)) T.fit[j][T.nfit[j]++] = i;
 			T.cur[j] = NULL;
 		}
+	}
+	double n = count_tuples(&T);
+	long most = opts.max_tuples > 0 ? opts.max_tuples : CSF_MAX_TUPLES;
+	if (n > (double)most) {
+		error_at(s->loc, "this %s applies to %.3g tuples of objects ($0..$%d), more than the %ld that one rule may "
+		         "have: name the objects with 'for', or write fewer objects", s->kind == S_ASSERT ? "assertion" : "rule",
+		         n, k, most);
+		return -1;
 	}
 	for (int i = 0; i < T.nfit[0] && !T.failed; i++) {
 		T.cur[0] = M->objects.v[T.fit[0][i]];
@@ -2037,7 +2065,12 @@ static Model *resolve(Stmt *stmts)
 		if (strcmp(start->var, "t") != 0) error_at(start->name_loc, "only time can be incremented: write 'inc t ...'");
 		M->till = const_time(start->till, 10, "till");
 		M->by = const_time(start->by, M->till > 0 ? M->till / 1000 : 0.01, "by");
+		double most = opts.max_rows > 0 ? opts.max_rows : CSF_MAX_ROWS;
 		if (!(M->by > 0)) error_at(start->by ? start->by->loc : start->loc, "'by' must be a positive time");
+		else if (M->till / M->by > most)
+			error_at(start->till ? start->till->loc : start->loc,
+			         "'till %g' by '%g' asks for %.3g rows of output, more than the limit of %.3g "
+			         "(csfc --max-rows N raises it)", M->till, M->by, M->till / M->by, most);
 		M->start = start;
 	}
 	if (diag_errors) return M;
@@ -2118,7 +2151,7 @@ static Model *resolve(Stmt *stmts)
 Model *sema_run(Stmt *stmts)
 {
 	FILE *saved = diag_out, *null = fopen("/dev/null", "w");
-	int errors = diag_errors;
+	int errors = diag_errors, stop = diag_stop;
 	const char *why = "";
 	if (null) {
 		diag_out = null;
@@ -2132,6 +2165,7 @@ Model *sema_run(Stmt *stmts)
 		}
 		why = unshaped ? unshaped : "";
 		diag_errors = errors;
+		diag_stop = stop;
 	}
 	shaped = 0;
 	Model *m = resolve(stmts);

@@ -3,7 +3,10 @@
  *
  * Diagnostics follow gcc: `file:line:col: error: message`, then the source
  * line, then a caret under the column. They go to diag_out (stderr unless
- * a test redirects it), so tests can compare the exact text.
+ * a test redirects it), so tests can compare the exact text. Hostile input
+ * cannot make them costly: at most CSF_MAX_ERRORS are written, each quotes
+ * at most DIAG_WIDTH bytes of its line (read in place, never copied), and a
+ * fatal error (a binary file) is the last.
  */
 #include <errno.h>
 #include <sys/stat.h>
@@ -150,15 +153,17 @@ int src_load(const char *path)
 	return sources.n - 1;
 }
 
-int src_add(const char *name, const char *text)
+int src_add_n(const char *name, const char *text, size_t len)
 {
 	Source *s = xalloc(sizeof *s);
 	s->path = xstrdup(name);
-	s->text = xstrdup(text);
-	s->len = strlen(text);
+	s->text = xstrndup(text, len);
+	s->len = len;
 	vec_push(&sources, s);
 	return sources.n - 1;
 }
+
+int src_add(const char *name, const char *text) { return src_add_n(name, text, strlen(text)); }
 
 /* Indexes the starts of s's lines, once, so that src_line is O(1). */
 static void index_lines(Source *s)
@@ -186,6 +191,44 @@ char *src_line(int file, int line)
 	return xstrndup(p, (size_t)(e - p));
 }
 
+/* The part of a source line a diagnostic quotes: at most DIAG_WIDTH bytes around the column. */
+#define DIAG_WIDTH 160
+
+/* Writes the quoted line and the caret under column col (from 1) as one block, with control
+ * characters and invalid UTF-8 as '?' (a binary file cannot write raw bytes to the terminal). */
+static void quote_line(FILE *out, Loc l)
+{
+	Source *s = sources.v[l.file];
+	if (!s->line_start) index_lines(s);
+	if (l.line < 1 || l.line > s->nlines) return;
+	const char *p = s->text + s->line_start[l.line - 1], *end = s->text + s->len;
+	size_t n = 0;
+	while (p + n < end && p[n] != '\n') n++;
+	if (n && p[n - 1] == '\r') n--;
+	size_t col = l.col > 0 ? (size_t)l.col - 1 : 0, from = 0;
+	if (col > n) col = n;
+	if (n > DIAG_WIDTH && col > DIAG_WIDTH / 2) from = col - DIAG_WIDTH / 2;
+	size_t to = n - from > DIAG_WIDTH ? from + DIAG_WIDTH : n;
+	char buf[2 * DIAG_WIDTH + 32], *b = buf;
+	b += sprintf(b, "  %s", from ? "..." : "");
+	for (size_t i = from; i < to; i++) {
+		unsigned char c = (unsigned char)p[i];
+		int k = c < 0x80 ? 1 : lex_utf8_len((const unsigned char *)p + i, (const unsigned char *)p + to);
+		if (k > 1) {
+			memcpy(b, p + i, (size_t)k);
+			b += k;
+			i += (size_t)k - 1;
+		} else {
+			*b++ = c == '\t' || (c >= 32 && c < 127) ? (char)c : '?';
+		}
+	}
+	b += sprintf(b, "%s\n  %s", to < n ? "..." : "", from ? "   " : "");
+	for (size_t i = from; i < col; i++)
+		if (((unsigned char)p[i] & 0xC0) != 0x80) *b++ = p[i] == '\t' ? '\t' : ' ';
+	strcpy(b, "^\n");
+	fputs(buf, out);
+}
+
 static void vdiag(Loc l, const char *kind, const char *fmt, va_list ap)
 {
 	FILE *out = diag_out ? diag_out : stderr;
@@ -193,25 +236,44 @@ static void vdiag(Loc l, const char *kind, const char *fmt, va_list ap)
 	fprintf(out, "%s:%d:%d: %s: ", s->path, l.line, l.col, kind);
 	vfprintf(out, fmt, ap);
 	fputc('\n', out);
-	char *line = src_line(l.file, l.line);
-	fprintf(out, "  %s\n  ", line);
-	/* the caret under the column: one space per character (l.col counts bytes; skip UTF-8 continuation bytes) */
-	for (int i = 1; i < l.col && line[i - 1]; i++)
-		if (((unsigned char)line[i - 1] & 0xC0) != 0x80) fputc(line[i - 1] == '\t' ? '\t' : ' ', out);
-	fputs("^\n", out);
+	quote_line(out, l);
+}
+
+int diag_stop;
+
+/* Counts an error; returns 0 if it is not to be printed (past CSF_MAX_ERRORS, or after a fatal one). */
+static int count_error(void)
+{
+	if (diag_stop) return 0;
+	if (++diag_errors <= CSF_MAX_ERRORS) return 1;
+	FILE *out = diag_out ? diag_out : stderr;
+	fprintf(out, "csfc: error: too many errors (more than %d); stopping\n", CSF_MAX_ERRORS);
+	diag_stop = 1;
+	return 0;
 }
 
 void error_at(Loc l, const char *fmt, ...)
 {
+	if (!count_error()) return;
 	va_list ap;
 	va_start(ap, fmt);
 	vdiag(l, "error", fmt, ap);
 	va_end(ap);
-	diag_errors++;
+}
+
+void fatal_at(Loc l, const char *fmt, ...)
+{
+	if (!count_error()) return;
+	va_list ap;
+	va_start(ap, fmt);
+	vdiag(l, "error", fmt, ap);
+	va_end(ap);
+	diag_stop = 1;
 }
 
 void note_at(Loc l, const char *fmt, ...)
 {
+	if (diag_stop || diag_errors > CSF_MAX_ERRORS) return;
 	va_list ap;
 	va_start(ap, fmt);
 	vdiag(l, "note", fmt, ap);
@@ -220,6 +282,7 @@ void note_at(Loc l, const char *fmt, ...)
 
 void error_plain(const char *fmt, ...)
 {
+	if (!count_error()) return;
 	FILE *out = diag_out ? diag_out : stderr;
 	va_list ap;
 	va_start(ap, fmt);
@@ -227,7 +290,15 @@ void error_plain(const char *fmt, ...)
 	vfprintf(out, fmt, ap);
 	fputc('\n', out);
 	va_end(ap);
-	diag_errors++;
+}
+
+void csfc_reset(void)
+{
+	arena_free();
+	sources = (Vec){ 0 };
+	diag_errors = 0;
+	diag_stop = 0;
+	lex_reset();
 }
 
 int diag_warnings, diag_werror, diag_nowarn;

@@ -94,6 +94,16 @@ struct csf_contacts {
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 static double mag3(const double *a) { return csf_vmag3(a[0], a[1], a[2]); }
 
+long csf_contacts_bad_mass(const csf_prog *p, const double *m)
+{
+	for (uint32_t b = 0; b < p->ncbodies; b++) {
+		if (p->cbodies[b].plane) continue; /* a plane has no mass slot */
+		double x = m[p->cbodies[b].s[CSF_CF_M]];
+		if (!(x > 0 && isfinite(1 / x))) return (long)b;
+	}
+	return -1;
+}
+
 static double inv_mass_i(const cpair *c, const double *m) { return 1.0 / m[I(c, M)]; }
 static double inv_mass_j(const cpair *c, const double *m) { return c->plane ? 0.0 : 1.0 / m[J(c, M)]; }
 
@@ -276,8 +286,8 @@ void csf_contact_apply(const csf_prog *p, double *m)
 		double gap = geometry(c, m, n, &curv);
 		double *g = WV(c, G0);
 		double in = inside(c, m);
-		if (W(c, MODE) == HOPPING) { /* the hop lands */
-			g[0] = W(c, TL) - m[p->tslot];
+		if (W(c, MODE) == HOPPING) { /* the hop lands, or passes the plane's edge */
+			g[0] = csf_min(W(c, TL) - m[p->tslot], in);
 			g[1] = 1;
 			continue;
 		}
@@ -424,6 +434,7 @@ static void collide(csf_contacts *cs, double *m, cpair *hit, double target, doub
 			geometry(c, m, n, &curv);
 			rel(c, m, I(c, V), J(c, V), vr);
 			double v = dot3(vr, n), d = c == hit ? target - v : csf_max(0, -v);
+			size = csf_max(size, fabs(v)); /* converged: to the rounding of the fastest pair's velocity */
 			if (d == 0) continue;
 			for (int k = 0; k < 3; k++) dv[k] = d * n[k];
 			add_impulse(c, m, dv);
@@ -472,7 +483,8 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, cs
 				if (W(c, G0) >= 0) continue;
 				W(c, MODE) = APART;
 				changed = 1;
-				landing = gap <= too_low(c, m, tol); /* its positions are no closer than that */
+				/* its positions are no closer than that; past the plane's edge it falls */
+				landing = gap <= too_low(c, m, tol) && inside(c, m) > 0;
 			}
 			if (!landing && !touching(c, m, gap)) continue;
 			rel(c, m, I(c, V), J(c, V), vr);

@@ -300,6 +300,12 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, cs
  */
 csf_contacts *csf_contacts_new(const csf_prog *p);
 void csf_contacts_free(csf_contacts *c);
+/*
+ * The first mass point of p's contact rules whose mass in m is not a positive number with a finite
+ * inverse (an impact divides by it), or -1. A body of mass -1 kg or 1e-320 kg makes every impact
+ * and every contact force meaningless: csf_run refuses the run.
+ */
+long csf_contacts_bad_mass(const csf_prog *p, const double *m);
 /* The number of candidate pairs (two guards each, after the events'). */
 uint32_t csf_contacts_count(const csf_contacts *c);
 /* The guards of candidate pairs as the last csf_contact_apply left them, into g[0 .. 2 count). */

@@ -1291,6 +1291,13 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			status = 1;
 			goto done;
 		}
+		long b = r.cs ? csf_contacts_bad_mass(p, r.m) : -1;
+		if (b >= 0) {
+			fprintf(err, "error: the mass of %s is %g: a body in contact needs a positive mass\n",
+			        csf_str(p, p->objects[p->cbodies[b].object]), r.m[p->cbodies[b].s[CSF_CF_M]]);
+			status = 1;
+			goto done;
+		}
 		memcpy(r.fa, r.fs, p->ny * sizeof *r.fa);
 		stop_now(&r, 0); /* a 'stop when' condition true at the start: the row at t = 0 is the last */
 	}

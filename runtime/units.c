@@ -85,8 +85,8 @@ double csf_units_to_system(double si, const double d[3], const double base[3])
 	double v = si;
 	for (int i = 0; i < 3; i++) {
 		/* divide by base^d one factor at a time: exact for the common small exponents */
-		int n = (int)d[i];
-		if (n == d[i] && abs(n) <= 8) {
+		int n = fabs(d[i]) <= 8 ? (int)d[i] : 0; /* (int) of a huge exponent is undefined */
+		if (n == d[i]) {
 			for (int k = 0; k < abs(n); k++) v = n > 0 ? v / base[i] : v * base[i];
 		} else {
 			v /= pow(base[i], d[i]);

@@ -22,6 +22,9 @@
 #     csfview's pages and plots (tests/view/; in headless Chromium where it
 #     is installed, else a SKIP line), parameters and sweeps (tests/sweep/; MPI
 #     where Open MPI is installed, else a SKIP line).
+#     hostile sources refused in bounded time and memory, failed writes that
+#     keep what was there, and the fuzz targets' regression corpus
+#     (tests/fuzz/regress/, replayed by fuzz-replay-csfc and fuzz-replay-csfb).
 # The last line is "N passed, N failed".
 set -u
 B=$(cd "${CSF_BUILD:-build}" && pwd)
@@ -317,6 +320,63 @@ grep '^SKIP' "$T/sweep"
 # 5n. csfview: the page, the static plots, decimation; the page in headless Chromium (tests/view/check.sh)
 if sh tests/view/check.sh "$CSFC" "$CSFVM" "$CSFVIEW" "$T" >"$T/view" 2>&1; then ok; else bad "csfview: $(grep FAIL "$T/view" | head -n 3)"; fi
 grep '^SKIP' "$T/view"
+# 5o. hostile sources (issue 15): each is refused with a clear error in bounded time and memory
+#     a 1e5-factor product: refused past the nesting limit, not a stack overflow
+awk 'BEGIN { print "object p: x = 1"; printf "rule: y = x"; for (i = 1; i < 100000; i++) printf "*x"; print ""
+	print "inc t till 1 by 0.5 watch y" }' >"$T/deep.csf"
+"$CSFC" "$T/deep.csf" -o "$T/deep.csfb" 2>"$T/err"; st=$?
+if [ $st -eq 1 ] && grep -q "error: expression nested more than 1000 levels deep" "$T/err"; then ok; else bad "a 1e5-factor product: exit $st, $(head -n 1 "$T/err" | cut -c 1-200)"; fi
+#     a 1 MB line of '@': 20 errors, each quoting at most 160 bytes of the line, then "too many errors"
+awk 'BEGIN { for (i = 0; i < 1000000; i++) printf "@"; print "" }' >"$T/at.csf"
+"$CSFC" "$T/at.csf" -o "$T/at.csfb" 2>"$T/err"; st=$?
+if [ $st -eq 1 ] && [ "$(grep -c ':[0-9]*: error: ' "$T/err")" -eq 20 ] && [ "$(wc -c <"$T/err")" -lt 20000 ] &&
+	grep -q "too many errors" "$T/err"; then ok; else bad "a 1 MB line of @: exit $st, $(wc -c <"$T/err") bytes of errors"; fi
+#     a binary file (csfc itself): one error naming the offset of the first byte that is not text
+"$CSFC" "$B/csfc" -o "$T/bin.csfb" 2>"$T/err"; st=$?
+if [ $st -eq 1 ] && [ "$(grep -c 'error' "$T/err")" -eq 1 ] && grep -q "at byte offset 0: this is not a CSF source" "$T/err"
+then ok; else bad "a binary file: exit $st, $(grep -c error "$T/err") errors"; fi
+#     the same object line 300 000 times: 20 "already defined" errors, then "too many errors"
+awk 'BEGIN { for (i = 0; i < 300000; i++) print "object p: x = 1"; print "inc t till 1 by 0.5 watch p.x" }' >"$T/rep.csf"
+"$CSFC" "$T/rep.csf" -o "$T/rep.csfb" 2>"$T/err"; st=$?
+if [ $st -eq 1 ] && [ "$(grep -c ':[0-9]*: error: ' "$T/err")" -eq 20 ] && grep -q "too many errors" "$T/err"; then ok
+else bad "a repeated object line: exit $st, $(grep -c ':[0-9]*: error: ' "$T/err") errors"; fi
+#     unit literals of 30 000 and 100 000 factors: read in linear time (once 5.2 s and 1.77 GB; out of memory)
+for n in 30000 100000; do
+	awk -v n=$n 'BEGIN { printf "object p: x = 1 m"; for (i = 0; i < n / 2; i++) printf "*s/s"; print ""
+		print "inc t till 1 by 0.5 watch x" }' >"$T/unit.csf"
+	if timeout 20 "$B/csfc" "$T/unit.csf" -o "$T/unit.csfb" 2>"$T/err"; then ok; else bad "a unit of $n factors: $(head -n 1 "$T/err")"; fi
+done
+#     till/by past the row limit is an error naming both; --max-rows raises the limit
+printf 'object p: x = 1\nrule: x'"'"' = 1\ninc t till 1e8 by 1 watch x\n' >"$T/rows.csf"
+"$CSFC" "$T/rows.csf" -o "$T/rows.csfb" 2>"$T/err"; st=$?
+if [ $st -eq 1 ] && grep -q "error: 'till 1e+08' by '1' asks for 1e+08 rows of output, more than the limit of 1e+07" "$T/err" &&
+	"$CSFC" --max-rows 1e8 "$T/rows.csf" -o "$T/rows.csfb" 2>"$T/err" &&
+	! "$CSFC" --max-rows 1e16 "$T/rows.csf" -o "$T/rows.csfb" 2>/dev/null; then ok; else bad "--max-rows: exit $st, $(head -n 1 "$T/err")"; fi
+#     a failed write keeps what was there: a device node is not removed, a previous .csfb is kept whole
+printf 'object p: x = 1\nrule: x'"'"' = 1\ninc t till 1 by 0.5 watch x\n' >"$T/w.csf"
+u=0
+if [ -w /dev/full ]; then
+	"$CSFC" "$T/w.csf" -o /dev/full 2>"$T/err"; st=$?
+	{ [ $st -eq 2 ] && [ -c /dev/full ] && grep -q "cannot write /dev/full" "$T/err"; } || { u=1; bad "csfc -o /dev/full: exit $st"; }
+	for opt in --help --explain --dump-bytecode; do
+		"$CSFC" $opt "$T/w.csf" -o "$T/w.csfb" >/dev/full 2>"$T/err"; st=$?
+		{ [ $st -eq 2 ] && grep -q "cannot write the output" "$T/err"; } || { u=1; bad "csfc $opt >/dev/full: exit $st"; }
+	done
+fi
+echo "previous" >"$T/prev.csfb"
+(trap '' XFSZ; ulimit -f 0; exec "$B/csfc" "$T/w.csf" -o "$T/prev.csfb") 2>"$T/err"; st=$?
+{ [ $st -eq 2 ] && [ "$(cat "$T/prev.csfb")" = previous ] && [ -z "$(ls "$T" | grep 'prev.csfb.')" ]; } ||
+	{ u=1; bad "a write that fails (file size limit): exit $st, $(cat "$T/prev.csfb" | head -c 20)"; }
+[ $u -eq 0 ] && ok
+
+# 5n. the fuzz targets' regression corpus (tests/fuzz/regress/TARGET/): every input a campaign
+#     found, and each known finding, through the target's own code (built by this compiler,
+#     with the sanitizers under make check); an input may take 5 s of CPU (tests/fuzz/replay.c)
+for t in csfc csfb; do
+	set -- tests/fuzz/regress/$t/*
+	[ -f "$1" ] || continue
+	if timeout "$LIMIT" "$B/fuzz-replay-$t" "$@" >"$T/rp" 2>&1; then ok; else bad "fuzz regressions of $t: $(tail -n 3 "$T/rp")"; fi
+done
 
 # 5e. make install into a staging directory; the installed csfc finds the standard library
 if make -s install BUILD="${CSF_BUILD:-build}" PREFIX=/usr DESTDIR="$T/stage" >/dev/null 2>"$T/err" &&
