@@ -102,26 +102,6 @@ static int write_file(const char *path, const unsigned char *buf, size_t len)
 	return 0;
 }
 
-/*
- * Is argv[*i] option name with a value, as "name VALUE" (the next argument;
- * *i moves past it) or "name=VALUE"? The value into *val.
- */
-static int opt_value(int argc, char **argv, int *i, const char *name, const char **val)
-{
-	const char *a = argv[*i];
-	size_t n = strlen(name);
-	if (strncmp(a, name, n) != 0) return 0;
-	if (a[n] == '=') {
-		*val = a + n + 1;
-		return 1;
-	}
-	if (a[n] == '\0' && *i + 1 < argc) {
-		*val = argv[++*i];
-		return 1;
-	}
-	return 0;
-}
-
 /* Writes buf to standard output (-o -). */
 static int write_stdout(const unsigned char *buf, size_t len)
 {
@@ -140,7 +120,7 @@ static int run(int argc, char **argv)
 		} else if (!strcmp(a, "--version")) {
 			printf("csfc %s\n", CSF_VERSION_STRING);
 			return 0;
-		} else if (opt_value(argc, argv, &i, "-o", &v)) {
+		} else if (csf_opt_value(argc, argv, &i, "-o", &v)) {
 			out = v;
 		} else if (!strcmp(a, "-Werror")) {
 			diag_werror = 1;
@@ -150,7 +130,7 @@ static int run(int argc, char **argv)
 			vec_push(&opts.incdirs, argv[++i]);
 		} else if (!strncmp(a, "-I", 2) && a[2]) {
 			vec_push(&opts.incdirs, (void *)(a + 2));
-		} else if (opt_value(argc, argv, &i, "--units", &v)) {
+		} else if (csf_opt_value(argc, argv, &i, "--units", &v)) {
 			const char *u = v;
 			if (!strcmp(u, "mks")) opts.units = UNITS_MKS;
 			else if (!strcmp(u, "cgs")) opts.units = UNITS_CGS;
@@ -159,7 +139,7 @@ static int run(int argc, char **argv)
 				fprintf(stderr, "csfc: unknown unit system '%s' (mks, cgs or fps)\n", u);
 				return 2;
 			}
-		} else if (opt_value(argc, argv, &i, "--max-rows", &v)) {
+		} else if (csf_opt_value(argc, argv, &i, "--max-rows", &v)) {
 			char *end;
 			const char *n = v;
 			errno = 0;

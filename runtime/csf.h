@@ -365,6 +365,13 @@ typedef struct csf_opts {
 } csf_opts;
 
 /*
+ * Is argv[*i] option name with a value, as "name VALUE" (the next
+ * argument; *i moves past it) or "name=VALUE"? The value into *val.
+ * (csfvm's options and csfc's alike.)
+ */
+int csf_opt_value(int argc, char **argv, int *i, const char *name, const char **val);
+
+/*
  * Parses run-time options from argv[first..argc); stores the remaining
  * positional arguments' indices in pos[] (at most npos) and their count in
  * *npos_out. Returns 0, 1 if --help was printed, or 2 after printing a

@@ -64,11 +64,7 @@ void csf_opts_free(csf_opts *o)
 	o->defs = o->sweeps = NULL;
 }
 
-/*
- * Is argv[*i] option name with a value, as "name VALUE" (the next
- * argument, *i moves past it) or "name=VALUE"? The value into *val.
- */
-static int opt_value(int argc, char **argv, int *i, const char *name, const char **val)
+int csf_opt_value(int argc, char **argv, int *i, const char *name, const char **val)
 {
 	const char *a = argv[*i];
 	size_t n = strlen(name);
@@ -98,7 +94,7 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 			const char *slash = strrchr(argv[0], '/');
 			printf("%s %s\n", slash ? slash + 1 : argv[0], CSF_VERSION_STRING);
 			return 1;
-		} else if (opt_value(argc, argv, &i, "--method", &v)) {
+		} else if (csf_opt_value(argc, argv, &i, "--method", &v)) {
 			o->method = v;
 			int known = 0;
 			for (size_t k = 0; csf_method_name(k); k++) known |= strcmp(csf_method_name(k), o->method) == 0;
@@ -108,12 +104,12 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 				fprintf(stderr, ")\n");
 				return 2;
 			}
-		} else if (opt_value(argc, argv, &i, "--tol", &v)) {
+		} else if (csf_opt_value(argc, argv, &i, "--tol", &v)) {
 			if (positive(argv[0], v, "--tol", "", &o->tol)) return 2;
-		} else if (opt_value(argc, argv, &i, "--step", &v)) {
+		} else if (csf_opt_value(argc, argv, &i, "--step", &v)) {
 			if (positive(argv[0], v, "--step", " of seconds", &o->step)) return 2;
 			o->fixed = 1;
-		} else if (opt_value(argc, argv, &i, "--hmax", &v)) {
+		} else if (csf_opt_value(argc, argv, &i, "--hmax", &v)) {
 			if (positive(argv[0], v, "--hmax", " of seconds", &o->hmax)) return 2;
 		} else if (strcmp(a, "--fixed") == 0) {
 			o->fixed = 1;
@@ -127,15 +123,15 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 			o->compare = 1;
 		} else if (strncmp(a, "-D", 2) == 0 && (a[2] || i + 1 < argc)) {
 			if (push_arg(&o->defs, &o->ndefs, a[2] ? a + 2 : argv[++i], argc)) return 2;
-		} else if (opt_value(argc, argv, &i, "--sweep", &v)) {
+		} else if (csf_opt_value(argc, argv, &i, "--sweep", &v)) {
 			if (push_arg(&o->sweeps, &o->nsweeps, v, argc)) return 2;
-		} else if (opt_value(argc, argv, &i, "--sweep-file", &v)) {
+		} else if (csf_opt_value(argc, argv, &i, "--sweep-file", &v)) {
 			o->sweep_file = v;
-		} else if (opt_value(argc, argv, &i, "--sweep-summary", &v)) {
+		} else if (csf_opt_value(argc, argv, &i, "--sweep-summary", &v)) {
 			o->summary = v;
-		} else if (opt_value(argc, argv, &i, "--out-dir", &v)) {
+		} else if (csf_opt_value(argc, argv, &i, "--out-dir", &v)) {
 			o->out_dir = v;
-		} else if ((strncmp(a, "-j", 2) == 0 && (a[2] || i + 1 < argc)) || opt_value(argc, argv, &i, "--jobs", &v)) {
+		} else if ((strncmp(a, "-j", 2) == 0 && (a[2] || i + 1 < argc)) || csf_opt_value(argc, argv, &i, "--jobs", &v)) {
 			if (strncmp(a, "-j", 2) == 0) v = a[2] ? a + 2 : argv[++i];
 			char *end;
 			errno = 0;

@@ -16,38 +16,18 @@
 #include <stdlib.h>
 #include <time.h>
 
+#include "csf.h"
+
 #define REPLAY_CPU 5.0
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-
-/* Reads all of f into a malloc'd buffer; NULL on error. */
-static unsigned char *read_all(FILE *f, size_t *len)
-{
-	size_t cap = 1 << 16, n = 0;
-	unsigned char *buf = malloc(cap);
-	while (buf) {
-		n += fread(buf + n, 1, cap - n, f);
-		if (n < cap) break;
-		unsigned char *b = realloc(buf, cap *= 2);
-		if (!b) free(buf);
-		buf = b;
-	}
-	if (buf && ferror(f)) {
-		free(buf);
-		return NULL;
-	}
-	*len = n;
-	return buf;
-}
 
 int main(int argc, char **argv)
 {
 	int n = 0, slow = 0;
 	for (int i = 1; i < argc || (argc == 1 && i == 1); i++) {
-		FILE *f = argc == 1 ? stdin : fopen(argv[i], "rb");
 		size_t len;
-		unsigned char *buf = f ? read_all(f, &len) : NULL;
-		if (f && f != stdin) fclose(f);
+		unsigned char *buf = csf_read_file(argc == 1 ? "-" : argv[i], &len); /* runtime/main.c */
 		if (!buf) {
 			perror(argc == 1 ? "stdin" : argv[i]);
 			return 2;
