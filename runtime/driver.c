@@ -894,7 +894,7 @@ static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h
 		g->detect_stiff = 0;
 		g->warned = 1;
 	}
-out:
+out:; /* a label before a declaration: C11 needs a statement */
 	/* the next look: after LOOK_EVERY times this one's cost in evaluations; with fixed steps,
 	   sooner as h rho nears the method's least limit on either axis (the direction of the
 	   eigenvalues may turn, as a pendulum's do), every step past half of it */
