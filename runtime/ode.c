@@ -469,7 +469,10 @@ double csf_ode_stable_step(csf_ode *o, int fixed, double re, double im, double s
 		o->stab_fixed = fixed;
 		o->last_s = 0;
 	}
-	double complex u = CMPLX(re / mag, fabs(im) / mag); /* R has real coefficients: |R(conj z)| = |R(z)| */
+	/* R has real coefficients: |R(conj z)| = |R(z)|; set as the two doubles a complex is (C11
+	   6.2.5), not with CMPLX, which not every C library defines */
+	double complex u;
+	((double *)&u)[0] = re / mag, ((double *)&u)[1] = fabs(im) / mag;
 	/* s = h |lambda| is stable while the mode grows by at most 1 % more than it should over the
 	   span/h steps of the run: a method that is weakly unstable near the axis (rk8pd's factor on
 	   the imaginary axis at s = 0.5 is 1 + 2.5e-11) is held to what that costs the run */
