@@ -192,6 +192,12 @@ typedef struct run {
 
 volatile sig_atomic_t csf_signal;
 
+/* Seconds from a to b. */
+static double seconds(struct timespec a, struct timespec b)
+{
+	return (double)(b.tv_sec - a.tv_sec) + 1e-9 * (double)(b.tv_nsec - a.tv_nsec);
+}
+
 /*
  * The progress line (a terminal's stderr, or --progress): "t = T of TILL s
  * (P %), R rows/s, ETA E s", redrawn in place at most 10 times a second,
@@ -201,9 +207,9 @@ static void progress(run *r, double t)
 {
 	struct timespec now;
 	clock_gettime(CLOCK_MONOTONIC, &now);
-	if ((double)(now.tv_sec - r->drawn.tv_sec) + 1e-9 * (double)(now.tv_nsec - r->drawn.tv_nsec) < 0.1) return;
+	if (seconds(r->drawn, now) < 0.1) return;
 	r->drawn = now;
-	double el = (double)(now.tv_sec - r->start.tv_sec) + 1e-9 * (double)(now.tv_nsec - r->start.tv_nsec);
+	double el = seconds(r->start, now);
 	double frac = r->tend > 0 ? fmin(1, t / r->tend) : 1;
 	char eta[48] = "";
 	if (frac > 0 && frac < 1) snprintf(eta, sizeof eta, ", ETA %.0f s", el * (1 - frac) / frac);
@@ -908,7 +914,7 @@ out:; /* a label before a declaration: C11 needs a statement */
 		g->next_step = g->steps + (unsigned long)fmax(1, floor(every));
 	}
 	clock_gettime(CLOCK_MONOTONIC, &c1);
-	g->seconds += (double)(c1.tv_sec - c0.tv_sec) + 1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
+	g->seconds += seconds(c0, c1);
 	return halt;
 }
 
@@ -1449,16 +1455,12 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 done:
 	progress_off(&r);
 	clock_gettime(CLOCK_MONOTONIC, &t1);
-	{
-		unsigned long steps = 0, rejected = 0;
-		if (ode) csf_ode_stats(ode, &steps, &rejected);
-		o->run_steps = steps;
-		o->run_rhs = r.nrhs;
-		o->run_seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-	}
+	unsigned long steps = 0, rejected = 0;
+	if (ode) csf_ode_stats(ode, &steps, &rejected);
+	o->run_steps = steps;
+	o->run_rhs = r.nrhs;
+	o->run_seconds = seconds(t0, t1);
 	if (o->stats) {
-		unsigned long steps = 0, rejected = 0;
-		if (ode) csf_ode_stats(ode, &steps, &rejected);
 		char cand[96] = "";
 		if (r.cs)
 			snprintf(cand, sizeof cand, ", %.1f contact pairs watched (candidates) on average, at most %lu",
@@ -1467,8 +1469,7 @@ done:
 		        "stats: method %s%s, %lu steps (%lu rejected), %lu right-hand side and %lu Jacobian evaluations, "
 		        "%lu events%s, %.6f s\n",
 		        ode ? csf_ode_method(ode) : "none", fixed ? " (fixed steps)" : "", steps, rejected, r.nrhs, r.njac,
-		        r.nevents, cand,
-		        (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
+		        r.nevents, cand, o->run_seconds);
 	}
 	if (o->stats && r.g && gd.checks) {
 		char rb[64] = "", hb[160] = "";
