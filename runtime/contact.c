@@ -30,7 +30,9 @@
  * Materials combine as mu = max(mu_i, mu_j) (the rougher surface) and
  * restitution e = min(cr_i, cr_j) (the less elastic one), so the defaults
  * (cr 1, mu 0) leave the other body's coefficient as it is. Several
- * simultaneous contacts are solved together by Gauss-Seidel sweeps.
+ * simultaneous contacts are solved together, exactly: the pairs that share
+ * bodies form a cluster, whose forces (and impulses) are the solution of
+ * one linear system (below, "the clusters").
  *
  * The program lists the bodies of each contact rule, not its pairs; the
  * routine works on the candidate pairs only, those near enough to matter,
@@ -44,6 +46,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include <gsl/gsl_linalg.h>
 
 #include "csf.h"
 
@@ -84,6 +88,16 @@ struct csf_contacts {
 	int axis;                 /* the sweep's axis, -1 before the first */
 	uint32_t *mstart;         /* per body, its memberships: mem[mstart[b] .. mstart[b + 1]) */
 	memb *mem;
+	/* the clusters (below): per state slot of a position, its union-find parent and cluster;
+	   per candidate, the candidates of the clusters in order, and whether its cluster was
+	   solved directly; a cluster's matrix, right-hand side, solution and unknowns' places */
+	uint32_t *uf, *cid, *cl, *cstart;
+	unsigned char *direct;
+	size_t capcl, capcstart, capdirect;
+	double *K, *G, *rhs, *x, *lam, *v0, *nv;
+	uint32_t *at;
+	unsigned char *act;
+	size_t *perm;
 };
 
 #define I(c, f) ((c)->si[CSF_CF_##f])
@@ -226,6 +240,206 @@ static void slip_velocity(const cpair *c, const double *m, const double n[3], do
 	tangential(vr, n, vt);
 }
 
+/* ---- the clusters: the pairs in contact that share bodies, solved together ---- */
+
+/*
+ * Pairs in contact that share a body (a plane is no body: its mass is
+ * infinite) act on each other; those that are connected so form a cluster,
+ * and the clusters are independent. A cluster's contact forces are the
+ * solution of one linear system: each pair's force is F = B x (x its
+ * unknowns: the normal force, or with sticking friction the whole force),
+ * and its equations say that the relative acceleration vanishes along E
+ * (the normal, or every direction when it sticks), given the forces of the
+ * others. With the bodies' inverse masses w, the coefficient of pair d's
+ * unknowns in pair c's equations is E_c^T B_d times the sum, over their
+ * common bodies b, of w_b s_cb s_db (s = +1 for a pair's body i, -1 for
+ * j). The system is solved by LU decomposition with partial pivoting
+ * (GSL), so that its answer does not depend on how the masses compare:
+ * Gauss-Seidel sweeps, which each pair corrects in turn, converge at a rate
+ * of about one part in the mass ratio per sweep (a 1e-5 kg ball between 1
+ * kg ones takes 1e5 sweeps). Those sweeps remain for what the direct solve
+ * does not take: a cluster of more than DIRECT_MAX unknowns (its matrix
+ * would cost DIRECT_MAX^3 operations per evaluation), or a singular one (a
+ * body held by more contacts than it has directions, whose forces are not
+ * determined: the sweeps find one of the answers).
+ */
+enum { DIRECT_MAX = 96 };
+
+/* The bodies of pair c as state slots of their positions (j a plane: none, UINT32_MAX). */
+static uint32_t body_i(const csf_contacts *cs, const cpair *c) { return I(c, POS) - cs->p->ystart; }
+static uint32_t body_j(const csf_contacts *cs, const cpair *c) { return c->plane ? UINT32_MAX : J(c, POS) - cs->p->ystart; }
+
+static uint32_t uf_root(uint32_t *uf, uint32_t x)
+{
+	while (uf[x] != x) x = uf[x] = uf[uf[x]];
+	return x;
+}
+
+/* Sum over the common bodies of c and d of w_b s_cb s_db (above). */
+static double coupling(const csf_contacts *cs, const cpair *c, const cpair *d, const double *m)
+{
+	uint32_t ci = body_i(cs, c), cj = body_j(cs, c), di = body_i(cs, d), dj = body_j(cs, d);
+	double k = 0;
+	if (ci == di) k += inv_mass_i(c, m);
+	if (ci == dj) k -= inv_mass_i(c, m);
+	if (cj != UINT32_MAX && cj == di) k -= inv_mass_j(c, m);
+	if (cj != UINT32_MAX && cj == dj) k += inv_mass_j(c, m);
+	return k;
+}
+
+/* For clusters(): the pairs in contact. */
+static int picks_contact(const cpair *c, const void *arg)
+{
+	(void)arg;
+	return in_contact(c);
+}
+
+/*
+ * Sorts the candidates k for which pick(k) holds into clusters: cl lists
+ * them cluster by cluster, each in the order of pairs, the clusters in the
+ * order of their first pair; cluster q is cl[cstart[q] .. cstart[q + 1]).
+ * Returns the number of clusters. Linear in the pairs picked.
+ */
+static uint32_t clusters(csf_contacts *cs, int (*pick)(const cpair *, const void *), const void *arg)
+{
+	uint32_t *uf = cs->uf, *cid = cs->cid, nq = 0;
+	if (!cs->n) return 0;
+	for (int pass = 0; pass < 2; pass++)
+		for (uint32_t k = 0; k < cs->n; k++) {
+			const cpair *c = &cs->pairs[k];
+			if (!pick(c, arg)) continue;
+			uint32_t bi = body_i(cs, c), bj = body_j(cs, c);
+			if (pass == 0) {
+				uf[bi] = bi, cid[bi] = UINT32_MAX;
+				if (bj != UINT32_MAX) uf[bj] = bj, cid[bj] = UINT32_MAX;
+			} else if (bj != UINT32_MAX) {
+				uint32_t a = uf_root(uf, bi), b = uf_root(uf, bj);
+				if (a != b) uf[a < b ? b : a] = a < b ? a : b;
+			}
+		}
+	for (uint32_t k = 0; k < cs->n; k++) { /* count each cluster's pairs; the clusters numbered as met */
+		const cpair *c = &cs->pairs[k];
+		if (!pick(c, arg)) continue;
+		uint32_t r = uf_root(uf, body_i(cs, c));
+		if (cid[r] == UINT32_MAX) cid[r] = nq, cs->cstart[++nq] = 0;
+		cs->cstart[cid[r] + 1]++;
+	}
+	cs->cstart[0] = 0;
+	for (uint32_t q = 0; q < nq; q++) cs->cstart[q + 1] += cs->cstart[q];
+	for (uint32_t k = 0; k < cs->n; k++) { /* cstart[q] is cluster q's cursor, then its end */
+		const cpair *c = &cs->pairs[k];
+		if (pick(c, arg)) cs->cl[cs->cstart[cid[uf_root(uf, body_i(cs, c))]]++] = k;
+	}
+	for (uint32_t q = nq; q > 0; q--) cs->cstart[q] = cs->cstart[q - 1];
+	cs->cstart[0] = 0;
+	return nq;
+}
+
+/*
+ * Solves the system of cs->K (dim x dim, row-major) with right-hand side
+ * cs->rhs into cs->x. Fails (-1) when it is singular: a pivot below 1e-12
+ * of the largest coefficient.
+ */
+static int solve(csf_contacts *cs, uint32_t dim)
+{
+	double big = 0;
+	for (uint32_t k = 0; k < dim * dim; k++) big = csf_max(big, fabs(cs->K[k]));
+	if (!(big > 0) || !isfinite(big)) return -1;
+	gsl_matrix_view A = gsl_matrix_view_array(cs->K, dim, dim);
+	gsl_vector_view b = gsl_vector_view_array(cs->rhs, dim), x = gsl_vector_view_array(cs->x, dim);
+	gsl_permutation perm = { dim, cs->perm };
+	gsl_permutation_init(&perm);
+	int sign;
+	if (gsl_linalg_LU_decomp(&A.matrix, &perm, &sign)) return -1;
+	for (uint32_t k = 0; k < dim; k++)
+		if (!(fabs(cs->K[k * dim + k]) > 1e-12 * big)) return -1;
+	if (gsl_linalg_LU_solve(&A.matrix, &perm, &b.vector, &x.vector)) return -1;
+	for (uint32_t k = 0; k < dim; k++)
+		if (!isfinite(cs->x[k])) return -1;
+	return 0;
+}
+
+/* Pair c's force directions B (3 x d, column-major: d = 3 when it sticks), and E likewise. */
+static int force_basis(const cpair *c, const double *m, const double n[3], double sign, double B[9], double E[9])
+{
+	if (has_friction(c, m) && W(c, MODE) == STICKING) {
+		for (int k = 0; k < 9; k++) B[k] = E[k] = k % 4 == 0;
+		return 3;
+	}
+	double u[3] = { 0, 0, 0 }, k = 0;
+	if (has_friction(c, m)) { /* sliding: -mu_k |N| along the way it slides (as csf_contact_apply's sweeps) */
+		double vt[3];
+		slip_velocity(c, m, n, vt);
+		double s = mag3(vt);
+		int ahead = dot3(vt, WV(c, DS)) > 0;
+		for (int j = 0; j < 3; j++) u[j] = ahead ? vt[j] / s : WV(c, DS)[j];
+		k = mu_k(c, m) * sign;
+	}
+	for (int j = 0; j < 3; j++) B[j] = n[j] - k * u[j], E[j] = n[j];
+	return 1;
+}
+
+/*
+ * The contact forces of cluster cl[0..np), solved directly (above); fails
+ * (-1, nothing changed) when it has more than DIRECT_MAX unknowns or its
+ * system is singular. The accelerations in m are those of the other forces.
+ */
+static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np)
+{
+	if (np > DIRECT_MAX) return -1;
+	double sign[DIRECT_MAX]; /* a sliding pair's friction is against its way for N > 0: |N| = sign N */
+	for (uint32_t a = 0; a < np; a++) sign[a] = 1;
+	for (int attempt = 0; attempt < 2; attempt++) {
+		uint32_t dim = 0;
+		for (uint32_t a = 0; a < np; a++) {
+			cpair *c = &cs->pairs[cl[a]];
+			cs->at[a] = dim;
+			dim += has_friction(c, m) && W(c, MODE) == STICKING ? 3 : 1;
+			if (dim > DIRECT_MAX) return -1;
+		}
+		memset(cs->K, 0, (size_t)dim * dim * sizeof *cs->K);
+		for (uint32_t a = 0; a < np; a++) {
+			const cpair *c = &cs->pairs[cl[a]];
+			double n[3], curv, ar[3], Bc[9], Ec[9];
+			geometry(c, m, n, &curv);
+			int dc = force_basis(c, m, n, sign[a], Bc, Ec);
+			rel(c, m, I(c, A), J(c, A), ar);
+			for (int r = 0; r < dc; r++) cs->rhs[cs->at[a] + r] = -(dot3(Ec + 3 * r, ar) + curv * dot3(Ec + 3 * r, n));
+			for (uint32_t b = 0; b < np; b++) {
+				const cpair *d = &cs->pairs[cl[b]];
+				double w = coupling(cs, c, d, m), nd[3], cd, Bd[9], Ed[9];
+				if (w == 0) continue;
+				geometry(d, m, nd, &cd);
+				int dd = force_basis(d, m, nd, sign[b], Bd, Ed);
+				for (int r = 0; r < dc; r++)
+					for (int q = 0; q < dd; q++)
+						cs->K[(size_t)(cs->at[a] + r) * dim + cs->at[b] + q] = w * dot3(Ec + 3 * r, Bd + 3 * q);
+			}
+		}
+		if (solve(cs, dim)) return -1;
+		int flip = 0;
+		for (uint32_t a = 0; a < np; a++) {
+			const cpair *c = &cs->pairs[cl[a]];
+			if (has_friction(c, m) && W(c, MODE) == SLIDING && cs->x[cs->at[a]] * sign[a] < 0) sign[a] = -sign[a], flip = 1;
+		}
+		if (!flip || attempt == 1) break;
+	}
+	for (uint32_t a = 0; a < np; a++) {
+		cpair *c = &cs->pairs[cl[a]];
+		double n[3], curv, B[9], E[9], F[3] = { 0, 0, 0 };
+		geometry(c, m, n, &curv);
+		int dc = force_basis(c, m, n, sign[a], B, E);
+		for (int q = 0; q < dc; q++)
+			for (int k = 0; k < 3; k++) F[k] += B[3 * q + k] * cs->x[cs->at[a] + q];
+		double lam = dc == 1 ? cs->x[cs->at[a]] : dot3(F, n), fn[3], *f = WV(c, F); /* F = N n + friction */
+		for (int k = 0; k < 3; k++) fn[k] = lam * n[k], f[k] = has_friction(c, m) ? F[k] - fn[k] : 0;
+		W(c, LAM) = lam;
+		add_force(c, m, fn, I(c, FN), J(c, FN));
+		add_force(c, m, f, I(c, FF), J(c, FF));
+	}
+	return 0;
+}
+
 void csf_contact_apply(const csf_prog *p, double *m)
 {
 	csf_contacts *cs = p->crun;
@@ -240,12 +454,18 @@ void csf_contact_apply(const csf_prog *p, double *m)
 		for (int k = 0; k < 3; k++) WV(c, F)[k] = 0;
 		W(c, LAM) = 0;
 	}
-	/* Gauss-Seidel sweeps: with one contact the second sweep changes nothing */
-	for (int sweep = 0; sweep < 100; sweep++) {
+	/* each cluster directly; those it does not take (above) by Gauss-Seidel sweeps */
+	uint32_t nq = clusters(cs, picks_contact, NULL), sweeps = 0;
+	for (uint32_t q = 0; q < nq; q++) {
+		int ok = !cluster_forces(cs, m, cs->cl + cs->cstart[q], cs->cstart[q + 1] - cs->cstart[q]);
+		for (uint32_t a = cs->cstart[q]; a < cs->cstart[q + 1]; a++) cs->direct[cs->cl[a]] = (unsigned char)ok;
+		sweeps |= !ok;
+	}
+	for (uint32_t sweep = 0; sweeps && sweep < 100; sweep++) {
 		double change = 0, size = 0;
 		for (uint32_t i = 0; i < cs->n; i++) {
 			cpair *c = &cs->pairs[i];
-			if (!in_contact(c)) continue;
+			if (!in_contact(c) || cs->direct[i]) continue;
 			double n[3], curv, ar[3], f[3];
 			geometry(c, m, n, &curv);
 			double w = inv_mass_i(c, m) + inv_mass_j(c, m);
@@ -414,6 +634,92 @@ static int hops(const cpair *c, const double *m, double vn, double an, double to
 	return an < 0 && vn * vn / (-2 * an) <= too_low(c, m, tol);
 }
 
+/* For clusters(): the pairs in contact, and the pair hit (arg). */
+static int picks_impact(const cpair *c, const void *hit)
+{
+	return c == hit || in_contact(c);
+}
+
+/*
+ * The impact of pair hit, whose relative normal velocity is to become
+ * target, on the cluster it forms with the pairs in contact, solved
+ * directly: the normal impulses P make the hit's velocity target, and each
+ * pair in contact either pushes (P >= 0) and is left with a relative normal
+ * velocity of zero, or takes no impulse and does not close (v >= 0): a
+ * linear complementarity problem, whose matrix (the coupling of the pairs'
+ * normals) is symmetric and positive definite when it is not singular. It
+ * is solved by active sets: starting with the hit alone, the pair in
+ * contact that closes fastest joins, or the one that would pull most leaves,
+ * until neither happens. Fails (-1, nothing changed) for a cluster of more
+ * than DIRECT_MAX pairs, a singular system or one that does not settle in
+ * 4 np + 8 changes of the set; size is the scale of the velocities.
+ */
+static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, double target, double size)
+{
+	uint32_t nq = clusters(cs, picks_impact, hit), h = (uint32_t)(hit - cs->pairs), q = 0, np = 0, ih = 0;
+	const uint32_t *cl = NULL;
+	for (; q < nq && !cl; q++)
+		for (uint32_t a = cs->cstart[q]; a < cs->cstart[q + 1]; a++)
+			if (cs->cl[a] == h) cl = cs->cl + cs->cstart[q], np = cs->cstart[q + 1] - cs->cstart[q], ih = a - cs->cstart[q];
+	if (!cl || np > DIRECT_MAX) return -1;
+	double *G = cs->G, *n = cs->nv;
+	for (uint32_t a = 0; a < np; a++) {
+		const cpair *c = &cs->pairs[cl[a]];
+		double curv, vr[3];
+		geometry(c, m, n + 3 * a, &curv);
+		rel(c, m, I(c, V), J(c, V), vr);
+		cs->v0[a] = dot3(vr, n + 3 * a);
+		cs->act[a] = a == ih;
+		cs->lam[a] = 0;
+	}
+	for (uint32_t a = 0; a < np; a++) /* G = the normals' coupling, once each normal is known */
+		for (uint32_t b = 0; b < np; b++) {
+			double w = coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], m);
+			G[a * np + b] = w == 0 ? 0 : w * dot3(n + 3 * a, n + 3 * b);
+		}
+	for (uint32_t iter = 0; iter < 4 * np + 8; iter++) {
+		uint32_t dim = 0;
+		for (uint32_t a = 0; a < np; a++) {
+			if (!cs->act[a]) continue;
+			cs->at[dim] = a;
+			cs->rhs[dim] = (a == ih ? target : 0) - cs->v0[a];
+			dim++;
+		}
+		for (uint32_t r = 0; r < dim; r++)
+			for (uint32_t k = 0; k < dim; k++) cs->K[r * dim + k] = G[cs->at[r] * np + cs->at[k]];
+		if (solve(cs, dim)) return -1;
+		for (uint32_t a = 0; a < np; a++) cs->lam[a] = 0;
+		for (uint32_t r = 0; r < dim; r++) cs->lam[cs->at[r]] = cs->x[r];
+		long out = -1, in = -1;
+		double worst = -1e-14 * size;
+		for (uint32_t a = 0; a < np; a++) /* a contact that would pull: its impulse's effect */
+			if (cs->act[a] && a != ih && cs->lam[a] * G[a * np + a] < worst) worst = cs->lam[a] * G[a * np + a], out = a;
+		if (out < 0) {
+			worst = -1e-14 * size;
+			for (uint32_t a = 0; a < np; a++) { /* a contact that would close */
+				if (cs->act[a]) continue;
+				double v = cs->v0[a];
+				for (uint32_t b = 0; b < np; b++) v += G[a * np + b] * cs->lam[b];
+				if (v < worst) worst = v, in = a;
+			}
+		}
+		if (out >= 0) cs->act[out] = 0;
+		else if (in >= 0) cs->act[in] = 1;
+		else {
+			for (uint32_t a = 0; a < np; a++) {
+				cpair *c = &cs->pairs[cl[a]];
+				double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), P = cs->lam[a];
+				for (int k = 0; k < 3; k++) {
+					m[I(c, V) + k] += P * n[3 * a + k] * wi;
+					if (!c->plane) m[J(c, V) + k] -= P * n[3 * a + k] * wj;
+				}
+			}
+			return 0;
+		}
+	}
+	return -1;
+}
+
 /*
  * The impact of pair hit, whose relative normal velocity vn becomes target,
  * together with the pairs in contact, which stay in contact (their normal
@@ -425,6 +731,7 @@ static int hops(const cpair *c, const double *m, double vn, double an, double to
 static void collide(csf_contacts *cs, double *m, cpair *hit, double target, double vn)
 {
 	double size = fabs(target) + fabs(vn);
+	if (!cluster_impulses(cs, m, hit, target, size)) return;
 	for (int sweep = 0; sweep < 1000; sweep++) {
 		double change = 0;
 		for (uint32_t i = 0; i < cs->n; i++) {
@@ -617,7 +924,21 @@ csf_contacts *csf_contacts_new(const csf_prog *p)
 	c->pn = malloc((4 * nb + 1) * sizeof *c->pn);
 	c->mstart = calloc(nb + 2, sizeof *c->mstart);
 	c->sap = malloc((nb + 1) * sizeof *c->sap);
-	if (!c->box || !c->mg || !c->pn || !c->mstart || !c->sap) goto oom;
+	c->uf = malloc(((size_t)p->ny + 1) * sizeof *c->uf);
+	c->cid = malloc(((size_t)p->ny + 1) * sizeof *c->cid);
+	c->K = malloc((size_t)DIRECT_MAX * DIRECT_MAX * sizeof *c->K);
+	c->G = malloc((size_t)DIRECT_MAX * DIRECT_MAX * sizeof *c->G);
+	c->lam = malloc(DIRECT_MAX * sizeof *c->lam);
+	c->v0 = malloc(DIRECT_MAX * sizeof *c->v0);
+	c->nv = malloc(3 * DIRECT_MAX * sizeof *c->nv);
+	c->act = malloc(DIRECT_MAX * sizeof *c->act);
+	c->rhs = malloc(DIRECT_MAX * sizeof *c->rhs);
+	c->x = malloc(DIRECT_MAX * sizeof *c->x);
+	c->at = malloc(DIRECT_MAX * sizeof *c->at);
+	c->perm = malloc(DIRECT_MAX * sizeof *c->perm);
+	if (!c->box || !c->mg || !c->pn || !c->mstart || !c->sap || !c->uf || !c->cid || !c->K || !c->G || !c->lam || !c->v0 || !c->nv || !c->act || !c->rhs || !c->x ||
+	    !c->at || !c->perm)
+		goto oom;
 	/* the memberships of mass points in rules without `for`, by body, each body's in rule order */
 	for (uint32_t r = 0; r < p->ncrules; r++) {
 		const csf_crule *cr = &p->crules[r];
@@ -663,6 +984,21 @@ void csf_contacts_free(csf_contacts *c)
 	free(c->sap);
 	free(c->mstart);
 	free(c->mem);
+	free(c->uf);
+	free(c->cid);
+	free(c->cl);
+	free(c->cstart);
+	free(c->direct);
+	free(c->K);
+	free(c->G);
+	free(c->lam);
+	free(c->v0);
+	free(c->nv);
+	free(c->act);
+	free(c->rhs);
+	free(c->x);
+	free(c->at);
+	free(c->perm);
 	free(c);
 }
 
@@ -870,7 +1206,10 @@ long csf_contacts_find(csf_contacts *c, const double *m, const double *const *ys
 	if (c->nkeys) qsort(c->keys, c->nkeys, sizeof *c->keys, key_cmp);
 	if (grow((void **)&c->next, &c->capnext, c->nkeys + 1, sizeof *c->next) ||
 	    grow((void **)&c->from, &c->capfrom, c->nkeys + 1, sizeof *c->from) ||
-	    grow((void **)&c->old, &c->capold, 2 * (size_t)c->n + 1, sizeof *c->old))
+	    grow((void **)&c->old, &c->capold, 2 * (size_t)c->n + 1, sizeof *c->old) ||
+	    grow((void **)&c->cl, &c->capcl, c->nkeys + 1, sizeof *c->cl) ||
+	    grow((void **)&c->cstart, &c->capcstart, c->nkeys + 2, sizeof *c->cstart) ||
+	    grow((void **)&c->direct, &c->capdirect, c->nkeys + 1, sizeof *c->direct))
 		return -1;
 	uint32_t o = 0, n = 0;
 	for (size_t k = 0; k < c->nkeys; k++) {
