@@ -597,7 +597,10 @@ static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
 	int side = 0, st;
 	while (*hi - *lo > tol && *hi - *lo > 4e-16 * fabs(*hi)) {
 		double c = *hi - *ghi * (*hi - *lo) / (*ghi - *glo);
-		if (!(c > *lo && c < *hi)) c = *lo + (*hi - *lo) / 2;
+		/* the secant's point rounds to an end when the guard there is tiny (a crossing found
+		   exactly): it then moves in by tol / 4 below, which ends the search; only a point
+		   that is not a number, or outside the bracket, is a bisection */
+		if (!(c >= *lo && c <= *hi)) c = *lo + (*hi - *lo) / 2;
 		if (c - *lo < tol / 4) c = *lo + tol / 4; /* shrink the bracket from both ends */
 		if (*hi - c < tol / 4) c = *hi - tol / 4;
 		if ((st = guard_at(r, ode, dense, ta, tb, yb, c, msg, msglen))) return st;
