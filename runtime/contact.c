@@ -769,12 +769,25 @@ static int crowded(csf_contacts *cs, const double *m, const cpair *c)
 	return 0;
 }
 
+/*
+ * The passes of csf_contact_settle before it gives up: each resolves one
+ * impact (or a set of mode changes), and impacts propagate pair by pair. A
+ * light ball between heavy ones goes back and forth between them, some pi
+ * sqrt(M/m) times (as the block on a wall counts pi's digits), so a bound
+ * of 1e6/(n + 1) passes (one evaluation and a look at the n pairs each)
+ * beyond 100 + 10 n admits mass ratios up to about 1e10 in a small scene.
+ */
+uint64_t csf_contact_passes(uint32_t n)
+{
+	return 100 + 10 * (uint64_t)n + 1000000 / ((uint64_t)n + 1);
+}
+
 int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, csf_eval_fn eval, void *ctx)
 {
 	csf_contacts *cs = p->crun;
 	if (!cs) return 0;
 	/* each pass evaluates the forces and guards of the current modes, then acts on what they say */
-	for (uint64_t iter = 0; iter < 100 + 10 * (uint64_t)cs->n; iter++) {
+	for (uint64_t iter = 0; iter < csf_contact_passes(cs->n); iter++) {
 		if (eval(ctx)) return -1;
 		/* the most violent impact first; each changes velocities, so look again */
 		long hit = -1;
@@ -844,7 +857,7 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, cs
 		}
 		if (!changed) return 0;
 	}
-	return 0;
+	return 1;
 }
 
 /* ---- the candidate pairs and the broad phase ---- */

@@ -288,9 +288,11 @@ typedef int (*csf_eval_fn)(void *ctx);
  * p->crun (chosen at this instant: csf_contacts_find with one state).
  * zeno: the time below which a train of bounces counts as at rest; tol:
  * the integrator's relative tolerance (the accuracy of the positions it
- * computes). Returns 0, or -1 if eval failed.
+ * computes). Returns 0; -1 if eval failed; 1 if the impacts did not come
+ * to an end within csf_contact_passes(n) passes (n candidate pairs).
  */
 int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, csf_eval_fn eval, void *ctx);
+uint64_t csf_contact_passes(uint32_t n);
 
 /*
  * The contact routine's state during a run (csf_run keeps it in p->crun):

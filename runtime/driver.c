@@ -180,6 +180,8 @@ typedef struct run {
 	csf_contacts *cs; /* with contacts: the candidate pairs (contact.c) */
 	unsigned long nchoices, ncand, maxcand; /* for --stats: the choices of candidates, their sum and largest */
 	int nomem; /* memory ran out */
+	int unsettled;     /* the impacts at an instant did not come to an end (csf_contact_settle) */
+	double unsettled_t;
 	double stop_t; /* a 'stop when' condition ended the run at stop_t: the statement stop_src's */
 	uint32_t stop_src;
 	int stopped;
@@ -364,6 +366,19 @@ static void report_event_src(const csf_prog *p, uint32_t src, FILE *err)
 	fprintf(err, "%s:%lu: ", csf_str(p, p->files[sr->file]), (unsigned long)sr->line);
 }
 
+/* The impacts at r->unsettled_t did not come to an end (csf_contact_settle): why, and what to do. */
+static void report_unsettled(const run *r, FILE *err)
+{
+	char tb[32];
+	csf_fmt_double(tb, r->unsettled_t);
+	fprintf(err,
+	        "error: at t=%s, the impacts among touching bodies did not come to an end after %llu collisions "
+	        "(%lu pairs near contact): a light body squeezed between heavy ones collides about "
+	        "pi sqrt(M/m) times; make the masses less different\n",
+	        tb, (unsigned long long)csf_contact_passes(csf_contacts_count(r->cs)),
+	        (unsigned long)csf_contacts_count(r->cs));
+}
+
 static int write_row(const csf_prog *p, const double *m, double t, FILE *out)
 {
 	char b[32];
@@ -514,7 +529,9 @@ static int update_modes(run *r, double t, double *y)
 		if (choose_contacts(r, ys, 1, NULL, NULL, 0)) return 1;
 		settle_ctx s = { r, t, y };
 		memcpy(r->m + p->ystart, y, p->ny * sizeof *y);
-		if (csf_contact_settle(p, r->m, r->zeno, r->tol, settle_eval, &s)) return 1;
+		int st = csf_contact_settle(p, r->m, r->zeno, r->tol, settle_eval, &s);
+		if (st > 0) r->unsettled = 1, r->unsettled_t = t;
+		if (st) return 1;
 		memcpy(y, r->m + p->ystart, p->ny * sizeof *y);
 		free_modes(r, t, y);
 	}
@@ -1285,21 +1302,27 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	r.zeno = 1e-6 * p->by;
 	r.tol = o->tol > 0 ? o->tol : csf_method_tol(o->method);
 	if (events) {
+		/* the masses first: the impulses and forces of contacts divide by them */
+		long b = r.cs ? csf_contacts_bad_mass(p, r.m) : -1;
+		if (b >= 0) {
+			fprintf(err, "error: the mass of %s is %g: a body in contact needs a positive mass\n",
+			        csf_str(p, p->objects[p->cbodies[b].object]), r.m[p->cbodies[b].s[CSF_CF_M]]);
+			status = 1;
+			goto done;
+		}
 		/* the modes at t = 0: each comparison's side, contacts at rest or colliding */
 		if (update_modes(&r, 0, y) || (p->ny && guards_at(&r, 0, y, r.ga))) {
+			if (r.unsettled) {
+				report_unsettled(&r, err);
+				status = 1;
+				goto done;
+			}
 			if (r.nomem) {
 				fprintf(err, "error: out of memory\n");
 				status = 2;
 				goto done;
 			}
 			report_nonfinite(p, CSF_SEC_RHS, r.m, 0, "a state derivative", o->fixed, err);
-			status = 1;
-			goto done;
-		}
-		long b = r.cs ? csf_contacts_bad_mass(p, r.m) : -1;
-		if (b >= 0) {
-			fprintf(err, "error: the mass of %s is %g: a body in contact needs a positive mass\n",
-			        csf_str(p, p->objects[p->cbodies[b].object]), r.m[p->cbodies[b].s[CSF_CF_M]]);
 			status = 1;
 			goto done;
 		}
@@ -1366,6 +1389,11 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 				warned = 1;
 			}
 			if (st == CSF_ODE_HALTED) { /* the guard said why */
+				status = 1;
+				goto done;
+			}
+			if (st == CSF_ODE_STOPPED && r.unsettled) {
+				report_unsettled(&r, err);
 				status = 1;
 				goto done;
 			}
