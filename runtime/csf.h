@@ -289,7 +289,9 @@ typedef int (*csf_eval_fn)(void *ctx);
  * zeno: the time below which a train of bounces counts as at rest; tol:
  * the integrator's relative tolerance (the accuracy of the positions it
  * computes). Returns 0; -1 if eval failed; 1 if the impacts did not come
- * to an end within csf_contact_passes(n) passes (n candidate pairs).
+ * to an end within csf_contact_passes(n) of them (n candidate pairs); 2 if
+ * the impulses of one could not be solved (masses in a cluster that differ
+ * by more than about 1e10).
  */
 int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, csf_eval_fn eval, void *ctx);
 uint64_t csf_contact_passes(uint32_t n);
@@ -310,6 +312,8 @@ void csf_contacts_free(csf_contacts *c);
 long csf_contacts_bad_mass(const csf_prog *p, const double *m);
 /* The number of candidate pairs (two guards each, after the events'). */
 uint32_t csf_contacts_count(const csf_contacts *c);
+/* Whether the contact forces of some evaluation could not be solved (masses that differ by more than about 1e10). */
+int csf_contacts_unsolved(const csf_contacts *c);
 /* The guards of candidate pairs as the last csf_contact_apply left them, into g[0 .. 2 count). */
 void csf_contacts_guards(const csf_contacts *c, double *g);
 /* The source statement of candidate k (its rule). */
