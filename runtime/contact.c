@@ -47,8 +47,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <gsl/gsl_linalg.h>
-
 #include "csf.h"
 
 enum { APART, SLIDING, STICKING, HOPPING }; /* the modes of a pair */
@@ -97,7 +95,8 @@ struct csf_contacts {
 	double *K, *G, *rhs, *x, *lam, *v0, *nv;
 	uint32_t *at;
 	unsigned char *act;
-	size_t *perm;
+	double *B, *E;             /* per pair of a cluster: its force directions and equations (3 x 3 each) */
+	unsigned char *dc;        /* and its unknowns */
 	int unsolved; /* the sweeps left contact forces that do not hold (csf_contacts_unsolved) */
 };
 
@@ -254,8 +253,8 @@ static void slip_velocity(const cpair *c, const double *m, const double n[3], do
  * others. With the bodies' inverse masses w, the coefficient of pair d's
  * unknowns in pair c's equations is E_c^T B_d times the sum, over their
  * common bodies b, of w_b s_cb s_db (s = +1 for a pair's body i, -1 for
- * j). The system is solved by LU decomposition with partial pivoting
- * (GSL), so that its answer does not depend on how the masses compare:
+ * j). The system is solved by Gaussian elimination with partial
+ * pivoting, so that its answer does not depend on how the masses compare:
  * Gauss-Seidel sweeps, which each pair corrects in turn, converge at a rate
  * of about one part in the mass ratio per sweep (a 1e-5 kg ball between 1
  * kg ones takes 1e5 sweeps). Those sweeps remain for what the direct solve
@@ -348,20 +347,37 @@ static uint32_t clusters(csf_contacts *cs, int (*pick)(const cpair *, const void
  */
 static int solve(csf_contacts *cs, uint32_t dim)
 {
-	double big = 0;
-	for (uint32_t k = 0; k < dim * dim; k++) big = csf_max(big, fabs(cs->K[k]));
+	double *K = cs->K, *b = cs->rhs, *x = cs->x, big = 0;
+	for (uint32_t k = 0; k < dim * dim; k++) big = csf_max(big, fabs(K[k]));
 	if (!(big > 0) || !isfinite(big)) return -1;
-	gsl_matrix_view A = gsl_matrix_view_array(cs->K, dim, dim);
-	gsl_vector_view b = gsl_vector_view_array(cs->rhs, dim), x = gsl_vector_view_array(cs->x, dim);
-	gsl_permutation perm = { dim, cs->perm };
-	gsl_permutation_init(&perm);
-	int sign;
-	if (gsl_linalg_LU_decomp(&A.matrix, &perm, &sign)) return -1;
-	for (uint32_t k = 0; k < dim; k++)
-		if (!(fabs(cs->K[k * dim + k]) > 1e-10 * big)) return -1;
-	if (gsl_linalg_LU_solve(&A.matrix, &perm, &b.vector, &x.vector)) return -1;
-	for (uint32_t k = 0; k < dim; k++)
-		if (!isfinite(cs->x[k])) return -1;
+	/* Gaussian elimination with partial pivoting, in place (the systems are small: GSL's
+	   LU costs more in its calls than in its arithmetic at these sizes) */
+	for (uint32_t k = 0; k < dim; k++) {
+		uint32_t pr = k;
+		for (uint32_t i = k + 1; i < dim; i++)
+			if (fabs(K[i * dim + k]) > fabs(K[pr * dim + k])) pr = i;
+		if (!(fabs(K[pr * dim + k]) > 1e-10 * big)) return -1;
+		if (pr != k) {
+			for (uint32_t j = k; j < dim; j++) {
+				double t = K[k * dim + j];
+				K[k * dim + j] = K[pr * dim + j], K[pr * dim + j] = t;
+			}
+			double t = b[k];
+			b[k] = b[pr], b[pr] = t;
+		}
+		for (uint32_t i = k + 1; i < dim; i++) {
+			double l = K[i * dim + k] / K[k * dim + k];
+			if (l == 0) continue;
+			for (uint32_t j = k + 1; j < dim; j++) K[i * dim + j] -= l * K[k * dim + j];
+			b[i] -= l * b[k];
+		}
+	}
+	for (uint32_t k = dim; k-- > 0;) {
+		double v = b[k];
+		for (uint32_t j = k + 1; j < dim; j++) v -= K[k * dim + j] * x[j];
+		x[k] = v / K[k * dim + k];
+		if (!isfinite(x[k])) return -1;
+	}
 	return 0;
 }
 
@@ -394,34 +410,32 @@ static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 {
 	if (np > DIRECT_MAX) return -1;
 	double sign[DIRECT_MAX]; /* a sliding pair's friction is against its way for N > 0: |N| = sign N */
+	double *n = cs->nv, *B = cs->B, *E = cs->E;
 	for (uint32_t a = 0; a < np; a++) sign[a] = 1;
 	for (int attempt = 0; attempt < 2; attempt++) {
 		uint32_t dim = 0;
-		for (uint32_t a = 0; a < np; a++) {
-			cpair *c = &cs->pairs[cl[a]];
+		for (uint32_t a = 0; a < np; a++) { /* each pair's normal, force directions and equations */
+			const cpair *c = &cs->pairs[cl[a]];
+			double curv, ar[3];
+			geometry(c, m, n + 3 * a, &curv);
+			cs->dc[a] = (unsigned char)force_basis(c, m, n + 3 * a, sign[a], B + 9 * a, E + 9 * a);
 			cs->at[a] = dim;
-			dim += has_friction(c, m) && W(c, MODE) == STICKING ? 3 : 1;
+			dim += cs->dc[a];
 			if (dim > DIRECT_MAX) return -1;
+			rel(c, m, I(c, A), J(c, A), ar);
+			for (int r = 0; r < cs->dc[a]; r++)
+				cs->rhs[cs->at[a] + r] = -(dot3(E + 9 * a + 3 * r, ar) + curv * dot3(E + 9 * a + 3 * r, n + 3 * a));
 		}
 		memset(cs->K, 0, (size_t)dim * dim * sizeof *cs->K);
-		for (uint32_t a = 0; a < np; a++) {
-			const cpair *c = &cs->pairs[cl[a]];
-			double n[3], curv, ar[3], Bc[9], Ec[9];
-			geometry(c, m, n, &curv);
-			int dc = force_basis(c, m, n, sign[a], Bc, Ec);
-			rel(c, m, I(c, A), J(c, A), ar);
-			for (int r = 0; r < dc; r++) cs->rhs[cs->at[a] + r] = -(dot3(Ec + 3 * r, ar) + curv * dot3(Ec + 3 * r, n));
+		for (uint32_t a = 0; a < np; a++)
 			for (uint32_t b = 0; b < np; b++) {
-				const cpair *d = &cs->pairs[cl[b]];
-				double w = coupling(cs, c, d, m), nd[3], cd, Bd[9], Ed[9];
+				double w = coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], m);
 				if (w == 0) continue;
-				geometry(d, m, nd, &cd);
-				int dd = force_basis(d, m, nd, sign[b], Bd, Ed);
-				for (int r = 0; r < dc; r++)
-					for (int q = 0; q < dd; q++)
-						cs->K[(size_t)(cs->at[a] + r) * dim + cs->at[b] + q] = w * dot3(Ec + 3 * r, Bd + 3 * q);
+				for (int r = 0; r < cs->dc[a]; r++)
+					for (int q = 0; q < cs->dc[b]; q++)
+						cs->K[(size_t)(cs->at[a] + r) * dim + cs->at[b] + q] =
+							w * dot3(E + 9 * a + 3 * r, B + 9 * b + 3 * q);
 			}
-		}
 		if (solve(cs, dim)) return -1;
 		int flip = 0;
 		for (uint32_t a = 0; a < np; a++) {
@@ -432,13 +446,12 @@ static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 	}
 	for (uint32_t a = 0; a < np; a++) {
 		cpair *c = &cs->pairs[cl[a]];
-		double n[3], curv, B[9], E[9], F[3] = { 0, 0, 0 };
-		geometry(c, m, n, &curv);
-		int dc = force_basis(c, m, n, sign[a], B, E);
-		for (int q = 0; q < dc; q++)
-			for (int k = 0; k < 3; k++) F[k] += B[3 * q + k] * cs->x[cs->at[a] + q];
-		double lam = dc == 1 ? cs->x[cs->at[a]] : dot3(F, n), fn[3], *f = WV(c, F); /* F = N n + friction */
-		for (int k = 0; k < 3; k++) fn[k] = lam * n[k], f[k] = has_friction(c, m) ? F[k] - fn[k] : 0;
+		double F[3] = { 0, 0, 0 }, *na = n + 3 * a;
+		for (int q = 0; q < cs->dc[a]; q++)
+			for (int k = 0; k < 3; k++) F[k] += B[9 * a + 3 * q + k] * cs->x[cs->at[a] + q];
+		/* F = N n + the friction force */
+		double lam = cs->dc[a] == 1 ? cs->x[cs->at[a]] : dot3(F, na), fn[3], *f = WV(c, F);
+		for (int k = 0; k < 3; k++) fn[k] = lam * na[k], f[k] = has_friction(c, m) ? F[k] - fn[k] : 0;
 		W(c, LAM) = lam;
 		add_force(c, m, fn, I(c, FN), J(c, FN));
 		add_force(c, m, f, I(c, FF), J(c, FF));
@@ -982,9 +995,11 @@ csf_contacts *csf_contacts_new(const csf_prog *p)
 	c->rhs = malloc(DIRECT_MAX * sizeof *c->rhs);
 	c->x = malloc(DIRECT_MAX * sizeof *c->x);
 	c->at = malloc(DIRECT_MAX * sizeof *c->at);
-	c->perm = malloc(DIRECT_MAX * sizeof *c->perm);
+	c->B = malloc(9 * DIRECT_MAX * sizeof *c->B);
+	c->E = malloc(9 * DIRECT_MAX * sizeof *c->E);
+	c->dc = malloc(DIRECT_MAX * sizeof *c->dc);
 	if (!c->box || !c->mg || !c->pn || !c->mstart || !c->sap || !c->uf || !c->cid || !c->K || !c->G || !c->lam || !c->v0 || !c->nv || !c->act || !c->rhs || !c->x ||
-	    !c->at || !c->perm)
+	    !c->at || !c->B || !c->E || !c->dc)
 		goto oom;
 	/* the memberships of mass points in rules without `for`, by body, each body's in rule order */
 	for (uint32_t r = 0; r < p->ncrules; r++) {
@@ -1045,7 +1060,9 @@ void csf_contacts_free(csf_contacts *c)
 	free(c->rhs);
 	free(c->x);
 	free(c->at);
-	free(c->perm);
+	free(c->B);
+	free(c->E);
+	free(c->dc);
 	free(c);
 }
 

@@ -174,7 +174,7 @@ typedef struct run {
 	   (room for capg), and work vectors */
 	uint32_t ng;
 	size_t capg;
-	double *ga, *gb, *gs, *gh, *ya, *fa, *fb, *ys, *fs, *ye;
+	double *ga, *gb, *gs, *gh, *gt, *gl, *ya, *fa, *fb, *ys, *fs, *ye;
 	double *jw; /* with contacts: 3 work vectors for the Jacobian by differences */
 	double *yh; /* with contacts: the 3 interpolated states of a step, one after the other */
 	csf_contacts *cs; /* with contacts: the candidate pairs (contact.c) */
@@ -491,8 +491,8 @@ static int room_for_guards(run *r, size_t ng)
 	if (ng <= r->capg) return 0;
 	size_t cap = r->capg ? r->capg : 16;
 	while (cap < ng) cap *= 2;
-	double **g[4] = { &r->ga, &r->gb, &r->gs, &r->gh };
-	for (int i = 0; i < 4; i++) {
+	double **g[6] = { &r->ga, &r->gb, &r->gs, &r->gh, &r->gt, &r->gl };
+	for (int i = 0; i < 6; i++) {
 		double *q = realloc(*g[i], cap * sizeof *q);
 		if (!q) {
 			r->nomem = 1;
@@ -651,11 +651,11 @@ static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
  * extension, the crossing is found on it first, without steps; then a
  * bracket around it, 1000 times the location tolerance wide (wider, by
  * factors of 1000, when the exact guards do not change sign across it), is
- * narrowed on exact states, a few steps instead of some forty. Returns as
- * substep_guards.
+ * narrowed on exact states, a few steps instead of some forty. *tl is the
+ * bracket's other end: the guard is >= 0 there. Returns as substep_guards.
  */
 static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const double *yb, double lo, double glo,
-                  double hi, double ghi, double *tk, char *msg, size_t msglen)
+                  double hi, double ghi, double *tk, double *tl, char *msg, size_t msglen)
 {
 	const double tol = location_tol(r->p);
 	int st;
@@ -679,7 +679,7 @@ static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const 
 		}
 	}
 	if ((st = illinois(r, ode, 0, k, ta, tb, yb, &lo, &glo, &hi, &ghi, tol, msg, msglen))) return st;
-	*tk = hi;
+	*tk = hi, *tl = lo;
 	if (hi == tb) {
 		memcpy(r->ys, yb, r->p->ny * sizeof *yb);
 		return CSF_ODE_OK;
@@ -1056,10 +1056,22 @@ static int step_events(run *r, csf_ode *ode, double ta, double tb, const double 
 		for (size_t k = 0; k < ng; k++) found |= r->ga[k] >= 0 && r->gh[k] < 0;
 		if (!found) lo = hi;
 	}
-	/* the earliest crossing among the guards negative at hi, each bracketed on exact states */
-	double best = tb;
+	/* the earliest crossing among the guards negative at hi, each bracketed on exact states;
+	   once one is located in (bl, best], a guard that is not yet negative at best crosses later,
+	   and one negative at best but not at bl crosses at the same instant (to the location's
+	   tolerance): neither is located, so that many pairs that switch at once (a row of blocks
+	   that stop together) cost one location, not one each */
+	double best = tb, bl = ta;
+	int known = 0; /* the guards at best and at bl are in r->gt and r->gl */
 	for (size_t k = 0; found && k < ng; k++) {
 		if (!(r->ga[k] >= 0 && r->gh[k] < 0)) continue;
+		if (*which >= 0 && !known) {
+			if (guards_at(r, best, r->ye, r->gt)) return CSF_ODE_STOPPED;
+			if ((st = substep_guards(r, ode, ta, tb, y, bl, msg, msglen))) return st;
+			memcpy(r->gl, r->gs, ng * sizeof *r->gl);
+			known = 1;
+		}
+		if (*which >= 0 && (r->gt[k] >= 0 || r->gl[k] >= 0)) continue;
 		/* the exact state's guards at lo and hi (the interpolant only pointed here) */
 		double l = lo, gl = r->ga[k], u = hi, gu = r->gh[k];
 		if (lo > ta) {
@@ -1067,7 +1079,10 @@ static int step_events(run *r, csf_ode *ode, double ta, double tb, const double 
 			if (r->gs[k] < 0) l = ta; /* already below at lo: the crossing is earlier */
 			else gl = r->gs[k];
 		}
-		if (hi < tb) {
+		if (*which >= 0) { /* below at bl: the crossing is before it */
+			if (bl <= l) continue; /* (it cannot be: bl is past a state where the guard is >= 0) */
+			u = bl, gu = r->gl[k];
+		} else if (hi < tb) {
 			if ((st = substep_guards(r, ode, ta, tb, y, hi, msg, msglen))) return st;
 			gu = r->gs[k];
 			if (gu >= 0) { /* not below on the exact state: try the step's end */
@@ -1075,10 +1090,10 @@ static int step_events(run *r, csf_ode *ode, double ta, double tb, const double 
 				if (gu >= 0) continue;
 			}
 		}
-		double tk;
-		if ((st = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, &tk, msg, msglen))) return st;
+		double tk, tl;
+		if ((st = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, &tk, &tl, msg, msglen))) return st;
 		if (tk < best || *which < 0) {
-			best = tk, *which = (long)k;
+			best = tk, bl = tl, *which = (long)k, known = 0;
 			memcpy(r->ye, r->ys, n * sizeof *r->ye);
 		}
 	}
@@ -1553,6 +1568,8 @@ done:
 	free(r.gb);
 	free(r.gs);
 	free(r.gh);
+	free(r.gt);
+	free(r.gl);
 	free(work);
 	free(y);
 	free(r.yi);

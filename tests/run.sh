@@ -18,7 +18,8 @@
 #     -fno-math-errno).
 #  5. hostile bytecode, bad usage, output errors, install, a 300-body scene,
 #     every method at every tolerance (tests/methods_tol.sh), contacts
-#     (tests/contacts/), many objects (tests/many/: 100 balls in a box),
+#     (tests/contacts/), many objects (tests/many/: 100 balls in a box, 1000
+#     sliding to a stop),
 #     csfview's pages and plots (tests/view/; in headless Chromium where it
 #     is installed, else a SKIP line), parameters and sweeps (tests/sweep/; MPI
 #     where Open MPI is installed, else a SKIP line).
@@ -308,6 +309,8 @@ else bad "a 200 MiB model: exit $st, $(head -n 1 "$T/big.err")"; fi
 rm -f "$T/big.csf"
 # 5m. 100 elastic balls in a box of six planes: inside, energy conserved (tests/many/box.sh)
 if sh tests/many/box.sh "$CSFC" "$CSFVM" "$T" >"$T/box" 2>&1; then ok; else bad "100 balls in a box: $(grep FAIL "$T/box" | head -n 3)"; fi
+# 5m'. 1000 balls sliding to a stop on a floor, a class of them at one instant: every ball's every row (tests/many/slide_stop.sh)
+if sh tests/many/slide_stop.sh "$CSFC" "$CSFVM" "$T" >"$T/slide" 2>&1; then ok; else bad "1000 sliding balls: $(grep FAIL "$T/slide" | head -n 3)"; fi
 # 5i. every contact scene under every method: each finishes, exact to 1e-6 (tests/contacts/methods.sh)
 if sh tests/contacts/methods.sh "$CSFC" "$CSFVM" "$T" >"$T/mm" 2>&1; then ok; else bad "contacts and methods: $(grep FAIL "$T/mm" | head -n 3)"; fi
 
