@@ -1330,8 +1330,10 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	r.zeno = 1e-6 * p->by;
 	r.tol = o->tol > 0 ? o->tol : csf_method_tol(o->method);
 	if (events) {
-		/* the masses first: the impulses and forces of contacts divide by them */
-		long b = r.cs ? csf_contacts_bad_mass(p, r.m) : -1;
+		/* the masses first, as the rules make them: the impulses and forces of contacts divide
+		   by them (a derivative that is not finite is reported by update_modes below) */
+		long b = r.cs && !rhs(0, y, r.fs, &r) ? csf_contacts_bad_mass(p, r.m) : -1;
+		r.fail = 0;
 		if (b >= 0) {
 			fprintf(err, "error: the mass of %s is %g: a body in contact needs a positive mass\n",
 			        csf_str(p, p->objects[p->cbodies[b].object]), r.m[p->cbodies[b].s[CSF_CF_M]]);
