@@ -230,7 +230,7 @@ static int get_array(rbuf *r, uint32_t *n, void **arr, size_t elem)
 	return 0;
 }
 
-static int fail(char *err, size_t errlen, const char *fmt, ...)
+int csf_fail(char *err, size_t errlen, const char *fmt, ...)
 {
 	va_list ap;
 	va_start(ap, fmt);
@@ -242,23 +242,23 @@ static int fail(char *err, size_t errlen, const char *fmt, ...)
 int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, size_t errlen)
 {
 	memset(p, 0, sizeof *p);
-	if (len < CSFB_HEADER_SIZE) return fail(err, errlen, "file too short for a CSF bytecode header (%zu bytes)", len);
-	if (memcmp(buf, CSFB_MAGIC, 4) != 0) return fail(err, errlen, "not a CSF bytecode file (bad magic)");
+	if (len < CSFB_HEADER_SIZE) return csf_fail(err, errlen, "file too short for a CSF bytecode header (%zu bytes)", len);
+	if (memcmp(buf, CSFB_MAGIC, 4) != 0) return csf_fail(err, errlen, "not a CSF bytecode file (bad magic)");
 	if (le32(buf + 4) != CSFB_VERSION)
-		return fail(err, errlen, "bytecode format version %lu, this runtime reads version %u",
+		return csf_fail(err, errlen, "bytecode format version %lu, this runtime reads version %u",
 		            (unsigned long)le32(buf + 4), CSFB_VERSION);
-	if (le32(buf + 8) != CSFB_INT_PROBE) return fail(err, errlen, "integer layout probe mismatch");
+	if (le32(buf + 8) != CSFB_INT_PROBE) return csf_fail(err, errlen, "integer layout probe mismatch");
 	{
 		rbuf r = { buf + 12, 8, "" };
 		double probe;
 		get_f64(&r, &probe);
-		if (probe != CSFB_FLOAT_PROBE) return fail(err, errlen, "floating-point layout probe mismatch");
+		if (probe != CSFB_FLOAT_PROBE) return csf_fail(err, errlen, "floating-point layout probe mismatch");
 	}
 	if ((size_t)le32(buf + 20) != len - CSFB_HEADER_SIZE)
-		return fail(err, errlen, "payload size %lu does not match file size %zu (truncated or padded file)",
+		return csf_fail(err, errlen, "payload size %lu does not match file size %zu (truncated or padded file)",
 		            (unsigned long)le32(buf + 20), len);
 	if (csf_crc32(buf + CSFB_HEADER_SIZE, len - CSFB_HEADER_SIZE) != le32(buf + 24))
-		return fail(err, errlen, "checksum mismatch (corrupted file)");
+		return csf_fail(err, errlen, "checksum mismatch (corrupted file)");
 
 	rbuf r = { buf + CSFB_HEADER_SIZE, len - CSFB_HEADER_SIZE, "" };
 	int bad = 0;
@@ -311,11 +311,11 @@ int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, siz
 #undef ARR
 	if (bad) {
 		csf_prog_free(p);
-		return fail(err, errlen, "truncated or malformed payload");
+		return csf_fail(err, errlen, "truncated or malformed payload");
 	}
 	if (r.left != 0) {
 		csf_prog_free(p);
-		return fail(err, errlen, "%zu bytes of trailing garbage after the payload", r.left);
+		return csf_fail(err, errlen, "%zu bytes of trailing garbage after the payload", r.left);
 	}
 	if (csf_verify(p, err, errlen)) {
 		csf_prog_free(p);
@@ -356,9 +356,9 @@ static int bad_insn(code_check *c, uint32_t pc, int k, const char *fmt, ...)
 	va_end(ap);
 	const char *name = csf_opinfo_table[c->code[pc]].name;
 	if (k >= 0)
-		return fail(c->err, c->errlen, "section %d: operand %d of %s at %lu %s", c->sec, k + 1, name,
+		return csf_fail(c->err, c->errlen, "section %d: operand %d of %s at %lu %s", c->sec, k + 1, name,
 		            (unsigned long)pc, why);
-	return fail(c->err, c->errlen, "section %d: %s at %lu: %s", c->sec, name, (unsigned long)pc, why);
+	return csf_fail(c->err, c->errlen, "section %d: %s at %lu: %s", c->sec, name, (unsigned long)pc, why);
 }
 
 /* Finds the instruction boundaries; rejects unknown opcodes and instructions cut off by the end. */
@@ -367,10 +367,10 @@ static int check_boundaries(code_check *c)
 	for (uint32_t pc = 0; pc < c->n;) {
 		uint32_t op = c->code[pc];
 		if (op >= CSF_NOPCODES)
-			return fail(c->err, c->errlen, "section %d: invalid opcode %lu at %lu", c->sec, (unsigned long)op,
+			return csf_fail(c->err, c->errlen, "section %d: invalid opcode %lu at %lu", c->sec, (unsigned long)op,
 			            (unsigned long)pc);
 		if (csf_opinfo_table[op].nops >= c->n - pc)
-			return fail(c->err, c->errlen, "section %d: instruction at %lu runs past the end of the code", c->sec,
+			return csf_fail(c->err, c->errlen, "section %d: instruction at %lu runs past the end of the code", c->sec,
 			            (unsigned long)pc);
 		c->start[pc] = 1;
 		pc += 1u + csf_opinfo_table[op].nops;
@@ -495,7 +495,7 @@ static int check_code(const csf_prog *p, int s, char *err, size_t errlen)
 	code_check c = { .p = p, .sec = s, .code = p->code[s], .n = p->ncode[s], .err = err, .errlen = errlen };
 	c.start = calloc((size_t)c.n + 1, 1);
 	c.ctx = calloc((size_t)c.n + 1, sizeof *c.ctx);
-	int r = !c.start || !c.ctx ? fail(err, errlen, "out of memory") : check_boundaries(&c);
+	int r = !c.start || !c.ctx ? csf_fail(err, errlen, "out of memory") : check_boundaries(&c);
 	for (uint32_t pc = 0; !r && pc < c.n; pc += 1u + csf_opinfo_table[c.code[pc]].nops) r = check_insn(&c, pc);
 	if (!r && c.depth) r = bad_insn(&c, c.open[c.depth - 1], -1, "loop has no NEXT");
 	if (!r) r = check_jumps(&c);
@@ -524,12 +524,12 @@ static int verify_contacts(const csf_prog *p, char *err, size_t errlen)
 		}
 		if (ok && !b->plane)
 			ok = b->s[CSF_CF_POS] >= p->ystart && (uint64_t)b->s[CSF_CF_POS] + 3 <= (uint64_t)p->ystart + p->ny;
-		if (!ok) return fail(err, errlen, "contact body %lu out of range", (unsigned long)i);
+		if (!ok) return csf_fail(err, errlen, "contact body %lu out of range", (unsigned long)i);
 	}
 	for (uint32_t i = 0; i < p->ncmembers; i++)
-		if (p->cmembers[i] >= p->ncbodies) return fail(err, errlen, "contact list entry %lu out of range", (unsigned long)i);
+		if (p->cmembers[i] >= p->ncbodies) return csf_fail(err, errlen, "contact list entry %lu out of range", (unsigned long)i);
 	uint64_t *seen = calloc((size_t)p->ncbodies + 1, sizeof *seen); /* the last list each body was in, + 1 */
-	if (!seen) return fail(err, errlen, "out of memory");
+	if (!seen) return csf_fail(err, errlen, "out of memory");
 	int bad = 0;
 	uint32_t i = 0;
 	for (; i < p->ncrules && !bad; i++) {
@@ -547,69 +547,69 @@ static int verify_contacts(const csf_prog *p, char *err, size_t errlen)
 			}
 	}
 	free(seen);
-	if (bad) return fail(err, errlen, "contact rule %lu out of range", (unsigned long)(i - 1));
+	if (bad) return csf_fail(err, errlen, "contact rule %lu out of range", (unsigned long)(i - 1));
 	return 0;
 }
 
 int csf_verify(const csf_prog *p, char *err, size_t errlen)
 {
-	if (p->nstrs == 0 || p->strs[p->nstrs - 1] != '\0') return fail(err, errlen, "string table is not NUL-terminated");
+	if (p->nstrs == 0 || p->strs[p->nstrs - 1] != '\0') return csf_fail(err, errlen, "string table is not NUL-terminated");
 #define STR_OK(off) ((off) < p->nstrs)
-	if (!slot_ok(p, p->tslot, 1)) return fail(err, errlen, "time slot %lu out of range", (unsigned long)p->tslot);
+	if (!slot_ok(p, p->tslot, 1)) return csf_fail(err, errlen, "time slot %lu out of range", (unsigned long)p->tslot);
 	if (!slot_ok(p, p->ystart, p->ny) || !slot_ok(p, p->dstart, p->ny))
-		return fail(err, errlen, "state layout out of range");
+		return csf_fail(err, errlen, "state layout out of range");
 	if (p->ny && p->ystart < p->dstart + p->ny && p->dstart < p->ystart + p->ny)
-		return fail(err, errlen, "state and derivative regions overlap");
+		return csf_fail(err, errlen, "state and derivative regions overlap");
 	if (p->jtan) {
 		uint64_t jt = p->jtan, n = p->nmem;
 		if (p->tslot + jt >= n || p->ystart + jt + p->ny > n || p->dstart + jt + p->ny > n)
-			return fail(err, errlen, "tangent layout out of range");
+			return csf_fail(err, errlen, "tangent layout out of range");
 	}
 	for (uint32_t i = 0; i < p->ny; i++)
 		if (p->vpair[i] > p->ny || p->vpair[i] == i + 1)
-			return fail(err, errlen, "position/velocity pair %lu out of range", (unsigned long)i);
+			return csf_fail(err, errlen, "position/velocity pair %lu out of range", (unsigned long)i);
 	for (uint32_t i = 0; i < p->ny; i++)
 		if (!(p->yscale[i] > 0) || !isfinite(p->yscale[i]))
-			return fail(err, errlen, "tolerance scale %lu is not a positive number", (unsigned long)i);
+			return csf_fail(err, errlen, "tolerance scale %lu is not a positive number", (unsigned long)i);
 	if (!(p->by > 0) || !isfinite(p->by) || !(p->till >= 0) || !isfinite(p->till))
-		return fail(err, errlen, "invalid run range (till %g, by %g)", p->till, p->by);
-	if (p->till / p->by > 4e15) return fail(err, errlen, "too many output steps");
+		return csf_fail(err, errlen, "invalid run range (till %g, by %g)", p->till, p->by);
+	if (p->till / p->by > 4e15) return csf_fail(err, errlen, "too many output steps");
 	for (uint32_t i = 0; i < p->nfiles; i++)
-		if (!STR_OK(p->files[i])) return fail(err, errlen, "file name %lu out of range", (unsigned long)i);
+		if (!STR_OK(p->files[i])) return csf_fail(err, errlen, "file name %lu out of range", (unsigned long)i);
 	for (uint32_t i = 0; i < p->nsrcs; i++)
 		if (p->srcs[i].file >= p->nfiles || !STR_OK(p->srcs[i].text))
-			return fail(err, errlen, "source entry %lu out of range", (unsigned long)i);
+			return csf_fail(err, errlen, "source entry %lu out of range", (unsigned long)i);
 	for (uint32_t i = 0; i < p->ncols; i++)
 		if (!STR_OK(p->cols[i].name) || !slot_ok(p, p->cols[i].slot, 1))
-			return fail(err, errlen, "output column %lu out of range", (unsigned long)i);
+			return csf_fail(err, errlen, "output column %lu out of range", (unsigned long)i);
 	for (uint32_t i = 0; i < p->nasserts; i++)
 		if (p->asserts[i].src >= p->nsrcs || !STR_OK(p->asserts[i].object))
-			return fail(err, errlen, "assertion %lu out of range", (unsigned long)i);
+			return csf_fail(err, errlen, "assertion %lu out of range", (unsigned long)i);
 	for (uint32_t i = 0; i < p->nobjects; i++)
-		if (!STR_OK(p->objects[i])) return fail(err, errlen, "object %lu out of range", (unsigned long)i);
+		if (!STR_OK(p->objects[i])) return csf_fail(err, errlen, "object %lu out of range", (unsigned long)i);
 	for (uint32_t i = 0; i < p->nprops; i++) {
 		const csf_prop *q = &p->props[i];
 		if (q->object >= p->nobjects || !STR_OK(q->name) || (q->width != 1 && q->width != 3) ||
 		    !slot_ok(p, q->slot, q->width) || q->cls >= p->npclasses)
-			return fail(err, errlen, "property %lu out of range", (unsigned long)i);
+			return csf_fail(err, errlen, "property %lu out of range", (unsigned long)i);
 	}
 	for (int k = 0; k < 3; k++)
-		if (!(p->ubase[k] > 0) || !isfinite(p->ubase[k])) return fail(err, errlen, "unit system out of range");
+		if (!(p->ubase[k] > 0) || !isfinite(p->ubase[k])) return csf_fail(err, errlen, "unit system out of range");
 	for (uint32_t i = 0; i < p->npclasses; i++) {
 		const csf_pclass *c = &p->pclasses[i];
 		int ok = STR_OK(c->unit) && STR_OK(c->why) && c->known <= 1;
 		for (int k = 0; k < 3; k++) ok = ok && isfinite(c->dim[k]) && fabs(c->dim[k]) <= 64;
-		if (!ok) return fail(err, errlen, "parameter class %lu out of range", (unsigned long)i);
+		if (!ok) return csf_fail(err, errlen, "parameter class %lu out of range", (unsigned long)i);
 	}
 	for (uint32_t i = 0; i < p->nglobals; i++) {
 		const csf_global *g = &p->globals[i];
 		if (!STR_OK(g->name) || (g->width != 1 && g->width != 3) || !slot_ok(p, g->slot, g->width) || g->cls >= p->npclasses)
-			return fail(err, errlen, "global %lu out of range", (unsigned long)i);
+			return csf_fail(err, errlen, "global %lu out of range", (unsigned long)i);
 	}
 	for (uint32_t i = 0; i < p->nevents; i++) {
 		const csf_event *e = &p->events[i];
 		if (e->kind > (1 | CSF_EVENT_TERMINAL) || !slot_ok(p, e->value, 1) || !slot_ok(p, e->mode, 1) || e->src >= p->nsrcs)
-			return fail(err, errlen, "event %lu out of range", (unsigned long)i);
+			return csf_fail(err, errlen, "event %lu out of range", (unsigned long)i);
 	}
 	if (verify_contacts(p, err, errlen)) return -1;
 	for (int s = 0; s < CSF_NSEC; s++) {
@@ -617,12 +617,12 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 			const csf_target *t = &p->targets[s][i];
 			if ((t->width != 1 && t->width != 3) || !slot_ok(p, t->slot, t->width) || t->src >= p->nsrcs ||
 			    !STR_OK(t->name) || !STR_OK(t->object))
-				return fail(err, errlen, "target %lu of section %d out of range", (unsigned long)i, s);
+				return csf_fail(err, errlen, "target %lu of section %d out of range", (unsigned long)i, s);
 		}
 		if (check_code(p, s, err, errlen)) return -1;
 		for (uint32_t i = 0; i < p->nlines[s]; i++)
 			if (p->lines[s][i].pc > p->ncode[s] || p->lines[s][i].src >= p->nsrcs)
-				return fail(err, errlen, "line table entry %lu of section %d out of range", (unsigned long)i, s);
+				return csf_fail(err, errlen, "line table entry %lu of section %d out of range", (unsigned long)i, s);
 	}
 #undef STR_OK
 	return 0;

@@ -491,7 +491,7 @@ void csf_contact_apply(const csf_prog *p, double *m)
 		W(c, LAM) = 0;
 	}
 	/* each cluster directly; those it does not take (above) by Gauss-Seidel sweeps */
-	uint32_t nq = clusters(cs, picks_contact, NULL), sweeps = 0;
+	uint32_t nq = clusters(cs, picks_contact, NULL), sweeps = 0; /* some cluster needs them */
 	for (uint32_t q = 0; q < nq; q++) {
 		int ok = !cluster_forces(cs, m, cs->cl + cs->cstart[q], cs->cstart[q + 1] - cs->cstart[q]);
 		for (uint32_t a = cs->cstart[q]; a < cs->cstart[q + 1]; a++) cs->direct[cs->cl[a]] = (unsigned char)ok;
@@ -871,7 +871,7 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, cs
 			}
 		}
 		if (hit >= 0) {
-			if (++hits > csf_contact_passes(cs->n)) return 1;
+			if (++hits > csf_contact_passes(cs->n)) return CSF_SETTLE_ENDLESS;
 			cpair *c = &cs->pairs[hit];
 			double n[3], curv, vr[3], ar[3];
 			double gap = geometry(c, m, n, &curv);
@@ -883,7 +883,7 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, cs
 			   it is a rest: the impulses that follow are passed on within this instant */
 			int rest = sep == 0 || at_rest(c, m, sep, an, zeno), low = !rest && hops(c, m, sep, an, tol);
 			if (low && crowded(cs, m, c)) rest = 1, low = 0;
-			if (collide(cs, m, c, rest ? 0 : sep, vn)) return 2;
+			if (collide(cs, m, c, rest ? 0 : sep, vn)) return CSF_SETTLE_IMPULSES;
 			close_gap(c, m, n, gap);
 			if (rest) {
 				enter_contact(c, m, n);

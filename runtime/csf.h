@@ -206,6 +206,9 @@ int csf_encode(const csf_prog *p, unsigned char **out, size_t *len);
  */
 int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, size_t errlen);
 
+/* Writes a reason (printf format) into err[errlen] and returns -1: the loader's, verifier's and -D's failures. */
+int csf_fail(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
 /* Verifies a program's tables and code (csf_decode calls it). 0 or -1 + reason. */
 int csf_verify(const csf_prog *p, char *err, size_t errlen);
 
@@ -288,11 +291,12 @@ typedef int (*csf_eval_fn)(void *ctx);
  * p->crun (chosen at this instant: csf_contacts_find with one state).
  * zeno: the time below which a train of bounces counts as at rest; tol:
  * the integrator's relative tolerance (the accuracy of the positions it
- * computes). Returns 0; -1 if eval failed; 1 if the impacts did not come
- * to an end within csf_contact_passes(n) of them (n candidate pairs); 2 if
- * the impulses of one could not be solved (masses in a cluster that differ
- * by more than about 1e10).
+ * computes). Returns 0; -1 if eval failed; CSF_SETTLE_ENDLESS if the
+ * impacts did not come to an end within csf_contact_passes(n) of them (n
+ * candidate pairs); CSF_SETTLE_IMPULSES if the impulses of one could not be
+ * solved (masses in a cluster that differ by more than about 1e10).
  */
+enum { CSF_SETTLE_ENDLESS = 1, CSF_SETTLE_IMPULSES = 2, CSF_SETTLE_FORCES = 3 /* csf_contacts_unsolved */ };
 int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, csf_eval_fn eval, void *ctx);
 uint64_t csf_contact_passes(uint32_t n);
 

@@ -180,8 +180,7 @@ typedef struct run {
 	csf_contacts *cs; /* with contacts: the candidate pairs (contact.c) */
 	unsigned long nchoices, ncand, maxcand; /* for --stats: the choices of candidates, their sum and largest */
 	int nomem; /* memory ran out */
-	int unsettled;     /* the impacts at an instant did not end (1), their impulses (2) or the contact forces (3)
-	                      could not be solved: csf_contact_settle, csf_contacts_unsolved */
+	int unsettled;     /* why the contacts stopped the run: CSF_SETTLE_ENDLESS, _IMPULSES, _FORCES (csf.h) */
 	double unsettled_t;
 	double stop_t; /* a 'stop when' condition ended the run at stop_t: the statement stop_src's */
 	uint32_t stop_src;
@@ -372,11 +371,11 @@ static void report_unsettled(const run *r, FILE *err)
 {
 	char tb[32];
 	csf_fmt_double(tb, r->unsettled_t);
-	if (r->unsettled >= 2) {
+	if (r->unsettled != CSF_SETTLE_ENDLESS) {
 		fprintf(err,
 		        "error: at t=%s, the %s among bodies in contact could not be solved: their masses differ by more "
 		        "than about 1e10; make them less different\n",
-		        tb, r->unsettled == 2 ? "impulses of an impact" : "contact forces");
+		        tb, r->unsettled == CSF_SETTLE_IMPULSES ? "impulses of an impact" : "contact forces");
 		return;
 	}
 	fprintf(err,
@@ -539,7 +538,7 @@ static int update_modes(run *r, double t, double *y)
 		memcpy(r->m + p->ystart, y, p->ny * sizeof *y);
 		int st = csf_contact_settle(p, r->m, r->zeno, r->tol, settle_eval, &s);
 		if (st > 0) r->unsettled = st, r->unsettled_t = t;
-		if (!st && csf_contacts_unsolved(r->cs)) r->unsettled = 3, r->unsettled_t = t, st = 1;
+		if (!st && csf_contacts_unsolved(r->cs)) r->unsettled = CSF_SETTLE_FORCES, r->unsettled_t = t, st = 1;
 		if (st) return 1;
 		memcpy(y, r->m + p->ystart, p->ny * sizeof *y);
 		free_modes(r, t, y);
@@ -1021,7 +1020,7 @@ static int step_events(run *r, csf_ode *ode, double ta, double tb, const double 
 	int st;
 	*which = -1;
 	if (r->cs && csf_contacts_unsolved(r->cs)) { /* the forces of the step did not hold the contacts */
-		r->unsettled = 3, r->unsettled_t = ta;
+		r->unsettled = CSF_SETTLE_FORCES, r->unsettled_t = ta;
 		return CSF_ODE_STOPPED;
 	}
 	if (guards_at(r, tb, y, r->gb)) return CSF_ODE_STOPPED;

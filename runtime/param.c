@@ -16,21 +16,11 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "csf.h"
-
-static int perr(char *err, size_t errlen, const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(err, errlen, fmt, ap);
-	va_end(ap);
-	return -1;
-}
 
 int csf_param_find(const csf_prog *p, const char *name, csf_pref *r, char *err, size_t errlen)
 {
@@ -43,20 +33,20 @@ int csf_param_find(const csf_prog *p, const char *name, csf_pref *r, char *err, 
 			}
 		for (uint32_t i = 0; i < p->nobjects; i++)
 			if (strcmp(csf_str(p, p->objects[i]), name) == 0)
-				return perr(err, errlen, "'%s' is an object: name one of its properties, %s.PROP", name, name);
-		return perr(err, errlen, "unknown name '%s': the scene has no global of that name", name);
+				return csf_fail(err, errlen, "'%s' is an object: name one of its properties, %s.PROP", name, name);
+		return csf_fail(err, errlen, "unknown name '%s': the scene has no global of that name", name);
 	}
 	size_t on = (size_t)(dot - name);
 	uint32_t obj = UINT32_MAX;
 	for (uint32_t i = 0; i < p->nobjects && obj == UINT32_MAX; i++)
 		if (strlen(csf_str(p, p->objects[i])) == on && memcmp(csf_str(p, p->objects[i]), name, on) == 0) obj = i;
-	if (obj == UINT32_MAX) return perr(err, errlen, "unknown name '%s': the scene has no object '%.*s'", name, (int)on, name);
+	if (obj == UINT32_MAX) return csf_fail(err, errlen, "unknown name '%s': the scene has no object '%.*s'", name, (int)on, name);
 	for (uint32_t i = 0; i < p->nprops; i++)
 		if (p->props[i].object == obj && strcmp(csf_str(p, p->props[i].name), dot + 1) == 0) {
 			*r = (csf_pref){ p->props[i].slot, p->props[i].width, &p->pclasses[p->props[i].cls] };
 			return 0;
 		}
-	return perr(err, errlen, "unknown name '%s': object '%.*s' has no property '%s' that the run uses", name, (int)on,
+	return csf_fail(err, errlen, "unknown name '%s': object '%.*s' has no property '%s' that the run uses", name, (int)on,
 	            name, dot + 1);
 }
 
@@ -137,45 +127,45 @@ int csf_param_value(const csf_prog *p, const char *name, const csf_pref *r, cons
 		if (!has[k] && !V.has_unit) continue;
 		double t[3] = { d[k][0] + od[0], d[k][1] + od[1], d[k][2] + od[2] };
 		if (dim_set && memcmp(t, dim, sizeof t) != 0)
-			return perr(err, errlen, "'%s': the components of a vector must have one dimension", text);
+			return csf_fail(err, errlen, "'%s': the components of a vector must have one dimension", text);
 		memcpy(dim, t, sizeof t);
 		dim_set = 1;
 	}
 	if ((uint32_t)n != r->width)
-		return perr(err, errlen, "%s is a %s: give %s, not '%s'", name, r->width == 3 ? "vector" : "scalar",
+		return csf_fail(err, errlen, "%s is a %s: give %s, not '%s'", name, r->width == 3 ? "vector" : "scalar",
 		            r->width == 3 ? "(x, y, z) and a unit" : "a number and a unit", text);
 	const csf_pclass *c = r->cls;
 	const char *unit = csf_str(p, c->unit);
 	if (dim_set && !c->known && (dim[0] || dim[1] || dim[2]))
-		return perr(err, errlen, "the dimension of %s is not known to the model: give a bare number, not '%s'", name, text);
+		return csf_fail(err, errlen, "the dimension of %s is not known to the model: give a bare number, not '%s'", name, text);
 	if (dim_set && c->known && memcmp(c->dim, dim, sizeof dim) != 0) {
-		if (!*unit) return perr(err, errlen, "wrong dimension: %s is dimensionless, '%s' is not (expected a bare number)", name, text);
-		return perr(err, errlen, "wrong dimension: %s is in %s, '%s' is not (expected unit %s)", name, unit, text, unit);
+		if (!*unit) return csf_fail(err, errlen, "wrong dimension: %s is dimensionless, '%s' is not (expected a bare number)", name, text);
+		return csf_fail(err, errlen, "wrong dimension: %s is in %s, '%s' is not (expected unit %s)", name, unit, text, unit);
 	}
 	for (int k = 0; k < n; k++)
-		if (!isfinite(v[k])) return perr(err, errlen, "'%s' is not a finite value", text);
+		if (!isfinite(v[k])) return csf_fail(err, errlen, "'%s' is not a finite value", text);
 	return 0;
 bad:
-	return perr(err, errlen, "cannot read '%s' as a value: %s at '%s'", text, why, V.s);
+	return csf_fail(err, errlen, "cannot read '%s' as a value: %s at '%s'", text, why, V.s);
 }
 
 int csf_param_set(csf_prog *p, const char *assign, char *err, size_t errlen)
 {
 	const char *eq = strchr(assign, '=');
-	if (!eq || eq == assign) return perr(err, errlen, "-D %s: expected NAME=VALUE", assign);
+	if (!eq || eq == assign) return csf_fail(err, errlen, "-D %s: expected NAME=VALUE", assign);
 	char name[256];
 	size_t n = (size_t)(eq - assign);
 	while (n && isspace((unsigned char)assign[n - 1])) n--;
-	if (n >= sizeof name) return perr(err, errlen, "-D %s: name too long", assign);
+	if (n >= sizeof name) return csf_fail(err, errlen, "-D %s: name too long", assign);
 	memcpy(name, assign, n);
 	name[n] = '\0';
 	csf_pref r;
 	char why[400];
 	double v[3];
-	if (csf_param_find(p, name, &r, why, sizeof why)) return perr(err, errlen, "-D %s: %s", assign, why);
+	if (csf_param_find(p, name, &r, why, sizeof why)) return csf_fail(err, errlen, "-D %s: %s", assign, why);
 	if (*csf_str(p, r.cls->why))
-		return perr(err, errlen, "-D %s: %s cannot be overridden: %s", assign, name, csf_str(p, r.cls->why));
-	if (csf_param_value(p, name, &r, eq + 1, v, why, sizeof why)) return perr(err, errlen, "-D %s: %s", assign, why);
+		return csf_fail(err, errlen, "-D %s: %s cannot be overridden: %s", assign, name, csf_str(p, r.cls->why));
+	if (csf_param_value(p, name, &r, eq + 1, v, why, sizeof why)) return csf_fail(err, errlen, "-D %s: %s", assign, why);
 	memcpy(p->mem0 + r.slot, v, r.width * sizeof(double));
 	return 0;
 }
