@@ -10,6 +10,7 @@
  * uses (1e-6 absolutely or relatively).
  */
 #include <math.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -60,6 +61,17 @@ static double difference(const char *a, const char *b)
 	return *pa || *pb ? -1 : worst;
 }
 
+/* A line of the table on out, never cut by the interruption watchdog (csf_out_begin). */
+static void say(FILE *out, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	csf_out_begin();
+	vfprintf(out, fmt, ap);
+	csf_out_end();
+	va_end(ap);
+}
+
 int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *err)
 {
 	static const char *const methods[] = { "dop853", "dopri5", "rk8pd", "rkck", "rkf45", "rk4", "rk2", "msadams", "bsimp", "rk4imp", "msbdf" };
@@ -72,8 +84,8 @@ int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *er
 		free(ref);
 		return st ? st : 2;
 	}
-	fprintf(out, "reference: rk8pd at tol 1e-13, %.3f s, %lu steps\n", o.run_seconds, o.run_steps);
-	fprintf(out, "%-8s %-7s %10s %10s %12s %14s\n", "method", "tol", "seconds", "steps", "rhs_evals", "difference");
+	say(out, "reference: rk8pd at tol 1e-13, %.3f s, %lu steps\n", o.run_seconds, o.run_steps);
+	say(out, "%-8s %-7s %10s %10s %12s %14s\n", "method", "tol", "seconds", "steps", "rhs_evals", "difference");
 	for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++)
 		for (size_t k = 0; k < sizeof tols / sizeof tols[0]; k++) {
 			char *run = capture(p, exec, methods[i], tols[k], 0, &o, &st);
@@ -82,7 +94,7 @@ int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *er
 			if (st != 0) snprintf(diff, sizeof diff, "failed (%d)", st);
 			else if (d < 0) snprintf(diff, sizeof diff, "mismatch");
 			else snprintf(diff, sizeof diff, "%.3g", d);
-			fprintf(out, "%-8s %-7g %10.4f %10lu %12lu %14s\n", methods[i], tols[k], o.run_seconds, o.run_steps, o.run_rhs,
+			say(out, "%-8s %-7g %10.4f %10lu %12lu %14s\n", methods[i], tols[k], o.run_seconds, o.run_steps, o.run_rhs,
 			        diff);
 			free(run);
 		}
@@ -91,12 +103,12 @@ int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *er
 	if (p->ny > 0) {
 		char *run = capture(p, exec, "verlet", 0, 1, &o, &st);
 		if (st == 0 && run) {
-			fprintf(out, "%-8s %-7g %10.4f %10lu %12lu %14.3g\n", "verlet", csf_method_tol("verlet"), o.run_seconds,
+			say(out, "%-8s %-7g %10.4f %10lu %12lu %14.3g\n", "verlet", csf_method_tol("verlet"), o.run_seconds,
 			        o.run_steps, o.run_rhs, difference(run, ref));
 		}
 		free(run);
 	}
 	free(ref);
-	fprintf(out, "difference: the largest min(absolute, relative) difference from the reference over every row and column\n");
+	say(out, "difference: the largest min(absolute, relative) difference from the reference over every row and column\n");
 	return ferror(out) ? 2 : 0;
 }

@@ -349,6 +349,18 @@ enum { CSF_PROGRESS_AUTO = 0, CSF_PROGRESS_ON = 1, CSF_PROGRESS_OFF = 2 };
  */
 extern volatile sig_atomic_t csf_signal;
 
+/*
+ * Installs the handlers of csfvm and of generated programs: SIGINT and
+ * SIGTERM set csf_signal and arm a watchdog that, if the process still runs
+ * half a second later, flushes the rows written to out and exits with
+ * 128 + the signal (a message on stderr naming prog). Every write to out
+ * stands between csf_out_begin() and csf_out_end(), so that the watchdog
+ * never flushes half a row.
+ */
+void csf_signals_install(FILE *out, const char *prog);
+void csf_out_begin(void);
+void csf_out_end(void);
+
 /* Run-time options, parsed identically by csfvm and generated executables. */
 typedef struct csf_opts {
 	const char *method; /* ODE stepper name, NULL for the default */

@@ -13,6 +13,7 @@
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/time.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -193,6 +194,71 @@ typedef struct run {
 } run;
 
 volatile sig_atomic_t csf_signal;
+
+/*
+ * Interruption. SIGINT and SIGTERM set csf_signal; every loop of a run that
+ * can last looks at it, and the run ends after its last whole row with the
+ * --stats line. A computation that does not look (a defect, or a library's
+ * long loop) must not make a run deaf: the first signal also arms a
+ * watchdog, and if the process is still running CSF_WATCHDOG_MS later the
+ * watchdog flushes the rows already written and ends the process with the
+ * same status. It never cuts a row: while one is being written
+ * (csf_out_begin .. csf_out_end), it waits for the row's end.
+ */
+enum { CSF_WATCHDOG_MS = 500 };
+static volatile sig_atomic_t writing, overdue;
+static FILE *guarded_out;
+static char watchdog_msg[160];
+
+/* Flushes the rows written (no row is half written) and ends the process: 128 + the signal. */
+static void watchdog_exit(void)
+{
+	if (guarded_out) fflush(guarded_out);
+	ssize_t w = write(STDERR_FILENO, watchdog_msg, strlen(watchdog_msg));
+	(void)w;
+	_exit(128 + csf_signal);
+}
+
+static void on_watchdog(int sig)
+{
+	(void)sig;
+	if (writing) overdue = 1; /* csf_out_end ends the process after the row */
+	else watchdog_exit();
+}
+
+static void on_signal(int sig)
+{
+	if (csf_signal) return;
+	csf_signal = sig;
+	struct itimerval it = {{0, 0}, {0, CSF_WATCHDOG_MS * 1000}};
+	setitimer(ITIMER_REAL, &it, NULL);
+}
+
+void csf_signals_install(FILE *out, const char *prog)
+{
+	guarded_out = out;
+	snprintf(watchdog_msg, sizeof watchdog_msg,
+	         "%s: interrupted: the run did not reach the end of a row within %d ms; the rows before it are "
+	         "written\n",
+	         prog, (int)CSF_WATCHDOG_MS);
+	struct sigaction sa;
+	memset(&sa, 0, sizeof sa);
+	sigemptyset(&sa.sa_mask);
+	sa.sa_flags = SA_RESTART;
+	sa.sa_handler = on_signal;
+	sigaction(SIGINT, &sa, NULL);
+	sigaction(SIGTERM, &sa, NULL);
+	sa.sa_handler = on_watchdog;
+	sigaction(SIGALRM, &sa, NULL);
+}
+
+void csf_out_begin(void) { writing = 1; }
+
+void csf_out_end(void)
+{
+	writing = 0;
+	if (overdue) watchdog_exit();
+}
 
 /* Seconds from a to b. */
 static double seconds(struct timespec a, struct timespec b)
@@ -389,6 +455,7 @@ static void report_unsettled(const run *r, FILE *err)
 static int write_row(const csf_prog *p, const double *m, double t, FILE *out)
 {
 	char b[32];
+	csf_out_begin();
 	csf_fmt_double(b, t);
 	fputs(b, out);
 	for (uint32_t i = 0; i < p->ncols; i++) {
@@ -397,6 +464,7 @@ static int write_row(const csf_prog *p, const double *m, double t, FILE *out)
 		fputs(b, out);
 	}
 	putc('\n', out);
+	csf_out_end();
 	return ferror(out) ? -1 : 0;
 }
 
@@ -407,7 +475,10 @@ static int write_row(const csf_prog *p, const double *m, double t, FILE *out)
  */
 static int finish(FILE *out, FILE *err, int status, int werr)
 {
-	if (fflush(out) != 0 || ferror(out)) {
+	csf_out_begin();
+	int bad = fflush(out) != 0 || ferror(out);
+	csf_out_end();
+	if (bad) {
 		int e = werr ? werr : errno;
 		if (e == EPIPE) return 128 + SIGPIPE;
 		fprintf(err, "error: cannot write output: %s\n", strerror(e));
@@ -620,7 +691,11 @@ static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
                     double *glo, double *hi, double *ghi, double tol, char *msg, size_t msglen)
 {
 	int side = 0, st;
-	while (*hi - *lo > tol && *hi - *lo > 4e-16 * fabs(*hi)) {
+	/* Each pass moves an end of the bracket inwards by at least one double, so the loop ends:
+	   it stops when the bracket is tol wide or its ends are adjacent doubles (the spacing of
+	   doubles at the event's time can exceed tol: 1.1e-13 s past 512 s). */
+	while (*hi - *lo > tol && nextafter(*lo, *hi) < *hi) {
+		if (csf_signal) return CSF_ODE_HALTED;
 		double c = *hi - *ghi * (*hi - *lo) / (*ghi - *glo);
 		/* the secant's point rounds to an end when the guard there is tiny (a crossing found
 		   exactly): it then moves in by tol / 4 below, which ends the search; only a point
@@ -628,6 +703,9 @@ static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
 		if (!(c >= *lo && c <= *hi)) c = *lo + (*hi - *lo) / 2;
 		if (c - *lo < tol / 4) c = *lo + tol / 4; /* shrink the bracket from both ends */
 		if (*hi - c < tol / 4) c = *hi - tol / 4;
+		/* tol / 4 can be under half the spacing of doubles at c: the nudge rounds back onto the end */
+		if (c <= *lo) c = nextafter(*lo, *hi);
+		if (c >= *hi) c = nextafter(*hi, *lo);
 		if ((st = guard_at(r, ode, dense, ta, tb, yb, c, msg, msglen))) return st;
 		double gc = r->gs[k];
 		if (gc < 0) {
@@ -1289,9 +1367,11 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		}
 	}
 
+	csf_out_begin();
 	fputs("t", out);
 	for (uint32_t i = 0; i < p->ncols; i++) fprintf(out, ",%s", csf_str(p, p->cols[i].name));
 	putc('\n', out);
+	csf_out_end();
 
 	fixed = ode && (o->fixed || csf_ode_fixed_only(ode));
 	double fixed_h = ode ? csf_ode_fixed_step(ode, p->by, o->step) : p->by;

@@ -80,9 +80,6 @@ unsigned char *csf_read_file(const char *path, size_t *len)
 	return buf;
 }
 
-/* SIGINT, SIGTERM: csf_run ends after the current row (csf_signal). */
-static void on_signal(int sig) { csf_signal = sig; }
-
 /* Text (no NUL or other control bytes but white space in the first 4 KiB), as a .csf file is. */
 static int looks_like_source(const unsigned char *b, size_t len)
 {
@@ -146,13 +143,8 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		}
 	/* a write to a closed pipe is an error csf_run sees (EPIPE), and ends quietly */
 	signal(SIGPIPE, SIG_IGN);
-	struct sigaction sa;
-	memset(&sa, 0, sizeof sa);
-	sa.sa_handler = on_signal;
-	sa.sa_flags = SA_RESTART;
-	sigemptyset(&sa.sa_mask);
-	sigaction(SIGINT, &sa, NULL);
-	sigaction(SIGTERM, &sa, NULL);
+	/* SIGINT, SIGTERM: csf_run ends after the current row (csf_signal), or the watchdog ends it */
+	csf_signals_install(stdout, prog);
 	if (sweep) st = csf_sweep_main(&p, exec, &o, prog, stdout, stderr);
 	else st = o.compare ? csf_compare_methods(&p, exec, stdout, stderr) : csf_run(&p, exec, &o, stdout, stderr);
 	csf_prog_free(&p);

@@ -504,7 +504,9 @@ int csf_sweep_take(csf_sweep *S, size_t i, const unsigned char *m, size_t len)
 			body = nl ? nl + 1 : text + tlen;
 		}
 		if (tlen) S->header_done = 1;
+		csf_out_begin();
 		fwrite(body, 1, tlen - (size_t)(body - text), S->out);
+		csf_out_end();
 	}
 	for (const char *s = diag; s < diag + elen;) {
 		const char *eol = memchr(s, '\n', (size_t)(diag + elen - s));
