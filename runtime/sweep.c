@@ -9,7 +9,7 @@
  * memory (every swept value is a parameter, param.c), runs csf_run with
  * its output captured, and turns that output into its text: each row with
  * the variant's values as leading columns (or, with --sweep-summary, one
- * row of final/max/min of columns). A variant's result is one message
+ * row of final/max/min/mean/rms of columns, over a window of time). A variant's result is one message
  * (status, text, diagnostics), so it can be made anywhere: here, in a
  * worker process of -j N (a pipe carries it back), or on another MPI rank
  * (sweep_mpi.c); the one writer takes the messages in variant order, so
@@ -20,6 +20,7 @@
  * as it is: `-D NAME=PRINTED` for each swept column reproduces the
  * variant's rows byte for byte.
  */
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <poll.h>
@@ -35,12 +36,13 @@
 
 int (*csf_sweep_distribute)(csf_sweep *s);
 
-enum { SUM_FINAL, SUM_MAX, SUM_MIN };
+enum { SUM_FINAL, SUM_MAX, SUM_MIN, SUM_MEAN, SUM_RMS };
 
 typedef struct sparam { char *name, *head; csf_pref ref; } sparam;
 /* An axis: params [first, first + n), count entries of n values each (vals[entry * n + k]). */
 typedef struct axis { int first, n; size_t count; double *vals; } axis;
-typedef struct sumcol { int func; uint32_t col; char *head; } sumcol;
+/* A summary: func of column col over the rows with from <= t <= to. */
+typedef struct sumcol { int func; uint32_t col; double from, to; char *head; } sumcol;
 
 struct csf_sweep {
 	csf_prog *p;
@@ -262,19 +264,49 @@ out:
 /* The header cell of column c of a run's output: "t", or the column's name with its unit. */
 static const char *col_head(const csf_prog *p, uint32_t c) { return c == 0 ? "t" : csf_str(p, p->cols[c - 1].name); }
 
-/* --sweep-summary 'max(ball.pos.z),final(t),...' */
+/*
+ * A time at *s for a summary's window, `50`, `50 s` or `2 min` (a time unit), into *t in the model's
+ * units; *s past it. 0, or -1 (a message in S).
+ */
+static int window_time(csf_sweep *S, const char *spec, const char **s, double *t)
+{
+	char *end;
+	errno = 0;
+	*t = strtod(*s, &end);
+	if (end == *s || errno == ERANGE || !isfinite(*t))
+		return serr(S, "--sweep-summary '%s': expected a time after 'from' or 'to' ('from 50 s')", spec);
+	*s = end;
+	while (**s == ' ') ++*s;
+	if (!isalpha((unsigned char)**s)) return 0;
+	csf_unit u;
+	const char *why, *uend;
+	if (csf_unit_parse(*s, &uend, &u, &why))
+		return serr(S, "--sweep-summary '%s': the time's unit: %s", spec, why);
+	for (size_t k = 0; k < sizeof u.dim; k++)
+		if (u.dim[k] != (k == 2))
+			return serr(S, "--sweep-summary '%s': '%.*s' is not a unit of time", spec, (int)(uend - *s), *s);
+	const double d[3] = { 0, 0, 1 };
+	*t *= csf_units_to_system(u.factor, d, S->p->ubase);
+	*s = uend;
+	return 0;
+}
+
+/* --sweep-summary 'max(ball.pos.z) from 50 s, final(t), mean(x) from 10 s to 20 s, ...' */
 static int parse_summary(csf_sweep *S, const char *spec)
 {
-	static const char *const fn[] = { "final", "max", "min" };
+	static const char *const fn[] = { "final", "max", "min", "mean", "rms" };
+	enum { NFN = sizeof fn / sizeof fn[0] };
 	const char *s = spec;
 	while (*s) {
 		const char *open = strchr(s, '('), *close = open ? strchr(open, ')') : NULL;
 		int func = -1;
 		while (*s == ' ') s++;
-		for (int k = 0; open && k < 3; k++)
+		for (int k = 0; open && k < NFN; k++)
 			if ((size_t)(open - s) == strlen(fn[k]) && memcmp(s, fn[k], (size_t)(open - s)) == 0) func = k;
 		if (func < 0 || !close)
-			return serr(S, "--sweep-summary '%s': expected final(COLUMN), max(COLUMN) or min(COLUMN), separated by commas", spec);
+			return serr(S, "--sweep-summary '%s': expected final(COLUMN), max(COLUMN), min(COLUMN), mean(COLUMN) "
+			            "or rms(COLUMN), each optionally followed by 'from TIME' and 'to TIME', separated by commas",
+			            spec);
 		char *col = xstrndup0(open + 1, (size_t)(close - open - 1));
 		if (!col) return serr(S, "out of memory");
 		char *c = trim(col);
@@ -289,18 +321,41 @@ static int parse_summary(csf_sweep *S, const char *spec)
 			free(col);
 			return -1;
 		}
+		double from = -INFINITY, to = INFINITY;
+		const char *w = close + 1, *wstart;
+		while (*w == ' ') w++;
+		wstart = w;
+		for (int k = 0; k < 2; k++) {
+			size_t n = strspn(w, "abcdefghijklmnopqrstuvwxyz");
+			double *bound = n == 4 && strncmp(w, "from", 4) == 0 ? &from : n == 2 && strncmp(w, "to", 2) == 0 ? &to : NULL;
+			if (!bound) break;
+			w += n;
+			while (*w == ' ') w++;
+			if (window_time(S, spec, &w, bound)) return free(col), -1;
+			while (*w == ' ') w++;
+		}
+		const char *wend = w;
+		while (wend > wstart && wend[-1] == ' ') wend--;
+		int st = 0;
+		if (*w && *w != ',')
+			st = serr(S, "--sweep-summary '%s': unexpected '%s' after %s(%s): expected 'from TIME', 'to TIME' or a comma",
+			          spec, w, fn[func], c);
+		else if (!(from <= to)) st = serr(S, "--sweep-summary '%s': the window ends before it starts", spec);
+		else if (from > S->p->till)
+			st = serr(S, "--sweep-summary '%s': the window starts after the run ends (t = %g)", spec, S->p->till);
+		if (st) return free(col), st;
 		sumcol *q = realloc(S->sum, (size_t)(S->nsum + 1) * sizeof *q);
 		if (!q) return free(col), serr(S, "out of memory");
 		S->sum = q;
 		const char *h = col_head(S->p, found), *unit = strstr(h, " [");
-		size_t hn = strlen(fn[func]) + strlen(c) + (unit ? strlen(unit) : 0) + 3;
+		size_t wn = (size_t)(wend - wstart);
+		size_t hn = strlen(fn[func]) + strlen(c) + wn + (unit ? strlen(unit) : 0) + 4;
 		char *head = malloc(hn);
-		if (head) snprintf(head, hn, "%s(%s)%s", fn[func], c, unit ? unit : "");
-		S->sum[S->nsum++] = (sumcol){ func, found, head };
+		if (head) snprintf(head, hn, "%s(%s)%s%.*s%s", fn[func], c, wn ? " " : "", (int)wn, wstart, unit ? unit : "");
+		S->sum[S->nsum++] = (sumcol){ func, found, from, to, head };
 		free(col);
 		if (!head) return serr(S, "out of memory");
-		s = close + 1;
-		while (*s == ' ') s++;
+		s = w;
 		if (*s == ',') s++;
 	}
 	return S->nsum ? 0 : serr(S, "--sweep-summary: no column named");
@@ -335,10 +390,16 @@ static void put_values(const csf_sweep *S, size_t i, FILE *f, int how)
 		}
 }
 
-/* One summary value over a run's rows (text after the header); NaN when there are none. */
+/*
+ * One summary value over a run's rows (text after the header) whose time is
+ * in the window: the last value, the largest, the smallest, or the time
+ * average of the value (mean) or of its square (rms, then its root) by the
+ * trapezoid rule over those rows (a window of one row: its value). NaN when
+ * no row is in the window.
+ */
 static double summarize(const char *rows, const sumcol *c)
 {
-	double acc = NAN;
+	double acc = NAN, t0 = NAN, tp = NAN, xp = NAN, area = 0;
 	for (const char *s = rows; *s;) {
 		const char *f = s;
 		for (uint32_t k = 0; k < c->col && f; k++) {
@@ -346,15 +407,22 @@ static double summarize(const char *rows, const sumcol *c)
 			if (f) f++;
 		}
 		const char *eol = strchr(s, '\n');
-		if (f && (!eol || f < eol)) {
+		double t = strtod(s, NULL);
+		if (f && (!eol || f < eol) && t >= c->from && t <= c->to) {
 			double x = strtod(f, NULL);
-			if (c->func == SUM_FINAL || isnan(acc)) acc = x;
+			if (c->func == SUM_RMS) x *= x;
+			if (c->func == SUM_MEAN || c->func == SUM_RMS) {
+				if (isnan(t0)) t0 = t, acc = x;
+				else area += (t - tp) * (xp + x) / 2;
+				tp = t, xp = x;
+			} else if (c->func == SUM_FINAL || isnan(acc)) acc = x;
 			else if (c->func == SUM_MAX ? x > acc : x < acc) acc = x;
 		}
 		if (!eol) break;
 		s = eol + 1;
 	}
-	return acc;
+	if ((c->func == SUM_MEAN || c->func == SUM_RMS) && tp > t0) acc = area / (tp - t0);
+	return c->func == SUM_RMS ? sqrt(acc) : acc;
 }
 
 /* The text of variant i from its run's output: rows prefixed by its values, or its summary row. */

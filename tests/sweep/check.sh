@@ -131,6 +131,34 @@ if "$CSFVM" $SW --sweep-summary 'max(ball.pos.z), final(ball.pos.x),min(t)' "$L"
 		END { if (n != 100) exit 1 }' "$T/j1.csv" "$T/sum.csv" >"$T/sum.chk"; then ok
 else bad "--sweep-summary: $(cat "$T/sum.err" "$T/sum.chk" 2>/dev/null | head -n 1)"; fi
 
+# --sweep-summary over a window of time, exact: x = u t (ramp.csf) gives mean = u (a + b)/2 over
+# [a, b], the trapezoid rule's rms = u sqrt((b^3 - a^3)/(3 (b - a)) + h^2/6) with rows h = 0.5 s apart
+R=$T/ramp.csfb
+if "$CSFC" "$HERE/ramp.csf" -o "$R" &&
+	"$CSFVM" --sweep u=1:3:3 --sweep-summary 'mean(p.x) from 2 s to 6 s, rms(p.x) from 2 s to 6000 ms, max(p.x) from 1 s to 3 s, min(p.x) from 0.05 min, final(p.x) to 4 s, mean(p.x)' "$R" >"$T/win.csv" 2>"$T/win.err" &&
+	[ "$(head -n 1 "$T/win.csv")" = "u [m/s],mean(p.x) from 2 s to 6 s [m],rms(p.x) from 2 s to 6000 ms [m],max(p.x) from 1 s to 3 s [m],min(p.x) from 0.05 min [m],final(p.x) to 4 s [m],mean(p.x) [m]" ] &&
+	awk -F, 'function bad(i, want) { d = $i - want; if (d < 0) d = -d; if (d > 1e-12 * want) { print "row " NR " column " i ": " $i ", exact " want; exit 1 } }
+		NR > 1 { u = $1; bad(2, 4 * u); bad(3, u * sqrt(208 / 12 + 0.25 / 6)); bad(4, 3 * u); bad(5, 3 * u); bad(6, 4 * u); bad(7, 5 * u); n++ }
+		END { if (n != 3) exit 1 }' "$T/win.csv" >"$T/win.chk"; then ok
+else bad "--sweep-summary with a window: $(cat "$T/win.err" "$T/win.chk" 2>/dev/null | head -n 1)"; fi
+# a resonance curve: the steady amplitude A of a driven oscillator (driven.csf) is max(x) from 60 s
+# (to the rows' sampling, 1e-4) and sqrt(2) rms(x) over 20 s of whole periods (1e-6), with mean 0;
+# the whole run's max, which the start-up transient sets, misses A by more than 1 % at some W
+if "$CSFC" "$HERE/driven.csf" -o "$T/driven.csfb" &&
+	"$CSFVM" --sweep 'W=1.5707963267948966:2.199114857512855:3' --sweep-summary \
+		'max(osc.x) from 60 s, rms(osc.x) from 60 s to 80 s, mean(osc.x) from 60 s to 80 s, max(osc.x)' \
+		"$T/driven.csfb" >"$T/res.csv" 2>"$T/res.err" &&
+	awk -F, 'function abs(x) { return x < 0 ? -x : x }
+		NR > 1 { W = $1; A = 1 / sqrt((4 - W * W)^2 + (0.5 * W)^2)
+			if (abs($2 / A - 1) > 1e-4 || abs($3 * sqrt(2) / A - 1) > 1e-6 || abs($4) > 1e-6 * A) { print "W=" W ": A=" A ", got " $0; exit 1 }
+			if (abs($5 / A - 1) > 0.01) far++; n++ }
+		END { if (n != 3 || !far) { print n " rows, " far + 0 " whole-run maxima off"; exit 1 } }' "$T/res.csv" >"$T/res.chk"; then ok
+else bad "--sweep-summary, a resonance curve: $(cat "$T/res.err" "$T/res.chk" 2>/dev/null | head -n 1)"; fi
+derr "$R" "not a unit of time" --sweep u=1:2:2 --sweep-summary 'max(p.x) from 5 m'
+derr "$R" "ends before it starts" --sweep u=1:2:2 --sweep-summary 'max(p.x) from 5 s to 2 s'
+derr "$R" "starts after the run ends" --sweep u=1:2:2 --sweep-summary 'max(p.x) from 20 s'
+derr "$R" "expected 'from TIME'" --sweep u=1:2:2 --sweep-summary 'max(p.x) form 5 s'
+
 # a failing variant: reported with its run number, the others written, exit 1
 "$CSFVM" --sweep 'ball.x=1:2:3 m' -j 2 "$F" >"$T/fail.csv" 2>"$T/fail.err"
 st=$?
