@@ -20,6 +20,7 @@
 #     every method at every tolerance (tests/methods_tol.sh), contacts
 #     (tests/contacts/), many objects (tests/many/: 100 balls in a box, 1000
 #     sliding to a stop),
+#     the README's example against the program (tests/docs/),
 #     csfview's pages and plots (tests/view/; in headless Chromium where it
 #     is installed, else a SKIP line), parameters and sweeps (tests/sweep/; MPI
 #     where Open MPI is installed, else a SKIP line).
@@ -246,6 +247,9 @@ if "$CSFC" "$m" -o "$T/ho.csfb" 2>"$T/err" && "$CSFVM" --stats "$T/ho.csfb" >"$T
 else
 	bad "--hmax: $(head -n 2 "$T/err" "$T/ho2.err" "$T/chk")"
 fi
+
+# 5b''. the README's example scene and output are the program's (tests/docs/check.sh)
+if sh tests/docs/check.sh "$CSFC" "$CSFVM" "$T" >"$T/docs" 2>&1; then ok; else bad "docs: $(grep FAIL "$T/docs" | head -n 3)"; fi
 
 # 5c. output errors are reported: a full disk (a closed pipe ends a run quietly: tests/unix/check.sh)
 printf 'object p: x = 1\nrule: x'"'"' = 1\ninc t till 100000 by 1 watch x\n' >"$T/long.csf"
