@@ -1075,6 +1075,15 @@ void csf_contacts_guards(const csf_contacts *c, double *g)
 
 uint32_t csf_contacts_src(const csf_contacts *c, uint32_t k) { return c->p->crules[c->pairs[k].rule].src; }
 
+void csf_contacts_objects(const csf_contacts *c, uint32_t k, uint32_t *oi, uint32_t *oj)
+{
+	const csf_prog *p = c->p;
+	const cpair *q = &c->pairs[k];
+	const csf_crule *cr = &p->crules[q->rule];
+	*oi = p->cbodies[p->cmembers[cr->first0 + q->k0]].object;
+	*oj = p->cbodies[p->cmembers[cr->first1 + q->k1]].object;
+}
+
 /* Body b's box over the states (a mass point), grown by its radius and the margin; empty if not a number. */
 static void body_box(csf_contacts *c, const double *m, uint32_t b, const double *const *ys, int ns)
 {

@@ -322,6 +322,8 @@ int csf_contacts_unsolved(const csf_contacts *c);
 void csf_contacts_guards(const csf_contacts *c, double *g);
 /* The source statement of candidate k (its rule). */
 uint32_t csf_contacts_src(const csf_contacts *c, uint32_t k);
+/* The objects (indices into objects) of candidate k's two bodies. */
+void csf_contacts_objects(const csf_contacts *c, uint32_t k, uint32_t *oi, uint32_t *oj);
 /*
  * Chooses the next candidates from the ns states ys[0..ns) (state vectors,
  * in time order: the instants at which the guards will be looked at): the

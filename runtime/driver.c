@@ -1536,6 +1536,17 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			if (st == CHATTER) {
 				char tb[32];
 				csf_fmt_double(tb, r.dense ? r.ti : t);
+				if (r.last >= (long)p->nevents) { /* a contact: the bodies are the user's, the rule the library's */
+					uint32_t oi, oj;
+					csf_contacts_objects(r.cs, (uint32_t)(r.last - (long)p->nevents) / 2, &oi, &oj);
+					fprintf(err,
+					        "error: at t=%s the contact of '%s' and '%s' switches between touching and parting, "
+					        "or sticking and sliding, again and again (%s): no set of contacts among the "
+					        "bodies touching there is consistent, and the run cannot go on\n",
+					        tb, csf_str(p, p->objects[oi]), csf_str(p, p->objects[oj]), msg);
+					status = 1;
+					goto done;
+				}
 				report_event_src(p, r.last_src, err);
 				fprintf(err,
 				        "error: at t=%s the conditions switch back and forth without time advancing (%s): "
