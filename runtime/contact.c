@@ -52,8 +52,9 @@
 enum { APART, SLIDING, STICKING, HOPPING }; /* the modes of a pair */
 
 /* A pair's work values: mode, the two guards, the normal force's size, the friction force,
-   the sliding direction, the time a hop lands. A pair that is not a candidate is apart. */
-enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_N = 11 };
+   the sliding direction, the time a hop lands, the relative velocity before an impact. A pair
+   that is not a candidate is apart. */
+enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_N = 14 };
 
 /* A candidate pair: body i (a mass point, $0) and body j (a mass point or a plane, $1). */
 typedef struct cpair {
@@ -794,6 +795,28 @@ static int collide(csf_contacts *cs, double *m, cpair *hit, double target, doubl
 	return 1;
 }
 
+/*
+ * After an impact (whose impulses are normal: impacts are frictionless),
+ * each pair in contact whose relative velocity it changed (from W_VR) takes
+ * its friction mode from the velocity it is left with, as when it entered
+ * contact: it slides the way it now slips, or, if it no longer slips,
+ * sticks (and slides as soon as static friction cannot hold). Its mode
+ * from before the impact would hold it at the new velocity (sticking) or
+ * stop it by an impulse of friction (sliding, the slip turned back).
+ */
+static void resume_friction(csf_contacts *cs, double *m)
+{
+	for (uint32_t i = 0; i < cs->n; i++) {
+		cpair *c = &cs->pairs[i];
+		double n[3], curv, vr[3];
+		if (!in_contact(c)) continue;
+		rel(c, m, I(c, V), J(c, V), vr);
+		if (memcmp(vr, WV(c, VR), sizeof vr) == 0) continue;
+		geometry(c, m, n, &curv);
+		enter_contact(c, m, n);
+	}
+}
+
 /* Do pairs c and d share a body (a plane is no body: it does not move)? */
 static int share_body(const cpair *c, const cpair *d)
 {
@@ -883,7 +906,10 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, cs
 			   it is a rest: the impulses that follow are passed on within this instant */
 			int rest = sep == 0 || at_rest(c, m, sep, an, zeno), low = !rest && hops(c, m, sep, an, tol);
 			if (low && crowded(cs, m, c)) rest = 1, low = 0;
+			for (uint32_t i = 0; i < cs->n; i++)
+				if (in_contact(&cs->pairs[i])) rel(&cs->pairs[i], m, I(&cs->pairs[i], V), J(&cs->pairs[i], V), WV(&cs->pairs[i], VR));
 			if (collide(cs, m, c, rest ? 0 : sep, vn)) return CSF_SETTLE_IMPULSES;
+			resume_friction(cs, m);
 			close_gap(c, m, n, gap);
 			if (rest) {
 				enter_contact(c, m, n);
