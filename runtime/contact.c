@@ -8,9 +8,11 @@
  *
  *   apart:    guard 0 is the gap; when it closes the bodies collide (an
  *             impulse along the normal with restitution min(cr_i, cr_j); a
- *             plane has infinite mass; the pairs in contact stay in
- *             contact), or come to rest in contact when the train of
- *             bounces that would follow ends within the Zeno time.
+ *             plane has infinite mass; the pairs in contact do not close,
+ *             and those whose velocity it changed take their mode afresh:
+ *             apart, sliding or sticking), or come to rest in contact when
+ *             the train of bounces that would follow ends within the Zeno
+ *             time.
  *   hopping:  apart, on a hop too low for the positions to follow; guard 0
  *             is the time left until it lands, known from its flight time.
  *   contact:  the normal force N n is the constraint force that keeps the
@@ -798,13 +800,16 @@ static int collide(csf_contacts *cs, double *m, cpair *hit, double target, doubl
 /*
  * After an impact (whose impulses are normal: impacts are frictionless),
  * each pair in contact whose relative velocity it changed (from W_VR) takes
- * its friction mode from the velocity it is left with, as when it entered
- * contact: it slides the way it now slips, or, if it no longer slips,
- * sticks (and slides as soon as static friction cannot hold). Its mode
- * from before the impact would hold it at the new velocity (sticking) or
- * stop it by an impulse of friction (sliding, the slip turned back).
+ * its mode afresh from the velocity it is left with: it separates if its
+ * bodies move apart (a pair in contact takes no impulse that would pull,
+ * and may be left separating: a ball struck from below its centre leaves
+ * the table), else it is in contact as when it entered it, sliding the way
+ * it now slips or, if it no longer slips, sticking (until static friction
+ * cannot hold). Its mode from before the impact would keep it in contact
+ * as it moves away, hold it at the new velocity (sticking), or stop it by an
+ * impulse of friction (sliding, the slip turned back).
  */
-static void resume_friction(csf_contacts *cs, double *m)
+static void after_impact(csf_contacts *cs, double *m)
 {
 	for (uint32_t i = 0; i < cs->n; i++) {
 		cpair *c = &cs->pairs[i];
@@ -813,7 +818,8 @@ static void resume_friction(csf_contacts *cs, double *m)
 		rel(c, m, I(c, V), J(c, V), vr);
 		if (memcmp(vr, WV(c, VR), sizeof vr) == 0) continue;
 		geometry(c, m, n, &curv);
-		enter_contact(c, m, n);
+		if (dot3(vr, n) > 0) separate(c, m);
+		else enter_contact(c, m, n);
 	}
 }
 
@@ -909,7 +915,7 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, cs
 			for (uint32_t i = 0; i < cs->n; i++)
 				if (in_contact(&cs->pairs[i])) rel(&cs->pairs[i], m, I(&cs->pairs[i], V), J(&cs->pairs[i], V), WV(&cs->pairs[i], VR));
 			if (collide(cs, m, c, rest ? 0 : sep, vn)) return CSF_SETTLE_IMPULSES;
-			resume_friction(cs, m);
+			after_impact(cs, m);
 			close_gap(c, m, n, gap);
 			if (rest) {
 				enter_contact(c, m, n);
