@@ -891,11 +891,19 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, cs
 				continue;
 			}
 			if (gap < 0) close_gap(c, m, n, gap), gap = 0; /* apart by rounding: arm its guard */
-			if (hit < 0 && at_rest(c, m, vn, an, zeno)) { /* pressed together, at rest: contact */
+			if (hit >= 0) continue;
+			/* separating, on a hop too low for the positions to follow (a pair that an impact
+			   lifted off): followed by its flight time, or among several touching bodies a rest */
+			int low = hops(c, m, vn, an, tol);
+			if (at_rest(c, m, vn, an, zeno) || (low && crowded(cs, m, c))) { /* pressed together, at rest: contact */
 				close_gap(c, m, n, gap);
 				for (int k = 0; k < 3; k++) vr[k] = -vn * n[k];
 				add_impulse(c, m, vr);
 				enter_contact(c, m, n);
+				changed = 1;
+			} else if (low) {
+				W(c, MODE) = HOPPING;
+				W(c, TL) = m[p->tslot] + 2 * vn / -an;
 				changed = 1;
 			}
 		}
