@@ -815,9 +815,9 @@ static void before_impact(csf_contacts *cs, const double *m)
  * the table), unless they part so slowly that the hop that follows would
  * end within the Zeno time (at_rest, with the relative normal acceleration
  * that the pair's normal force alone would leave: an overestimate among
- * several contacts): such a parting is the rounding of the impulses (of
- * masses that differ greatly, as much as 1e-9 of the impact's speed), and
- * the pair stays in contact. In contact, it slides the way it now slips or,
+ * several contacts): such a parting is the rounding of the impulses (some
+ * 1e-9 of the impact's speed among masses 1e7 apart), and the pair stays
+ * in contact. In contact, it slides the way it now slips or,
  * if it no longer slips, sticks (until static friction cannot hold). Its
  * mode from before the impact would keep it in contact as it moves away,
  * hold it at the new velocity (sticking), or stop it by an impulse of
