@@ -8,9 +8,11 @@
  *
  *   apart:    guard 0 is the gap; when it closes the bodies collide (an
  *             impulse along the normal with restitution min(cr_i, cr_j); a
- *             plane has infinite mass; the pairs in contact stay in
- *             contact), or come to rest in contact when the train of
- *             bounces that would follow ends within the Zeno time.
+ *             plane has infinite mass; the pairs in contact do not close,
+ *             and those whose velocity it changed take their mode afresh:
+ *             apart, sliding or sticking), or come to rest in contact when
+ *             the train of bounces that would follow ends within the Zeno
+ *             time.
  *   hopping:  apart, on a hop too low for the positions to follow; guard 0
  *             is the time left until it lands, known from its flight time.
  *   contact:  the normal force N n is the constraint force that keeps the
@@ -52,8 +54,9 @@
 enum { APART, SLIDING, STICKING, HOPPING }; /* the modes of a pair */
 
 /* A pair's work values: mode, the two guards, the normal force's size, the friction force,
-   the sliding direction, the time a hop lands. A pair that is not a candidate is apart. */
-enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_N = 11 };
+   the sliding direction, the time a hop lands, the relative velocity before an impact. A pair
+   that is not a candidate is apart. */
+enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_N = 14 };
 
 /* A candidate pair: body i (a mass point, $0) and body j (a mass point or a plane, $1). */
 typedef struct cpair {
@@ -794,6 +797,47 @@ static int collide(csf_contacts *cs, double *m, cpair *hit, double target, doubl
 	return 1;
 }
 
+/* Before an impact: each pair in contact's relative velocity into W_VR, for after_impact. */
+static void before_impact(csf_contacts *cs, const double *m)
+{
+	for (uint32_t i = 0; i < cs->n; i++) {
+		cpair *c = &cs->pairs[i];
+		if (in_contact(c)) rel(c, m, I(c, V), J(c, V), WV(c, VR));
+	}
+}
+
+/*
+ * After an impact (whose impulses are normal: impacts are frictionless),
+ * each pair in contact whose relative velocity it changed (from W_VR) takes
+ * its mode afresh from the velocity it is left with. It separates if its
+ * bodies move apart (a pair in contact takes no impulse that would pull,
+ * and may be left separating: a ball struck from below its centre leaves
+ * the table), unless they part so slowly that the hop that follows would
+ * end within the Zeno time (at_rest, with the relative normal acceleration
+ * that the pair's normal force alone would leave: an overestimate among
+ * several contacts): such a parting is the rounding of the impulses (some
+ * 1e-9 of the impact's speed among masses 1e7 apart), and the pair stays
+ * in contact. In contact, it slides the way it now slips or,
+ * if it no longer slips, sticks (until static friction cannot hold). Its
+ * mode from before the impact would keep it in contact as it moves away,
+ * hold it at the new velocity (sticking), or stop it by an impulse of
+ * friction (sliding, the slip turned back).
+ */
+static void after_impact(csf_contacts *cs, double *m, double zeno)
+{
+	for (uint32_t i = 0; i < cs->n; i++) {
+		cpair *c = &cs->pairs[i];
+		double n[3], curv, vr[3];
+		if (!in_contact(c)) continue;
+		rel(c, m, I(c, V), J(c, V), vr);
+		if (memcmp(vr, WV(c, VR), sizeof vr) == 0) continue;
+		geometry(c, m, n, &curv);
+		double vn = dot3(vr, n), an = -W(c, LAM) * (inv_mass_i(c, m) + inv_mass_j(c, m));
+		if (vn > 0 && !at_rest(c, m, vn, an, zeno)) separate(c, m);
+		else enter_contact(c, m, n);
+	}
+}
+
 /* Do pairs c and d share a body (a plane is no body: it does not move)? */
 static int share_body(const cpair *c, const cpair *d)
 {
@@ -810,6 +854,32 @@ static int crowded(csf_contacts *cs, const double *m, const cpair *c)
 		if (share_body(c, d) && (in_contact(d) || touching(d, m, geometry(d, m, n, &curv)))) return 1;
 	}
 	return 0;
+}
+
+/*
+ * How a touching pair goes on that separates at normal speed v >= 0 with
+ * relative normal acceleration an (after its impact, lifted off by
+ * another's, or at the start): at rest in contact (at_rest), on a hop too
+ * low for the positions to follow (hops), followed by its flight time, or
+ * apart. A low hop among several touching bodies (a ball on a ball on the
+ * floor; a ball lifted off by an impact, which touches the body that hit
+ * it) is a rest: the impulses that follow are passed on within this
+ * instant.
+ */
+enum { FLIES, HOPS, RESTS };
+
+static int departure(csf_contacts *cs, const double *m, const cpair *c, double v, double an, double zeno, double tol)
+{
+	if (at_rest(c, m, v, an, zeno)) return RESTS;
+	if (!hops(c, m, v, an, tol)) return FLIES;
+	return crowded(cs, m, c) ? RESTS : HOPS;
+}
+
+/* Hops from time t at normal speed v >= 0 (an < 0): it lands after 2 v/|an|. */
+static void hop(cpair *c, double t, double v, double an)
+{
+	W(c, MODE) = HOPPING;
+	W(c, TL) = t + 2 * v / -an;
 }
 
 /*
@@ -862,11 +932,16 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, cs
 				continue;
 			}
 			if (gap < 0) close_gap(c, m, n, gap), gap = 0; /* apart by rounding: arm its guard */
-			if (hit < 0 && at_rest(c, m, vn, an, zeno)) { /* pressed together, at rest: contact */
+			if (hit >= 0) continue;
+			int how = departure(cs, m, c, vn, an, zeno, tol);
+			if (how == RESTS) { /* pressed together, at rest: contact */
 				close_gap(c, m, n, gap);
 				for (int k = 0; k < 3; k++) vr[k] = -vn * n[k];
 				add_impulse(c, m, vr);
 				enter_contact(c, m, n);
+				changed = 1;
+			} else if (how == HOPS) { /* alone, parting a little (at the start) */
+				hop(c, m[p->tslot], vn, an);
 				changed = 1;
 			}
 		}
@@ -878,19 +953,13 @@ int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, cs
 			rel(c, m, I(c, V), J(c, V), vr);
 			rel(c, m, I(c, A), J(c, A), ar);
 			double vn = dot3(vr, n), an = dot3(ar, n) + curv, sep = -restitution(c, m) * vn;
-			/* a hop too low to follow by positions is followed by its flight time only when
-			   nothing else touches the bodies; among several (a ball on a ball on the floor)
-			   it is a rest: the impulses that follow are passed on within this instant */
-			int rest = sep == 0 || at_rest(c, m, sep, an, zeno), low = !rest && hops(c, m, sep, an, tol);
-			if (low && crowded(cs, m, c)) rest = 1, low = 0;
-			if (collide(cs, m, c, rest ? 0 : sep, vn)) return CSF_SETTLE_IMPULSES;
+			int how = sep == 0 ? RESTS : departure(cs, m, c, sep, an, zeno, tol);
+			before_impact(cs, m);
+			if (collide(cs, m, c, how == RESTS ? 0 : sep, vn)) return CSF_SETTLE_IMPULSES;
+			after_impact(cs, m, zeno);
 			close_gap(c, m, n, gap);
-			if (rest) {
-				enter_contact(c, m, n);
-			} else if (low) {
-				W(c, MODE) = HOPPING;
-				W(c, TL) = m[p->tslot] + 2 * sep / -an;
-			}
+			if (how == RESTS) enter_contact(c, m, n);
+			else if (how == HOPS) hop(c, m[p->tslot], sep, an);
 			for (uint32_t i = 0; i < cs->n; i++) /* flights whose velocities just changed */
 				if (share_body(c, &cs->pairs[i]) && W(&cs->pairs[i], MODE) == HOPPING)
 					W(&cs->pairs[i], MODE) = APART;
