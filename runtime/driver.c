@@ -438,10 +438,30 @@ static void report_unsettled(const run *r, FILE *err)
 	char tb[32];
 	csf_fmt_double(tb, r->unsettled_t);
 	if (r->unsettled != CSF_SETTLE_ENDLESS) {
+		/* the lightest and the heaviest mass point that can touch: blame the masses only if they differ */
+		const csf_prog *p = r->p;
+		long lo = -1, hi = -1;
+		for (uint32_t b = 0; b < p->ncbodies; b++) {
+			if (p->cbodies[b].plane) continue;
+			double mb = r->m[p->cbodies[b].s[CSF_CF_M]];
+			if (lo < 0 || mb < r->m[p->cbodies[lo].s[CSF_CF_M]]) lo = b;
+			if (hi < 0 || mb > r->m[p->cbodies[hi].s[CSF_CF_M]]) hi = b;
+		}
+		const char *what = r->unsettled == CSF_SETTLE_IMPULSES ? "impulses of an impact" : "contact forces";
+		double mlo = lo >= 0 ? r->m[p->cbodies[lo].s[CSF_CF_M]] : 1, mhi = hi >= 0 ? r->m[p->cbodies[hi].s[CSF_CF_M]] : 1;
+		if (mhi > 1e9 * mlo) {
+			fprintf(err,
+			        "error: at t=%s, the %s among bodies in contact could not be solved: their masses differ by more "
+			        "than about 1e10 ('%s' %g and '%s' %g, in the model's units); make them less different\n",
+			        tb, what, csf_str(p, p->objects[p->cbodies[lo].object]), mlo,
+			        csf_str(p, p->objects[p->cbodies[hi].object]), mhi);
+			return;
+		}
 		fprintf(err,
-		        "error: at t=%s, the %s among bodies in contact could not be solved: their masses differ by more "
-		        "than about 1e10; make them less different\n",
-		        tb, r->unsettled == CSF_SETTLE_IMPULSES ? "impulses of an impact" : "contact forces");
+		        "error: at t=%s, the %s among bodies in contact could not be solved: the equations of the contacts "
+		        "there are singular (more contacts than the bodies' motions can tell apart), though the masses "
+		        "differ by a factor of %.3g at most\n",
+		        tb, what, mhi / mlo);
 		return;
 	}
 	fprintf(err,
