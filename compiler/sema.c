@@ -1401,20 +1401,23 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 		for (int i = 0; i < reads.n; i++) explain_det(reads.v[i]);
 		return NULL;
 	}
-	/* two unknowns: the one the equation defines is a bare name on its left side (else the target
-	   chosen); the other is unknown, most often a misspelling or another object's temporary */
-	Var *want = lhs->k == R_VAR && lhs->var->kind == V_TEMP && !determined(lhs->var) ? lhs->var : x;
-	for (int i = 0; i < reads.n; i++) {
+	Var *other = NULL; /* a temporary besides the target that nothing determines: two unknowns */
+	for (int i = 0; i < reads.n && !other; i++) {
 		Var *v = reads.v[i];
-		if (v == want || v->kind != V_TEMP || determined(v)) continue;
-		const char *s = near_name(I, v);
-		Loc at = read_loc(lhs, rhs, v, q->loc);
+		if (v != x && v->kind == V_TEMP && !determined(v)) other = v;
+	}
+	if (other) {
+		/* the one the equation defines is a bare name on its left side (else the target chosen); the
+		   other is unknown, most often a misspelling or another object's temporary */
+		Var *want = lhs->k == R_VAR && lhs->var == other ? other : x, *u = want == other ? x : other;
+		const char *s = near_name(I, u);
+		Loc at = read_loc(lhs, rhs, u, q->loc);
 		if (s)
-			error_at(at, "unknown name '%s' in rule \"%s\"%s%s; did you mean '%s'?", v->name, q->text,
+			error_at(at, "unknown name '%s' in rule \"%s\"%s%s; did you mean '%s'?", u->name, q->text,
 			         I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", s);
 		else
 			error_at(at, "rule \"%s\" is unresolvable%s%s: it solves for %s but also reads %s, which no earlier rule determines",
-			         q->text, I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", want->name, v->name);
+			         q->text, I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", want->name, u->name);
 		return NULL;
 	}
 	/* A new temporary takes its type from the other side of its equation. */
@@ -2332,7 +2335,7 @@ void sema_explain(Model *Mo, FILE *f)
 			fputc('\n', f);
 		}
 		if (cond) {
-			fprintf(f, "  branches%s:\n", cond->needed[CSF_SEC_RHS] ? " (each comparison an event, located in time)" : "");
+			fprintf(f, "  branches%s:\n", cond->needed[CSF_SEC_RHS] ? " (their comparisons <, <=, >, >= are events, located in time)" : "");
 			explain_block(f, cond->top, 2);
 		}
 		n += explain_contacts(Mo, s, f);
