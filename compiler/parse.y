@@ -456,6 +456,10 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, Parser *P)
 		            "their 'if', or with 'rule' for the rule's own)", got == YYSYMBOL_ELIF ? "elif" : "else");
 		return 0;
 	}
+	if (got == YYSYMBOL_IF && starts_line(l)) {
+		error_at(l, "an 'if' block belongs to a conditional rule ('rule: if CONDITION:', or nested in one of its branches)");
+		return 0;
+	}
 	yysymbol_kind_t exp[6];
 	int n = yypcontext_expected_tokens(ctx, exp, 6);
 	int wants_name = 0;

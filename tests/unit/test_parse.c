@@ -113,6 +113,8 @@ START_TEST(test_misplaced_branches)
 		  "p.csf:3:9: error: unexpected indentation" },
 		{ "rule: if t < 2:\n    u = 1\nelse:\n    u = 2\nelse:\n    u = 3\ninc t\n", "p.csf:5:1: error: 'else' without" },
 		{ "rule: if t < :\n    u = 1\nelif t < 5:\n    u = 3\nelse:\n    u = 0\ninc t\n", "p.csf:1:14: error: syntax error" },
+		{ "def k:\n    m = 1\n    if m > 0:\n        q = 2\n    else:\n        q = 3\nobject b: k\ninc t\n",
+		  "p.csf:3:5: error: an 'if' block belongs to a conditional rule" },
 	};
 	for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
 		char *d;
