@@ -37,6 +37,9 @@ struct Expr {
 	int depth;   /* levels of the tree below and including this node (at most CSF_MAX_DEPTH + 1) */
 };
 
+typedef struct If If;
+
+/* One step of a rule: an equation, or (nest set; lhs and rhs NULL) a conditional block. */
 typedef struct Eqn Eqn;
 struct Eqn {
 	Loc loc;
@@ -44,7 +47,19 @@ struct Eqn {
 	int deriv;
 	Expr *rhs;
 	char *text;
+	If *nest;
 	Eqn *next;
+};
+
+/* A conditional block: `if COND:` (or `elif COND:`) with its indented steps, then its else part:
+ * `else:` with its steps, or an `elif` (a block nested as the whole else part), or nothing. */
+struct If {
+	Loc loc;       /* of 'if' or 'elif' */
+	char *text;    /* "if COND:" as written */
+	Expr *cond;
+	Eqn *then, *els;
+	Loc else_loc;  /* of 'else' (els neither empty nor an elif) */
+	int elif;      /* this block is an `elif` */
 };
 
 typedef struct ObjRef { Loc loc; char *name; int index; } ObjRef; /* name, or index >= 0 */
@@ -69,11 +84,9 @@ struct Stmt {
 	char *attr;
 	Vec fors;     /* of ObjRef* */
 	int has_for;
-	Expr *cond;   /* conditional rule or assertion */
-	Eqn *eqns;    /* plain rule: one; conditional: the if branch */
+	Expr *cond;   /* assertion, stop condition */
+	Eqn *eqns;    /* rule: its one step (an equation, or a conditional block) */
 	Expr *call;   /* a rule that calls a runtime routine: contact(...) */
-	Eqn *else_eqns;
-	int has_else;
 	/* S_START */
 	char *var;
 	Expr *till, *by;

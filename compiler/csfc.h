@@ -28,6 +28,8 @@ void arena_release(ArenaMark m);
 /* A growable array of pointers. */
 typedef struct Vec { void **v; int n, cap; } Vec;
 void vec_push(Vec *a, void *x);
+/* Does a hold x? */
+int vec_has(const Vec *a, const void *x);
 
 /* A string-keyed hash map (keys are not copied). */
 typedef struct Map { char **keys; void **vals; size_t cap, n; } Map;

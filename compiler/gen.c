@@ -45,7 +45,8 @@ typedef struct Gen {
 	int ncse;
 	Map consts;  /* constant bits -> slot + 1 */
 	int loop;     /* the levels of the loops the instance being emitted runs in (0: none) */
-	Inst *evinst; /* emitting the condition of this conditional rule, located as events */
+	Inst *evinst; /* emitting a condition of this conditional rule, located as events ... */
+	int evsrc;    /* ... which name this statement */
 	Map evmap;    /* comparison (by address) -> event index + 1 */
 	csf_event *events;
 	uint32_t nevents, capevents;
@@ -325,7 +326,7 @@ static int emit_event(Gen *G, RExpr *e, uint32_t dest)
 		known = G->nevents + 1;
 		for (uint32_t q = 0; q < n; q++) {
 			G->mem[mode + q] = -1;
-			G->events[G->nevents++] = (csf_event){ strict ? 0u : 1u, value + q, mode + q, (uint32_t)G->evinst->src };
+			G->events[G->nevents++] = (csf_event){ strict ? 0u : 1u, value + q, mode + q, (uint32_t)G->evsrc };
 		}
 		map_put(&G->evmap, key, (void *)known);
 	}
@@ -421,22 +422,45 @@ static void add_targets(Gen *G, Inst *I, Var *v, uint32_t slot, uint32_t src, co
 	for (int q = 0; q < S->n; q++) add_target(G, slot + (uint32_t)q * (v->isvec ? 3u : 1u), v, src, name, S->members[q]);
 }
 
-static void emit_assigns(Gen *G, Inst *I, Vec *br)
+static void emit_block(Gen *G, Inst *I, Branch *B);
+
+/* The steps of one branch (a plain rule: its one assignment), then zero for each variable of
+ * need that none of them determines (another path does). */
+static void emit_steps(Gen *G, Inst *I, Vec *steps, Vec *need)
 {
-	for (int i = 0; i < br->n; i++) {
-		Assign *a = br->v[i];
+	Vec set = { 0 };
+	for (int i = 0; i < steps->n; i++) {
+		Assign *a = steps->v[i];
 		cse_reset(G);
-		emit_into(G, a->e, var_operand(G, a->var, 0));
+		if (a->nest) emit_block(G, I, a->nest);
+		else emit_into(G, a->e, var_operand(G, a->var, 0));
 	}
 	cse_reset(G);
-	/* variables the other branch introduces are zero in this one */
-	for (int i = 0; i < I->targets.n; i++) {
-		Var *v = I->targets.v[i];
-		int set = 0;
-		for (int k = 0; k < br->n; k++) set |= ((Assign *)br->v[k])->var == v;
-		if (!set)
+	sema_steps_targets(steps, &set);
+	for (int i = 0; i < need->n; i++) {
+		Var *v = need->v[i];
+		if (!vec_has(&set, v))
 			emit_op(G, v->isvec ? CSF_OP_VMOV : CSF_OP_MOV, var_operand(G, v, 0), const_slot(G, (double[3]){ 0, 0, 0 }, v->isvec), 0, 0);
 	}
+}
+
+/* A conditional block: its condition (comparisons located as events when the RHS needs the rule),
+ * then either branch. */
+static void emit_block(Gen *G, Inst *I, Branch *B)
+{
+	G->evinst = I->needed[CSF_SEC_RHS] ? I : NULL;
+	G->evsrc = B->src;
+	uint32_t c = emit(G, B->cond);
+	G->evinst = NULL;
+	cse_reset(G); /* what the condition computed is not there on the other path */
+	uint32_t jz = pc(G);
+	emit_op(G, CSF_OP_JZ, c, 0, 0, 0);
+	emit_steps(G, I, &B->steps[0], &B->targets);
+	uint32_t jmp = pc(G);
+	emit_op(G, CSF_OP_JMP, 0, 0, 0, 0);
+	G->code[jz + 2] = pc(G);
+	emit_steps(G, I, &B->steps[1], &B->targets);
+	G->code[jmp + 1] = pc(G);
 }
 
 static Vec assert_tab, assert_obj; /* of Inst* and Object*, in assertion index order */
@@ -458,6 +482,7 @@ static void emit_body(Gen *G, Inst *I)
 	if (I->isstop) { /* its comparison as an event of the RHS, marked terminal */
 		uint32_t first = G->nevents;
 		G->evinst = I;
+		G->evsrc = I->src;
 		emit(G, I->cond);
 		G->evinst = NULL;
 		for (uint32_t k = first; k < G->nevents; k++) G->events[k].kind |= CSF_EVENT_TERMINAL;
@@ -468,21 +493,8 @@ static void emit_body(Gen *G, Inst *I)
 		emit_into(G, a->e, var_operand(G, a->var, 0) + (G->p->dstart - G->p->ystart));
 		return;
 	}
-	if (!I->cond) {
-		emit_assigns(G, I, &I->then);
-		return;
-	}
-	G->evinst = I->needed[CSF_SEC_RHS] ? I : NULL;
-	uint32_t c = emit(G, I->cond);
-	G->evinst = NULL;
-	uint32_t jz = pc(G);
-	emit_op(G, CSF_OP_JZ, c, 0, 0, 0);
-	emit_assigns(G, I, &I->then);
-	uint32_t jmp = pc(G);
-	emit_op(G, CSF_OP_JMP, 0, 0, 0, 0);
-	G->code[jz + 2] = pc(G);
-	emit_assigns(G, I, &I->els);
-	G->code[jmp + 1] = pc(G);
+	if (I->top) emit_block(G, I, I->top);
+	else emit_steps(G, I, &I->then, &I->targets);
 }
 
 /*

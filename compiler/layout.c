@@ -46,6 +46,9 @@ struct Parser {
 	Token end;
 	Stmt *head, *tail;
 	char *text;        /* spelling of the last token given */
+	int skip;          /* drop the block after the line just ended (a syntax error) ... */
+	int skip_indent;   /* ... the lines deeper than this, and the elif and else lines at it */
+	Loc bad;           /* the last line whose indentation was reported */
 };
 
 static char *real_path(const char *p)
@@ -78,6 +81,25 @@ void layout_append(Parser *P, Stmt *s)
 }
 
 const char *layout_token_text(Parser *P) { return P->text; }
+
+/* The parser recovered from a syntax error at the end of a line: the block indented under it,
+ * and the `elif` and `else` lines that continue it with their blocks, belong to the broken
+ * line and are dropped unread (their errors would be the same mistake again). */
+void layout_skip_block(Parser *P)
+{
+	P->skip = 1;
+	P->skip_indent = P->indents[P->nind - 1];
+}
+
+/* Was an error on l's line reported already (its indentation)? */
+int layout_reported(Parser *P, Loc l) { return P->bad.line && P->bad.file == l.file && P->bad.line == l.line; }
+
+/* Reports a bad indentation at l, once for its line. */
+static void indent_error(Parser *P, Loc l, const char *msg)
+{
+	error_at(l, "%s", msg);
+	P->bad = l;
+}
 
 static Token *peek(Parser *P, int k)
 {
@@ -313,17 +335,23 @@ static Token next_token(Parser *P)
 			return t;
 		}
 		if (!t.bol) return t;
+		if (P->skip && (t.indent > P->skip_indent || (t.indent == P->skip_indent && (t.kind == ELIF || t.kind == ELSE)))) {
+			while (t.kind != NEWLINE && t.kind != END) t = next_raw(P);
+			if (t.kind == END) P->end = t, P->at_end = 1;
+			continue;
+		}
+		P->skip = 0;
 		int top = P->indents[P->nind - 1];
 		if (t.indent > top) {
 			if (!P->last_colon || P->nind == (int)(sizeof P->indents / sizeof P->indents[0])) {
-				error_at(t.loc, "unexpected indentation");
+				indent_error(P, t.loc, "unexpected indentation");
 				return t;
 			}
 			P->indents[P->nind++] = t.indent;
 		} else if (t.indent < top) {
 			int n = 0;
 			while (P->nind > 1 && t.indent < P->indents[P->nind - 1]) P->nind--, n++;
-			if (t.indent != P->indents[P->nind - 1]) error_at(t.loc, "indentation does not match any enclosing block");
+			if (t.indent != P->indents[P->nind - 1]) indent_error(P, t.loc, "indentation does not match any enclosing block");
 			P->dedents = n - 1;
 		} else {
 			return t;

@@ -17,7 +17,7 @@
 
 static const struct { const char *s; int tok; } keywords[] = {
 	{ "object", OBJECT }, { "def", DEF }, { "global", GLOBAL }, { "rule", RULE }, { "for", FOR },
-	{ "if", IF }, { "else", ELSE }, { "assert", ASSERT }, { "vector", VECTOR }, { "inc", INC },
+	{ "if", IF }, { "elif", ELIF }, { "else", ELSE }, { "assert", ASSERT }, { "vector", VECTOR }, { "inc", INC },
 	{ "till", TILL }, { "by", BY }, { "watch", WATCH }, { "and", AND }, { "or", OR }, { "not", NOT },
 	{ "using", USING }, { "stop", STOP }, { "when", WHEN },
 	/* protected names (spec 2.2.3) that no statement uses */

@@ -89,13 +89,6 @@ static int users(Loc l)
 	return !(lib && *lib && !strncmp(path, lib, strlen(lib)));
 }
 
-static int has(const Vec *v, const void *x)
-{
-	for (int i = 0; i < v->n; i++)
-		if (v->v[i] == x) return 1;
-	return 0;
-}
-
 /* Once per place: several objects, or a shape's members, share a statement or a kind's line. */
 static int first_at(Vec *seen, Loc l)
 {
@@ -135,13 +128,13 @@ void lint_model(Model *M)
 		Object *o = M->objects.v[i];
 		for (int j = 0; j < o->props.n; j++) {
 			Var *p = o->props.v[j];
-			if (p->from_kind || p->state || has(&read, sema_canon(p)) || !users(p->loc)) continue;
+			if (p->from_kind || p->state || vec_has(&read, sema_canon(p)) || !users(p->loc)) continue;
 			if (!first_at(&seen, p->loc)) continue;
 			const char **c = xalloc(((size_t)o->props.n + 1) * sizeof *c);
 			int nc = 0;
 			for (int k = 0; k < o->props.n; k++) {
 				Var *q = o->props.v[k];
-				if (q != p && (q->from_kind || has(&read, sema_canon(q)) || q->state)) c[nc++] = q->name;
+				if (q != p && (q->from_kind || vec_has(&read, sema_canon(q)) || q->state)) c[nc++] = q->name;
 			}
 			const char *s = suggest_name(p->name, c, nc);
 			if (s) warn_at(p->loc, "property '%s' of object '%s' is never read; did you mean '%s'?", p->name, o->name, s);

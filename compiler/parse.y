@@ -35,6 +35,8 @@ Parser *layout_new(int file);
 Stmt *layout_result(Parser *P);
 void layout_append(Parser *P, Stmt *s);
 const char *layout_token_text(Parser *P);
+void layout_skip_block(Parser *P);
+int layout_reported(Parser *P, Loc l);
 }
 
 %code {
@@ -123,6 +125,24 @@ static Eqn *eqn(Expr *lhs, int deriv, Expr *rhs, YYLoc l)
 	q->text = text_from(q->loc);
 	return q;
 }
+/* The step holding the block `if cond:` at l with the steps then and the else part rest (NULL: none). */
+static Eqn *cond_block(YYLoc l, Expr *cond, Eqn *then, If *rest)
+{
+	If *f = xalloc(sizeof *f);
+	f->loc = LOC(l);
+	f->text = text_from(f->loc);
+	f->cond = cond;
+	f->then = then;
+	if (rest) {
+		f->els = rest->els;
+		f->else_loc = rest->else_loc;
+	}
+	Eqn *q = xalloc(sizeof *q);
+	q->loc = f->loc;
+	q->text = f->text;
+	q->nest = f;
+	return q;
+}
 static Expr *call(ExprKind k, Expr *recv, char *name, Vec *args, YYLoc l)
 {
 	Expr *e = ast_expr(k, LOC(l));
@@ -150,6 +170,7 @@ static void yyerror(YYLoc *l, Parser *P, const char *msg);
 	Token *tok;
 	Expr *expr;
 	Eqn *eqn;
+	If *cond;
 	Stmt *stmt;
 	ObjRef *ref;
 	WatchItem *watch;
@@ -169,7 +190,7 @@ static void yyerror(YYLoc *l, Parser *P, const char *msg);
 %token USING "'using'"
 %token OBJECT "'object'" DEF "'def'" GLOBAL "'global'" RULE "'rule'" FOR "'for'"
 %token STOP "'stop'" WHEN "'when'"
-%token IF "'if'" ELSE "'else'" ASSERT "'assert'" VECTOR "'vector'" INC "'inc'"
+%token IF "'if'" ELIF "'elif'" ELSE "'else'" ASSERT "'assert'" VECTOR "'vector'" INC "'inc'"
 %token TILL "'till'" BY "'by'" WATCH "'watch'" AND "'and'" OR "'or'" NOT "'not'"
 %token EQEQ "'=='" NE "'!='" LE "'<='" GE "'>='"
 
@@ -183,7 +204,8 @@ static void yyerror(YYLoc *l, Parser *P, const char *msg);
 %right '^'
 
 %type <expr> expr postfix primary
-%type <eqn> eqn eqns
+%type <eqn> eqn steps step body ifblock
+%type <cond> elsepart
 %type <stmt> stmt block defprop defprops
 %type <vec> args args1 names objrefs watches
 %type <ref> objref
@@ -202,7 +224,7 @@ line:
 	  NEWLINE
 	| stmt NEWLINE       { if ($1) layout_append(P, $1); }
 	| block              { if ($1) layout_append(P, $1); }
-	| error NEWLINE      { yyerrok; }
+	| error NEWLINE      { yyerrok; layout_skip_block(P); }
 	;
 
 stmt:
@@ -259,19 +281,30 @@ block:
 	  DEF IDENT ':' NEWLINE INDENT defprops DEDENT {
 		$$ = stmt(S_DEF, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->body = stmts_reversed($6);
 	}
-	| RULE attr ':' IF expr ':' NEWLINE INDENT eqns DEDENT {
-		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->cond = $5; $$->eqns = eqns_reversed($9);
+	| RULE attr ':' ifblock {
+		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->eqns = $4;
 	}
-	| RULE attr ':' IF expr ':' NEWLINE INDENT eqns DEDENT ELSE ':' NEWLINE INDENT eqns DEDENT {
-		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->cond = $5; $$->eqns = eqns_reversed($9); $$->else_eqns = eqns_reversed($15); $$->has_else = 1;
+	| RULE attr FOR objrefs ':' ifblock {
+		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->fors = $4; $$->has_for = 1; $$->eqns = $6;
 	}
-	| RULE attr FOR objrefs ':' IF expr ':' NEWLINE INDENT eqns DEDENT {
-		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->fors = $4; $$->has_for = 1; $$->cond = $7; $$->eqns = eqns_reversed($11);
+	;
+
+/* A conditional block, as one step (an Eqn holding it); `elif` is a block nested as the else part. */
+ifblock:
+	  IF expr ':' body elsepart { $$ = cond_block(@1, $2, $4, $5); }
+	;
+
+/* The else part of a block: els and else_loc of an If (NULL: none). */
+elsepart:
+	  %empty             { $$ = NULL; }
+	| ELSE ':' body      { $$ = xalloc(sizeof *$$); $$->els = $3; $$->else_loc = LOC(@1); }
+	| ELIF expr ':' body elsepart {
+		$$ = xalloc(sizeof *$$); $$->els = cond_block(@1, $2, $4, $5); $$->els->nest->elif = 1;
 	}
-	| RULE attr FOR objrefs ':' IF expr ':' NEWLINE INDENT eqns DEDENT ELSE ':' NEWLINE INDENT eqns DEDENT {
-		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->fors = $4; $$->has_for = 1; $$->cond = $7; $$->eqns = eqns_reversed($11);
-		$$->else_eqns = eqns_reversed($17); $$->has_else = 1;
-	}
+	;
+
+body:
+	  NEWLINE INDENT steps DEDENT { $$ = eqns_reversed($3); }
 	;
 
 defprops:
@@ -286,12 +319,18 @@ defprop:
 	| VECTOR IDENT '=' expr NEWLINE {
 		$$ = stmt(S_PROP, @$); $$->prop = $2; $$->prop_loc = LOC(@2); $$->value = $4; $$->isvec = 1;
 	}
-	| error NEWLINE { $$ = NULL; yyerrok; }
+	| error NEWLINE { $$ = NULL; yyerrok; layout_skip_block(P); }
 	;
 
-eqns:
+steps:
+	  step               { $$ = $1; }
+	| steps step         { $$ = $1; if ($2) { $2->next = $$; $$ = $2; } } /* backwards: reversed by body */
+	;
+
+step:
 	  eqn NEWLINE        { $$ = $1; }
-	| eqns eqn NEWLINE   { $$ = $2; $$->next = $1; } /* backwards: reversed by block */
+	| ifblock            { $$ = $1; }
+	| error NEWLINE      { $$ = NULL; yyerrok; layout_skip_block(P); }
 	;
 
 eqn:
@@ -389,6 +428,15 @@ args1:
 
 %%
 
+/* Is l the first token of its line? */
+static int starts_line(Loc l)
+{
+	const char *line = src_line(l.file, l.line);
+	for (int c = 0; c < l.col - 1 && line[c]; c++)
+		if (line[c] != ' ') return 0;
+	return 1;
+}
+
 static void yyerror(YYLoc *l, Parser *P, const char *msg)
 {
 	(void)P;
@@ -402,7 +450,16 @@ static int yyreport_syntax_error(const yypcontext_t *ctx, Parser *P)
 {
 	yysymbol_kind_t got = yypcontext_token(ctx);
 	Loc l = LOC(*yypcontext_location(ctx));
-	if (got == YYSYMBOL_LEXERROR) return 0; /* the scanner reported it */
+	if (got == YYSYMBOL_LEXERROR || layout_reported(P, l)) return 0; /* the scanner or the layout reported it */
+	if ((got == YYSYMBOL_ELIF || got == YYSYMBOL_ELSE) && starts_line(l)) {
+		error_at(l, "'%s' without an 'if' block before it at this indentation ('elif' and 'else' line up with "
+		            "their 'if', or with 'rule' for the rule's own)", got == YYSYMBOL_ELIF ? "elif" : "else");
+		return 0;
+	}
+	if (got == YYSYMBOL_IF && starts_line(l)) {
+		error_at(l, "an 'if' block belongs to a conditional rule ('rule: if CONDITION:', or nested in one of its branches)");
+		return 0;
+	}
 	yysymbol_kind_t exp[6];
 	int n = yypcontext_expected_tokens(ctx, exp, 6);
 	int wants_name = 0;

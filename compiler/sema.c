@@ -194,10 +194,7 @@ typedef struct Ctx {
 
 static void add_unique(Vec *v, void *x)
 {
-	if (!v) return;
-	for (int i = 0; i < v->n; i++)
-		if (v->v[i] == x) return;
-	vec_push(v, x);
+	if (v && !vec_has(v, x)) vec_push(v, x);
 }
 
 static int is_predefined(const char *n)
@@ -771,12 +768,37 @@ static void build_objects(Stmt *stmts)
 	}
 }
 
+/* ---- the expressions of a statement ---- */
+
+/* A function of one expression (NULL for none) and a context; 0 stops a walk. */
+typedef int (*ExprFn)(Expr *x, void *ctx);
+
+/* Calls f on both sides of each equation of steps q and on the condition of each block, at every
+ * depth. Returns 0 as soon as f does, else 1. */
+static int eqns_each(Eqn *q, ExprFn f, void *ctx)
+{
+	for (; q; q = q->next) {
+		if (q->nest) {
+			if (!f(q->nest->cond, ctx) || !eqns_each(q->nest->then, f, ctx) || !eqns_each(q->nest->els, f, ctx)) return 0;
+		} else if (!f(q->lhs, ctx) || !f(q->rhs, ctx)) {
+			return 0;
+		}
+	}
+	return 1;
+}
+
+/* Calls f on every expression of statement s: its condition, its call, its steps'. As eqns_each. */
+static int stmt_each(Stmt *s, ExprFn f, void *ctx)
+{
+	return f(s->cond, ctx) && f(s->call, ctx) && eqns_each(s->eqns, f, ctx);
+}
+
 /* ---- shapes ---- */
 
-/* Marks in named the objects expression x names (NAME.PROP). */
-static void mark_named(Expr *x, Map *named)
+/* Marks in named (a Map) the objects expression x names (NAME.PROP). Returns 1. */
+static int mark_named(Expr *x, void *named)
 {
-	if (!x) return;
+	if (!x) return 1;
 	if (x->kind == E_FIELD && x->a->kind == E_NAME) {
 		Object *o = map_get(&objects_by_name, x->a->name);
 		if (o) map_put(named, o->name, o);
@@ -784,6 +806,7 @@ static void mark_named(Expr *x, Map *named)
 	mark_named(x->a, named);
 	mark_named(x->b, named);
 	for (int i = 0; i < x->nargs; i++) mark_named(x->args[i], named);
+	return 1;
 }
 
 /*
@@ -798,13 +821,7 @@ static void build_shapes(Stmt *start)
 	Map named = { 0 }, by_sig = { 0 };
 	for (int i = 0; i < M->stmts.n; i++) { /* the rules and assertions */
 		Stmt *s = M->stmts.v[i];
-		mark_named(s->cond, &named);
-		mark_named(s->call, &named);
-		for (int b = 0; b < 2; b++)
-			for (Eqn *q = b ? s->else_eqns : s->eqns; q; q = q->next) {
-				mark_named(q->lhs, &named);
-				mark_named(q->rhs, &named);
-			}
+		stmt_each(s, mark_named, &named);
 		for (int i = 0; i < s->fors.n; i++) {
 			ObjRef *r = s->fors.v[i];
 			Object *o = r->name ? map_get(&objects_by_name, r->name)
@@ -886,27 +903,28 @@ static int reads_rf(Expr *x)
 	return 0;
 }
 
+/* Raises *(int *)most to x's highest $n. Returns 1. */
+static int raise_dollar(Expr *x, void *most)
+{
+	int k = max_dollar(x);
+	if (k > *(int *)most) *(int *)most = k;
+	return 1;
+}
+
 static int stmt_max_dollar(Stmt *s)
 {
-	int m = max_dollar(s->cond);
-	if (max_dollar(s->call) > m) m = max_dollar(s->call);
-	for (int b = 0; b < 2; b++)
-		for (Eqn *q = b ? s->else_eqns : s->eqns; q; q = q->next) {
-			int k = max_dollar(q->lhs), r = max_dollar(q->rhs);
-			if (k > m) m = k;
-			if (r > m) m = r;
-		}
+	int m = 0;
+	stmt_each(s, raise_dollar, &m);
 	return m;
 }
 
-static int stmt_reads_rf(Stmt *s)
+static int no_rf(Expr *x, void *ctx)
 {
-	if (reads_rf(s->cond)) return 1;
-	for (int b = 0; b < 2; b++)
-		for (Eqn *q = b ? s->else_eqns : s->eqns; q; q = q->next)
-			if (reads_rf(q->lhs) || reads_rf(q->rhs)) return 1;
-	return 0;
+	(void)ctx;
+	return !reads_rf(x);
 }
+
+static int stmt_reads_rf(Stmt *s) { return !stmt_each(s, no_rf, NULL); }
 
 /* Does every name the statement reads exist for this binding? (Without reporting.) Each name is
  * checked on one object of the binding; a NULL in bind passes every name checked on it. */
@@ -932,13 +950,18 @@ static int names_apply(Expr *x, Object **bind, int nbind, const char **missing)
 	return 1;
 }
 
+typedef struct Applies { Object **bind; int nbind; const char **missing; } Applies;
+
+static int applies(Expr *x, void *ctx)
+{
+	Applies *a = ctx;
+	return names_apply(x, a->bind, a->nbind, a->missing);
+}
+
 static int stmt_applies(Stmt *s, Object **bind, int nbind, const char **missing)
 {
-	if (!names_apply(s->cond, bind, nbind, missing) || !names_apply(s->call, bind, nbind, missing)) return 0;
-	for (int b = 0; b < 2; b++)
-		for (Eqn *q = b ? s->else_eqns : s->eqns; q; q = q->next)
-			if (!names_apply(q->lhs, bind, nbind, missing) || !names_apply(q->rhs, bind, nbind, missing)) return 0;
-	return 1;
+	Applies a = { bind, nbind, missing };
+	return stmt_each(s, applies, &a);
 }
 
 /* The bindings of a rule: $0 any object, $1..$k other objects in ascending order (spec 2.2.1).
@@ -1307,14 +1330,42 @@ static void register_temp(Var *t)
 	vec_push(&M->temps, t);
 }
 
-/* A property of the instance's objects or a global within a few edits of name (a misspelling), or NULL. */
-static const char *near_name(Inst *I, const char *name)
+/* What instance I may have meant by u, a temporary no rule determines: a property of its objects
+ * or a global within a few edits of its name (a misspelling), or another object's temporary of that
+ * name (OBJECT.NAME); NULL if nothing is close. */
+static const char *near_name(Inst *I, Var *u)
 {
 	Vec c = { 0 };
 	for (int b = 0; b < I->nbind; b++)
 		for (int j = 0; j < I->bind[b]->props.n; j++) vec_push(&c, ((Var *)I->bind[b]->props.v[j])->name);
 	for (int j = 0; j < M->globals.n; j++) vec_push(&c, ((Var *)M->globals.v[j])->name);
-	return suggest_name(name, (const char *const *)c.v, c.n);
+	const char *s = suggest_name(u->name, (const char *const *)c.v, c.n);
+	for (int j = 0; !s && j < M->temps.n; j++) {
+		Var *t = M->temps.v[j];
+		if (t != u && !t->pair && t->obj && t->obj != u->obj && !strcmp(t->name, u->name) && determined(t))
+			s = xprintf("%s.%s", t->obj->name, t->name);
+	}
+	return s;
+}
+
+/* Where expression e first reads u, or NULL. */
+static RExpr *find_read(RExpr *e, Var *u)
+{
+	if (!e) return NULL;
+	if (e->k == R_VAR) return e->var == u ? e : NULL;
+	for (int i = 0; i < e->n; i++) {
+		RExpr *r = find_read(e->a[i], u);
+		if (r) return r;
+	}
+	return NULL;
+}
+
+/* The place of u in an equation of sides lhs and rhs (at), as a diagnostic points at it. */
+static Loc read_loc(RExpr *lhs, RExpr *rhs, Var *u, Loc at)
+{
+	RExpr *r = find_read(lhs, u);
+	if (!r) r = find_read(rhs, u);
+	return r ? r->loc : at;
 }
 
 /*
@@ -1350,23 +1401,24 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 		for (int i = 0; i < reads.n; i++) explain_det(reads.v[i]);
 		return NULL;
 	}
-	for (int i = 0; i < reads.n; i++) {
+	Var *other = NULL; /* a temporary besides the target that nothing determines: two unknowns */
+	for (int i = 0; i < reads.n && !other; i++) {
 		Var *v = reads.v[i];
-		if (v != x && v->kind == V_TEMP && !determined(v)) {
-			/* two unknowns, one of them most often a misspelt property or global */
-			for (int k = 0; k < 2; k++) {
-				Var *u = k ? v : x;
-				const char *s = u->kind == V_TEMP ? near_name(I, u->name) : NULL;
-				if (s) {
-					error_at(q->loc, "unknown name '%s' in rule \"%s\"%s%s; did you mean '%s'?", u->name, q->text,
-					         I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", s);
-					return NULL;
-				}
-			}
-			error_at(q->loc, "rule \"%s\" is unresolvable%s%s: it solves for %s but also reads %s, which no earlier rule determines",
-			         q->text, I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", x->name, v->name);
-			return NULL;
-		}
+		if (v != x && v->kind == V_TEMP && !determined(v)) other = v;
+	}
+	if (other) {
+		/* the one the equation defines is a bare name on its left side (else the target chosen); the
+		   other is unknown, most often a misspelling or another object's temporary */
+		Var *want = lhs->k == R_VAR && lhs->var == other ? other : x, *u = want == other ? x : other;
+		const char *s = near_name(I, u);
+		Loc at = read_loc(lhs, rhs, u, q->loc);
+		if (s)
+			error_at(at, "unknown name '%s' in rule \"%s\"%s%s; did you mean '%s'?", u->name, q->text,
+			         I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", s);
+		else
+			error_at(at, "rule \"%s\" is unresolvable%s%s: it solves for %s but also reads %s, which no earlier rule determines",
+			         q->text, I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", want->name, u->name);
+		return NULL;
 	}
 	/* A new temporary takes its type from the other side of its equation. */
 	if (x->kind == V_TEMP && !map_get(&temps, x->key)) {
@@ -1419,11 +1471,11 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 
 static RExpr *build_cond(Inst *I, Expr *cond, const char *what)
 {
-	Vec pending = { 0 }, rf = { 0 };
+	Vec reads = { 0 }, pending = { 0 }, rf = { 0 };
 	Ctx C = { 0 };
 	C.bind = I->bind;
 	C.nbind = I->nbind;
-	C.reads = &I->reads;
+	C.reads = &reads;
 	C.rf = &rf;
 	C.pending = &pending;
 	C.key_nbind = I->st->has_for ? 1 : I->nbind;
@@ -1433,12 +1485,13 @@ static RExpr *build_cond(Inst *I, Expr *cond, const char *what)
 		error_at(cond->loc, "%s must be a condition (a comparison)", what);
 		return NULL;
 	}
-	for (int i = 0; i < I->reads.n; i++) {
-		Var *v = I->reads.v[i];
+	for (int i = 0; i < reads.n; i++) {
+		Var *v = reads.v[i];
 		if (v->kind == V_TEMP && !determined(v)) {
-			error_at(cond->loc, "%s reads '%s', which no rule determines", what, v->name);
+			error_at(read_loc(r, NULL, v, cond->loc), "%s reads '%s', which no rule determines", what, v->name);
 			return NULL;
 		}
+		add_unique(&I->reads, v);
 	}
 	for (int i = 0; i < rf.n; i++) add_unique(&I->rf_reads, rf.v[i]);
 	return r;
@@ -1448,30 +1501,74 @@ static int stmt_src(Stmt *s) { return add_src(s->loc, s->text); }
 
 static Vec *cur_insts;
 
+static Branch *resolve_block(Inst *I, If *f, Vec *flat0, Vec *flat1);
+
+/* Resolves the steps q of a conditional block of I into out, each assignment also into flat.
+ * Returns 0 after an error. */
+static int resolve_steps(Inst *I, Eqn *q, Vec *out, Vec *flat)
+{
+	for (; q; q = q->next) {
+		if (q->nest) {
+			Assign *a = xalloc(sizeof *a);
+			a->nest = resolve_block(I, q->nest, flat, flat);
+			if (!a->nest) return 0;
+			a->loc = q->loc;
+			a->text = q->text;
+			vec_push(out, a);
+			continue;
+		}
+		if (q->deriv) {
+			error_at(q->loc, "a derivative rule cannot be conditional");
+			return 0;
+		}
+		if (!resolve_eqn(I, q, out, add_src(q->loc, q->text))) return 0;
+		vec_push(flat, out->v[out->n - 1]);
+	}
+	return 1;
+}
+
+/* Adds to v (once each) the variables steps determine: their assignments' and their blocks'. */
+void sema_steps_targets(const Vec *steps, Vec *v)
+{
+	for (int i = 0; i < steps->n; i++) {
+		Assign *a = steps->v[i];
+		if (!a->nest) add_unique(v, a->var);
+		for (int k = 0; a->nest && k < a->nest->targets.n; k++) add_unique(v, a->nest->targets.v[k]);
+	}
+}
+
+/* Resolves conditional block f of I; its assignments, at every depth, go also to flat0 (under
+ * its condition) and flat1 (not). Returns NULL after an error. */
+static Branch *resolve_block(Inst *I, If *f, Vec *flat0, Vec *flat1)
+{
+	Branch *B = xalloc(sizeof *B);
+	B->ast = f;
+	B->cond = build_cond(I, f->cond, "the condition of a rule");
+	if (!B->cond) return NULL;
+	B->src = add_src(f->loc, f->text);
+	I->cond = I->cond ? rop(CSF_OP_AND, 0, f->loc, I->cond, B->cond, NULL) : B->cond;
+	I->cond->isbool = 1;
+	for (int b = 0; b < 2; b++) {
+		if (!resolve_steps(I, b ? f->els : f->then, &B->steps[b], b ? flat1 : flat0)) return NULL;
+		sema_steps_targets(&B->steps[b], &B->targets);
+		/* the other branch must not see this branch's targets as determined */
+		for (int i = 0; i < B->targets.n; i++) ((Var *)B->targets.v[i])->det = NULL;
+	}
+	/* after the block every variable it determines is defined: zero on the paths that do not state it */
+	for (int i = 0; i < B->targets.n; i++) ((Var *)B->targets.v[i])->det = I;
+	return B;
+}
+
 static void inst_rule(Stmt *s, Object **bind, int nbind)
 {
 	Inst *I = new_inst(s, bind, nbind);
 	I->src = cur_src;
-	if (!s->cond) {
+	if (!s->eqns->nest) {
 		if (!resolve_eqn(I, s->eqns, &I->then, I->src)) return;
 	} else {
 		if (shaped && !s->has_for && nbind > 1) unshape("a conditional rule over pairs ($1)");
-		I->cond = build_cond(I, s->cond, "the condition of a rule");
-		if (!I->cond) return;
-		for (int b = 0; b < 2; b++) {
-			Vec *br = b ? &I->els : &I->then;
-			for (Eqn *q = b ? s->else_eqns : s->eqns; q; q = q->next) {
-				if (q->deriv) {
-					error_at(q->loc, "a derivative rule cannot be conditional");
-					return;
-				}
-				if (!resolve_eqn(I, q, br, add_src(q->loc, q->text))) return;
-			}
-			/* the other branch must not see this branch's targets as determined */
-			for (int i = 0; i < br->n; i++) ((Assign *)br->v[i])->var->det = NULL;
-		}
-		for (int i = 0; i < I->targets.n; i++) ((Var *)I->targets.v[i])->det = I;
-		/* a variable introduced in one branch is defined in all (zero where not stated) */
+		I->top = resolve_block(I, s->eqns->nest, &I->then, &I->els);
+		if (!I->top) return;
 	}
 	if (I->isF)
 		for (int i = 0; i < I->targets.n; i++) {
@@ -1832,9 +1929,10 @@ static void resolve_deriv(Inst *I)
 	for (int i = 0; i < I->reads.n; i++) {
 		Var *w = I->reads.v[i];
 		if (w->kind == V_TEMP && !determined(w)) {
-			const char *s = near_name(I, w->name);
-			if (s) error_at(q->loc, "unknown name '%s' in rule \"%s\"; did you mean '%s'?", w->name, q->text, s);
-			else error_at(q->loc, "rule \"%s\" is unresolvable: it reads '%s', which no rule determines", q->text, w->name);
+			const char *s = near_name(I, w);
+			Loc at = read_loc(r, NULL, w, q->loc);
+			if (s) error_at(at, "unknown name '%s' in rule \"%s\"; did you mean '%s'?", w->name, q->text, s);
+			else error_at(at, "rule \"%s\" is unresolvable: it reads '%s', which no rule determines", q->text, w->name);
 			return;
 		}
 	}
@@ -2083,7 +2181,7 @@ static Model *resolve(Stmt *stmts)
 	/* Derivative rules first: their targets are state, determined from the start. */
 	for (int i = 0; i < rules.n; i++) {
 		Stmt *s = rules.v[i];
-		if (s->eqns && !s->cond && s->eqns->deriv) {
+		if (s->eqns && s->eqns->deriv) {
 			cur_src = stmt_src(s);
 			for_each_binding(s, inst_deriv);
 		}
@@ -2097,7 +2195,7 @@ static Model *resolve(Stmt *stmts)
 	Vec order = { 0 }, deferred = { 0 };
 	for (int i = 0; i < rules.n; i++) {
 		Stmt *s = rules.v[i];
-		if (s->eqns && !s->cond && s->eqns->deriv) continue;
+		if (s->eqns && s->eqns->deriv) continue;
 		if (i < lastF && stmt_reads_rf(s) && !(s->attr && strcmp(s->attr, "F") == 0)) vec_push(&deferred, s);
 		else vec_push(&order, s);
 		if (i == lastF)
@@ -2175,6 +2273,34 @@ Model *sema_run(Stmt *stmts)
 
 /* ---- --explain ---- */
 
+/* Writes conditional block B, indented by depth levels: each branch's line with its equations and
+ * the variables it leaves zero, then its nested blocks, deeper; an elif at the depth of its if. */
+static void explain_block(FILE *f, Branch *B, int depth)
+{
+	for (int b = 0; b < 2; b++) {
+		Vec *st = &B->steps[b], set = { 0 };
+		Assign *one = st->n == 1 ? st->v[0] : NULL;
+		if (b && one && one->nest && one->nest->ast->elif) {
+			explain_block(f, one->nest, depth);
+			continue;
+		}
+		if (!b) fprintf(f, "%*sline %d: %s", 2 * depth, "", B->ast->loc.line, B->ast->text);
+		else if (B->ast->els) fprintf(f, "%*sline %d: else:", 2 * depth, "", B->ast->else_loc.line);
+		else fprintf(f, "%*sotherwise:", 2 * depth, "");
+		const char *sep = " ";
+		for (int i = 0; i < st->n; i++) {
+			Assign *a = st->v[i];
+			if (!a->nest) fprintf(f, "%s%s", sep, a->text), sep = "; ";
+		}
+		sema_steps_targets(st, &set);
+		for (int i = 0; i < B->targets.n; i++)
+			if (!vec_has(&set, B->targets.v[i])) fprintf(f, "%s%s = 0 (not stated)", sep, ((Var *)B->targets.v[i])->name), sep = "; ";
+		fputc('\n', f);
+		for (int i = 0; i < st->n; i++)
+			if (((Assign *)st->v[i])->nest) explain_block(f, ((Assign *)st->v[i])->nest, depth + 1);
+	}
+}
+
 void sema_explain(Model *Mo, FILE *f)
 {
 	for (int i = 0; i < Mo->stmts.n; i++) {
@@ -2183,10 +2309,12 @@ void sema_explain(Model *Mo, FILE *f)
 		fprintf(f, "%s:%d: %s%s\n", src->path, s->loc.line,
 		        s->kind == S_ASSERT ? "assert " : s->kind == S_STOP ? "stop when " : "", s->text);
 		int n = 0;
+		Inst *cond = NULL; /* an instance of a conditional rule: its branches are every instance's */
 		for (int k = 0; k < Mo->insts.n; k++) {
 			Inst *I = Mo->insts.v[k];
 			if (I->st != s) continue;
 			n++;
+			if (I->top && !cond) cond = I;
 			Shape *S = Mo->shaped && !s->has_for ? I->bind[0]->shape : NULL;
 			fprintf(f, "  for %s", I->bind[0]->name);
 			if (S && S->n > 1) fprintf(f, " and the %d other object%s of its shape", S->n - 1, S->n > 2 ? "s" : "");
@@ -2205,6 +2333,10 @@ void sema_explain(Model *Mo, FILE *f)
 			else if (!I->isassert && !I->isstop)
 				fprintf(f, "; computed in %s", I->needed[0] && I->needed[1] ? "rhs and out" : I->needed[0] ? "rhs" : "out");
 			fputc('\n', f);
+		}
+		if (cond) {
+			fprintf(f, "  branches%s:\n", cond->needed[CSF_SEC_RHS] ? " (their comparisons <, <=, >, >= are events, located in time)" : "");
+			explain_block(f, cond->top, 2);
 		}
 		n += explain_contacts(Mo, s, f);
 		if (!n) fprintf(f, "  applies to no %s\n", s->call ? "pair that can touch" : "object");

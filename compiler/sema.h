@@ -87,7 +87,9 @@ struct RExpr {
 
 enum { DK_UNKNOWN = 0, DK_FREE, DK_KNOWN };
 
-/* An assignment a rule instance performs: var := e. */
+typedef struct Branch Branch;
+
+/* An assignment a rule instance performs: var := e; or (nest set, var NULL) a conditional block. */
 typedef struct Assign {
 	Var *var;
 	RExpr *e;
@@ -95,15 +97,28 @@ typedef struct Assign {
 	RExpr *lhs, *rhs; /* the equation as written (for the dimension check) */
 	Loc loc;
 	char *text;
+	Branch *nest;
 } Assign;
+
+/* A conditional block of a rule instance, resolved: its steps when cond holds (steps[0]) and
+ * when not (steps[1]); a variable one path determines is zero on the paths that do not. */
+struct Branch {
+	If *ast;
+	RExpr *cond;
+	Vec steps[2];    /* of Assign* */
+	Vec targets;     /* of Var*: what it determines, on one path or more */
+	int src;         /* its `if` or `elif` line (what its events name) */
+};
 
 struct Inst {
 	Stmt *st;
 	Object **bind;   /* $0, $1, ... */
 	int nbind;
 	int isassert, isstop, isderiv, isF;
-	RExpr *cond;     /* conditional rule or assertion */
-	Vec then, els;   /* of Assign*: the branches (a plain rule uses then) */
+	RExpr *cond;     /* assertion, stop; conditional rule: all its conditions joined by 'and' (dims.c) */
+	Branch *top;     /* conditional rule: its block */
+	Vec then, els;   /* of Assign*: a plain rule's one (then); a conditional rule's, at every depth,
+	                    under its first condition (then) and not (els) */
 	Vec targets;     /* of Var*: every variable it determines (union of branches) */
 	Vec reads;       /* of Var*: every variable it reads */
 	Vec rf_reads;    /* of Object*: whose RF it reads */
@@ -165,6 +180,10 @@ Model *sema_run(Stmt *stmts);
 Var *sema_canon(Var *v);
 /* Is v an array over its shape's members (a property, or a temporary of one object)? */
 int sema_per_member(const Var *v);
+
+/* Adds to v (once each) the variables the steps of a branch determine: their assignments' and
+ * their blocks' (gen.c gives the others zero). */
+void sema_steps_targets(const Vec *steps, Vec *v);
 
 /* Writes what each rule solves for and which rules were left out (csfc --explain). */
 void sema_explain(Model *M, FILE *f);

@@ -119,6 +119,13 @@ void vec_push(Vec *a, void *x)
 	a->v[a->n++] = x;
 }
 
+int vec_has(const Vec *a, const void *x)
+{
+	for (int i = 0; i < a->n; i++)
+		if (a->v[i] == x) return 1;
+	return 0;
+}
+
 Expr *ast_expr(ExprKind k, Loc l)
 {
 	Expr *e = xalloc(sizeof *e);

@@ -57,10 +57,71 @@ START_TEST(test_blocks)
 	ck_assert(s->body->next->isvec);
 	Stmt *r = s->next->next;
 	ck_assert_int_eq(r->kind, S_RULE);
-	ck_assert_ptr_nonnull(r->cond);
-	ck_assert_ptr_nonnull(r->eqns->next);
-	ck_assert(r->has_else);
-	ck_assert_ptr_null(r->else_eqns->next);
+	If *f = r->eqns->nest;
+	ck_assert_ptr_nonnull(f);
+	ck_assert_ptr_nonnull(f->cond);
+	ck_assert_ptr_nonnull(f->then->next);
+	ck_assert_ptr_nonnull(f->els);
+	ck_assert_ptr_null(f->els->next);
+	ck_assert_int_eq(f->else_loc.line, 8);
+}
+END_TEST
+
+/* elif chains, nested blocks with their own elif and else, and what each block holds */
+START_TEST(test_elif_and_nesting)
+{
+	char *d;
+	Stmt *s = parse_string("rule: if t < 2:\n    u = 1\nelif t < 5:\n    if x > 1:\n        u = 2\n"
+	                       "    elif x > 0:\n        u = 3\n    else:\n        u = 4\n    w = 5\nelse:\n    u = 0\n"
+	                       "inc t\n",
+	                       &d);
+	ck_assert_msg(diag_errors == 0, "%s", d);
+	free(d);
+	If *f = s->eqns->nest;
+	ck_assert_ptr_nonnull(f);
+	ck_assert_str_eq(f->text, "if t < 2:");
+	ck_assert(!f->elif && !f->then->nest && !f->then->next);
+	/* the elif: the whole else part, a block of its own */
+	ck_assert_ptr_nonnull(f->els);
+	ck_assert_ptr_null(f->els->next);
+	If *e = f->els->nest;
+	ck_assert_ptr_nonnull(e);
+	ck_assert(e->elif);
+	ck_assert_int_eq(e->loc.line, 3);
+	ck_assert_int_eq(e->else_loc.line, 11);
+	ck_assert_str_eq(e->els->text, "u = 0");
+	/* its branch: a nested block (with an elif and an else of its own), then an equation */
+	If *n = e->then->nest;
+	ck_assert_ptr_nonnull(n);
+	ck_assert_int_eq(n->loc.col, 5);
+	ck_assert_str_eq(n->then->text, "u = 2");
+	ck_assert(n->els->nest && n->els->nest->elif);
+	ck_assert_str_eq(n->els->nest->els->text, "u = 4");
+	ck_assert_str_eq(e->then->next->text, "w = 5");
+	ck_assert_ptr_null(e->then->next->next);
+}
+END_TEST
+
+/* A misplaced elif or else is one error: its block and the branches after it go with it. */
+START_TEST(test_misplaced_branches)
+{
+	static const struct { const char *src, *want; } cases[] = {
+		{ "rule: u = 1\nelif t < 5:\n    u = 3\nelse:\n    u = 0\ninc t\n", "p.csf:2:1: error: 'elif' without" },
+		{ "rule: if t < 2:\n    u = 1\n    elif t < 5:\n        u = 3\n    else:\n        u = 0\ninc t\n",
+		  "p.csf:3:5: error: 'elif' without" },
+		{ "rule: if t < 2:\n    u = 1\n        elif t < 5:\n            u = 3\ninc t\n",
+		  "p.csf:3:9: error: unexpected indentation" },
+		{ "rule: if t < 2:\n    u = 1\nelse:\n    u = 2\nelse:\n    u = 3\ninc t\n", "p.csf:5:1: error: 'else' without" },
+		{ "rule: if t < :\n    u = 1\nelif t < 5:\n    u = 3\nelse:\n    u = 0\ninc t\n", "p.csf:1:14: error: syntax error" },
+		{ "def k:\n    m = 1\n    if m > 0:\n        q = 2\n    else:\n        q = 3\nobject b: k\ninc t\n",
+		  "p.csf:3:5: error: an 'if' block belongs to a conditional rule" },
+	};
+	for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+		char *d;
+		parse_string(cases[i].src, &d);
+		ck_assert_msg(diag_errors == 1 && strstr(d, cases[i].want), "case %zu: %s", i, d);
+		free(d);
+	}
 }
 END_TEST
 
@@ -113,6 +174,8 @@ Suite *parse_suite(void)
 	TCase *tc = tcase_create("grammar");
 	tcase_add_test(tc, test_statements);
 	tcase_add_test(tc, test_blocks);
+	tcase_add_test(tc, test_elif_and_nesting);
+	tcase_add_test(tc, test_misplaced_branches);
 	tcase_add_test(tc, test_precedence);
 	tcase_add_test(tc, test_derivative_and_dollar);
 	tcase_add_test(tc, test_unit_only_after_literal);

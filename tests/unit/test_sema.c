@@ -24,6 +24,22 @@ static const struct { const char *src; const char *col; double want[3]; int vec;
 	/* conditional, the else branch: z is zero where not stated */
 	{ "object b: x = 1\nrule: if x > 2:\n    y = 1\n    z = 5\nelse:\n    y = 2\ninc t till 1 by 1 watch y, z\n", "b.y", { 2 }, 0 },
 	{ "object b: x = 1\nrule: if x > 2:\n    y = 1\n    z = 5\nelse:\n    y = 2\ninc t till 1 by 1 watch y, z\n", "b.z", { 0 }, 0 },
+	/* elif chains: the first condition that holds chooses */
+	{ "object b: x = 7\nrule: if x > 5:\n    y = 1\nelif x > 2:\n    y = 2\nelse:\n    y = 3\ninc t till 1 by 1 watch y\n", "b.y", { 1 }, 0 },
+	{ "object b: x = 3\nrule: if x > 5:\n    y = 1\nelif x > 2:\n    y = 2\nelse:\n    y = 3\ninc t till 1 by 1 watch y\n", "b.y", { 2 }, 0 },
+	{ "object b: x = 1\nrule: if x > 5:\n    y = 1\nelif x > 2:\n    y = 2\nelse:\n    y = 3\ninc t till 1 by 1 watch y\n", "b.y", { 3 }, 0 },
+	/* an elif without else: zero when no condition holds */
+	{ "object b: x = 1\nrule: if x > 5:\n    y = 1\nelif x > 2:\n    y = 2\ninc t till 1 by 1 watch y\n", "b.y", { 0 }, 0 },
+	/* nested blocks: every path defines y, z and w, zero where it does not state them */
+#define NEST(x) "object b: x = " #x "\nrule: if x > 2:\n    if x > 5:\n        y = 1\n    else:\n        y = 2\n        z = 4\n" \
+	        "    w = 6\nelse:\n    y = 3\ninc t till 1 by 1 watch y, z, w\n"
+	{ NEST(7), "b.y", { 1 }, 0 }, { NEST(7), "b.z", { 0 }, 0 }, { NEST(7), "b.w", { 6 }, 0 },
+	{ NEST(3), "b.y", { 2 }, 0 }, { NEST(3), "b.z", { 4 }, 0 }, { NEST(3), "b.w", { 6 }, 0 },
+	{ NEST(1), "b.y", { 3 }, 0 }, { NEST(1), "b.z", { 0 }, 0 }, { NEST(1), "b.w", { 0 }, 0 },
+#undef NEST
+	/* a nested condition reads what its branch determined before it */
+	{ "object b: x = 3\nrule: if x > 2:\n    k = x * 2\n    if k > 5:\n        y = 1\n    else:\n        y = 2\n"
+	  "inc t till 1 by 1 watch y\n", "b.y", { 1 }, 0 },
 	/* a rule reading RF is resolved after the F rules, wherever it stands */
 	{ "object b: m = 2\nrule: RF = a.mul(m)\nrule F: W = (0, 0, -4)\nrule F: D = (1, 0, 0)\ninc t till 1 by 1 watch a\n", "b.a.z", { -2 }, 0 },
 	{ "object b: m = 2\nrule: RF = a.mul(m)\nrule F: W = (0, 0, -4)\nrule F: D = (1, 0, 0)\ninc t till 1 by 1 watch a\n", "b.a.x", { 0.5 }, 0 },
@@ -105,6 +121,49 @@ START_TEST(test_errors_still_reported_when_unneeded)
 }
 END_TEST
 
+/* Every comparison of every block, nested or chained, is an event that names its own line. */
+START_TEST(test_block_conditions_are_events)
+{
+	csf_prog p;
+	char *d;
+	int errs = compile_string("object b: x = 0\nrule: x' = u\nrule: if t < 2:\n    u = 1\nelif t < 5:\n"
+	                          "    if x > 3:\n        u = 2\n    else:\n        u = 3\nelse:\n    u = 0\n"
+	                          "inc t till 8 by 1 watch x\n",
+	                          &p, &d);
+	ck_assert_msg(errs == 0, "%s", d);
+	free(d);
+	ck_assert_uint_eq(p.nevents, 3);
+	static const uint32_t lines[] = { 3, 5, 6 }; /* if, elif, the nested if */
+	for (uint32_t i = 0; i < 3; i++)
+		ck_assert_msg(p.srcs[p.events[i].src].line == lines[i], "event %u names line %u", i, p.srcs[p.events[i].src].line);
+	csf_prog_free(&p);
+}
+END_TEST
+
+/* The unknown name of two is the one the equation does not define, at its own column. */
+START_TEST(test_unknown_name)
+{
+	static const struct { const char *src, *want; } errs[] = {
+		/* another object's temporary */
+		{ "object a: x = 1\nobject b: y = 2\nrule for b: r2 = y * 2\nrule for a: S2r = r2 * 3\ninc t till 1 by 1 watch x\n",
+		  "t.csf:4:19: error: unknown name 'r2' in rule \"S2r = r2 * 3\" for object a; did you mean 'b.r2'?" },
+		/* a misspelt property */
+		{ "object a: mass = 1\nrule: w2 = 2 * mas\ninc t till 1 by 1 watch mass\n",
+		  "t.csf:2:16: error: unknown name 'mas' in rule \"w2 = 2 * mas\" for object a; did you mean 'mass'?" },
+		/* nothing close: no suggestion */
+		{ "object a: x = 1\nrule: w2 = 2 * zork\ninc t till 1 by 1 watch x\n",
+		  "t.csf:2:16: error: rule \"w2 = 2 * zork\" is unresolvable for object a: it solves for w2 but also reads zork" },
+	};
+	for (size_t i = 0; i < sizeof errs / sizeof errs[0]; i++) {
+		csf_prog p;
+		char *d;
+		int n = compile_string(errs[i].src, &p, &d);
+		ck_assert_msg(n == 1 && strstr(d, errs[i].want) != NULL, "case %zu: %s", i, d);
+		free(d);
+	}
+}
+END_TEST
+
 Suite *sema_suite(void)
 {
 	Suite *s = suite_create("sema");
@@ -113,6 +172,8 @@ Suite *sema_suite(void)
 	tcase_add_test(tc, test_prunes_unneeded_rules);
 	tcase_add_test(tc, test_state_variables);
 	tcase_add_test(tc, test_errors_still_reported_when_unneeded);
+	tcase_add_test(tc, test_block_conditions_are_events);
+	tcase_add_test(tc, test_unknown_name);
 	suite_add_tcase(s, tc);
 	return s;
 }

@@ -34,7 +34,7 @@ expect_error() { # NAME TEXT LINE: compiling TEXT is exit 1 with LINE on stderr,
 	else bad "$1: exit $st, $(grep ': error: ' "$T/w.err" | head -n 2)"; fi
 }
 expect_error mass 'using mechanics/mass_point\nobject ball: mass_point\nusing mechanics/rules\nrule F: W = g.mul(mass)\ninc t till 1 s by 0.1 s watch pos\n' \
-	"mass.csf:4:9: error: unknown name 'mass' in rule \"W = g.mul(mass)\" for object ball; did you mean 'm'?"
+	"mass.csf:4:19: error: unknown name 'mass' in rule \"W = g.mul(mass)\" for object ball; did you mean 'm'?"
 expect_error mps 'object ball: v = (3, 0, 4) mps\ninc t till 1 s by 0.1 s watch v\n' \
 	"mps.csf:1:28: error: unknown unit 'mps'; did you mean 'm/s'?"
 expect_error kmph 'object car: v = 50 kmph\ninc t till 1 s by 0.1 s watch v\n' \
