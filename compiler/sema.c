@@ -286,7 +286,12 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 	}
 	if (C->init) {
 		if (explicit_obj) error_at(l, "object '%s' has no property '%s' (yet)", o->name, name);
-		else error_at(l, "unknown name '%s' in an initial value", name);
+		else {
+			Unit u;
+			/* `4 /s^2` divides by a name: a unit cannot begin with '/' */
+			error_at(l, "unknown name '%s' in an initial value%s", name,
+			         unit_lookup(name, &u) ? xprintf(" ('%s' is a unit only directly after a number: 4 %s, 4 1/%s)", name, name, name) : "");
+		}
 		C->failed = 1;
 		return rconst(0, l);
 	}

@@ -82,7 +82,8 @@ const csf_unit csf_unit_table[] = {
 	{ "slug", GSL_CONST_MKSA_POUND_FORCE / GSL_CONST_MKSA_FOOT, MASS, 0, 0,
 	  "GSL_CONST_MKSA_POUND_FORCE / GSL_CONST_MKSA_FOOT (1 lbf s^2/ft)" },
 	{ "lbf", GSL_CONST_MKSA_POUND_FORCE, FORCE, 0, 0, "GSL_CONST_MKSA_POUND_FORCE" },
-	{ "pdl", GSL_CONST_MKSA_POUNDAL, FORCE, 0, 0, "GSL_CONST_MKSA_POUNDAL" },
+	{ "pdl", GSL_CONST_MKSA_POUND_MASS * GSL_CONST_MKSA_FOOT, FORCE, 0, 0,
+	  "definition (1 lb*ft/s^2, the FPS unit of force; GSL_CONST_MKSA_POUNDAL is rounded to 0.138255)" },
 	{ "mph", GSL_CONST_MKSA_MILES_PER_HOUR, SPEED, 0, 0, "GSL_CONST_MKSA_MILES_PER_HOUR" },
 	{ NULL, 0, NONE, 0, 0, NULL },
 };

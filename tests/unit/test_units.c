@@ -16,6 +16,7 @@ static const struct { const char *name; double factor; signed char dim[CSF_NDIM]
 	{ "lb", 0.45359237, { 0, 1, 0, 0 } }, { "lbf", GSL_CONST_MKSA_POUND_FORCE, { 1, 1, -2, 0 } },
 	{ "dyn", 1e-5, { 1, 1, -2, 0 } }, { "erg", 1e-7, { 2, 1, -2, 0 } }, { "mph", 0.44704, { 1, 0, -1, 0 } },
 	{ "slug", GSL_CONST_MKSA_POUND_FORCE / 0.3048, { 0, 1, 0, 0 } },
+	{ "pdl", 0.45359237 * 0.3048, { 1, 1, -2, 0 } },
 	/* electromagnetism: the ampere and the SI derived units */
 	{ "A", 1, { 0, 0, 0, 1 } },     { "C", 1, { 0, 0, 1, 1 } },      { "V", 1, { 2, 1, -3, -1 } },
 	{ "ohm", 1, { 2, 1, -3, -2 } }, { "S", 1, { -2, -1, 3, 2 } },    { "F", 1, { -2, -1, 4, 2 } },
