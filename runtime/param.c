@@ -79,13 +79,17 @@ static const char *suggestion(const char *name, const char **cands, uint32_t n, 
 	return buf;
 }
 
-/* The names of p's objects (props 0), or of the properties of object obj that the run keeps; malloc'd. */
-static const char **names_of(const csf_prog *p, uint32_t obj, int props, uint32_t *n)
+enum { GLOBALS, OBJECTS, PROPS };
+
+/* The names of p's globals, objects, or the properties of object obj that the run keeps (the
+   others NULL), *n of them; malloc'd (NULL if out of memory). */
+static const char **names_of(const csf_prog *p, int which, uint32_t obj, uint32_t *n)
 {
-	*n = props ? p->nprops : p->nobjects;
+	*n = which == GLOBALS ? p->nglobals : which == OBJECTS ? p->nobjects : p->nprops;
 	const char **c = calloc(*n + 1, sizeof *c);
 	for (uint32_t i = 0; c && i < *n; i++)
-		if (!props) c[i] = csf_str(p, p->objects[i]);
+		if (which == GLOBALS) c[i] = csf_str(p, p->globals[i].name);
+		else if (which == OBJECTS) c[i] = csf_str(p, p->objects[i]);
 		else if (p->props[i].object == obj) c[i] = csf_str(p, p->props[i].name);
 	return c;
 }
@@ -96,6 +100,7 @@ static const char **names_of(const csf_prog *p, uint32_t obj, int props, uint32_
 static int find_whole(const csf_prog *p, const char *name, csf_pref *r, char *err, size_t errlen)
 {
 	char hint[300];
+	uint32_t n;
 	const char *dot = strchr(name, '.');
 	if (!dot) {
 		for (uint32_t i = 0; i < p->nglobals; i++)
@@ -106,19 +111,18 @@ static int find_whole(const csf_prog *p, const char *name, csf_pref *r, char *er
 		for (uint32_t i = 0; i < p->nobjects; i++)
 			if (strcmp(csf_str(p, p->objects[i]), name) == 0)
 				return csf_fail(err, errlen, "'%s' is an object: name one of its properties, %s.PROP", name, name);
-		const char **c = calloc(p->nglobals + 1, sizeof *c);
-		for (uint32_t i = 0; c && i < p->nglobals; i++) c[i] = csf_str(p, p->globals[i].name);
+		const char **c = names_of(p, GLOBALS, 0, &n);
 		return csf_fail(err, errlen, "unknown name '%s': the scene has no global of that name%s", name,
-		                suggestion(name, c, p->nglobals, hint, sizeof hint));
+		                suggestion(name, c, n, hint, sizeof hint));
 	}
 	size_t on = (size_t)(dot - name);
-	uint32_t obj = UINT32_MAX, n;
+	uint32_t obj = UINT32_MAX;
 	for (uint32_t i = 0; i < p->nobjects && obj == UINT32_MAX; i++)
 		if (strlen(csf_str(p, p->objects[i])) == on && memcmp(csf_str(p, p->objects[i]), name, on) == 0) obj = i;
 	if (obj == UINT32_MAX) {
 		char oname[256];
 		snprintf(oname, sizeof oname, "%.*s", (int)on, name);
-		const char **c = names_of(p, 0, 0, &n);
+		const char **c = names_of(p, OBJECTS, 0, &n);
 		return csf_fail(err, errlen, "unknown name '%s': the scene has no object '%s'%s", name, oname,
 		                suggestion(oname, c, n, hint, sizeof hint));
 	}
@@ -127,7 +131,7 @@ static int find_whole(const csf_prog *p, const char *name, csf_pref *r, char *er
 			*r = (csf_pref){ p->props[i].slot, p->props[i].width, &p->pclasses[p->props[i].cls] };
 			return 0;
 		}
-	const char **c = names_of(p, obj, 1, &n);
+	const char **c = names_of(p, PROPS, obj, &n);
 	return csf_fail(err, errlen, "unknown name '%s': object '%.*s' has no property '%s' that the run uses%s", name,
 	                (int)on, name, dot + 1, suggestion(dot + 1, c, n, hint, sizeof hint));
 }

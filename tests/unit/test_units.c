@@ -1,6 +1,8 @@
 /* Units table: factors against their definitions, dimensions. */
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
+#include <string.h>
 
 #include <gsl/gsl_const_mksa.h>
 
@@ -122,27 +124,74 @@ START_TEST(test_unit_literals)
 }
 END_TEST
 
+/* The SI prefixes, written independently of the runtime's table. */
+static const struct { const char *p; double f; } prefixes[] = {
+	{ "f", 1e-15 }, { "p", 1e-12 }, { "n", 1e-9 }, { "u", 1e-6 }, { "m", 1e-3 },
+	{ "c", 1e-2 },  { "k", 1e3 },   { "M", 1e6 },  { "G", 1e9 },  { "T", 1e12 },
+};
+
 /*
- * Conversions at the extremes: a value from 1e-30 to 1e30 in every unit,
- * converted to each unit system and back, keeps its relative accuracy to a
- * few ulps.
+ * Every prefix on every unit that takes one: the unit's dimension, and the
+ * prefix's factor exactly (times 1e-3 for the gram, to the nearest double);
+ * a unit that takes none refuses every prefix.
+ */
+START_TEST(test_prefixes)
+{
+	for (const csf_unit *k = csf_unit_table; k->name; k++)
+		for (size_t i = 0; i < sizeof prefixes / sizeof prefixes[0]; i++) {
+			char name[32];
+			snprintf(name, sizeof name, "%s%s", prefixes[i].p, k->name);
+			Unit u, b;
+			if (!k->prefixes) {
+				/* no prefix, unless the name is one of the table's, read whole (min is not m in) */
+				int whole = 0;
+				for (const csf_unit *w = csf_unit_table; w->name; w++) whole |= strcmp(w->name, name) == 0;
+				ck_assert_msg(whole || !unit_lookup(name, &u), "%s takes a prefix: %s", k->name, name);
+				continue;
+			}
+			ck_assert_msg(unit_lookup(name, &u) && unit_lookup(k->name, &b), "%s is not a unit", name);
+			ck_assert_msg(memcmp(u.dim, b.dim, sizeof u.dim) == 0, "%s: dimension", name);
+			double want = prefixes[i].f * b.factor;
+			ck_assert_msg(b.factor == 1 ? u.factor == want : fabs(u.factor - want) <= DBL_EPSILON * want,
+			              "%s: %.17g, expected %.17g", name, u.factor, want);
+		}
+}
+END_TEST
+
+/* The round trip of SI value si of unit name's dimension to system sys and back, to a few ulps. */
+static void round_trip(const char *name, int sys)
+{
+	static const double base[3][CSF_NDIM] = { { 1, 1, 1, 1 }, { 1e-2, 1e-3, 1, 1 }, { 0.3048, 0.45359237, 1, 1 } };
+	Unit u;
+	ck_assert_msg(unit_lookup(name, &u), "%s", name);
+	double d[CSF_NDIM];
+	for (int k = 0; k < CSF_NDIM; k++) d[k] = u.dim[k];
+	for (int e = -30; e <= 30; e += 3) {
+		double x = 1.2345678901234567 * pow(10, e), si = x * u.factor;
+		opts.units = sys;
+		double v = dims_to_system(si, d), back = v;
+		for (int k = 0; k < CSF_NDIM; k++) back *= pow(base[sys][k], d[k]);
+		ck_assert_msg(fabs(back - si) <= 4 * DBL_EPSILON * fabs(si), "%s, %g, system %d: %.17g -> %.17g", name, x, sys,
+		              si, back);
+	}
+	opts.units = 0;
+}
+
+/*
+ * Conversions at the extremes: a value from 1e-30 to 1e30 in every unit of
+ * the table and every prefixed one, converted to each unit system and
+ * back, keeps its relative accuracy to a few ulps.
  */
 START_TEST(test_extremes)
 {
-	static const double base[3][CSF_NDIM] = { { 1, 1, 1, 1 }, { 1e-2, 1e-3, 1, 1 }, { 0.3048, 0.45359237, 1, 1 } };
-	for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
-		double d[CSF_NDIM];
-		for (int k = 0; k < CSF_NDIM; k++) d[k] = cases[c].dim[k];
-		for (int e = -30; e <= 30; e += 3) {
-			double x = 1.2345678901234567 * pow(10, e), si = x * cases[c].factor;
-			opts.units = _i;
-			double sys = dims_to_system(si, d), back = sys;
-			for (int k = 0; k < CSF_NDIM; k++) back *= pow(base[_i][k], d[k]);
-			ck_assert_msg(fabs(back - si) <= 4 * DBL_EPSILON * fabs(si), "%s, %g, system %d: %.17g -> %.17g",
-			              cases[c].name, x, _i, si, back);
+	for (const csf_unit *k = csf_unit_table; k->name; k++) {
+		round_trip(k->name, _i);
+		for (size_t i = 0; k->prefixes && i < sizeof prefixes / sizeof prefixes[0]; i++) {
+			char name[32];
+			snprintf(name, sizeof name, "%s%s", prefixes[i].p, k->name);
+			round_trip(name, _i);
 		}
 	}
-	opts.units = 0;
 }
 END_TEST
 
@@ -185,6 +234,7 @@ Suite *units_suite(void)
 	tcase_add_loop_test(tc, test_unit_table, 0, sizeof cases / sizeof cases[0]);
 	tcase_add_test(tc, test_not_units);
 	tcase_add_loop_test(tc, test_unit_literals, 0, sizeof literals / sizeof literals[0]);
+	tcase_add_test(tc, test_prefixes);
 	tcase_add_loop_test(tc, test_extremes, 0, 3);
 	tcase_add_loop_test(tc, test_systems, 0, 11);
 	tcase_add_loop_test(tc, test_em_identities, 0, sizeof same / sizeof same[0]);
