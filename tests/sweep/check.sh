@@ -135,6 +135,19 @@ if "$CSFVM" --sweep-file "$T/params.csv" --sweep 'ball.m=0.5:0.5:1 kg' "$L" >"$T
 	[ "$(awk -F, 'NR == 2 { print $1 "," $2 }' "$T/sf.csv")" = "0.5235987755982988,10" ]; then ok
 else bad "--sweep-file: $(cat "$T/sf.err" "$T/sf.chk" 2>/dev/null | head -n 1)"; fi
 
+# --sweep-file whose header is a sweep's own leading columns (NAME [UNIT]): the same variants,
+# byte for byte; a header unit other than the parameter's applies to the bare values
+"$CSFVM" --sweep 'v0=10:20:3' --sweep 'ball.m=0.5:1:2' "$L" >"$T/sw.csv" 2>/dev/null
+if cut -d, -f1,2 "$T/sw.csv" | uniq >"$T/back.csv" && [ "$(head -n 1 "$T/back.csv")" = "v0 [m/s],ball.m [kg]" ] &&
+	"$CSFVM" --sweep-file "$T/back.csv" "$L" 2>"$T/sf.err" | cmp -s - "$T/sw.csv"; then ok
+else bad "--sweep-file of a sweep's header: $(head -n 1 "$T/sf.err")"; fi
+printf 'v0 [km/h],ball.m [g]\n36,500\n54,500\n72, 0.5 kg\n' >"$T/kmh.csv"
+if "$CSFVM" --sweep-file "$T/kmh.csv" "$L" 2>"$T/sf.err" | awk -F, 'NR > 1 { print $1 "," $2 }' | uniq >"$T/kmh.out" &&
+	[ "$(cat "$T/kmh.out" | tr '\n' ' ')" = "10,0.5 15,0.5 20,0.5 " ]; then ok
+else bad "--sweep-file with units in the header: $(cat "$T/sf.err" "$T/kmh.out" | head -n 2)"; fi
+printf 'v0 [m/s\n1\n' >"$T/bad.csv"
+derr "$L" "header 'v0 \[m/s': expected NAME or NAME \[UNIT\]" --sweep-file "$T/bad.csv"
+
 # --sweep-summary: one row per variant, the max and final of the rows
 # shellcheck disable=SC2086
 if "$CSFVM" $SW --sweep-summary 'max(ball.pos.z), final(ball.pos.x),min(t)' "$L" >"$T/sum.csv" 2>"$T/sum.err" &&
