@@ -13,6 +13,8 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "csf.h"
+
 /* ---- memory ---- */
 void *xalloc(size_t n);                 /* zeroed; never returns NULL (exits on OOM) */
 void *xrealloc_arr(void *p, size_t n);  /* grows an xalloc'd array to n bytes (copies) */
@@ -77,8 +79,8 @@ void csfc_reset(void);
 #define CSF_MAX_DEPTH 1000
 
 /* ---- units (units.c) ---- */
-enum { DIM_L, DIM_M, DIM_T, DIM_A, NDIM };
-typedef struct Unit { double factor; signed char dim[NDIM]; } Unit;
+/* A unit's factor to SI and dimension: exponents of length, mass, time, current (CSF_NDIM). */
+typedef struct Unit { double factor; signed char dim[CSF_NDIM]; } Unit;
 /* Looks up a unit name in the runtime's unit table (csf_unit_table); returns 1 and fills *u if known. */
 int unit_lookup(const char *name, Unit *u);
 

@@ -1,8 +1,9 @@
 /*
  * dims.c - unit systems and the static dimension analysis.
  *
- * A dimension is a vector of exponents of length, mass and time (angles
- * are dimensionless: rad and deg are plain factors). Every value in a model
+ * A dimension is a vector of exponents of length, mass, time and electric
+ * current (CSF_NDIM; angles are dimensionless: rad and deg are plain
+ * factors). Every value in a model
  * has one:
  *  - a unit literal has its unit's; a bare number is "free": it takes the
  *    dimension its place needs (`x + 1` adds metres to metres; `2 * x` is
@@ -16,7 +17,10 @@
  *    with one unknown left are solved, repeatedly, until nothing changes.
  * Then every constraint whose dimensions are all known is checked, and a
  * mismatch is a compile error naming both dimensions in the units of the
- * system the model is compiled for (csfc --units mks|cgs|fps).
+ * system the model is compiled for (csfc --units mks|cgs|fps). A unit is
+ * printed by the name of a derived unit of that system when its dimension
+ * is one (N, V, T in mks; dyn, erg in cgs; pdl in fps; C in all three),
+ * else in the system's base units (kg*m/(s^3*A)): either reads back.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -28,41 +32,64 @@
 
 /* ---- unit systems ---- */
 
+/* A derived unit a system prints by its name: the dimension it names. */
+typedef struct Named { const char *name; double d[CSF_NDIM]; } Named;
+
+#define MAX_NAMED 12
+
 static const struct system {
 	const char *name;
-	double base[3];          /* the system's unit of length, mass, time in SI */
-	const char *unit[3];     /* their names */
-	struct { double d[3]; const char *name; } named[4];
+	double base[CSF_NDIM];       /* the system's unit of length, mass, time, current in SI */
+	const char *unit[CSF_NDIM];  /* their names */
+	Named named[MAX_NAMED];      /* the derived units that are coherent in the system */
 } systems[] = {
-	[UNITS_MKS] = { "mks", { 1, 1, 1 }, { "m", "kg", "s" },
-	                { { { 1, 1, -2 }, "N" }, { { 2, 1, -2 }, "J" }, { { 2, 1, -3 }, "W" }, { { -1, 1, -2 }, "Pa" } } },
-	[UNITS_CGS] = { "cgs", { 1e-2, 1e-3, 1 }, { "cm", "g", "s" },
-	                { { { 1, 1, -2 }, "dyn" }, { { 2, 1, -2 }, "erg" }, { { 0, 0, 0 }, NULL }, { { 0, 0, 0 }, NULL } } },
-	[UNITS_FPS] = { "fps", { 0.3048, 0.45359237, 1 }, { "ft", "lb", "s" },
-	                { { { 1, 1, -2 }, "pdl" }, { { 0, 0, 0 }, NULL }, { { 0, 0, 0 }, NULL }, { { 0, 0, 0 }, NULL } } },
+	[UNITS_MKS] = { "mks", { 1, 1, 1, 1 }, { "m", "kg", "s", "A" },
+	                { { "N", { 1, 1, -2, 0 } }, { "J", { 2, 1, -2, 0 } }, { "W", { 2, 1, -3, 0 } },
+	                  { "Pa", { -1, 1, -2, 0 } }, { "C", { 0, 0, 1, 1 } }, { "V", { 2, 1, -3, -1 } },
+	                  { "ohm", { 2, 1, -3, -2 } }, { "S", { -2, -1, 3, 2 } }, { "F", { -2, -1, 4, 2 } },
+	                  { "H", { 2, 1, -2, -2 } }, { "Wb", { 2, 1, -2, -1 } }, { "T", { 0, 1, -2, -1 } } } },
+	[UNITS_CGS] = { "cgs", { 1e-2, 1e-3, 1, 1 }, { "cm", "g", "s", "A" },
+	                { { "dyn", { 1, 1, -2, 0 } }, { "erg", { 2, 1, -2, 0 } }, { "C", { 0, 0, 1, 1 } } } },
+	[UNITS_FPS] = { "fps", { 0.3048, 0.45359237, 1, 1 }, { "ft", "lb", "s", "A" },
+	                { { "pdl", { 1, 1, -2, 0 } }, { "C", { 0, 0, 1, 1 } } } },
 };
 
-double dims_to_system(double si, const double d[3])
+double dims_to_system(double si, const double d[CSF_NDIM])
 {
 	return csf_units_to_system(si, d, systems[opts.units].base);
 }
 
-void dims_system_base(double base[3])
+void dims_system_base(double base[CSF_NDIM])
 {
 	memcpy(base, systems[opts.units].base, sizeof systems[opts.units].base);
 }
 
-static int dim_zero(const double d[3]) { return d[0] == 0 && d[1] == 0 && d[2] == 0; }
+static int dim_zero(const double d[CSF_NDIM])
+{
+	for (int i = 0; i < CSF_NDIM; i++)
+		if (d[i] != 0) return 0;
+	return 1;
+}
 
-const char *dims_unit(const double d[3])
+/* The derived unit of the system in use that names dimension d, or NULL. */
+static const char *named_unit(const double d[CSF_NDIM])
+{
+	const struct system *s = &systems[opts.units];
+	for (int i = 0; i < MAX_NAMED && s->named[i].name; i++)
+		if (memcmp(s->named[i].d, d, sizeof s->named[i].d) == 0) return s->named[i].name;
+	return NULL;
+}
+
+/* Dimension d in the system's base units, "kg*m/s^2"; "" if dimensionless. */
+static const char *base_unit(const double d[CSF_NDIM])
 {
 	const struct system *s = &systems[opts.units];
 	if (dim_zero(d)) return "";
 	char *num = xstrdup(""), *den = xstrdup("");
 	int nden = 0;
-	/* the order physicists write: mass, length, time */
-	static const int order[3] = { 1, 0, 2 };
-	for (int k = 0; k < 3; k++) {
+	/* the order physicists write: mass, length, time, current */
+	static const int order[CSF_NDIM] = { 1, 0, 2, 3 };
+	for (int k = 0; k < CSF_NDIM; k++) {
 		int i = order[k];
 		double e = d[i];
 		if (e == 0) continue;
@@ -76,15 +103,17 @@ const char *dims_unit(const double d[3])
 	return nden > 1 ? xprintf("%s/(%s)", num, den) : xprintf("%s/%s", num, den);
 }
 
-const char *dims_describe(const double d[3])
+const char *dims_unit(const double d[CSF_NDIM])
+{
+	const char *n = named_unit(d);
+	return n ? n : base_unit(d);
+}
+
+const char *dims_describe(const double d[CSF_NDIM])
 {
 	if (dim_zero(d)) return "dimensionless";
-	const struct system *s = &systems[opts.units];
-	const char *u = dims_unit(d);
-	for (int i = 0; i < 4; i++)
-		if (s->named[i].name && memcmp(s->named[i].d, d, sizeof s->named[i].d) == 0)
-			return xprintf("%s (%s)", s->named[i].name, u);
-	return u;
+	const char *n = named_unit(d);
+	return n ? xprintf("%s (%s)", n, base_unit(d)) : base_unit(d);
 }
 
 /* ---- affine dimensions: known part + sum of coefficient * unknown variable ---- */
@@ -94,26 +123,30 @@ const char *dims_describe(const double d[3])
 typedef struct Aff {
 	int free;        /* every leaf is a bare number: any dimension fits */
 	int overflow;    /* too many unknowns to track */
-	double c[3];
+	double c[CSF_NDIM];
 	int nu;
 	Var *u[MAXU];
 	double k[MAXU];
 } Aff;
 
-static Aff known(double l, double m, double t)
+/* A known dimension: exponents of length, mass, time (and current: known_dim). */
+static Aff known_dim(const double d[CSF_NDIM])
 {
 	Aff a = { 0 };
-	a.c[0] = l;
-	a.c[1] = m;
-	a.c[2] = t;
+	memcpy(a.c, d, sizeof a.c);
 	return a;
+}
+
+static Aff known(double l, double m, double t)
+{
+	return known_dim((double[CSF_NDIM]){ l, m, t, 0 });
 }
 
 static Aff lin(Aff a, double ka, Aff b, double kb)
 {
 	Aff r = { 0 };
 	r.overflow = a.overflow || b.overflow;
-	for (int i = 0; i < 3; i++) r.c[i] = ka * a.c[i] + kb * b.c[i];
+	for (int i = 0; i < CSF_NDIM; i++) r.c[i] = ka * a.c[i] + kb * b.c[i];
 	for (int s = 0; s < 2; s++) {
 		Aff *x = s ? &b : &a;
 		double kx = s ? kb : ka;
@@ -172,10 +205,10 @@ static void constrain(Walk *W, Aff a, Aff b, Loc l, MsgFn msg, void *ctx)
 	if (d.nu == 1 && !W->report) {
 		Var *v = d.u[0];
 		double k = d.k[0];
-		for (int i = 0; i < 3; i++)
+		for (int i = 0; i < CSF_NDIM; i++)
 			if (!(fabs(d.c[i] / k) <= DIM_MAX_EXP)) return; /* left unknown; the expression reports it */
 		v->dimk = DK_KNOWN;
-		for (int i = 0; i < 3; i++) {
+		for (int i = 0; i < CSF_NDIM; i++) {
 			double x = -d.c[i] / k;
 			x = fabs(x - round(x)) < 1e-9 ? round(x) : x;
 			v->dim[i] = x == 0 ? 0.0 : x; /* never -0, which would print as "^-0" */
@@ -183,8 +216,9 @@ static void constrain(Walk *W, Aff a, Aff b, Loc l, MsgFn msg, void *ctx)
 		W->progress = 1;
 		return;
 	}
-	if (d.nu == 0 && W->report && (fabs(d.c[0]) > 1e-9 || fabs(d.c[1]) > 1e-9 || fabs(d.c[2]) > 1e-9))
-		report(W, l, msg(dims_describe(a.c), dims_describe(b.c), ctx));
+	int differ = 0;
+	for (int i = 0; i < CSF_NDIM; i++) differ |= fabs(d.c[i]) > 1e-9;
+	if (d.nu == 0 && W->report && differ) report(W, l, msg(dims_describe(a.c), dims_describe(b.c), ctx));
 }
 
 static const char *msg_add(const char *a, const char *b, void *ctx)
@@ -220,7 +254,7 @@ static Aff walk(Walk *W, RExpr *e);
 /* A variable's dimension: known, or itself as the one unknown. */
 static Aff var_aff(Var *v)
 {
-	if (v->dimk == DK_KNOWN) return known(v->dim[0], v->dim[1], v->dim[2]);
+	if (v->dimk == DK_KNOWN) return known_dim(v->dim);
 	Aff a = { 0 };
 	a.nu = 1;
 	a.u[0] = v;
@@ -250,7 +284,7 @@ static Aff one_dim(Walk *W, const Aff *x, RExpr *const *args, int n)
 static Aff bounded(Walk *W, RExpr *e, Aff r)
 {
 	int big = 0;
-	for (int i = 0; i < 3; i++) big |= !(fabs(r.c[i]) <= DIM_MAX_EXP);
+	for (int i = 0; i < CSF_NDIM; i++) big |= !(fabs(r.c[i]) <= DIM_MAX_EXP);
 	for (int i = 0; i < r.nu; i++) big |= !(fabs(r.k[i]) <= DIM_MAX_EXP);
 	if (!big) return r;
 	if (W->report) report(W, e->loc, xprintf("the dimension of this expression has an exponent beyond %d", DIM_MAX_EXP));
@@ -377,7 +411,7 @@ static void set_const_dim(RExpr *out, Aff a)
 		return;
 	}
 	out->dimk = DK_KNOWN;
-	for (int i = 0; i < 3; i++) out->dim[i] = a.c[i] == 0 ? 0 : a.c[i];
+	for (int i = 0; i < CSF_NDIM; i++) out->dim[i] = a.c[i] == 0 ? 0 : a.c[i];
 }
 
 void dims_fold(int op, RExpr **args, int n, RExpr *out, Loc l)

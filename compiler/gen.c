@@ -159,8 +159,8 @@ static uint32_t param_class(Gen *G, Var *v)
 	for (int pass = 0;; pass++) {
 		ArenaMark mark = arena_mark();
 		const char *unit = known ? dims_unit(d->dim) : "", *why = param_why(v);
-		char *key = xprintf("%d %.17g %.17g %.17g %s\x01%s", known, known ? d->dim[0] : 0, known ? d->dim[1] : 0,
-		                    known ? d->dim[2] : 0, unit, why);
+		char *key = xprintf("%d %.17g %.17g %.17g %.17g %s\x01%s", known, known ? d->dim[0] : 0, known ? d->dim[1] : 0,
+		                    known ? d->dim[2] : 0, known ? d->dim[3] : 0, unit, why);
 		uintptr_t k = (uintptr_t)map_get(&G->pclass, key);
 		if (k || pass == 0) {
 			arena_release(mark);
@@ -170,7 +170,7 @@ static uint32_t param_class(Gen *G, Var *v)
 		/* a new class (second pass, its strings kept) */
 		G->pclasses = grow(G->pclasses, &G->cappclasses, G->npclasses + 1, sizeof *G->pclasses);
 		csf_pclass *c = &G->pclasses[G->npclasses];
-		*c = (csf_pclass){ str_intern(G, unit), str_intern(G, why), (uint32_t)known, { 0, 0, 0 } };
+		*c = (csf_pclass){ str_intern(G, unit), str_intern(G, why), (uint32_t)known, { 0 } };
 		if (known) memcpy(c->dim, d->dim, sizeof c->dim);
 		map_put(&G->pclass, key, (void *)(uintptr_t)(++G->npclasses));
 		return G->npclasses - 1;

@@ -9,8 +9,9 @@
  *    including file, then in each -I directory, then in the standard
  *    library; its tokens are spliced in. A file already being included is
  *    a cycle (an error); a file included before is not included again.
- *  - unit literals: an identifier that names a unit, directly after a
- *    number or a ')' , starts a unit expression (`m/s^2`, `kg*m/(s^2)`);
+ *  - unit literals: a unit name, 1/ and one, or either in parentheses,
+ *    directly after a number or a ')' , starts a unit expression (`m/s^2`,
+ *    `kg*m/(s^2)`, `1/s`, `(1/s)`);
  *    it becomes one UNIT token carrying its SI factor and dimension.
  */
 #include <errno.h>
@@ -25,7 +26,7 @@
 #include "parse.h"
 
 #define MAX_INCLUDE 64
-#define QSIZE 8
+#define QSIZE 16 /* the unit reader looks up to 6 tokens ahead */
 
 struct Parser {
 	Lexer lex[MAX_INCLUDE];
@@ -121,9 +122,28 @@ static int is_unit_name(Token *t)
 	return t->kind == IDENT && !t->bol && unit_lookup(t->text, &u);
 }
 
-static int starts_factor(Parser *P, int k)
+/* The 1 of a unit such as 1/s (as CSF prints one): a NUMBER token spelt "1". */
+static int is_one(Token *t)
+{
+	return t->kind == NUMBER && !t->bol && t->text && strcmp(t->text, "1") == 0;
+}
+
+/* A unit name at token k, or '(' and one. */
+static int starts_name(Parser *P, int k)
 {
 	return is_unit_name(peek(P, k)) || (peek(P, k)->kind == '(' && is_unit_name(peek(P, k + 1)));
+}
+
+/* Is token k the first of 1/UNIT? */
+static int starts_one_per(Parser *P, int k)
+{
+	return is_one(peek(P, k)) && peek(P, k + 1)->kind == '/' && starts_name(P, k + 2);
+}
+
+/* Does a unit factor start at token k: a name, 1/UNIT, or either in parentheses? */
+static int starts_factor(Parser *P, int k)
+{
+	return starts_name(P, k) || starts_one_per(P, k) || (peek(P, k)->kind == '(' && starts_one_per(P, k + 1));
 }
 
 /* The spelling of a unit being read, grown by doubling (a unit of many factors is read in linear time). */
@@ -153,7 +173,7 @@ static void ut_add(UnitText *t, const char *x)
 static void unit_combine(Unit *u, const Unit *v, int k, Loc l, int *bad)
 {
 	int big = 0;
-	for (int d = 0; d < NDIM; d++) {
+	for (int d = 0; d < CSF_NDIM; d++) {
 		int e = u->dim[d] + k * v->dim[d];
 		if (e > UNIT_MAX_EXP || e < -UNIT_MAX_EXP) big = 1;
 		else u->dim[d] = (signed char)e;
@@ -168,7 +188,7 @@ static void unit_combine(Unit *u, const Unit *v, int k, Loc l, int *bad)
 
 static void unit_expr(Parser *P, Unit *u, UnitText *text, int nest, int *bad);
 
-/* factor := name | '(' unit ')' , then an optional ^ [-] integer */
+/* factor := name | 1 | '(' unit ')' , then an optional ^ [-] integer */
 static void unit_factor(Parser *P, Unit *u, UnitText *text, int nest, int *bad)
 {
 	Token t = take(P);
@@ -189,7 +209,7 @@ static void unit_factor(Parser *P, Unit *u, UnitText *text, int nest, int *bad)
 			*bad = 1;
 		}
 	} else {
-		unit_lookup(t.text, &base);
+		if (t.kind != NUMBER) unit_lookup(t.text, &base); /* else the 1 of 1/s */
 		ut_add(text, t.text);
 	}
 	int neg = peek(P, 1)->kind == '-';
@@ -369,21 +389,25 @@ static Token next_token(Parser *P)
 int yylex(YYSTYPE *lval, YYLoc *lloc, Parser *P)
 {
 	Token t = next_token(P);
-	if ((P->last == NUMBER || P->last == ')') && is_unit_name(&t)) {
-		/* t starts a unit expression: put it back and read the whole unit. */
+	if ((P->last == NUMBER || P->last == ')') && !t.bol && (t.kind == IDENT || t.kind == NUMBER || t.kind == '(')) {
+		/* put t back: does it start a unit expression? */
 		memmove(P->q + 1, P->q, (size_t)P->qn * sizeof(Token));
 		P->q[0] = t;
 		P->qn++;
-		Unit un;
-		UnitText text = { 0 };
-		int bad = 0;
-		unit_expr(P, &un, &text, 0, &bad);
-		t.kind = UNIT;
-		t.unit = un;
-		t.text = text.s;
-		Token *keep = xalloc(sizeof *keep);
-		*keep = t;
-		lval->tok = keep;
+		if (!starts_factor(P, 0)) {
+			t = take(P);
+		} else {
+			Unit un;
+			UnitText text = { 0 };
+			int bad = 0;
+			unit_expr(P, &un, &text, 0, &bad);
+			t.kind = UNIT;
+			t.unit = un;
+			t.text = text.s;
+			Token *keep = xalloc(sizeof *keep);
+			*keep = t;
+			lval->tok = keep;
+		}
 	}
 	if (t.kind == NEWLINE) P->last_colon = P->last == ':';
 	P->last = t.kind;

@@ -15,48 +15,6 @@
 #include "lint.h"
 #include "sema.h"
 
-/* The edit distance of a and b (insertions, deletions, substitutions), at most cap + 1. */
-int edit_distance(const char *a, const char *b, int cap)
-{
-	size_t n = strlen(a), m = strlen(b);
-	if ((n > m ? n - m : m - n) > (size_t)cap) return cap + 1;
-	if (m > 64) return cap + 1;
-	int row[65];
-	for (size_t j = 0; j <= m; j++) row[j] = (int)j;
-	for (size_t i = 1; i <= n; i++) {
-		int diag = row[0], best;
-		row[0] = (int)i;
-		best = row[0];
-		for (size_t j = 1; j <= m; j++) {
-			int up = row[j], v = diag + (a[i - 1] != b[j - 1]);
-			if (up + 1 < v) v = up + 1;
-			if (row[j - 1] + 1 < v) v = row[j - 1] + 1;
-			diag = up;
-			row[j] = v;
-			if (v < best) best = v;
-		}
-		if (best > cap) return cap + 1;
-	}
-	return row[m] > cap ? cap + 1 : row[m];
-}
-
-const char *suggest_name(const char *name, const char *const *cands, int n)
-{
-	/* a near miss of a name of 3 letters or more (one or two letters are too many names' near
-	   misses): at most 2 edits; a name that begins with a candidate counts as 1, as the symbol
-	   of a word does (mass: m, velocity: v, position: pos) */
-	if (strlen(name) < 3) return NULL;
-	int cap = 2, best = cap + 1;
-	const char *pick = NULL;
-	for (int i = 0; i < n; i++) {
-		if (!cands[i] || !*cands[i] || !strcmp(cands[i], name)) continue;
-		int d = edit_distance(name, cands[i], cap);
-		if (!strncmp(name, cands[i], strlen(cands[i])) && d > 1) d = 1;
-		if (d < best || (d == best && pick && strlen(cands[i]) > strlen(pick))) best = d, pick = cands[i];
-	}
-	return best <= cap ? pick : NULL;
-}
-
 const char *suggest_unit(const char *name)
 {
 	/* "mps", "kmph", "mps2": X per Y */
@@ -78,7 +36,7 @@ const char *suggest_unit(const char *name)
 	const char *c[64];
 	int nc = 0;
 	for (const csf_unit *p = csf_unit_table; p->name && nc < 64; p++) c[nc++] = p->name;
-	return suggest_name(name, c, nc);
+	return csf_suggest_name(name, c, nc);
 }
 
 /* Is the statement or definition at l in one of the user's files (not the standard library)? */
@@ -136,7 +94,7 @@ void lint_model(Model *M)
 				Var *q = o->props.v[k];
 				if (q != p && (q->from_kind || vec_has(&read, sema_canon(q)) || q->state)) c[nc++] = q->name;
 			}
-			const char *s = suggest_name(p->name, c, nc);
+			const char *s = csf_suggest_name(p->name, c, nc);
 			if (s) warn_at(p->loc, "property '%s' of object '%s' is never read; did you mean '%s'?", p->name, o->name, s);
 			else warn_at(p->loc, "property '%s' of object '%s' is never read", p->name, o->name);
 		}

@@ -283,7 +283,12 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 	}
 	if (C->init) {
 		if (explicit_obj) error_at(l, "object '%s' has no property '%s' (yet)", o->name, name);
-		else error_at(l, "unknown name '%s' in an initial value", name);
+		else {
+			Unit u;
+			/* `4 /s^2` divides by a name: a unit cannot begin with '/' */
+			error_at(l, "unknown name '%s' in an initial value%s", name,
+			         unit_lookup(name, &u) ? xprintf(" ('%s' is a unit only directly after a number: 4 %s, 4 1/%s)", name, name, name) : "");
+		}
 		C->failed = 1;
 		return rconst(0, l);
 	}
@@ -513,7 +518,8 @@ static RExpr *build(Ctx *C, Expr *x)
 	case E_UNIT: {
 		RExpr *a = build(C, x->a);
 		if (a->isbool) return type_error(C, l, "a unit cannot follow a condition"), a;
-		double ud[3] = { x->unit.dim[DIM_L], x->unit.dim[DIM_M], x->unit.dim[DIM_T] };
+		double ud[CSF_NDIM];
+		for (int i = 0; i < CSF_NDIM; i++) ud[i] = x->unit.dim[i];
 		RExpr *f = rconst(dims_to_system(x->unit.factor, ud), l);
 		f->dimk = DK_KNOWN;
 		memcpy(f->dim, ud, sizeof ud);
@@ -572,7 +578,7 @@ static void set_dim(Var *v, int k, const double *d)
 static void predefine_const(const char *name, int isvec, const double *si, double dl, double dm, double dt)
 {
 	Loc none = { 0, 0, 0 };
-	double d[3] = { dl, dm, dt }, v[3];
+	double d[CSF_NDIM] = { dl, dm, dt, 0 }, v[3];
 	for (int i = 0; i < 3; i++) v[i] = dims_to_system(si[i], d);
 	set_dim(new_global(name, isvec, v, none), DK_KNOWN, d);
 }
@@ -583,7 +589,7 @@ static void predefine(void)
 	M->time->kind = V_TIME;
 	M->time->name = "t";
 	M->time->slot = -1;
-	set_dim(M->time, DK_KNOWN, (double[3]){ 0, 0, 1 });
+	set_dim(M->time, DK_KNOWN, (double[CSF_NDIM]){ 0, 0, 1, 0 });
 	predefine_const("g", 1, (double[3]){ 0, 0, -GSL_CONST_MKSA_GRAV_ACCEL }, 1, 0, -2);
 	predefine_const("G", 0, (double[3]){ GSL_CONST_MKSA_GRAVITATIONAL_CONSTANT, 0, 0 }, 3, -1, -2);
 	predefine_const("c", 0, (double[3]){ GSL_CONST_MKSA_SPEED_OF_LIGHT, 0, 0 }, 1, 0, -1);
@@ -841,11 +847,11 @@ static void build_shapes(Stmt *start)
 		if (shaped && !map_get(&named, o->name)) {
 			/* each property: its name, then type, dimension kind and dimension as hex digits */
 			size_t len = 0;
-			for (int j = 0; j < o->props.n; j++) len += strlen(((Var *)o->props.v[j])->name) + 1 + 2 * (2 + 3 * 8);
+			for (int j = 0; j < o->props.n; j++) len += strlen(((Var *)o->props.v[j])->name) + 1 + 2 * (2 + CSF_NDIM * 8);
 			char *at = sig = xalloc(len + 1);
 			for (int j = 0; j < o->props.n; j++) {
 				Var *v = o->props.v[j];
-				unsigned char bits[2 + 3 * 8] = { (unsigned char)v->isvec, (unsigned char)v->dimk };
+				unsigned char bits[2 + CSF_NDIM * 8] = { (unsigned char)v->isvec, (unsigned char)v->dimk };
 				memcpy(bits + 2, v->dim, sizeof v->dim);
 				size_t n = strlen(v->name);
 				memcpy(at, v->name, n);
@@ -1339,7 +1345,7 @@ static const char *near_name(Inst *I, Var *u)
 	for (int b = 0; b < I->nbind; b++)
 		for (int j = 0; j < I->bind[b]->props.n; j++) vec_push(&c, ((Var *)I->bind[b]->props.v[j])->name);
 	for (int j = 0; j < M->globals.n; j++) vec_push(&c, ((Var *)M->globals.v[j])->name);
-	const char *s = suggest_name(u->name, (const char *const *)c.v, c.n);
+	const char *s = csf_suggest_name(u->name, (const char *const *)c.v, c.n);
 	for (int j = 0; !s && j < M->temps.n; j++) {
 		Var *t = M->temps.v[j];
 		if (t != u && !t->pair && t->obj && t->obj != u->obj && !strcmp(t->name, u->name) && determined(t))

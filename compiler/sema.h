@@ -42,7 +42,7 @@ typedef struct Var {
 	char *key;       /* temps: lookup key */
 	int from_kind;   /* props: the value is a kind's default, not yet set */
 	int dimk;        /* DK_UNKNOWN until known (dims.c) */
-	double dim[3];   /* exponents of length, mass, time */
+	double dim[CSF_NDIM]; /* exponents of length, mass, time, current */
 	int pair;        /* temps: of a tuple of objects ($1), not of one object */
 	/* globals, props: why -D cannot set the initial value (gen.c words it): FIX_FOLDED, its value is
 	   folded into that of fix_obj.fix_name (fix_obj NULL: the global fix_name) on line fix_line;
@@ -82,7 +82,7 @@ struct RExpr {
 	int n;
 	Loc loc;
 	int dimk;        /* R_CONST: DK_FREE (a bare number) or DK_KNOWN */
-	double dim[3];
+	double dim[CSF_NDIM];
 };
 
 enum { DK_UNKNOWN = 0, DK_FREE, DK_KNOWN };
@@ -197,13 +197,13 @@ void dims_fold(int op, RExpr **args, int n, RExpr *out, Loc l);
  * angle that is not dimensionless, at the argument. */
 void dims_coords(const char *sys, RExpr **args, RExpr *out);
 /* The unit of dimension d in the unit system in use, e.g. "kg*m/s^2"; "" if dimensionless. */
-const char *dims_unit(const double d[3]);
+const char *dims_unit(const double d[CSF_NDIM]);
 /* "a length (m)", "dimensionless": a dimension for messages. */
-const char *dims_describe(const double d[3]);
+const char *dims_describe(const double d[CSF_NDIM]);
 /* Converts an SI factor of dimension d to the unit system in use. */
-double dims_to_system(double si, const double d[3]);
-/* The unit system in use: its units of length, mass and time in SI (csf_prog.ubase). */
-void dims_system_base(double base[3]);
+double dims_to_system(double si, const double d[CSF_NDIM]);
+/* The unit system in use: its units of length, mass, time and current in SI (csf_prog.ubase). */
+void dims_system_base(double base[CSF_NDIM]);
 
 /* Evaluates an instruction on constant operands with the runtime's own functions.
  * in: operand values (3 doubles each); out: result (3 doubles). */

@@ -9,9 +9,9 @@
 
 int unit_lookup(const char *name, Unit *u)
 {
-	const csf_unit *k = csf_unit_find(name, strlen(name));
-	if (!k) return 0;
-	u->factor = k->factor;
-	memcpy(u->dim, k->dim, sizeof u->dim);
+	csf_unit k;
+	if (!csf_unit_find(name, strlen(name), &k)) return 0;
+	u->factor = k.factor;
+	memcpy(u->dim, k.dim, sizeof u->dim);
 	return 1;
 }

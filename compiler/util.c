@@ -139,6 +139,21 @@ Options opts;
 int diag_errors;
 FILE *diag_out;
 
+/* Indexes the starts of s's lines, when it is added, so that src_line is O(1) (added later,
+   inside an arena mark a pass releases, the index would be lost). */
+static void index_lines(Source *s)
+{
+	int n = 1;
+	for (size_t i = 0; i < s->len; i++) n += s->text[i] == '\n';
+	s->line_start = xalloc((size_t)(n + 1) * sizeof *s->line_start);
+	s->line_start[0] = 0;
+	int k = 1;
+	for (size_t i = 0; i < s->len; i++)
+		if (s->text[i] == '\n') s->line_start[k++] = i + 1;
+	s->line_start[n] = s->len + 1;
+	s->nlines = n;
+}
+
 int src_load(const char *path)
 {
 	/* a model takes some 80 times its size to compile (10 KB for an object of 130 bytes):
@@ -156,6 +171,7 @@ int src_load(const char *path)
 	s->text = xstrndup((char *)buf, n); /* NUL-terminated copy in the arena */
 	s->len = n;
 	free(buf);
+	index_lines(s);
 	vec_push(&sources, s);
 	return sources.n - 1;
 }
@@ -166,30 +182,16 @@ int src_add_n(const char *name, const char *text, size_t len)
 	s->path = xstrdup(name);
 	s->text = xstrndup(text, len);
 	s->len = len;
+	index_lines(s);
 	vec_push(&sources, s);
 	return sources.n - 1;
 }
 
 int src_add(const char *name, const char *text) { return src_add_n(name, text, strlen(text)); }
 
-/* Indexes the starts of s's lines, once, so that src_line is O(1). */
-static void index_lines(Source *s)
-{
-	int n = 1;
-	for (size_t i = 0; i < s->len; i++) n += s->text[i] == '\n';
-	s->line_start = xalloc((size_t)(n + 1) * sizeof *s->line_start);
-	s->line_start[0] = 0;
-	int k = 1;
-	for (size_t i = 0; i < s->len; i++)
-		if (s->text[i] == '\n') s->line_start[k++] = i + 1;
-	s->line_start[n] = s->len + 1;
-	s->nlines = n;
-}
-
 char *src_line(int file, int line)
 {
 	Source *s = sources.v[file];
-	if (!s->line_start) index_lines(s);
 	if (line < 1 || line > s->nlines) return xstrdup("");
 	const char *p = s->text + s->line_start[line - 1], *end = s->text + s->len;
 	const char *e = p;
@@ -206,7 +208,6 @@ char *src_line(int file, int line)
 static void quote_line(FILE *out, Loc l)
 {
 	Source *s = sources.v[l.file];
-	if (!s->line_start) index_lines(s);
 	if (l.line < 1 || l.line > s->nlines) return;
 	const char *p = s->text + s->line_start[l.line - 1], *end = s->text + s->len;
 	size_t n = 0;

@@ -140,7 +140,7 @@ int csf_encode(const csf_prog *p, unsigned char **out, size_t *len)
 	put_u32s(&w, p->objects, p->nobjects);
 	put_u32(&w, p->nprops);
 	put_u32s(&w, (const uint32_t *)p->props, 5 * (size_t)p->nprops);
-	for (int i = 0; i < 3; i++) put_f64(&w, p->ubase[i]);
+	for (int i = 0; i < CSF_NDIM; i++) put_f64(&w, p->ubase[i]);
 	put_u32(&w, p->nglobals);
 	put_u32s(&w, (const uint32_t *)p->globals, 4 * (size_t)p->nglobals);
 	put_u32(&w, p->npclasses);
@@ -149,7 +149,7 @@ int csf_encode(const csf_prog *p, unsigned char **out, size_t *len)
 		put_u32(&w, c->unit);
 		put_u32(&w, c->why);
 		put_u32(&w, c->known);
-		for (int k = 0; k < 3; k++) put_f64(&w, c->dim[k]);
+		for (int k = 0; k < CSF_NDIM; k++) put_f64(&w, c->dim[k]);
 	}
 	put_u32(&w, p->nevents);
 	put_u32s(&w, (const uint32_t *)p->events, 4 * (size_t)p->nevents);
@@ -287,17 +287,17 @@ int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, siz
 	ARR(p->nasserts, p->asserts, sizeof(csf_assert));
 	ARR(p->nobjects, p->objects, 4);
 	ARR(p->nprops, p->props, sizeof(csf_prop));
-	for (int i = 0; i < 3; i++) bad = bad || get_f64(&r, &p->ubase[i]);
+	for (int i = 0; i < CSF_NDIM; i++) bad = bad || get_f64(&r, &p->ubase[i]);
 	ARR(p->nglobals, p->globals, sizeof(csf_global));
-	/* a class is 3 u32 and 3 doubles (36 bytes in the file) */
-	bad = bad || get_u32(&r, &p->npclasses) || (size_t)p->npclasses > r.left / 36 ||
+	/* a class is 3 u32 and CSF_NDIM doubles in the file */
+	bad = bad || get_u32(&r, &p->npclasses) || (size_t)p->npclasses > r.left / (12 + 8 * CSF_NDIM) ||
 	      !(p->pclasses = malloc(p->npclasses ? p->npclasses * sizeof *p->pclasses : 1));
 	for (uint32_t i = 0; !bad && i < p->npclasses; i++) {
 		csf_pclass *c = &p->pclasses[i];
 		get_u32(&r, &c->unit);
 		get_u32(&r, &c->why);
 		get_u32(&r, &c->known);
-		for (int k = 0; k < 3; k++) get_f64(&r, &c->dim[k]);
+		for (int k = 0; k < CSF_NDIM; k++) get_f64(&r, &c->dim[k]);
 	}
 	ARR(p->nevents, p->events, sizeof(csf_event));
 	ARR(p->ncbodies, p->cbodies, sizeof(csf_cbody));
@@ -593,12 +593,12 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 		    !slot_ok(p, q->slot, q->width) || q->cls >= p->npclasses)
 			return csf_fail(err, errlen, "property %lu out of range", (unsigned long)i);
 	}
-	for (int k = 0; k < 3; k++)
+	for (int k = 0; k < CSF_NDIM; k++)
 		if (!(p->ubase[k] > 0) || !isfinite(p->ubase[k])) return csf_fail(err, errlen, "unit system out of range");
 	for (uint32_t i = 0; i < p->npclasses; i++) {
 		const csf_pclass *c = &p->pclasses[i];
 		int ok = STR_OK(c->unit) && STR_OK(c->why) && c->known <= 1;
-		for (int k = 0; k < 3; k++) ok = ok && isfinite(c->dim[k]) && fabs(c->dim[k]) <= 64;
+		for (int k = 0; k < CSF_NDIM; k++) ok = ok && isfinite(c->dim[k]) && fabs(c->dim[k]) <= 64;
 		if (!ok) return csf_fail(err, errlen, "parameter class %lu out of range", (unsigned long)i);
 	}
 	for (uint32_t i = 0; i < p->nglobals; i++) {

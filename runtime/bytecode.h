@@ -28,9 +28,10 @@
  *   asserts   u32 n, n x {u32 src, object}
  *   objects   u32 n, n x {u32 name}
  *   props     u32 n, n x {u32 object, name, slot, width, cls}
- *   units     3 doubles: the model's units of length, mass, time in SI (> 0)
+ *   units     CSF_NDIM (4) doubles: the model's units of length, mass, time,
+ *             current in SI (> 0)
  *   globals   u32 n, n x {u32 name, slot, width, cls}: the globals -D sets
- *   pclasses  u32 n, n x {u32 unit, why, known, 3 doubles dim}: what -D
+ *   pclasses  u32 n, n x {u32 unit, why, known, CSF_NDIM doubles dim}: what -D
  *             needs to read a value of a property or global (its
  *             dimension and unit), or why it cannot be set (csf.h)
  *   events    u32 n, n x {u32 kind, value, mode, src}
@@ -51,7 +52,7 @@
 #define CSF_BYTECODE_H
 
 #define CSFB_MAGIC "CSFB"
-#define CSFB_VERSION 9u
+#define CSFB_VERSION 10u
 #define CSFB_INT_PROBE 0x01020304u
 #define CSFB_FLOAT_PROBE 370.5
 #define CSFB_HEADER_SIZE 28u

@@ -93,13 +93,15 @@ typedef struct csf_prop { uint32_t object, name, slot, width, cls; } csf_prop;
 typedef struct csf_global { uint32_t name, slot, width, cls; } csf_global;
 /*
  * A parameter class: the dimension of a value (exponents of length, mass,
- * time; known 0: a bare number whose dimension nothing fixed, so only a
+ * time, current: CSF_NDIM; known 0: a bare number whose dimension nothing fixed, so only a
  * bare number may replace it), its unit in the model's unit system
  * ("m/s"; "" when dimensionless), and why (when not "") -D cannot set it:
  * its value was folded at compile time into another value, it is computed
  * by a rule, or it chose which contacts exist.
  */
-typedef struct csf_pclass { uint32_t unit, why, known; double dim[3]; } csf_pclass;
+/* The dimensions: exponents of length, mass, time and electric current, in this order. */
+#define CSF_NDIM 4
+typedef struct csf_pclass { uint32_t unit, why, known; double dim[CSF_NDIM]; } csf_pclass;
 /* A value a code section computes, in the order it computes them. */
 typedef struct csf_target { uint32_t slot, width, src, name, object; } csf_target;
 /* An assertion: its statement and the object it was checked for. */
@@ -176,7 +178,7 @@ typedef struct csf_prog {
 	csf_contacts *crun; /* during csf_run, the contact routine's state; NULL otherwise (not in the file) */
 	uint32_t *objects; /* object names, in definition order */
 	csf_prop *props;
-	double ubase[3];    /* the model's unit system: its units of length, mass and time in SI */
+	double ubase[CSF_NDIM]; /* the model's unit system: its units of length, mass, time, current in SI */
 	uint32_t nglobals, npclasses;
 	csf_global *globals; /* the globals -D can name */
 	csf_pclass *pclasses;
@@ -219,9 +221,10 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen);
 typedef struct csf_pref { uint32_t slot, width; const csf_pclass *cls; } csf_pref;
 
 /*
- * Finds the parameter name (a global or OBJECT.PROP). Returns 0 and fills
- * *r, or -1 with a one-line reason in err ("unknown name", "ball has no
- * property x that the run uses").
+ * Finds the parameter name (a global or OBJECT.PROP, either followed by
+ * .x, .y or .z for one component of a vector). Returns 0 and fills *r, or
+ * -1 with a one-line reason in err ("unknown name", "ball has no property
+ * x that the run uses", with "did you mean 'NAME'?" for a near miss).
  */
 int csf_param_find(const csf_prog *p, const char *name, csf_pref *r, char *err, size_t errlen);
 
@@ -468,21 +471,44 @@ unsigned char *csf_read_file(const char *path, size_t *len);
 
 /*
  * The unit table (units.c), defined once for the compiler and the runtime:
- * name, factor to SI, exponents of length, mass, time and angle, the
- * factor's source. Ends with a NULL name.
+ * name, factor to SI, exponents of length, mass, time and current, whether
+ * the SI prefixes (csf_unit_find) apply to the name, and the factor's
+ * source. A unit that takes prefixes has the factor 10^decade exactly
+ * (1, or 1e-3 for the gram). Ends with a NULL name.
  */
-typedef struct csf_unit { const char *name; double factor; signed char dim[4]; const char *source; } csf_unit;
+typedef struct csf_unit {
+	const char *name;
+	double factor;
+	signed char dim[CSF_NDIM];
+	unsigned char prefixes;
+	signed char decade;
+	const char *source;
+} csf_unit;
 extern const csf_unit csf_unit_table[];
-/* The unit named by the len bytes at name, or NULL. */
-const csf_unit *csf_unit_find(const char *name, size_t len);
 /*
- * Parses a unit expression at s (`m/s^2`, `kg*m/(s^2)`, `g/cm^3`): its
- * factor and dimension into *u, *end past it. Returns 0, or -1 with *why
- * set to the reason.
+ * The unit named by the len bytes at name: a name of the table, or an SI
+ * prefix (f p n u m c k M G T) and a name that takes prefixes (`kV`, `uC`,
+ * `ns`), whose factor is the power of ten as the literal 1eN reads.
+ * Returns 1 and fills *u (name and source NULL for a prefixed name), or 0.
+ */
+int csf_unit_find(const char *name, size_t len, csf_unit *u);
+/* Does a unit expression start at s: a unit name, '(' and one, or `1/` (`1/s`, as CSF prints one)? */
+int csf_unit_starts(const char *s);
+/*
+ * Parses a unit expression at s (`m/s^2`, `kg*m/(s^2)`, `g/cm^3`, `1/s`):
+ * its factor and dimension into *u, *end past it. Returns 0, or -1 with
+ * *why set to the reason.
  */
 int csf_unit_parse(const char *s, const char **end, csf_unit *u, const char **why);
-/* Converts si, a value of dimension d (length, mass, time) in SI, to the unit system whose units are base (in SI). */
-double csf_units_to_system(double si, const double d[3], const double base[3]);
+/* Converts si, a value of dimension d in SI, to the unit system whose units are base (in SI). */
+double csf_units_to_system(double si, const double d[CSF_NDIM], const double base[CSF_NDIM]);
+
+/*
+ * The candidate nearest to name (of 3 letters or more), within 2 edits, or
+ * the symbol it begins with ("velocity": "v"); NULL if none. For the
+ * suggestions "did you mean 'NAME'?" of csfc and of -D.
+ */
+const char *csf_suggest_name(const char *name, const char *const *cands, int n);
 
 /* Formats x so that it reads back to the same double (shortest of %.15g..%.17g). */
 void csf_fmt_double(char buf[32], double x);

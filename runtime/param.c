@@ -11,7 +11,9 @@
  * literal (csf_units_to_system of the unit's SI factor, times the number),
  * so `-D 'ball.v=(3, 0, 4) m/s'` gives the bits `v = (3, 0, 4) m/s` gives.
  * A bare number is in the model's units and is taken as it is: the values
- * a sweep prints read back to the same doubles.
+ * a sweep prints read back to the same doubles. NAME.x (.y, .z) sets one
+ * component of a vector. An unknown name's error suggests the nearest
+ * known one, as csfc's errors do (csf_suggest_name serves both).
  */
 #include <ctype.h>
 #include <errno.h>
@@ -22,8 +24,83 @@
 
 #include "csf.h"
 
-int csf_param_find(const csf_prog *p, const char *name, csf_pref *r, char *err, size_t errlen)
+/* ---- names: the suggestions of csfc's errors and of -D ---- */
+
+/* The edit distance of a and b (insertions, deletions, substitutions), at most cap + 1. */
+static int edit_distance(const char *a, const char *b, int cap)
 {
+	size_t n = strlen(a), m = strlen(b);
+	if ((n > m ? n - m : m - n) > (size_t)cap) return cap + 1;
+	if (m > 64) return cap + 1;
+	int row[65];
+	for (size_t j = 0; j <= m; j++) row[j] = (int)j;
+	for (size_t i = 1; i <= n; i++) {
+		int diag = row[0], best;
+		row[0] = (int)i;
+		best = row[0];
+		for (size_t j = 1; j <= m; j++) {
+			int up = row[j], v = diag + (a[i - 1] != b[j - 1]);
+			if (up + 1 < v) v = up + 1;
+			if (row[j - 1] + 1 < v) v = row[j - 1] + 1;
+			diag = up;
+			row[j] = v;
+			if (v < best) best = v;
+		}
+		if (best > cap) return cap + 1;
+	}
+	return row[m] > cap ? cap + 1 : row[m];
+}
+
+const char *csf_suggest_name(const char *name, const char *const *cands, int n)
+{
+	/* a near miss of a name of 3 letters or more (one or two letters are too many names' near
+	   misses): at most 2 edits; a name that begins with a candidate counts as 1, as the symbol
+	   of a word does (mass: m, velocity: v, position: pos) */
+	if (strlen(name) < 3) return NULL;
+	int cap = 2, best = cap + 1;
+	const char *pick = NULL;
+	for (int i = 0; i < n; i++) {
+		if (!cands[i] || !*cands[i] || !strcmp(cands[i], name)) continue;
+		int d = edit_distance(name, cands[i], cap);
+		if (!strncmp(name, cands[i], strlen(cands[i])) && d > 1) d = 1;
+		if (d < best || (d == best && pick && strlen(cands[i]) > strlen(pick))) best = d, pick = cands[i];
+	}
+	return best <= cap ? pick : NULL;
+}
+
+/* "; did you mean 'NAME'?" for the candidate nearest to name among those of cands[0..n) that
+   are set (the rest NULL), or ""; into buf. Frees cands. */
+static const char *suggestion(const char *name, const char **cands, uint32_t n, char *buf, size_t len)
+{
+	const char *s = cands ? csf_suggest_name(name, cands, (int)n) : NULL;
+	if (s) snprintf(buf, len, "; did you mean '%s'?", s);
+	else buf[0] = '\0';
+	free(cands);
+	return buf;
+}
+
+enum { GLOBALS, OBJECTS, PROPS };
+
+/* The names of p's globals, objects, or the properties of object obj that the run keeps (the
+   others NULL), *n of them; malloc'd (NULL if out of memory). */
+static const char **names_of(const csf_prog *p, int which, uint32_t obj, uint32_t *n)
+{
+	*n = which == GLOBALS ? p->nglobals : which == OBJECTS ? p->nobjects : p->nprops;
+	const char **c = calloc(*n + 1, sizeof *c);
+	for (uint32_t i = 0; c && i < *n; i++)
+		if (which == GLOBALS) c[i] = csf_str(p, p->globals[i].name);
+		else if (which == OBJECTS) c[i] = csf_str(p, p->objects[i]);
+		else if (p->props[i].object == obj) c[i] = csf_str(p, p->props[i].name);
+	return c;
+}
+
+/* ---- -D NAME=VALUE ---- */
+
+/* csf_param_find of a whole global or property (no component). */
+static int find_whole(const csf_prog *p, const char *name, csf_pref *r, char *err, size_t errlen)
+{
+	char hint[300];
+	uint32_t n;
 	const char *dot = strchr(name, '.');
 	if (!dot) {
 		for (uint32_t i = 0; i < p->nglobals; i++)
@@ -34,20 +111,48 @@ int csf_param_find(const csf_prog *p, const char *name, csf_pref *r, char *err, 
 		for (uint32_t i = 0; i < p->nobjects; i++)
 			if (strcmp(csf_str(p, p->objects[i]), name) == 0)
 				return csf_fail(err, errlen, "'%s' is an object: name one of its properties, %s.PROP", name, name);
-		return csf_fail(err, errlen, "unknown name '%s': the scene has no global of that name", name);
+		const char **c = names_of(p, GLOBALS, 0, &n);
+		return csf_fail(err, errlen, "unknown name '%s': the scene has no global of that name%s", name,
+		                suggestion(name, c, n, hint, sizeof hint));
 	}
 	size_t on = (size_t)(dot - name);
 	uint32_t obj = UINT32_MAX;
 	for (uint32_t i = 0; i < p->nobjects && obj == UINT32_MAX; i++)
 		if (strlen(csf_str(p, p->objects[i])) == on && memcmp(csf_str(p, p->objects[i]), name, on) == 0) obj = i;
-	if (obj == UINT32_MAX) return csf_fail(err, errlen, "unknown name '%s': the scene has no object '%.*s'", name, (int)on, name);
+	if (obj == UINT32_MAX) {
+		char oname[256];
+		snprintf(oname, sizeof oname, "%.*s", (int)on, name);
+		const char **c = names_of(p, OBJECTS, 0, &n);
+		return csf_fail(err, errlen, "unknown name '%s': the scene has no object '%s'%s", name, oname,
+		                suggestion(oname, c, n, hint, sizeof hint));
+	}
 	for (uint32_t i = 0; i < p->nprops; i++)
 		if (p->props[i].object == obj && strcmp(csf_str(p, p->props[i].name), dot + 1) == 0) {
 			*r = (csf_pref){ p->props[i].slot, p->props[i].width, &p->pclasses[p->props[i].cls] };
 			return 0;
 		}
-	return csf_fail(err, errlen, "unknown name '%s': object '%.*s' has no property '%s' that the run uses", name, (int)on,
-	            name, dot + 1);
+	const char **c = names_of(p, PROPS, obj, &n);
+	return csf_fail(err, errlen, "unknown name '%s': object '%.*s' has no property '%s' that the run uses%s", name,
+	                (int)on, name, dot + 1, suggestion(dot + 1, c, n, hint, sizeof hint));
+}
+
+int csf_param_find(const csf_prog *p, const char *name, csf_pref *r, char *err, size_t errlen)
+{
+	if (!find_whole(p, name, r, err, errlen)) return 0;
+	/* NAME.x, .y or .z: one component of a vector */
+	size_t n = strlen(name);
+	if (n < 3 || name[n - 2] != '.' || name[n - 1] < 'x' || name[n - 1] > 'z') return -1;
+	char *whole = malloc(n - 1);
+	if (!whole) return -1;
+	memcpy(whole, name, n - 2);
+	whole[n - 2] = '\0';
+	char why[8];
+	int bad = find_whole(p, whole, r, why, sizeof why);
+	free(whole);
+	if (bad || r->width != 3) return -1; /* err says why name is unknown */
+	r->slot += (uint32_t)(name[n - 1] - 'x');
+	r->width = 1;
+	return 0;
 }
 
 /* A value being read: where in the text, whether the last opt_unit found a unit, the model's unit system. */
@@ -60,17 +165,17 @@ typedef struct vread {
 static void skip_ws(vread *V) { while (isspace((unsigned char)*V->s)) V->s++; }
 
 /* An optional unit at V->s: its factor in the model's units into *f (1 if none), its dimension checked. */
-static int opt_unit(vread *V, double *f, double dim[3], const char **why)
+static int opt_unit(vread *V, double *f, double dim[CSF_NDIM], const char **why)
 {
 	skip_ws(V);
 	*f = 1;
-	dim[0] = dim[1] = dim[2] = 0;
-	if (!isalpha((unsigned char)*V->s) && !(*V->s == '(' && isalpha((unsigned char)V->s[1]))) return 0;
+	memset(dim, 0, CSF_NDIM * sizeof *dim);
+	if (!csf_unit_starts(V->s)) return 0;
 	csf_unit u;
 	const char *end;
 	if (csf_unit_parse(V->s, &end, &u, why)) return -1;
 	V->s = end;
-	for (int k = 0; k < 3; k++) dim[k] = u.dim[k];
+	for (int k = 0; k < CSF_NDIM; k++) dim[k] = u.dim[k];
 	*f = csf_units_to_system(u.factor, dim, V->base);
 	V->has_unit = 1;
 	return 0;
@@ -93,7 +198,7 @@ int csf_param_value(const csf_prog *p, const char *name, const csf_pref *r, cons
 	vread V = { .s = text, .base = p->ubase };
 	const char *why = "expected a number";
 	int n = 1, has[3] = { 0, 0, 0 };
-	double f[3] = { 1, 1, 1 }, d[3][3] = { { 0 } }, of, od[3];
+	double f[3] = { 1, 1, 1 }, d[3][CSF_NDIM] = { { 0 } }, of, od[CSF_NDIM];
 	skip_ws(&V);
 	if (*V.s == '(') {
 		n = 3;
@@ -121,11 +226,11 @@ int csf_param_value(const csf_prog *p, const char *name, const csf_pref *r, cons
 	}
 	/* as the compiler folds it: each component times its unit's factor, then the whole times the outer one's */
 	int dim_set = 0;
-	double dim[3] = { 0, 0, 0 };
+	double dim[CSF_NDIM] = { 0 }, t[CSF_NDIM];
 	for (int k = 0; k < n; k++) {
 		v[k] = v[k] * f[k] * of;
 		if (!has[k] && !V.has_unit) continue;
-		double t[3] = { d[k][0] + od[0], d[k][1] + od[1], d[k][2] + od[2] };
+		for (int i = 0; i < CSF_NDIM; i++) t[i] = d[k][i] + od[i];
 		if (dim_set && memcmp(t, dim, sizeof t) != 0)
 			return csf_fail(err, errlen, "'%s': the components of a vector must have one dimension", text);
 		memcpy(dim, t, sizeof t);
@@ -136,7 +241,7 @@ int csf_param_value(const csf_prog *p, const char *name, const csf_pref *r, cons
 		            r->width == 3 ? "(x, y, z) and a unit" : "a number and a unit", text);
 	const csf_pclass *c = r->cls;
 	const char *unit = csf_str(p, c->unit);
-	if (dim_set && !c->known && (dim[0] || dim[1] || dim[2]))
+	if (dim_set && !c->known && memcmp(dim, (double[CSF_NDIM]){ 0 }, sizeof dim) != 0)
 		return csf_fail(err, errlen, "the dimension of %s is not known to the model: give a bare number, not '%s'", name, text);
 	if (dim_set && c->known && memcmp(c->dim, dim, sizeof dim) != 0) {
 		if (!*unit) return csf_fail(err, errlen, "wrong dimension: %s is dimensionless, '%s' is not (expected a bare number)", name, text);

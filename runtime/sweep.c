@@ -182,7 +182,42 @@ static int split(char *line, char **f, int max)
 	}
 }
 
-/* --sweep-file FILE.csv: a header of parameter names, then one variant per row (values with optional units). */
+/*
+ * A cell of a sweep file's header: NAME, or NAME [UNIT] as a sweep's output
+ * names its leading columns; the unit (NULL if none) into *unit, malloc'd.
+ * Returns the name, or NULL when the brackets are not closed at the end.
+ */
+static char *header_cell(char *cell, char **unit)
+{
+	*unit = NULL;
+	char *br = strchr(cell, '[');
+	if (!br) return cell;
+	size_t n = strlen(br);
+	if (br[n - 1] != ']') return NULL;
+	br[n - 1] = '\0';
+	*br = '\0';
+	const char *u = trim(br + 1);
+	*unit = xstrndup0(u, strlen(u));
+	return trim(cell);
+}
+
+/*
+ * The text of value cell of a column whose header gave unit (NULL if none)
+ * for parameter q, into buf: a bare number is in the header's unit (and so
+ * as it is when that is the parameter's own, what a sweep prints).
+ */
+static const char *cell_value(const csf_sweep *S, const sparam *q, const char *unit, const char *cell, char *buf,
+                              size_t len)
+{
+	char *end;
+	strtod(cell, &end);
+	if (!unit || end == cell || *trim(end) || strcmp(unit, csf_str(S->p, q->ref.cls->unit)) == 0) return cell;
+	snprintf(buf, len, "%s %s", cell, unit);
+	return buf;
+}
+
+/* --sweep-file FILE.csv: a header of parameter names (with optional units), then one variant per row (values with
+   optional units). */
 static int parse_file(csf_sweep *S, const char *path)
 {
 	size_t len;
@@ -191,7 +226,7 @@ static int parse_file(csf_sweep *S, const char *path)
 	text[len] = '\0';
 	int st = -1, first = S->npar, n = 0;
 	enum { MAXF = 256 };
-	char *f[MAXF];
+	char *f[MAXF], *units[MAXF] = { NULL };
 	size_t rows = 0;
 	axis *ax = NULL;
 	/* two passes: count the rows, then read them */
@@ -215,11 +250,18 @@ static int parse_file(csf_sweep *S, const char *path)
 					serr(S, "--sweep-file %s: more than %d columns", path, MAXF);
 					goto out;
 				}
-				for (int k = 0; k < nf; k++)
-					if (add_param(S, f[k], "--sweep-file") < 0) {
+				for (int k = 0; k < nf; k++) {
+					char *name = header_cell(f[k], &units[k]);
+					if (!name) {
+						serr(S, "--sweep-file %s: header '%s': expected NAME or NAME [UNIT]", path, f[k]);
 						free(copy);
 						goto out;
 					}
+					if (add_param(S, name, "--sweep-file") < 0) {
+						free(copy);
+						goto out;
+					}
+				}
 				n = nf;
 				continue;
 			}
@@ -230,10 +272,11 @@ static int parse_file(csf_sweep *S, const char *path)
 			}
 			if (pass)
 				for (int k = 0; k < n; k++) {
-					char why[400];
+					char why[400], buf[512];
 					sparam *q = &S->par[first + k];
 					double v[3];
-					if (csf_param_value(S->p, q->name, &q->ref, f[k], v, why, sizeof why)) {
+					const char *cell = cell_value(S, q, units[k], f[k], buf, sizeof buf);
+					if (csf_param_value(S->p, q->name, &q->ref, cell, v, why, sizeof why)) {
 						serr(S, "--sweep-file %s:%d: %s", path, lineno, why);
 						goto out;
 					}
@@ -257,6 +300,7 @@ static int parse_file(csf_sweep *S, const char *path)
 	}
 	st = 0;
 out:
+	for (int k = 0; k < MAXF; k++) free(units[k]);
 	free(text);
 	return st;
 }

@@ -48,6 +48,10 @@ fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 
+# the units in the header of CSV $2 of a model compiled for system $1, kept for 4c
+header_units() { head -n 1 "$2" | tr ',' '\n' | sed -n "s/^.* \[\(.*\)\]\$/$1 \1/p" >>"$T/units"; }
+: >"$T/units"
+
 # 1. exact answers
 for m in tests/e2e/*.csf examples/*.csf; do
 	[ -f "$m" ] || continue
@@ -62,6 +66,7 @@ for m in tests/e2e/*.csf examples/*.csf; do
 		bad "$m: csfvm failed: $(head -n 1 "$T/err")"
 		continue
 	fi
+	header_units mks "$T/out.csv"
 	if [ -f "$chk" ]; then
 		# a checker may load a shared one from its directory: "# uses: FILE" on its first line
 		uses=$(sed -n '1s/^# uses: //p' "$chk")
@@ -193,6 +198,44 @@ for sys in mks cgs fps; do
 	done
 done
 [ $u -eq 0 ] && ok
+#     A cyclotron in each system: the EM units keep the ampere, their mechanical part is
+#     converted; the output, in SI, is the exact circle (tests/units/cyclotron.awk).
+for sys in mks cgs fps; do
+	if ! "$CSFC" --units $sys tests/units/cyclotron.csf -o "$T/u.csfb" 2>"$T/err" ||
+		! "$CSFVM" "$T/u.csfb" >"$T/u.csv" 2>>"$T/err"; then
+		bad "units: cyclotron.csf under --units $sys: $(head -n 1 "$T/err")"
+	elif ! awk -f tests/units/to_si.awk "$T/u.csv" | awk -f tests/units/cyclotron.awk >"$T/cmp" 2>&1; then
+		bad "units: cyclotron.csf under --units $sys: $(head -n 1 "$T/cmp")"
+	else
+		header_units $sys "$T/u.csv"
+		ok
+	fi
+done
+
+# 4c. every unit a header above printed reads back: as a literal in a scene compiled for that
+#     system (csfc prints it again), with -D and as a --sweep value (the same value)
+sort -u "$T/units" >"$T/units.u"
+: >"$T/rb.bad"
+while read -r sys unit; do
+	printf 'object o: q = 2 %s\ninc t till 1 s by 1 s watch o.q\n' "$unit" >"$T/rb.csf"
+	if ! "$CSFC" --units "$sys" "$T/rb.csf" -o "$T/rb.csfb" 2>"$T/err"; then
+		echo "$sys [$unit]: $(head -n 1 "$T/err")" >>"$T/rb.bad"
+		continue
+	fi
+	for opt in -D --sweep; do
+		val="o.q=3 $unit"
+		[ $opt = --sweep ] && val="o.q=3:3:1 $unit"
+		"$CSFVM" $opt "$val" "$T/rb.csfb" 2>"$T/err" | awk -F, -v u="$unit" -v lead=$([ $opt = --sweep ] && echo 1 || echo 0) '
+			NR == 1 && $(2 + lead) != "o.q [" u "]" { print "header " $0; exit 1 }
+			NR == 2 { d = $(2 + lead) - 3; if (d < 0) d = -d; if (d > 3e-15) { print "value " $0; exit 1 } }
+			END { if (NR != 3) { print NR " lines"; exit 1 } }' >"$T/rb.out" ||
+			echo "$sys $opt '$val': $(cat "$T/rb.out" "$T/err" | head -n 1)" >>"$T/rb.bad"
+	done
+done <"$T/units.u"
+# (some 19 units: m/s^2, 1/s, N, C, V, T, A in mks; cm/s, dyn, g/(s^2*A) in cgs; pdl... in fps)
+if [ -s "$T/rb.bad" ] || [ "$(wc -l <"$T/units.u")" -lt 15 ]; then
+	bad "units read back ($(wc -l <"$T/units.u") units): $(head -n 3 "$T/rb.bad")"
+else ok; fi
 
 # 5a. hostile bytecode: every byte flipped, every truncation (csfvm must exit 2, never crash);
 #     the model has a POWI, whose exponent the verifier checks

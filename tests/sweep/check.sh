@@ -39,6 +39,14 @@ dcheck 0.785398163397448 20 1 2 -D 'ball.pos=(1, 0, 2) m'
 dcheck 0.785398163397448 20 1 2 -D 'ball.pos=(100 cm, 0, 2000 mm)'
 dcheck 0.785398163397448 20 0.3048 0 -D 'ball.pos=(1, 0, 0) ft'
 dcheck 0.785398163397448 20 0 0 -D 'ball.m=500 g' -D 'ball.b=100 g/s'
+# one component of a vector alone: NAME.x, .y, .z
+dcheck 0.785398163397448 20 0 2 -D ball.pos.z=2
+dcheck 0.785398163397448 20 1 2 -D 'ball.pos.x=100 cm' -D 'ball.pos.z = 2 m'
+# a rate in 1/s, as the header prints it: phi' = Omega, phi = Omega t
+printf 'global Omega = 1 1/s\nobject b: phi = 0\nrule: phi'"'"' = Omega\ninc t till 2 s by 1 s watch b.phi\n' >"$T/omega.csf"
+if "$CSFC" "$T/omega.csf" -o "$T/omega.csfb" && "$CSFVM" -D 'Omega=1.8 1/s' "$T/omega.csfb" >"$T/o.csv" &&
+	awk -F, 'NR > 1 { d = $2 - 1.8 * $1; if (d < 0) d = -d; if (d > 1e-12) exit 1 } END { if (NR != 4) exit 1 }' "$T/o.csv"; then ok
+else bad "-D 'Omega=1.8 1/s': $(cat "$T/o.csv" | tr '\n' ' ')"; fi
 # a spring: k = 2000 g/s^2 = 2 N/m, m = 500 g: x = cos(2 t); in cgs x is in cm
 spring() { # what file scale -D...
 	what=$1 file=$2 scale=$3
@@ -77,6 +85,12 @@ derr "$F" "k2 cannot be overridden: its value is computed at compile time from k
 derr "$F" "ball.q cannot be overridden: its value is computed at compile time from k2" -D ball.q=1
 derr "$F" "ball.a cannot be overridden: a rule computes it" -D 'ball.a=1 m/s^2'
 derr "$L" "v0 is swept twice" --sweep v0=1:2:2 --sweep v0=1:2:2
+derr "$L" "ball.pos.z is in m, '1 s' is not" -D 'ball.pos.z=1 s'
+derr "$L" "ball.pos.z is a scalar" -D 'ball.pos.z=(1, 2, 3) m'
+# a misspelt name: the nearest one suggested, as csfc does
+derr "$L" "no global of that name; did you mean 'theta'?" -D thetta=1
+derr "$L" "no object 'bal'; did you mean 'ball'?" -D bal.m=1
+derr "$L" "no property 'poss.z' that the run uses; did you mean 'pos'?" -D ball.poss.z=1
 derr "$L" "ball.pos is a vector" --sweep ball.pos=1:2:2
 derr "$L" "expected NAME=FROM:TO:COUNT" --sweep v0=1:2
 derr "$L" "not a watched column" --sweep v0=1:2:2 --sweep-summary 'max(ball.v.z)'
@@ -120,6 +134,19 @@ if "$CSFVM" --sweep-file "$T/params.csv" --sweep 'ball.m=0.5:0.5:1 kg' "$L" >"$T
 	awk -v lead=3 -v expect=42 -f "$HERE/launch.awk" "$T/sf.csv" >"$T/sf.chk" &&
 	[ "$(awk -F, 'NR == 2 { print $1 "," $2 }' "$T/sf.csv")" = "0.5235987755982988,10" ]; then ok
 else bad "--sweep-file: $(cat "$T/sf.err" "$T/sf.chk" 2>/dev/null | head -n 1)"; fi
+
+# --sweep-file whose header is a sweep's own leading columns (NAME [UNIT]): the same variants,
+# byte for byte; a header unit other than the parameter's applies to the bare values
+"$CSFVM" --sweep 'v0=10:20:3' --sweep 'ball.m=0.5:1:2' "$L" >"$T/sw.csv" 2>/dev/null
+if cut -d, -f1,2 "$T/sw.csv" | uniq >"$T/back.csv" && [ "$(head -n 1 "$T/back.csv")" = "v0 [m/s],ball.m [kg]" ] &&
+	"$CSFVM" --sweep-file "$T/back.csv" "$L" 2>"$T/sf.err" | cmp -s - "$T/sw.csv"; then ok
+else bad "--sweep-file of a sweep's header: $(head -n 1 "$T/sf.err")"; fi
+printf 'v0 [km/h],ball.m [g]\n36,500\n54,500\n72, 0.5 kg\n' >"$T/kmh.csv"
+if "$CSFVM" --sweep-file "$T/kmh.csv" "$L" 2>"$T/sf.err" | awk -F, 'NR > 1 { print $1 "," $2 }' | uniq >"$T/kmh.out" &&
+	[ "$(cat "$T/kmh.out" | tr '\n' ' ')" = "10,0.5 15,0.5 20,0.5 " ]; then ok
+else bad "--sweep-file with units in the header: $(cat "$T/sf.err" "$T/kmh.out" | head -n 2)"; fi
+printf 'v0 [m/s\n1\n' >"$T/bad.csv"
+derr "$L" "header 'v0 \[m/s': expected NAME or NAME \[UNIT\]" --sweep-file "$T/bad.csv"
 
 # --sweep-summary: one row per variant, the max and final of the rows
 # shellcheck disable=SC2086

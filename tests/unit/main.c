@@ -51,7 +51,7 @@ csf_prog bare_prog(uint32_t *code, uint32_t n, double *mem0, uint32_t nmem, uint
 	p.strs = "";
 	p.nstrs = 1;
 	p.by = 1;
-	p.ubase[0] = p.ubase[1] = p.ubase[2] = 1; /* mks */
+	for (int k = 0; k < CSF_NDIM; k++) p.ubase[k] = 1; /* mks */
 	p.asserts = a;
 	p.nasserts = nasserts;
 	p.srcs = &s;

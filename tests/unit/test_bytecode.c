@@ -329,16 +329,19 @@ START_TEST(test_param_tables_verified)
 	};
 	expect_defects(&p, d, sizeof d / sizeof d[0]);
 	char err[256];
-	double keep = p.ubase[1];
-	p.ubase[1] = 0;
-	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
-	ck_assert_msg(strstr(err, "unit system") != NULL, "%s", err);
-	p.ubase[1] = keep;
-	keep = p.pclasses[0].dim[2];
-	p.pclasses[0].dim[2] = NAN;
-	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
-	ck_assert_msg(strstr(err, "parameter class") != NULL, "%s", err);
-	p.pclasses[0].dim[2] = keep;
+	/* every unit of the system, the ampere's too, and every exponent of a class, current's too */
+	for (int k = 0; k < CSF_NDIM; k++) {
+		double keep = p.ubase[k];
+		p.ubase[k] = k % 2 ? 0 : -INFINITY;
+		ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
+		ck_assert_msg(strstr(err, "unit system") != NULL, "%s", err);
+		p.ubase[k] = keep;
+		keep = p.pclasses[0].dim[k];
+		p.pclasses[0].dim[k] = k % 2 ? NAN : 65;
+		ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
+		ck_assert_msg(strstr(err, "parameter class") != NULL, "%s", err);
+		p.pclasses[0].dim[k] = keep;
+	}
 	unsigned char *buf;
 	size_t len;
 	ck_assert_int_eq(csf_encode(&p, &buf, &len), 0);
@@ -381,6 +384,19 @@ static const struct { const char *assign; double want; const char *err; } param_
 	{ "b.m", 0, "expected NAME=VALUE" },
 	{ "b.m=1 kg kg", 0, "cannot read" },
 	{ "b.m=1e999", 0, "cannot read" },
+	/* one component of a vector, as csfc reads g.z */
+	{ "g.z=-1.62 m/s^2", -1.62, NULL },
+	{ "g.z = -162 cm/s^2", -1.62, NULL },
+	{ "g.z=1 kg", 0, "wrong dimension: g.z is in m/s^2" },
+	{ "g.z=(0, 0, 1) m/s^2", 0, "g.z is a scalar" },
+	{ "g.w=1", 0, "unknown name 'g.w'" },
+	{ "b.m.x=1", 0, "no property 'm.x'" },
+	/* a unit as CSF prints one: 1/s */
+	{ "b.v=4 m*(1/s)", 4, NULL },
+	{ "b.v=4 m*1/s", 4, NULL },
+	{ "b.v=4 1/s", 0, "expected unit m/s" },
+	/* a near miss is suggested */
+	{ "pii=3", 0, "unknown name 'pii': the scene has no global of that name; did you mean 'pi'?" },
 };
 
 START_TEST(test_param_set)
