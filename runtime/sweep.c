@@ -329,7 +329,7 @@ static int window_time(csf_sweep *S, const char *spec, const char **s, double *t
 	for (size_t k = 0; k < sizeof u.dim; k++)
 		if (u.dim[k] != (k == 2))
 			return serr(S, "--sweep-summary '%s': '%.*s' is not a unit of time", spec, (int)(uend - *s), *s);
-	const double d[3] = { 0, 0, 1 };
+	const double d[CSF_NDIM] = { 0, 0, 1, 0 };
 	*t *= csf_units_to_system(u.factor, d, S->p->ubase);
 	*s = uend;
 	return 0;
