@@ -110,11 +110,19 @@ void lint_model(Model *M)
 			break;
 		}
 
+	/* the statements some instance of which is needed: a rule without 'for' applies to every object
+	   that has what it reads, and is needed if it is for one of them (a force on the ball, not the floor) */
+	Vec used = { 0 };
+	for (int i = 0; i < M->insts.n; i++) {
+		Inst *I = M->insts.v[i];
+		if (I->needed[0] || I->needed[1]) first_at(&used, I->st->loc);
+	}
 	for (int i = 0; i < M->insts.n; i++) {
 		Inst *I = M->insts.v[i];
 		if (I->isassert || I->isstop || I->isderiv || !users(I->st->loc)) continue;
 		/* a rule whose result nothing reads (what --explain calls left out) */
-		if (!I->needed[0] && !I->needed[1] && I->targets.n && !(I->isF && !rf_read) && first_at(&seen, I->st->loc)) {
+		if (!I->needed[0] && !I->needed[1] && I->targets.n && !(I->isF && !rf_read) && first_at(&used, I->st->loc) &&
+		    first_at(&seen, I->st->loc)) {
 			Var *v = I->targets.v[0];
 			int temps = 1;
 			for (int k = 0; k < I->targets.n; k++) temps &= ((Var *)I->targets.v[k])->kind == V_TEMP;

@@ -25,6 +25,9 @@ done
 # a clean model has no warnings
 "$CSFC" examples/projectile.csf -o "$T/w.csfb" 2> "$T/w.err"
 if [ ! -s "$T/w.err" ]; then ok; else bad "examples/projectile.csf warns: $(head -n 1 "$T/w.err")"; fi
+# ... nor a conditional force without 'for', needed for the block though not for the floor it also applies to
+"$CSFC" tests/e2e/push_friction.csf -o "$T/w.csfb" 2> "$T/w.err"
+if [ ! -s "$T/w.err" ]; then ok; else bad "tests/e2e/push_friction.csf warns: $(head -n 1 "$T/w.err")"; fi
 
 # errors with suggestions
 expect_error() { # NAME TEXT LINE: compiling TEXT is exit 1 with LINE on stderr, and no other error
