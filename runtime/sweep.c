@@ -308,6 +308,48 @@ out:
 /* The header cell of column c of a run's output: "t", or the column's name with its unit. */
 static const char *col_head(const csf_prog *p, uint32_t c) { return c == 0 ? "t" : csf_str(p, p->cols[c - 1].name); }
 
+/* The length of column k's header without its unit. */
+static size_t head_len(const csf_prog *p, uint32_t k)
+{
+	const char *h = col_head(p, k), *u = strstr(h, " [");
+	return u ? (size_t)(u - h) : strlen(h);
+}
+
+/*
+ * The column a summary names: as in the header without the unit
+ * (`ball.pos.z`), or as the watch list may (`pos.z` for the one object
+ * whose column it is). UINT32_MAX, with a message in S, if none or several.
+ */
+static uint32_t find_column(csf_sweep *S, const char *c)
+{
+	const csf_prog *p = S->p;
+	size_t n = strlen(c);
+	uint32_t found = UINT32_MAX, nsuffix = 0, ends = UINT32_MAX;
+	for (uint32_t k = 0; k <= p->ncols; k++) {
+		const char *h = col_head(p, k);
+		size_t hn = head_len(p, k);
+		if (hn == n && strncmp(h, c, n) == 0) return k;
+		if (hn > n && h[hn - n - 1] == '.' && strncmp(h + hn - n, c, n) == 0) {
+			if (!nsuffix++) ends = k;
+			else if (nsuffix == 2)
+				serr(S, "--sweep-summary: '%s' names several columns ('%.*s', '%.*s'...): name one as in the header",
+				     c, (int)head_len(p, ends), col_head(p, ends), (int)hn, h);
+		}
+	}
+	if (nsuffix == 1) return ends;
+	if (nsuffix > 1) return found;
+	const char **names = malloc((p->ncols + 1) * sizeof *names);
+	char **cut = calloc(p->ncols + 1, sizeof *cut);
+	for (uint32_t k = 0; names && cut && k <= p->ncols; k++) names[k] = cut[k] = xstrndup0(col_head(p, k), head_len(p, k));
+	const char *near = names && cut ? csf_suggest_name(c, names, (int)p->ncols + 1) : NULL;
+	if (near) serr(S, "--sweep-summary: '%s' is not a watched column; did you mean '%s'?", c, near);
+	else serr(S, "--sweep-summary: '%s' is not a watched column (the header of a run names them)", c);
+	for (uint32_t k = 0; cut && k <= p->ncols; k++) free(cut[k]);
+	free(cut);
+	free(names);
+	return found;
+}
+
 /*
  * A time at *s for a summary's window, `50`, `50 s` or `2 min` (a time unit), into *t in the model's
  * units; *s past it. 0, or -1 (a message in S).
@@ -354,14 +396,8 @@ static int parse_summary(csf_sweep *S, const char *spec)
 		char *col = xstrndup0(open + 1, (size_t)(close - open - 1));
 		if (!col) return serr(S, "out of memory");
 		char *c = trim(col);
-		uint32_t found = UINT32_MAX;
-		for (uint32_t k = 0; k <= S->p->ncols && found == UINT32_MAX; k++) {
-			const char *h = col_head(S->p, k);
-			size_t n = strlen(c);
-			if (strncmp(h, c, n) == 0 && (h[n] == '\0' || strncmp(h + n, " [", 2) == 0)) found = k;
-		}
+		uint32_t found = find_column(S, c);
 		if (found == UINT32_MAX) {
-			serr(S, "--sweep-summary: '%s' is not a watched column (the header of a run names them)", c);
 			free(col);
 			return -1;
 		}
@@ -393,9 +429,10 @@ static int parse_summary(csf_sweep *S, const char *spec)
 		S->sum = q;
 		const char *h = col_head(S->p, found), *unit = strstr(h, " [");
 		size_t wn = (size_t)(wend - wstart);
-		size_t hn = strlen(fn[func]) + strlen(c) + wn + (unit ? strlen(unit) : 0) + 4;
+		size_t cn = head_len(S->p, found), hn = strlen(fn[func]) + cn + wn + (unit ? strlen(unit) : 0) + 4;
 		char *head = malloc(hn);
-		if (head) snprintf(head, hn, "%s(%s)%s%.*s%s", fn[func], c, wn ? " " : "", (int)wn, wstart, unit ? unit : "");
+		if (head)
+			snprintf(head, hn, "%s(%.*s)%s%.*s%s", fn[func], (int)cn, h, wn ? " " : "", (int)wn, wstart, unit ? unit : "");
 		S->sum[S->nsum++] = (sumcol){ func, found, from, to, head };
 		free(col);
 		if (!head) return serr(S, "out of memory");

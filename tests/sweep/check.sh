@@ -181,6 +181,12 @@ if "$CSFC" "$HERE/driven.csf" -o "$T/driven.csfb" &&
 			if (abs($5 / A - 1) > 0.01) far++; n++ }
 		END { if (n != 3 || !far) { print n " rows, " far + 0 " whole-run maxima off"; exit 1 } }' "$T/res.csv" >"$T/res.chk"; then ok
 else bad "--sweep-summary, a resonance curve: $(cat "$T/res.err" "$T/res.chk" 2>/dev/null | head -n 1)"; fi
+# a column named as the watch list names it (x: p.x, the one column ending so), the header the full name
+if "$CSFVM" --sweep u=2:2:1 --sweep-summary 'mean(x) to 4 s' "$R" >"$T/sfx.csv" 2>"$T/sfx.err" &&
+	[ "$(head -n 1 "$T/sfx.csv")" = "u [m/s],mean(p.x) to 4 s [m]" ] &&
+	awk -F, 'NR == 2 { d = $2 - 4; exit !(d < 1e-12 && d > -1e-12) }' "$T/sfx.csv"; then ok
+else bad "--sweep-summary 'mean(x)': $(cat "$T/sfx.err" "$T/sfx.csv" | head -n 2)"; fi
+derr "$R" "did you mean 'p.x'?" --sweep u=1:2:2 --sweep-summary 'max(p.xx)'
 derr "$R" "not a unit of time" --sweep u=1:2:2 --sweep-summary 'max(p.x) from 5 m'
 derr "$R" "ends before it starts" --sweep u=1:2:2 --sweep-summary 'max(p.x) from 5 s to 2 s'
 derr "$R" "starts after the run ends" --sweep u=1:2:2 --sweep-summary 'max(p.x) from 20 s'
