@@ -369,7 +369,9 @@ void csf_out_end(void);
 /* Run-time options, parsed identically by csfvm and generated executables. */
 typedef struct csf_opts {
 	const char *method; /* ODE stepper name, NULL for the default */
-	double tol;         /* local error bound, <= 0 for the default */
+	double tol;         /* local error bound, relative, <= 0 for the default (else CSF_MIN_TOL <= tol < 1) */
+	double atol;        /* --atol A: the absolute error bound of every state component, in the model's
+	                       units (<= 0: tol times each component's scale, csf_prog.yscale) */
 	int fixed;          /* --fixed: no error control, constant internal steps */
 	double step;        /* --step H: the fixed step (<= 0: by) */
 	double hmax;        /* --hmax H: the longest internal step (<= 0: no cap but the run's length; by for

@@ -107,6 +107,19 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 			}
 		} else if (csf_opt_value(argc, argv, &i, "--tol", &v)) {
 			if (positive(argv[0], v, "--tol", "", &o->tol)) return 2;
+			if (o->tol < CSF_MIN_TOL || o->tol >= 1) {
+				fprintf(stderr,
+				        o->tol >= 1 ? "%s: --tol %s: a relative error of 1 or more allows any answer; the tolerance "
+				                      "must be below 1\n"
+				                    : "%s: --tol %s is below 1e-15, what doubles can deliver: a step's result is "
+				                      "rounded by 1.1e-16 of its size, and below 1e-15 the methods' error "
+				                      "estimates measure that rounding, not their error (they take ever more "
+				                      "steps for no gain, or fail)\n",
+				        argv[0], v);
+				return 2;
+			}
+		} else if (csf_opt_value(argc, argv, &i, "--atol", &v)) {
+			if (positive(argv[0], v, "--atol", " (in the model's units)", &o->atol)) return 2;
 		} else if (csf_opt_value(argc, argv, &i, "--step", &v)) {
 			if (positive(argv[0], v, "--step", " of seconds", &o->step)) return 2;
 			o->fixed = 1;
@@ -1050,6 +1063,7 @@ typedef struct watch_ctx { run *r; csf_ode *ode; } watch_ctx;
 static int step_watch(void *ctx, double t, const double *y, double h)
 {
 	watch_ctx *w = ctx;
+	w->r->fail = 0; /* an evaluation that failed was in a trial step, tried again shorter */
 	if (csf_signal) return 1;
 	if (w->r->prog) progress(w->r, t);
 	guard *g = w->r->g;
@@ -1287,13 +1301,6 @@ static int advance_dense(run *r, csf_ode *ode, double tk, double *y, char *msg, 
 		}
 		if (events) memcpy(r->ya, r->yi, n * sizeof *y);
 		st = csf_ode_step(ode, &r->ti, r->tend, 0, 0, r->yi, msg, msglen);
-		if (st == CSF_ODE_STOPPED && r->ti < tk) {
-			/* a derivative not finite within the step: step to the row instead, so that every row
-			   before the failure is written (the step from the row on fails again) */
-			r->fail = 0;
-			csf_ode_restart(ode);
-			st = csf_ode_step(ode, &r->ti, tk, 0, 0, r->yi, msg, msglen);
-		}
 		if (st != CSF_ODE_OK) return st;
 		r->last_h = r->ti - ta;
 		if (!events) continue;
@@ -1321,7 +1328,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	guard gd = { 0 };
 	watch_ctx wc = { &r, NULL };
 	double *y = NULL;
-	int warned = 0, fixed = 0;
+	int fixed = 0;
 	struct timespec t0, t1;
 	clock_gettime(CLOCK_MONOTONIC, &t0);
 	csf_ode *ode = NULL;
@@ -1378,7 +1385,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		int unbounded = !o->fixed && csf_method_dense(o->method) && !events;
 		double hmax = unbounded ? (r.tend > p->by ? r.tend : p->by) : p->by;
 		if (o->hmax > 0 && o->hmax < hmax) hmax = o->hmax;
-		ode = csf_ode_new(o->method, o->fixed, p->ny, p->by, hmax, o->tol, p->yscale, p->vpair, rhs,
+		ode = csf_ode_new(o->method, o->fixed, p->ny, p->by, hmax, o->tol, o->atol, p->yscale, p->vpair, rhs,
 		                  p->jtan ? jac : NULL, &r, msg, sizeof msg);
 		if (!ode) {
 			fprintf(err, "error: %s\n", msg);
@@ -1466,12 +1473,15 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			goto done;
 		}
 		memcpy(r.yi, y, p->ny * sizeof *y);
-		/* free steps start at the scene's own size, not at by */
-		if (!events && csf_ode_first_step(ode, 0, y)) {
-			report_nonfinite(p, CSF_SEC_RHS, r.m, 0, "a state derivative", o->fixed, err);
+	}
+	/* adaptive steps start at the scene's own size, not at by */
+	if (ode && !fixed) {
+		if (csf_ode_first_step(ode, 0, y)) {
+			report_nonfinite(p, CSF_SEC_RHS, r.m, r.fail_t, "a state derivative", o->fixed, err);
 			status = 1;
 			goto done;
 		}
+		r.fail = 0; /* an Euler step of the estimate that failed was tried again shorter */
 	}
 
 	if (r.g && !gd.fixed) /* the first look when the run has spent LOOK_EVERY times what one may cost */
@@ -1491,14 +1501,10 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		if (r.prog) progress(&r, t);
 		if (ode && tk > t) {
 			double trow = t; /* the last row's time */
-			unsigned long before, rej;
-			csf_ode_stats(ode, &before, &rej);
 			int st = r.dense  ? advance_dense(&r, ode, tk, y, msg, sizeof msg)
 			         : events ? advance_events(&r, ode, &t, tk, fixed, fixed_h, y, msg, sizeof msg)
 			         : fixed  ? csf_ode_advance_fixed(ode, &t, tk, fixed_h, y, msg, sizeof msg)
 			                  : advance_plain(&r, ode, &t, tk, y, msg, sizeof msg);
-			unsigned long after;
-			csf_ode_stats(ode, &after, &rej);
 			if (st == CSF_ODE_HALTED && csf_signal) break;
 			if (st == TERMINAL) { /* a 'stop when' condition: the last row at its instant */
 				r.stopped = 1;
@@ -1507,16 +1513,6 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 				st = CSF_ODE_OK;
 			}
 			if (st != CSF_ODE_OK) progress_off(&r);
-			if (!fixed && !warned && !gd.warned && csf_ode_explicit(ode) && after - before > 10000 &&
-			    st != TOO_MUCH) {
-				char tb[32];
-				csf_fmt_double(tb, tk);
-				fprintf(err,
-				        "warning: %lu steps of the explicit method %s to reach t=%s: the problem looks stiff; "
-				        "try --method msbdf or --method bsimp\n",
-				        after - before, csf_ode_method(ode), tb);
-				warned = 1;
-			}
 			if (st == CSF_ODE_HALTED) { /* the guard said why */
 				status = 1;
 				goto done;
@@ -1537,10 +1533,20 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 				goto done;
 			}
 			if (st == TOO_MUCH) {
-				char tb[32], ta[32], hb[32];
+				char tb[32], ta[32], hb[32], why[160];
 				csf_fmt_double(tb, r.dense ? r.ti : t);
 				csf_fmt_double(ta, tk - p->by);
 				csf_fmt_double(hb, r.last_h);
+				/* stiff only when measured so: the step at the stability limit of the guard's last look */
+				double hs = r.g && gd.checks && !fixed ? stable_step(&r, ode, &gd.last) : INFINITY;
+				if (hs < INFINITY && r.last_h >= 0.8 * hs)
+					snprintf(why, sizeof why,
+					         "the problem is stiff: the explicit method's largest stable step is %.3g s here; try "
+					         "--method msbdf or --method bsimp",
+					         hs);
+				else
+					snprintf(why, sizeof why, "the steps are held by the error control, not by stability: the "
+					                          "solution may be singular there");
 				if (r.nevents) report_event_src(p, r.last_src, err);
 				fprintf(err,
 				        "error: at t=%s, %d steps%s since the row at t=%s, the last of %s s: the run cannot get "
@@ -1548,8 +1554,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 				        tb, MAX_WORK, events ? " and events" : "", ta, hb,
 				        r.nevents ? "the last event was of the rule on this line: events that follow each other "
 				                    "ever faster, or a force that switches within each step"
-				        : csf_ode_explicit(ode) ? "the problem looks stiff: try --method msbdf or --method bsimp"
-				                                : "the solution may be singular there");
+				                  : why);
 				status = 1;
 				goto done;
 			}
@@ -1669,8 +1674,10 @@ done:
 		        (unsigned long)s->line, csf_str(p, s->text));
 	}
 	if (o->stats && r.g && !gd.checks)
-		fprintf(err, "stats: stability: not looked at (the run ended before its first look, after %.0f evaluations)\n",
-		        gd.next);
+		fprintf(err,
+		        "stats: stability: not looked at (the run ended after %lu evaluations, before its first look, due "
+		        "after %.0f)\n",
+		        r.nrhs, gd.next);
 	csf_spectrum_free(gd.sp);
 	free(gd.y);
 	csf_ode_free(ode);

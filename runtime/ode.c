@@ -88,6 +88,7 @@ struct csf_ode {
 	unsigned long fixed_steps;
 	unsigned long past_steps, past_rejected; /* GSL's counts before the last restart */
 	const double *scale;       /* each component's absolute tolerance, in units of tol */
+	double *atol_scale;        /* --atol: the scale, atol / tol for every component (owned) */
 	const uint32_t *vpair;     /* verlet: 1 + velocity index of each position component */
 	double *acc;               /* verlet: the derivative at the current point */
 	double acc_t;
@@ -104,20 +105,35 @@ struct csf_ode {
 	double last_allow, last_s;
 };
 
+/*
+ * A state or derivative that is not finite (the model's f failed). Inside a
+ * trial step it means the step was too long: GSL's evolve retries a step
+ * shorter (halved) for any failure of the stepper but GSL_EBADFUNC and
+ * GSL_EFAULT, and every stepper passes this code on, restoring its state
+ * (the multistep methods' failure handlers). It comes out of evolve only
+ * when it persists as the step shrinks to nothing, or at the step's start:
+ * an accepted state whose derivative is not finite. GSL's odeiv2 never
+ * returns GSL_ERANGE itself.
+ */
+enum { TOO_LONG = GSL_ERANGE };
+
 static int gsl_rhs(double t, const double y[], double dydt[], void *params)
 {
 	csf_ode *o = params;
-	return o->f(t, y, dydt, o->ctx) ? GSL_EBADFUNC : GSL_SUCCESS;
+	for (size_t i = 0; i < o->n; i++)
+		if (!isfinite(y[i])) return TOO_LONG; /* a trial state that overflowed (f may not look at it) */
+	return o->f(t, y, dydt, o->ctx) ? TOO_LONG : GSL_SUCCESS;
 }
 
 static int gsl_jac(double t, const double y[], double *dfdy, double dfdt[], void *params)
 {
 	csf_ode *o = params;
-	return o->jac(t, y, dfdy, dfdt, o->ctx) ? GSL_EBADFUNC : GSL_SUCCESS;
+	return o->jac(t, y, dfdy, dfdt, o->ctx) ? TOO_LONG : GSL_SUCCESS;
 }
 
-csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double hmax, double tol, const double *scale,
-                     const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err, size_t errlen)
+csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double hmax, double tol, double atol,
+                     const double *scale, const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err,
+                     size_t errlen)
 {
 	gsl_set_error_handler_off();
 	const struct method *m = method ? find_method(method) : &methods[0];
@@ -141,6 +157,15 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 	}
 	o->tol = tol;
 	o->scale = scale;
+	if (atol > 0) { /* the control's absolute bound is tol * scale[i]: atol for each */
+		if (!(o->atol_scale = malloc((n ? n : 1) * sizeof *o->atol_scale))) {
+			snprintf(err, errlen, "out of memory");
+			free(o);
+			return NULL;
+		}
+		for (size_t i = 0; i < n; i++) o->atol_scale[i] = atol / tol;
+		o->scale = o->atol_scale;
+	}
 	o->m = m;
 	o->n = n;
 	o->sys = (gsl_odeiv2_system){ gsl_rhs, jac ? gsl_jac : NULL, n, o };
@@ -158,7 +183,7 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 			snprintf(err, errlen,
 			         "verlet needs every state variable in a position/velocity pair (x' = v, where v' does not "
 			         "depend on v); this model's are not");
-			free(o);
+			csf_ode_free(o);
 			return NULL;
 		}
 		o->vpair = vpair;
@@ -166,13 +191,13 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 	}
 	/* error control as driver_alloc_y_new (a_y = 1, a_dydt = 0), with the absolute
 	   tolerance of each component scaled to its unit */
-	o->drv = gsl_odeiv2_driver_alloc_scaled_new(&o->sys, *m->type, h0 < hmax ? h0 : hmax, tol, tol, 1.0, 0.0, scale);
+	o->drv = gsl_odeiv2_driver_alloc_scaled_new(&o->sys, *m->type, h0 < hmax ? h0 : hmax, tol, tol, 1.0, 0.0, o->scale);
 	if (!o->drv || gsl_odeiv2_driver_set_hmax(o->drv, hmax) != GSL_SUCCESS) {
 		snprintf(err, errlen, "cannot set up the integrator");
 		csf_ode_free(o);
 		return NULL;
 	}
-	if (m->dense) csf_erk_set_scale(o->drv->s, scale); /* dop853's error norm weighs components as the control does */
+	if (m->dense) csf_erk_set_scale(o->drv->s, o->scale); /* dop853's error norm weighs components as the control does */
 	return o;
 }
 
@@ -247,12 +272,12 @@ again:
 			bad = rk4_step(o, ta, tb - ta, y);
 		} else {
 			int st = gsl_odeiv2_step_apply(o->drv->s, ta, tb - ta, y, o->k, NULL, NULL, &o->sys);
-			if (st != GSL_SUCCESS && st != GSL_EBADFUNC) {
+			if (st != GSL_SUCCESS && st != TOO_LONG) {
 				snprintf(err, errlen, "%s", gsl_strerror(st));
 				*t = ta;
 				return CSF_ODE_FAILED;
 			}
-			bad = st == GSL_EBADFUNC;
+			bad = st == TOO_LONG;
 		}
 		if (bad) {
 			*t = ta;
@@ -286,7 +311,7 @@ int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *
 	double ta = *t;
 	int st = gsl_odeiv2_evolve_apply(d->e, d->c, d->s, &o->sys, t, t1, &d->h, y);
 	if (st == GSL_SUCCESS) return o->watch && o->watch(o->watch_ctx, *t, y, *t - ta) ? CSF_ODE_HALTED : CSF_ODE_OK;
-	if (st == GSL_EBADFUNC) return CSF_ODE_STOPPED;
+	if (st == TOO_LONG) return CSF_ODE_STOPPED;
 	snprintf(err, errlen, "%s", gsl_strerror(st));
 	return CSF_ODE_FAILED;
 }
@@ -340,8 +365,12 @@ int csf_ode_first_step(csf_ode *o, double t, const double *y)
 	double d0 = wrms(o, y, y), d1 = wrms(o, f0, y);
 	double h0 = d0 < 1e-5 || d1 < 1e-5 ? 1e-6 : 0.01 * d0 / d1;
 	if (h0 > d->hmax) h0 = d->hmax;
-	for (size_t i = 0; i < n; i++) y1[i] = y[i] + h0 * f0[i];
-	if (o->f(t + h0, y1, f1, o->ctx)) return 1;
+	for (;;) { /* an Euler step that overflows is too long, as a trial step is: halved, down to nothing */
+		for (size_t i = 0; i < n; i++) y1[i] = y[i] + h0 * f0[i];
+		if (gsl_rhs(t + h0, y1, f1, o) == GSL_SUCCESS) break;
+		h0 /= 2;
+		if (t + h0 == t) return 1;
+	}
 	for (size_t i = 0; i < n; i++) f1[i] -= f0[i];
 	double d2 = wrms(o, f1, y) / h0, dm = d1 > d2 ? d1 : d2;
 	double h1 = dm <= 1e-15 ? fmax(1e-6, h0 * 1e-3) : pow(0.01 / dm, 1.0 / (gsl_odeiv2_step_order(d->s) + 1.0));
@@ -504,6 +533,7 @@ void csf_ode_free(csf_ode *o)
 	free(o->k);
 	free(o->acc);
 	free(o->yerr);
+	free(o->atol_scale);
 	if (o->sub) gsl_odeiv2_step_free(o->sub);
 	if (o->drv) gsl_odeiv2_driver_free(o->drv);
 	free(o);

@@ -7,10 +7,15 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* Right-hand side: dydt = f(t, y). Returns 0, or non-zero to stop the integration. */
+/*
+ * Right-hand side: dydt = f(t, y). Returns 0, or non-zero when dydt is not
+ * finite. Inside a trial step that means the step was too long: it is
+ * tried again shorter. At an accepted state, or when it persists as the
+ * step shrinks to nothing, the integration stops (CSF_ODE_STOPPED).
+ */
 typedef int (*csf_rhs_fn)(double t, const double *y, double *dydt, void *ctx);
 
-/* Jacobian: dfdy[i*n + j] = df_i/dy_j, dfdt[i] = df_i/dt. Returns 0, or non-zero to stop. */
+/* Jacobian: dfdy[i*n + j] = df_i/dy_j, dfdt[i] = df_i/dt. Returns 0, or non-zero as f does. */
 typedef int (*csf_jac_fn)(double t, const double *y, double *dfdy, double *dfdt, void *ctx);
 
 typedef struct csf_ode csf_ode;
@@ -31,11 +36,13 @@ typedef int (*csf_watch_fn)(void *ctx, double t, const double *y, double h);
  * h0 (at most hmax) and internal steps never longer than hmax (but for a
  * step stretched by at most 1e-4 of its length to end at the time asked
  * for), local error bound tol (relative, and absolute times scale[i] for
- * component i; <= 0 for the default). Returns NULL and writes a reason to
- * err for an unknown method or when memory runs out.
+ * component i; <= 0 for the default), or with atol > 0 the absolute bound
+ * atol for every component. Returns NULL and writes a reason to err for an
+ * unknown method or when memory runs out.
  */
-csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double hmax, double tol, const double *scale,
-                     const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err, size_t errlen);
+csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double hmax, double tol, double atol,
+                     const double *scale, const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err,
+                     size_t errlen);
 
 /* Can the named method run a model with contacts (a method with a step of its own: not verlet)? */
 int csf_method_contacts(const char *method);
@@ -51,7 +58,9 @@ int csf_ode_dense(const csf_ode *o);
  * Chooses the first adaptive step from (t, y), instead of the h0 given to
  * csf_ode_new: Hairer's estimate (Solving ODEs I, II.4) from f at y and at
  * a small Euler step, so that a smooth scene starts with a step of its own
- * size (two evaluations). 0, or 1 if f stopped.
+ * size (two evaluations; an Euler step that overflows is halved until it
+ * does not). Every adaptive method starts so. 0, or 1 if f failed at
+ * (t, y) or on every Euler step down to nothing.
  */
 int csf_ode_first_step(csf_ode *o, double t, const double *y);
 
@@ -74,9 +83,11 @@ int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y,
  * One step from (*t, y) towards t1, never past it: an accepted adaptive step
  * (error control, steps no longer than hmax, a step that would end just
  * short of t1 stretched to end at it), or with fixed, one step of h.
- * Returns CSF_ODE_OK; CSF_ODE_STOPPED when f asked to stop (*t is then the
- * time of the failing evaluation's step start); CSF_ODE_FAILED with a
- * reason in err for any other GSL failure.
+ * A trial step on which f fails (a value not finite) is tried again
+ * shorter, as one whose error is too large. Returns CSF_ODE_OK;
+ * CSF_ODE_STOPPED when f failed at (*t, y), or on every trial down to a
+ * step too short to change t (*t is then the step's start);
+ * CSF_ODE_FAILED with a reason in err for any other GSL failure.
  */
 int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *y, char *err, size_t errlen);
 
@@ -97,6 +108,15 @@ void csf_ode_stats(const csf_ode *o, unsigned long *steps, unsigned long *reject
 
 /* The default local error bound of every method but dop853, and dop853's (csf_method_tol). */
 #define CSF_DEFAULT_TOL 1e-10
+/*
+ * The smallest relative tolerance accepted (--tol), about 4.5 DBL_EPSILON:
+ * on the harmonic oscillator of tests/methods_tol.csf no method gets closer
+ * to the exact answer below 1e-14 (rounding leaves 1e-13), and below 1e-15
+ * the error estimates measure rounding: rk4 rejects 833 steps at 1e-16 and
+ * runs into the step limit at 1e-17, rk8pd rejects 7752 at 1e-18 and
+ * 848972 at 1e-20, bsimp does not end at 1e-18.
+ */
+#define CSF_MIN_TOL 1e-15
 double csf_method_tol(const char *method);
 
 /*

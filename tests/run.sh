@@ -273,6 +273,25 @@ u=0
 "$CSFVM" --method nosuch "$T/h.csfb" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm --method nosuch: not exit 2"; }
 "$CSFVM" --tol -1 "$T/h.csfb" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm --tol -1: not exit 2"; }
 "$CSFVM" --hmax 0 "$T/h.csfb" >/dev/null 2>&1; [ $? -eq 2 ] || { u=1; bad "csfvm --hmax 0: not exit 2"; }
+# --tol below what doubles deliver, or of 1 or more, and an --atol that is not positive: exit 2 with the
+# reason, from csfvm and from a generated program (one parser); an --atol is taken by both
+"$CSFC" --emit-c "$T/h.csf" -o "$T/h.exe" 2>/dev/null || { u=1; bad "csfc --emit-c of the usage scene failed"; }
+for prog in "$CSFVM $T/h.csfb" "$T/h.exe"; do
+	# shellcheck disable=SC2086 # prog is a command and its argument
+	$prog --tol 1e-30 >/dev/null 2>"$T/err"; st=$?
+	[ $st -eq 2 ] && grep -q -- "--tol 1e-30 is below 1e-15, what doubles can deliver" "$T/err" ||
+		{ u=1; bad "$prog --tol 1e-30: exit $st, $(head -n 1 "$T/err")"; }
+	# shellcheck disable=SC2086
+	$prog --tol 1 >/dev/null 2>"$T/err"; st=$?
+	[ $st -eq 2 ] && grep -q -- "--tol 1: a relative error of 1 or more allows any answer" "$T/err" ||
+		{ u=1; bad "$prog --tol 1: exit $st, $(head -n 1 "$T/err")"; }
+	# shellcheck disable=SC2086
+	$prog --atol 0 >/dev/null 2>"$T/err"; st=$?
+	[ $st -eq 2 ] && grep -q -- "--atol needs a positive number" "$T/err" || { u=1; bad "$prog --atol 0: exit $st"; }
+	# shellcheck disable=SC2086
+	$prog --tol 1e-15 --atol=1e-9 >"$T/atol.csv" 2>"$T/err"; st=$?
+	[ $st -eq 0 ] && [ "$(wc -l <"$T/atol.csv")" -eq 4 ] || { u=1; bad "$prog --tol 1e-15 --atol=1e-9: exit $st, $(head -n 1 "$T/err")"; }
+done
 "$CSFVM" --fixed --method msbdf "$T/h.csfb" >/dev/null 2>"$T/err"; [ $? -eq 2 ] && grep -q "one-step method" "$T/err" ||
 	{ u=1; bad "csfvm --fixed --method msbdf: not exit 2 with a reason"; }
 [ $u -eq 0 ] && ok
