@@ -5,9 +5,11 @@
  * current (CSF_NDIM; angles are dimensionless: rad and deg are plain
  * factors). Every value in a model
  * has one:
- *  - a unit literal has its unit's; a bare number is "free": it takes the
- *    dimension its place needs (`x + 1` adds metres to metres; `2 * x` is
- *    a dimensionless factor);
+ *  - a unit literal has its unit's; a bare number is a coefficient whose
+ *    unit is whatever its equation needs (`x + 1` adds metres to metres;
+ *    in `v' = -4 * x` the 4 is 4 1/s^2): an expression with a bare factor is
+ *    "soft" and never mismatches; only two dimensioned quantities can
+ *    (csf(5), DIMENSIONS);
  *  - predefined constants and t have theirs; a property or global takes the
  *    dimension of its initial value, or of its kind's default; local
  *    coordinates (sph, cyl, cart) that of their lengths, like a vector literal;
@@ -64,7 +66,7 @@ void dims_system_base(double base[CSF_NDIM])
 	memcpy(base, systems[opts.units].base, sizeof systems[opts.units].base);
 }
 
-static int dim_zero(const double d[CSF_NDIM])
+int dims_none(const double d[CSF_NDIM])
 {
 	for (int i = 0; i < CSF_NDIM; i++)
 		if (d[i] != 0) return 0;
@@ -84,7 +86,7 @@ static const char *named_unit(const double d[CSF_NDIM])
 static const char *base_unit(const double d[CSF_NDIM])
 {
 	const struct system *s = &systems[opts.units];
-	if (dim_zero(d)) return "";
+	if (dims_none(d)) return "";
 	char *num = xstrdup(""), *den = xstrdup("");
 	int nden = 0;
 	/* the order physicists write: mass, length, time, current */
@@ -111,7 +113,7 @@ const char *dims_unit(const double d[CSF_NDIM])
 
 const char *dims_describe(const double d[CSF_NDIM])
 {
-	if (dim_zero(d)) return "dimensionless";
+	if (dims_none(d)) return "dimensionless";
 	const char *n = named_unit(d);
 	return n ? xprintf("%s (%s)", n, base_unit(d)) : base_unit(d);
 }
@@ -121,7 +123,8 @@ const char *dims_describe(const double d[CSF_NDIM])
 #define MAXU 6
 
 typedef struct Aff {
-	int free;        /* every leaf is a bare number: any dimension fits */
+	int soft;        /* a bare number is a factor (or the whole): any dimension fits; c and u are
+	                    the dimension it has when the bare numbers are pure numbers */
 	int overflow;    /* too many unknowns to track */
 	double c[CSF_NDIM];
 	int nu;
@@ -145,6 +148,7 @@ static Aff known(double l, double m, double t)
 static Aff lin(Aff a, double ka, Aff b, double kb)
 {
 	Aff r = { 0 };
+	r.soft = a.soft || b.soft;
 	r.overflow = a.overflow || b.overflow;
 	for (int i = 0; i < CSF_NDIM; i++) r.c[i] = ka * a.c[i] + kb * b.c[i];
 	for (int s = 0; s < 2; s++) {
@@ -179,6 +183,7 @@ static Aff lin(Aff a, double ka, Aff b, double kb)
 
 typedef struct Walk {
 	int report;      /* 0: infer, 1: report mismatches */
+	int soft;        /* infer also from soft sides (after everything else has been inferred) */
 	int progress;
 	Map reported;    /* locations already reported */
 } Walk;
@@ -191,16 +196,40 @@ static void report(Walk *W, Loc l, const char *msg)
 	error_at(l, "%s", msg);
 }
 
+/* A side of a mismatch for a message: the name or the literal it is, with its unit ("x (m)",
+ * "pos.z (m)", "230 V"), else its dimension. */
+static const char *operand(const RExpr *e, const double d[CSF_NDIM])
+{
+	const char *unit = dims_none(d) ? "dimensionless" : dims_unit(d);
+	if (e && e->k == R_COMP && e->a[0]->k == R_VAR)
+		return xprintf("%s.%c (%s)", e->a[0]->var->name, "xyz"[e->comp], unit);
+	if (e && e->k == R_VAR) return xprintf("%s (%s)", e->var->name, unit);
+	if (e && e->k == R_CONST && e->dimk == DK_KNOWN) {
+		const char *u = dims_unit(d);
+		if (!e->isvec) return xprintf("%.10g%s%s", e->c[0], *u ? " " : "", u);
+		return xprintf("(%.10g, %.10g, %.10g)%s%s", e->c[0], e->c[1], e->c[2], *u ? " " : "", u);
+	}
+	return dims_describe(d);
+}
+
 /*
  * The constraint a == b (both free of booleans). In infer mode solves it when
  * one unknown is left; in report mode reports a mismatch of known dimensions
- * with the message made by msg(da, db).
+ * with the message made by msg(da, db). A soft side (one with a bare factor)
+ * never mismatches: its bare number takes the dimension the other side needs.
+ * It infers an unknown of the other side only when it has no unknown itself
+ * and a dimension, its bare numbers taken as pure numbers (`w = 0.5 * m * v^2`
+ * makes w a J; `u = 1` decides nothing), one at a time after all else.
  */
 typedef const char *(*MsgFn)(const char *da, const char *db, void *ctx);
 
-static void constrain(Walk *W, Aff a, Aff b, Loc l, MsgFn msg, void *ctx)
+static void constrain(Walk *W, Aff a, RExpr *ea, Aff b, RExpr *eb, Loc l, MsgFn msg, void *ctx)
 {
-	if (a.free || b.free || a.overflow || b.overflow) return;
+	if (a.overflow || b.overflow) return;
+	if (a.soft || b.soft) {
+		const Aff *s = a.soft ? &a : &b;
+		if (W->report || !W->soft || W->progress || (a.soft && b.soft) || s->nu || dims_none(s->c)) return;
+	}
 	Aff d = lin(a, 1, b, -1);
 	if (d.nu == 1 && !W->report) {
 		Var *v = d.u[0];
@@ -218,7 +247,7 @@ static void constrain(Walk *W, Aff a, Aff b, Loc l, MsgFn msg, void *ctx)
 	}
 	int differ = 0;
 	for (int i = 0; i < CSF_NDIM; i++) differ |= fabs(d.c[i]) > 1e-9;
-	if (d.nu == 0 && W->report && differ) report(W, l, msg(dims_describe(a.c), dims_describe(b.c), ctx));
+	if (d.nu == 0 && W->report && differ) report(W, l, msg(operand(ea, a.c), operand(eb, b.c), ctx));
 }
 
 static const char *msg_add(const char *a, const char *b, void *ctx)
@@ -264,17 +293,18 @@ static Aff var_aff(Var *v)
 
 static Aff dimless(Walk *W, RExpr *arg, Aff a, const char *what)
 {
-	constrain(W, a, known(0, 0, 0), arg->loc, msg_dimless, (void *)what);
+	constrain(W, a, arg, known(0, 0, 0), NULL, arg->loc, msg_dimless, (void *)what);
 	return known(0, 0, 0);
 }
 
-/* Values that must share one dimension (a vector's components): the first that is not a bare number sets it. */
+/* Values that must share one dimension (a vector's components): the first that is not soft sets it. */
 static Aff one_dim(Walk *W, const Aff *x, RExpr *const *args, int n)
 {
 	Aff d = x[0];
+	RExpr *de = args[0];
 	for (int i = 1; i < n; i++) {
-		constrain(W, d, x[i], args[i]->loc, msg_vector, NULL);
-		if (d.free) d = x[i];
+		constrain(W, d, de, x[i], args[i], args[i]->loc, msg_vector, NULL);
+		if (d.soft) d = x[i], de = args[i];
 	}
 	return d;
 }
@@ -301,28 +331,20 @@ static Aff walk_op(Walk *W, RExpr *e, Aff *x)
 		return x[0];
 	case CSF_OP_ADD: case CSF_OP_VADD: case CSF_OP_SUB: case CSF_OP_VSUB: case CSF_OP_MIN: case CSF_OP_MAX: {
 		int sub = e->op == CSF_OP_SUB || e->op == CSF_OP_VSUB;
-		constrain(W, x[0], x[1], e->a[1]->loc, msg_add,
+		constrain(W, x[0], e->a[0], x[1], e->a[1], e->a[1]->loc, msg_add,
 		          (void *)(sub ? "subtract" : e->op == CSF_OP_MIN || e->op == CSF_OP_MAX ? "take min/max of" : "add"));
-		return x[0].free ? x[1] : x[0];
+		return x[0].soft ? x[1] : x[0];
 	}
 	case CSF_OP_VPACK:
 		return one_dim(W, x, e->a, 3);
-	case CSF_OP_MUL: case CSF_OP_VMUL: case CSF_OP_VDOT: case CSF_OP_VCROSS: {
-		if (x[0].free && x[1].free) return x[0];
-		Aff a = x[0].free ? known(0, 0, 0) : x[0], b = x[1].free ? known(0, 0, 0) : x[1];
-		return lin(a, 1, b, 1);
-	}
-	case CSF_OP_DIV: case CSF_OP_VDIV: {
-		if (x[0].free && x[1].free) return x[0];
-		Aff a = x[0].free ? known(0, 0, 0) : x[0], b = x[1].free ? known(0, 0, 0) : x[1];
-		return lin(a, 1, b, -1);
-	}
+	case CSF_OP_MUL: case CSF_OP_VMUL: case CSF_OP_VDOT: case CSF_OP_VCROSS:
+		return lin(x[0], 1, x[1], 1);
+	case CSF_OP_DIV: case CSF_OP_VDIV:
+		return lin(x[0], 1, x[1], -1);
 	case CSF_OP_SQRT:
-		if (x[0].free) return x[0];
 		return lin(x[0], 0.5, known(0, 0, 0), 0);
 	case CSF_OP_POW:
 		dimless(W, e->a[1], x[1], "an exponent");
-		if (x[0].free) return x[0];
 		if (e->a[1]->k == R_CONST) return lin(x[0], e->a[1]->c[0], known(0, 0, 0), 0);
 		return dimless(W, e->a[0], x[0], "a base raised to a variable power");
 	case CSF_OP_SIN: case CSF_OP_COS: case CSF_OP_TAN: case CSF_OP_ASIN: case CSF_OP_ACOS: case CSF_OP_ATAN:
@@ -335,10 +357,10 @@ static Aff walk_op(Walk *W, RExpr *e, Aff *x)
 		return dimless(W, e->a[0], x[0], xprintf("the argument of %s", names[e->op]));
 	}
 	case CSF_OP_ATAN2:
-		constrain(W, x[0], x[1], e->a[1]->loc, msg_add, "compare (atan2)");
+		constrain(W, x[0], e->a[0], x[1], e->a[1], e->a[1]->loc, msg_add, "compare (atan2)");
 		return known(0, 0, 0);
 	case CSF_OP_LT: case CSF_OP_LE: case CSF_OP_GT: case CSF_OP_GE: case CSF_OP_EQ: case CSF_OP_NE:
-		constrain(W, x[0], x[1], e->a[1]->loc, msg_add, "compare");
+		constrain(W, x[0], e->a[0], x[1], e->a[1], e->a[1]->loc, msg_add, "compare");
 		return known(0, 0, 0);
 	case CSF_OP_VPROJ:
 		return x[0];
@@ -352,7 +374,7 @@ static Aff walk(Walk *W, RExpr *e)
 	switch (e->k) {
 	case R_CONST: {
 		Aff a = { 0 };
-		if (e->dimk != DK_KNOWN) a.free = 1;
+		if (e->dimk != DK_KNOWN) a.soft = 1;
 		else memcpy(a.c, e->dim, sizeof a.c);
 		return a;
 	}
@@ -377,17 +399,17 @@ static void walk_inst(Walk *W, Inst *I)
 			Assign *a = br->v[i];
 			if (I->isderiv) {
 				Aff rate = lin(var_aff(a->var), 1, known(0, 0, 1), -1);
-				constrain(W, rate, walk(W, a->rhs), a->loc, msg_deriv, a->text);
+				constrain(W, rate, NULL, walk(W, a->rhs), a->rhs, a->loc, msg_deriv, a->text);
 				continue;
 			}
 			Aff l = walk(W, a->lhs), r = walk(W, a->rhs);
-			constrain(W, l, r, a->rhs->loc, msg_eq, a->text);
+			constrain(W, l, a->lhs, r, a->rhs, a->rhs->loc, msg_eq, a->text);
 		}
 	}
 	if (I->isF)
 		for (int i = 0; i < I->targets.n; i++) {
 			Var *v = I->targets.v[i];
-			constrain(W, var_aff(v), known(1, 1, -2), I->st->loc, msg_force, v->name);
+			constrain(W, var_aff(v), NULL, known(1, 1, -2), NULL, I->st->loc, msg_force, v->name);
 		}
 }
 
@@ -397,16 +419,21 @@ void dims_check(Model *M)
 	for (int iter = 0; iter < 64; iter++) {
 		W.progress = 0;
 		for (int i = 0; i < M->insts.n; i++) walk_inst(&W, M->insts.v[i]);
+		if (W.progress) continue;
+		W.soft = 1; /* one unknown at a time from a soft side, then the others again */
+		for (int i = 0; i < M->insts.n && !W.progress; i++) walk_inst(&W, M->insts.v[i]);
+		W.soft = 0;
 		if (!W.progress) break;
 	}
 	W.report = 1;
 	for (int i = 0; i < M->insts.n; i++) walk_inst(&W, M->insts.v[i]);
 }
 
-/* Gives constant out dimension a: known, or free when a is not fully known. */
+/* Gives constant out dimension a: known, or free when a is not fully known or is a bare
+ * number (its bare factors pure numbers, it is dimensionless): `2 * pi` is bare, `2 * 3 m` 6 m. */
 static void set_const_dim(RExpr *out, Aff a)
 {
-	if (a.free || a.nu || a.overflow) {
+	if ((a.soft && dims_none(a.c)) || a.nu || a.overflow) {
 		out->dimk = DK_FREE;
 		return;
 	}

@@ -2110,7 +2110,8 @@ static double const_time(Expr *x, double dflt, const char *what)
 		else error_at(x->loc, "'%s' needs a finite, non-negative time", what);
 		return dflt;
 	}
-	if (r->dimk == DK_KNOWN && (r->dim[0] != 0 || r->dim[1] != 0 || r->dim[2] != 1)) {
+	/* a pure number is a time in the unit system's seconds (till 2*pi, till pi) */
+	if (r->dimk == DK_KNOWN && !dims_none(r->dim) && (r->dim[0] != 0 || r->dim[1] != 0 || r->dim[2] != 1 || r->dim[3] != 0)) {
 		error_at(x->loc, "'%s' needs a time, not %s", what, dims_describe(r->dim));
 		return dflt;
 	}

@@ -198,6 +198,8 @@ void dims_fold(int op, RExpr **args, int n, RExpr *out, Loc l);
 void dims_coords(const char *sys, RExpr **args, RExpr *out);
 /* The unit of dimension d in the unit system in use, e.g. "kg*m/s^2"; "" if dimensionless. */
 const char *dims_unit(const double d[CSF_NDIM]);
+/* Is d dimensionless? */
+int dims_none(const double d[CSF_NDIM]);
 /* "a length (m)", "dimensionless": a dimension for messages. */
 const char *dims_describe(const double d[CSF_NDIM]);
 /* Converts an SI factor of dimension d to the unit system in use. */
