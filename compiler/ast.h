@@ -79,6 +79,7 @@ struct Stmt {
 	Loc prop_loc;
 	int isvec;
 	Expr *value;
+	Expr *atol;   /* S_PROP of an object: `atol A` after the value, or NULL */
 	Stmt *body;   /* S_DEF: its property lines (S_PROP with name NULL) */
 	Vec names;    /* S_VECDECL: char*; */
 	char *attr;

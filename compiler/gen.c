@@ -1013,7 +1013,8 @@ int gen_program(Model *M, csf_prog *p)
 	p->ny = G->nmem - p->ystart;
 	p->dstart = alloc_mem(G, p->ny ? p->ny : 1, NULL); /* a slot even without state: the layout is inside memory */
 	p->yscale = malloc((p->ny ? p->ny : 1) * sizeof *p->yscale);
-	if (!p->yscale) exit(2);
+	p->yatol = calloc(p->ny ? p->ny : 1, sizeof *p->yatol);
+	if (!p->yscale || !p->yatol) exit(2);
 	/* the state variable of each property name that starts largest, over all objects */
 	Map largest = { 0 };
 	for (int i = 0; i < M->objects.n; i++) {
@@ -1036,7 +1037,10 @@ int gen_program(Model *M, csf_prog *p)
 			if (!(one > 0) || !isfinite(one)) one = 1.0; /* a dimension such as m^100 kg^100 in cgs */
 			double mag = init_mag(map_get(&largest, v->name));
 			if (mag > 0 && mag < one && isfinite(mag)) one = mag;
-			for (int k = 0; k < (v->isvec ? 3 : 1); k++) p->yscale[(uint32_t)v->slot - p->ystart + (uint32_t)k] = one;
+			for (int k = 0; k < (v->isvec ? 3 : 1); k++) {
+				p->yscale[(uint32_t)v->slot - p->ystart + (uint32_t)k] = one;
+				p->yatol[(uint32_t)v->slot - p->ystart + (uint32_t)k] = v->atol ? v->atol->c[0] : 0;
+			}
 		}
 	}
 	M->time->slot = (int)p->tslot;

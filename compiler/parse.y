@@ -211,7 +211,7 @@ static void yyerror(YYLoc *l, Parser *P, const char *msg);
 %type <ref> objref
 %type <watch> watch
 %type <str> attr
-%type <expr> till by
+%type <expr> till by atol
 
 %%
 
@@ -234,13 +234,13 @@ stmt:
 	| OBJECT IDENT ':' IDENT {
 		$$ = stmt(S_OBJKIND, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->prop = $4; $$->prop_loc = LOC(@4);
 	}
-	| OBJECT IDENT ':' IDENT '=' expr {
+	| OBJECT IDENT ':' IDENT '=' expr atol {
 		$$ = stmt(S_PROP, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->prop = $4; $$->prop_loc = LOC(@4);
-		$$->value = $6;
+		$$->value = $6; $$->atol = $7;
 	}
-	| OBJECT IDENT ':' VECTOR IDENT '=' expr {
+	| OBJECT IDENT ':' VECTOR IDENT '=' expr atol {
 		$$ = stmt(S_PROP, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->prop = $5; $$->prop_loc = LOC(@5);
-		$$->value = $7; $$->isvec = 1;
+		$$->value = $7; $$->isvec = 1; $$->atol = $8;
 	}
 	| VECTOR names {
 		$$ = stmt(S_VECDECL, @$); $$->names = $2;
@@ -273,6 +273,15 @@ stmt:
 	;
 
 till: %empty { $$ = NULL; } | TILL expr { $$ = $2; } ;
+
+/* `atol A` after a property's value: its absolute tolerance (a word only in this place). */
+atol:
+	  %empty { $$ = NULL; }
+	| IDENT expr {
+		$$ = $2;
+		if (strcmp($1, "atol") != 0) error_at(LOC(@1), "'%s' after a property's value: only 'atol TOLERANCE' may follow it", $1);
+	}
+	;
 by:   %empty { $$ = NULL; } | BY expr   { $$ = $2; } ;
 
 attr: %empty { $$ = NULL; } | IDENT { $$ = $1; } ;

@@ -667,6 +667,22 @@ static int override_ok(Loc l, const char *what, Var *v, RExpr *r)
 	return 1;
 }
 
+/* Property p of o takes the absolute tolerance `atol A` of statement s, if it has one: a positive
+ * scalar constant (its dimension is checked against p's by check_atols). */
+static void set_atol(Object *o, Var *p, Stmt *s)
+{
+	if (!s->atol) return;
+	int ok;
+	RExpr *r = const_value(s->atol, o, s->prop, FIX_NONE, s->prop_loc.line, &ok, NULL);
+	if (!ok) return;
+	if (r->isvec || !(r->c[0] > 0) || !isfinite(r->c[0])) {
+		error_at(s->atol->loc, "the atol of '%s' must be a positive number%s", s->prop,
+		         r->isvec ? " (one for every component)" : "");
+		return;
+	}
+	p->atol = r;
+}
+
 /* Defines or overrides property p of o from a property statement. */
 static void set_prop(Object *o, Stmt *s, int from_kind)
 {
@@ -700,6 +716,7 @@ static void set_prop(Object *o, Stmt *s, int from_kind)
 		p->from_kind = from_kind;
 		fix_derived(p, read, s->prop_loc.line);
 		if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
+		set_atol(o, p, s);
 		return;
 	}
 	p = xalloc(sizeof *p);
@@ -714,6 +731,7 @@ static void set_prop(Object *o, Stmt *s, int from_kind)
 	p->from_kind = from_kind;
 	fix_derived(p, read, s->prop_loc.line);
 	if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
+	set_atol(o, p, s);
 	vec_push(&o->props, p);
 	map_put(&o->props_by_name, p->name, p);
 	map_put(&prop_names, p->name, p);
@@ -2141,6 +2159,25 @@ static void check_sections(Stmt *stmts)
 	}
 }
 
+/* Every `atol A` is on a state variable's line, with the variable's dimension (a bare A takes it). */
+static void check_atols(Model *M)
+{
+	for (int i = 0; i < M->objects.n; i++) {
+		Object *o = M->objects.v[i];
+		for (int j = 0; j < o->props.n; j++) {
+			Var *v = o->props.v[j];
+			RExpr *a = v->atol;
+			if (!a) continue;
+			if (!v->state)
+				error_at(a->loc, "'atol' is the absolute tolerance of a state variable, and '%s' of '%s' has no "
+				         "derivative rule", v->name, o->name);
+			else if (a->dimk == DK_KNOWN && v->dimk == DK_KNOWN && memcmp(a->dim, v->dim, sizeof v->dim) != 0)
+				error_at(a->loc, "the atol of '%s' must be %s, as '%s' is, not %s", v->name, dims_describe(v->dim),
+				         v->name, dims_describe(a->dim));
+		}
+	}
+}
+
 static Model *resolve(Stmt *stmts)
 {
 	M = xalloc(sizeof *M);
@@ -2245,6 +2282,7 @@ static Model *resolve(Stmt *stmts)
 	/* Also after errors: the instances that failed are left out, and the dimensions of the
 	 * others are checked all the same, so one run reports both kinds of error. */
 	dims_check(M);
+	check_atols(M);
 	return M;
 }
 

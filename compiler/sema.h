@@ -10,6 +10,7 @@
 
 typedef struct Object Object;
 typedef struct Inst Inst;
+typedef struct RExpr RExpr;
 
 /*
  * A shape: the objects that have the same properties (names, types and
@@ -44,6 +45,7 @@ typedef struct Var {
 	int dimk;        /* DK_UNKNOWN until known (dims.c) */
 	double dim[CSF_NDIM]; /* exponents of length, mass, time, current */
 	int pair;        /* temps: of a tuple of objects ($1), not of one object */
+	RExpr *atol;     /* props: the absolute tolerance `atol A` set on its line (a constant), or NULL */
 	/* globals, props: why -D cannot set the initial value (gen.c words it): FIX_FOLDED, its value is
 	   folded into that of fix_obj.fix_name (fix_obj NULL: the global fix_name) on line fix_line;
 	   FIX_DERIVED, it is computed from fix_obj.fix_name's; FIX_RUN, folded into the run's fix_name
@@ -67,7 +69,6 @@ struct Object {
 
 typedef enum RKind { R_CONST, R_VAR, R_RF, R_OP, R_COMP } RKind;
 
-typedef struct RExpr RExpr;
 struct RExpr {
 	RKind k;
 	int isvec, isbool;

@@ -125,6 +125,7 @@ int csf_encode(const csf_prog *p, unsigned char **out, size_t *len)
 	put_u32(&w, p->ny);
 	put_u32(&w, p->jtan);
 	for (uint32_t i = 0; i < p->ny; i++) put_f64(&w, p->yscale[i]);
+	for (uint32_t i = 0; i < p->ny; i++) put_f64(&w, p->yatol[i]);
 	put_u32s(&w, p->vpair, p->ny);
 	put_f64(&w, p->till);
 	put_f64(&w, p->by);
@@ -273,6 +274,12 @@ int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, siz
 		p->yscale = malloc(p->ny ? p->ny * sizeof(double) : 1);
 		bad = !p->yscale;
 		for (uint32_t i = 0; !bad && i < p->ny; i++) get_f64(&r, &p->yscale[i]);
+	}
+	if (!bad && (size_t)p->ny > r.left / 8) bad = 1;
+	if (!bad) {
+		p->yatol = malloc(p->ny ? p->ny * sizeof(double) : 1);
+		bad = !p->yatol;
+		for (uint32_t i = 0; !bad && i < p->ny; i++) get_f64(&r, &p->yatol[i]);
 	}
 	if (!bad && (size_t)p->ny > r.left / 4) bad = 1;
 	if (!bad) {
@@ -571,6 +578,9 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 	for (uint32_t i = 0; i < p->ny; i++)
 		if (!(p->yscale[i] > 0) || !isfinite(p->yscale[i]))
 			return csf_fail(err, errlen, "tolerance scale %lu is not a positive number", (unsigned long)i);
+	for (uint32_t i = 0; i < p->ny; i++)
+		if (!(p->yatol[i] >= 0) || !isfinite(p->yatol[i]))
+			return csf_fail(err, errlen, "absolute tolerance %lu is not a number >= 0", (unsigned long)i);
 	if (!(p->by > 0) || !isfinite(p->by) || !(p->till >= 0) || !isfinite(p->till))
 		return csf_fail(err, errlen, "invalid run range (till %g, by %g)", p->till, p->by);
 	if (p->till / p->by > 4e15) return csf_fail(err, errlen, "too many output steps");
@@ -633,6 +643,7 @@ void csf_prog_free(csf_prog *p)
 	free(p->strs);
 	free(p->mem0);
 	free(p->yscale);
+	free(p->yatol);
 	free(p->vpair);
 	free(p->files);
 	free(p->srcs);

@@ -20,6 +20,8 @@
  *   memory    u32 nmem, nmem doubles (initial image)
  *   layout    u32 tslot, ystart, dstart, ny, jtan
  *   yscale    ny doubles (tolerance scale of each state component, > 0)
+ *   yatol     ny doubles (absolute tolerance the scene sets for each state
+ *             component, >= 0; 0: none)
  *   vpair     ny u32 (1 + velocity index of a position component, else 0)
  *   run       double till, by
  *   files     u32 n, n x {u32 name}
@@ -52,7 +54,7 @@
 #define CSF_BYTECODE_H
 
 #define CSFB_MAGIC "CSFB"
-#define CSFB_VERSION 10u
+#define CSFB_VERSION 11u
 #define CSFB_INT_PROBE 0x01020304u
 #define CSFB_FLOAT_PROBE 370.5
 #define CSFB_HEADER_SIZE 28u

@@ -167,6 +167,8 @@ typedef struct csf_prog {
 	uint32_t *vpair; /* per state component: 1 + its velocity's index if it is a position (Verlet), else 0 */
 	double *yscale; /* per state component: the absolute tolerance's scale (the unit system's
 	                   measure of one SI unit of that component), so accuracy is unit-independent */
+	double *yatol;  /* per state component: the absolute tolerance the scene sets (`atol A` on the
+	                   property's line), in the model's units; 0: none (--atol, else tol * yscale) */
 	double till, by;
 	uint32_t ncols, nfiles, nsrcs, nasserts, nobjects, nprops, nevents;
 	csf_col *cols;
@@ -370,8 +372,9 @@ void csf_out_end(void);
 typedef struct csf_opts {
 	const char *method; /* ODE stepper name, NULL for the default */
 	double tol;         /* local error bound, relative, <= 0 for the default (else CSF_MIN_TOL <= tol < 1) */
-	double atol;        /* --atol A: the absolute error bound of every state component, in the model's
-	                       units (<= 0: tol times each component's scale, csf_prog.yscale) */
+	double atol;        /* --atol A: the absolute error bound of every state component the scene gives
+	                       none (csf_prog.yatol), in the model's units (<= 0: tol times each
+	                       component's scale, csf_prog.yscale) */
 	int fixed;          /* --fixed: no error control, constant internal steps */
 	double step;        /* --step H: the fixed step (<= 0: by) */
 	double hmax;        /* --hmax H: the longest internal step (<= 0: no cap but the run's length; by for

@@ -1385,7 +1385,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		int unbounded = !o->fixed && csf_method_dense(o->method) && !events;
 		double hmax = unbounded ? (r.tend > p->by ? r.tend : p->by) : p->by;
 		if (o->hmax > 0 && o->hmax < hmax) hmax = o->hmax;
-		ode = csf_ode_new(o->method, o->fixed, p->ny, p->by, hmax, o->tol, o->atol, p->yscale, p->vpair, rhs,
+		ode = csf_ode_new(o->method, o->fixed, p->ny, p->by, hmax, o->tol, o->atol, p->yatol, p->yscale, p->vpair, rhs,
 		                  p->jtan ? jac : NULL, &r, msg, sizeof msg);
 		if (!ode) {
 			fprintf(err, "error: %s\n", msg);

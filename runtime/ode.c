@@ -88,7 +88,7 @@ struct csf_ode {
 	unsigned long fixed_steps;
 	unsigned long past_steps, past_rejected; /* GSL's counts before the last restart */
 	const double *scale;       /* each component's absolute tolerance, in units of tol */
-	double *atol_scale;        /* --atol: the scale, atol / tol for every component (owned) */
+	double *atol_scale;        /* atol_each, --atol: the scale, atol / tol where one is set (owned) */
 	const uint32_t *vpair;     /* verlet: 1 + velocity index of each position component */
 	double *acc;               /* verlet: the derivative at the current point */
 	double acc_t;
@@ -132,7 +132,7 @@ static int gsl_jac(double t, const double y[], double *dfdy, double dfdt[], void
 }
 
 csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double hmax, double tol, double atol,
-                     const double *scale, const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err,
+                     const double *atol_each, const double *scale, const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err,
                      size_t errlen)
 {
 	gsl_set_error_handler_off();
@@ -157,13 +157,18 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 	}
 	o->tol = tol;
 	o->scale = scale;
-	if (atol > 0) { /* the control's absolute bound is tol * scale[i]: atol for each */
+	int some = atol > 0;
+	for (size_t i = 0; atol_each && i < n; i++) some |= atol_each[i] > 0;
+	if (some) { /* the control's absolute bound is tol * scale[i]: atol_each[i], else atol */
 		if (!(o->atol_scale = malloc((n ? n : 1) * sizeof *o->atol_scale))) {
 			snprintf(err, errlen, "out of memory");
 			free(o);
 			return NULL;
 		}
-		for (size_t i = 0; i < n; i++) o->atol_scale[i] = atol / tol;
+		for (size_t i = 0; i < n; i++) {
+			double a = atol_each && atol_each[i] > 0 ? atol_each[i] : atol;
+			o->atol_scale[i] = a > 0 ? a / tol : scale[i];
+		}
 		o->scale = o->atol_scale;
 	}
 	o->m = m;

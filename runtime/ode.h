@@ -36,12 +36,13 @@ typedef int (*csf_watch_fn)(void *ctx, double t, const double *y, double h);
  * h0 (at most hmax) and internal steps never longer than hmax (but for a
  * step stretched by at most 1e-4 of its length to end at the time asked
  * for), local error bound tol (relative, and absolute times scale[i] for
- * component i; <= 0 for the default), or with atol > 0 the absolute bound
- * atol for every component. Returns NULL and writes a reason to err for an
- * unknown method or when memory runs out.
+ * component i; <= 0 for the default), but the absolute bound atol_each[i]
+ * where that is > 0 (atol_each may be NULL), else atol where that is > 0.
+ * Returns NULL and writes a reason to err for an unknown method or when
+ * memory runs out.
  */
 csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double hmax, double tol, double atol,
-                     const double *scale, const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err,
+                     const double *atol_each, const double *scale, const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err,
                      size_t errlen);
 
 /* Can the named method run a model with contacts (a method with a step of its own: not verlet)? */

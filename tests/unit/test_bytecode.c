@@ -135,6 +135,15 @@ START_TEST(test_verifier)
 	ck_assert_int_eq(csf_verify(&p, err, sizeof err), -1);
 	p.by = 0.5;
 	ck_assert_int_eq(csf_verify(&p, err, sizeof err), 0);
+	/* a scene's absolute tolerance: 0 (none) or a positive number */
+	static const double bad_atol[] = { -1e-9, NAN, INFINITY };
+	for (size_t i = 0; i < sizeof bad_atol / sizeof bad_atol[0]; i++) {
+		p.yatol[0] = bad_atol[i];
+		ck_assert_msg(csf_verify(&p, err, sizeof err) == -1 && strstr(err, "absolute tolerance"), "atol %g: %s",
+		              bad_atol[i], err);
+	}
+	p.yatol[0] = 1e-12;
+	ck_assert_int_eq(csf_verify(&p, err, sizeof err), 0);
 	csf_prog_free(&p);
 }
 END_TEST

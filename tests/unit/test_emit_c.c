@@ -85,10 +85,10 @@ static char *emit_rhs(uint32_t *code, uint32_t n, double *mem, csf_col *col)
 	csf_prog p = bare_prog(NULL, 0, mem, NM, 0);
 	p.code[CSF_SEC_RHS] = code;
 	p.ncode[CSF_SEC_RHS] = n;
-	static double yscale[3] = { 1, 1, 1 };
+	static double yscale[3] = { 1, 1, 1 }, yatol[3];
 	static uint32_t vpair[3];
 	p.ystart = YS, p.dstart = DS, p.ny = 3;
-	p.yscale = yscale, p.vpair = vpair;
+	p.yscale = yscale, p.yatol = yatol, p.vpair = vpair;
 	*col = (csf_col){ 0, COL };
 	p.cols = col;
 	p.ncols = 1;

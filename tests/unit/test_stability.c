@@ -31,7 +31,7 @@ static double limit(const char *method, int fixed, double re, double im)
 	static const uint32_t vpair[2] = { 2, 0 };
 	static const double scale[2] = { 1, 1 };
 	char err[128];
-	csf_ode *o = csf_ode_new(method, fixed, 2, 0.1, 0.1, 0, 0, scale, vpair, unused_rhs, unused_jac, NULL, err, sizeof err);
+	csf_ode *o = csf_ode_new(method, fixed, 2, 0.1, 0.1, 0, 0, NULL, scale, vpair, unused_rhs, unused_jac, NULL, err, sizeof err);
 	ck_assert_msg(o != NULL, "%s: %s", method, err);
 	double s = csf_ode_stable_step(o, fixed, re, im, 1e9);
 	csf_ode_free(o);
