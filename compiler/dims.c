@@ -130,6 +130,7 @@ typedef struct Aff {
 	int nu;
 	Var *u[MAXU];
 	double k[MAXU];
+	Var *bare;       /* a property or global among its leaves that an equation gave its dimension */
 } Aff;
 
 /* A known dimension: exponents of length, mass, time (and current: known_dim). */
@@ -149,6 +150,7 @@ static Aff lin(Aff a, double ka, Aff b, double kb)
 {
 	Aff r = { 0 };
 	r.soft = a.soft || b.soft;
+	r.bare = a.bare ? a.bare : b.bare;
 	r.overflow = a.overflow || b.overflow;
 	for (int i = 0; i < CSF_NDIM; i++) r.c[i] = ka * a.c[i] + kb * b.c[i];
 	for (int s = 0; s < 2; s++) {
@@ -188,17 +190,22 @@ typedef struct Walk {
 	Map reported;    /* locations already reported */
 } Walk;
 
-static void report(Walk *W, Loc l, const char *msg)
+/* Reports msg at l (once per place); bare, if not NULL, is a property or global given a bare value
+ * that an equation gave its dimension: a note at it says which, and how to write its unit. */
+static void report(Walk *W, Loc l, const char *msg, const Var *bare)
 {
 	char *key = xprintf("%d:%d:%d", l.file, l.line, l.col);
 	if (map_get(&W->reported, key)) return;
 	map_put(&W->reported, key, key);
 	error_at(l, "%s", msg);
+	if (!bare) return;
+	const char *value = bare->isvec ? xprintf("(%g, %g, %g)", bare->init[0], bare->init[1], bare->init[2])
+	                                : xprintf("%g", bare->init[0]);
+	note_at(bare->loc, "'%s' has no unit, and line %d makes it %s: write '%s = %s %s' if that is its unit",
+	        bare->name, bare->dim_from.line, dims_describe(bare->dim), bare->name, value, dims_unit(bare->dim));
 }
 
-/* A side of a mismatch for a message: the name or the literal it is, with its unit ("x (m)",
- * "pos.z (m)", "230 V"), else its dimension. */
-static const char *operand(const RExpr *e, const double d[CSF_NDIM])
+const char *dims_operand(const RExpr *e, const double d[CSF_NDIM])
 {
 	const char *unit = dims_none(d) ? "dimensionless" : dims_unit(d);
 	if (e && e->k == R_COMP && e->a[0]->k == R_VAR)
@@ -237,6 +244,7 @@ static void constrain(Walk *W, Aff a, RExpr *ea, Aff b, RExpr *eb, Loc l, MsgFn 
 		for (int i = 0; i < CSF_NDIM; i++)
 			if (!(fabs(d.c[i] / k) <= DIM_MAX_EXP)) return; /* left unknown; the expression reports it */
 		v->dimk = DK_KNOWN;
+		if (v->kind == V_PROP || v->kind == V_GLOBAL) v->dim_from = l;
 		for (int i = 0; i < CSF_NDIM; i++) {
 			double x = -d.c[i] / k;
 			x = fabs(x - round(x)) < 1e-9 ? round(x) : x;
@@ -247,7 +255,8 @@ static void constrain(Walk *W, Aff a, RExpr *ea, Aff b, RExpr *eb, Loc l, MsgFn 
 	}
 	int differ = 0;
 	for (int i = 0; i < CSF_NDIM; i++) differ |= fabs(d.c[i]) > 1e-9;
-	if (d.nu == 0 && W->report && differ) report(W, l, msg(operand(ea, a.c), operand(eb, b.c), ctx));
+	if (d.nu == 0 && W->report && differ)
+		report(W, l, msg(dims_operand(ea, a.c), dims_operand(eb, b.c), ctx), a.bare ? a.bare : b.bare);
 }
 
 static const char *msg_add(const char *a, const char *b, void *ctx)
@@ -283,7 +292,11 @@ static Aff walk(Walk *W, RExpr *e);
 /* A variable's dimension: known, or itself as the one unknown. */
 static Aff var_aff(Var *v)
 {
-	if (v->dimk == DK_KNOWN) return known_dim(v->dim);
+	if (v->dimk == DK_KNOWN) {
+		Aff a = known_dim(v->dim);
+		if (v->dim_from.line) a.bare = v;
+		return a;
+	}
 	Aff a = { 0 };
 	a.nu = 1;
 	a.u[0] = v;
@@ -317,7 +330,7 @@ static Aff bounded(Walk *W, RExpr *e, Aff r)
 	for (int i = 0; i < CSF_NDIM; i++) big |= !(fabs(r.c[i]) <= DIM_MAX_EXP);
 	for (int i = 0; i < r.nu; i++) big |= !(fabs(r.k[i]) <= DIM_MAX_EXP);
 	if (!big) return r;
-	if (W->report) report(W, e->loc, xprintf("the dimension of this expression has an exponent beyond %d", DIM_MAX_EXP));
+	if (W->report) report(W, e->loc, xprintf("the dimension of this expression has an exponent beyond %d", DIM_MAX_EXP), NULL);
 	r.overflow = 1;
 	r.nu = 0;
 	memset(r.c, 0, sizeof r.c);

@@ -2130,7 +2130,7 @@ static double const_time(Expr *x, double dflt, const char *what)
 	}
 	/* a pure number is a time in the unit system's seconds (till 2*pi, till pi) */
 	if (r->dimk == DK_KNOWN && !dims_none(r->dim) && (r->dim[0] != 0 || r->dim[1] != 0 || r->dim[2] != 1 || r->dim[3] != 0)) {
-		error_at(x->loc, "'%s' needs a time, not %s", what, dims_describe(r->dim));
+		error_at(x->loc, "'%s' needs a time, not %s", what, dims_operand(r, r->dim));
 		return dflt;
 	}
 	return r->c[0];
@@ -2173,7 +2173,7 @@ static void check_atols(Model *M)
 				         "derivative rule", v->name, o->name);
 			else if (a->dimk == DK_KNOWN && v->dimk == DK_KNOWN && memcmp(a->dim, v->dim, sizeof v->dim) != 0)
 				error_at(a->loc, "the atol of '%s' must be %s, as '%s' is, not %s", v->name, dims_describe(v->dim),
-				         v->name, dims_describe(a->dim));
+				         v->name, dims_operand(a, a->dim));
 		}
 	}
 }

@@ -45,6 +45,8 @@ typedef struct Var {
 	int dimk;        /* DK_UNKNOWN until known (dims.c) */
 	double dim[CSF_NDIM]; /* exponents of length, mass, time, current */
 	int pair;        /* temps: of a tuple of objects ($1), not of one object */
+	Loc dim_from;    /* props and globals given a bare value: the equation that gave it its dimension
+	                    (line 0: none did) */
 	RExpr *atol;     /* props: the absolute tolerance `atol A` set on its line (a constant), or NULL */
 	/* globals, props: why -D cannot set the initial value (gen.c words it): FIX_FOLDED, its value is
 	   folded into that of fix_obj.fix_name (fix_obj NULL: the global fix_name) on line fix_line;
@@ -199,6 +201,9 @@ void dims_fold(int op, RExpr **args, int n, RExpr *out, Loc l);
 void dims_coords(const char *sys, RExpr **args, RExpr *out);
 /* The unit of dimension d in the unit system in use, e.g. "kg*m/s^2"; "" if dimensionless. */
 const char *dims_unit(const double d[CSF_NDIM]);
+/* A side of a dimension mismatch for a message: the name or literal e is with its unit d ("x (m)",
+ * "10 m"), else the dimension d alone (e may be NULL). */
+const char *dims_operand(const RExpr *e, const double d[CSF_NDIM]);
 /* Is d dimensionless? */
 int dims_none(const double d[CSF_NDIM]);
 /* "a length (m)", "dimensionless": a dimension for messages. */
