@@ -13,6 +13,9 @@
  *    directly after a number or a ')' , starts a unit expression (`m/s^2`,
  *    `kg*m/(s^2)`, `1/s`, `(1/s)`);
  *    it becomes one UNIT token carrying its SI factor and dimension.
+ *    The name `atol` after the end of a value (a number, a unit, a name, a
+ *    ')') is the word ATOL of a property line's `atol A`; anywhere else it
+ *    is a name.
  */
 #include <errno.h>
 #include <limits.h>
@@ -409,6 +412,9 @@ int yylex(YYSTYPE *lval, YYLoc *lloc, Parser *P)
 			lval->tok = keep;
 		}
 	}
+	if (t.kind == IDENT && !t.bol && !strcmp(t.text, "atol") &&
+	    (P->last == NUMBER || P->last == UNIT || P->last == IDENT || P->last == DOLLAR || P->last == ')'))
+		t.kind = ATOL;
 	if (t.kind == NEWLINE) P->last_colon = P->last == ':';
 	P->last = t.kind;
 	P->text = t.text ? t.text : (t.kind > 0 && t.kind < 256 ? xprintf("%c", t.kind) : NULL);

@@ -192,6 +192,7 @@ static void yyerror(YYLoc *l, Parser *P, const char *msg);
 %token STOP "'stop'" WHEN "'when'"
 %token IF "'if'" ELIF "'elif'" ELSE "'else'" ASSERT "'assert'" VECTOR "'vector'" INC "'inc'"
 %token TILL "'till'" BY "'by'" WATCH "'watch'" AND "'and'" OR "'or'" NOT "'not'"
+%token ATOL "'atol'"
 %token EQEQ "'=='" NE "'!='" LE "'<='" GE "'>='"
 
 %left OR
@@ -274,14 +275,8 @@ stmt:
 
 till: %empty { $$ = NULL; } | TILL expr { $$ = $2; } ;
 
-/* `atol A` after a property's value: its absolute tolerance (a word only in this place). */
-atol:
-	  %empty { $$ = NULL; }
-	| IDENT expr {
-		$$ = $2;
-		if (strcmp($1, "atol") != 0) error_at(LOC(@1), "'%s' after a property's value: only 'atol TOLERANCE' may follow it", $1);
-	}
-	;
+/* `atol A` after a property's value: its absolute tolerance (ATOL: layout.c). */
+atol: %empty { $$ = NULL; } | ATOL expr { $$ = $2; } ;
 by:   %empty { $$ = NULL; } | BY expr   { $$ = $2; } ;
 
 attr: %empty { $$ = NULL; } | IDENT { $$ = $1; } ;
