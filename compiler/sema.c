@@ -661,7 +661,7 @@ static int override_ok(Loc l, const char *what, Var *v, RExpr *r)
 		return 0;
 	}
 	if (r->dimk == DK_KNOWN && v->dimk == DK_KNOWN && memcmp(r->dim, v->dim, sizeof v->dim) != 0) {
-		error_at(l, "%s is %s; this value is %s", what, dims_describe(v->dim), dims_describe(r->dim));
+		error_at(l, "%s is %s; this value is %s", what, dims_describe(v->dim), dims_operand(r, r->dim));
 		return 0;
 	}
 	return 1;
