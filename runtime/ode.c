@@ -423,6 +423,8 @@ double csf_ode_fixed_step(const csf_ode *o, double by, double step)
 
 const char *csf_ode_method(const csf_ode *o) { return o->m->name; }
 
+double csf_ode_next_step(const csf_ode *o) { return o->drv ? o->drv->h : 0; }
+
 void csf_ode_watch(csf_ode *o, csf_watch_fn fn, void *ctx)
 {
 	o->watch = fn;
