@@ -20,10 +20,8 @@ BUILD=${BUILD:-../build}
 OUT=${OUT:-results}
 README=${README-README.md}
 REPS=${REPS:-3}
-mkdir -p "$OUT"
-TMP=$OUT/scratch.tmp
-mkdir -p "$TMP"
-CSV=$OUT/stiff.csv
+TMP=$OUT/scratch.tmp CSV=$OUT/stiff.csv
+mkdir -p "$TMP" # and $OUT
 echo "problem,method,exit,steps,rhs,jac,seconds,error" > "$CSV"
 
 ref() {
