@@ -886,6 +886,8 @@ typedef struct guard {
 	csf_eigs last, at_max; /* the last look's eigenvalues, and those of the largest rho */
 	double rho_max, ratio, ratio_rho, hrho, hlim_rho; /* fixed: the largest h / largest stable step, at rho */
 	int ratio_exact, have_ratio;
+	double auto_ratio;         /* auto: the largest ratio of the looks that decide (not --stats's) */
+	double aside;              /* auto: the evaluations of --stats's own ratios, left out of the schedule */
 	int warned; /* of stiffness */
 } guard;
 
@@ -918,7 +920,7 @@ static int jvp(void *ctx, const double *v, double *jv)
 }
 
 /* The run's evaluations so far, the guard's own included: an RHS counts 1, a product by the JAC section 2. */
-static double guard_evals(const run *r) { return (double)r->nrhs + 2.0 * (double)r->g->nexact; }
+static double guard_evals(const run *r) { return (double)r->nrhs + 2.0 * (double)r->g->nexact - r->g->aside; }
 
 /* x rounded down to one significant digit: a step to suggest. */
 static double round_down(double x)
@@ -986,7 +988,20 @@ static int guard_ratio(run *r, double rho)
 	g->ratio_rho = rho;
 	if (st) return 1;
 	if (!g->have_ratio || ratio > g->ratio) g->ratio = ratio, g->ratio_exact = exact, g->have_ratio = 1;
+	if (ratio > g->auto_ratio) g->auto_ratio = ratio;
 	return 0;
+}
+
+/*
+ * --method auto: is the stiffness ratio at least min? Measured at the
+ * first look that asks (and kept, the largest, by later ones), never taken
+ * from the looks --stats adds, so that --stats does not steer the run.
+ */
+static int auto_ratio_at_least(run *r, double rho, double min)
+{
+	guard *g = r->g;
+	if (!(g->auto_ratio > 0)) guard_ratio(r, rho);
+	return g->auto_ratio >= min;
 }
 
 /*
@@ -1016,7 +1031,11 @@ static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h
 	}
 	g->last = e;
 	if (e.rho > g->rho_max) g->rho_max = e.rho, g->at_max = e;
-	if (g->stats && (!g->have_ratio || e.rho > 1.5 * g->ratio_rho)) guard_ratio(r, e.rho);
+	if (g->stats && (!g->have_ratio || e.rho > 1.5 * g->ratio_rho)) {
+		double b = guard_evals(r), keep = g->auto_ratio;
+		guard_ratio(r, e.rho);
+		if (r->au) g->aside += guard_evals(r) - b, g->auto_ratio = keep;
+	}
 	if (!g->fixed && !g->detect_stiff) goto out;
 	autom *au = r->au;
 	if (au && au->cur) {
@@ -1065,15 +1084,13 @@ static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h
 			        hs, round_down(0.9 * hs), tolb);
 			halt = 1;
 		}
-	} else if (au && h > 0 && hs < INFINITY && h >= AUTO_NEAR * hs && (r->tend - t) / h > 1000 && e.re[0] < 0 &&
-	           fabs(e.im[0]) < -e.re[0] && (g->have_ratio || !guard_ratio(r, e.rho)) && g->ratio >= 1000) {
-		au->want = 1; /* decaying modes a thousand times faster than the slowest: stability will hold dop853 */
+	} else if (au) { /* dop853: the implicit method from the next step on when stability holds it */
+		if (h > 0 && hs < INFINITY && (r->tend - t) / h > 1000 &&
+		    ((h >= AUTO_NEAR * hs && e.re[0] < 0 && fabs(e.im[0]) < -e.re[0] && auto_ratio_at_least(r, e.rho, 1000)) ||
+		     (h >= 0.8 * hs && (auto_ratio_at_least(r, e.rho, 100) || ++g->stiff_hits >= 2))))
+			au->want = 1;
 	} else if (h > 0 && hs < INFINITY && h >= 0.8 * hs && (r->tend - t) / h > 1000 &&
 	           ((!g->have_ratio && guard_ratio(r, e.rho)) || g->ratio >= 100 || ++g->stiff_hits >= 2)) {
-		if (au) { /* dop853 held by its stability: the implicit method from the next step on */
-			au->want = 1;
-			goto out;
-		}
 		/* steps held near the stability limit, with many steps to go: stiff if the spectrum spans
 		   100 times or more, or (a spread that cannot be measured) when a second look agrees */
 		char tb[32], rb[64] = "";

@@ -484,6 +484,11 @@ static double excess(const csf_ode *o, double complex z)
 		double complex b = 2 + z * z, d = csqrt(b * b - 4);
 		return log(fmax(cabs((b + d) / 2), cabs((b - d) / 2))) - fabs(creal(z));
 	}
+	if (cimag(z) == 0) { /* the real axis (stiff decays) in real arithmetic: the same value, 4 times sooner */
+		double x = creal(z), r = 0;
+		for (int j = o->nstab - 1; j >= 0; j--) r = r * x + o->stab[j];
+		return log(fabs(r)) - fmax(0, x);
+	}
 	double complex r = 0;
 	for (int j = o->nstab - 1; j >= 0; j--) r = r * z + o->stab[j];
 	return log(cabs(r)) - fmax(0, creal(z));
