@@ -848,6 +848,12 @@ enum { LOOK_EVERY = 100 };
  */
 #define AUTO_STIFF "bsimp"
 #define AUTO_NEAR 0.05
+/*
+ * bsimp works on the dense n-by-n Jacobian: n^2 memory and some n^3/3
+ * operations a step for its LU decompositions. Past AUTO_MAX_N state
+ * variables auto is dop853 alone, which warns of stiffness as when named.
+ */
+enum { AUTO_MAX_N = 200 };
 enum { AUTO_SHOWN = 8 }; /* the switches --stats lists */
 
 typedef struct autom {
@@ -1430,9 +1436,10 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	guard gd = { 0 };
 	autom au = { 0 };
 	watch_ctx wc = { &r, NULL }, wc_stiff = { &r, NULL };
-	/* --method auto (the default, but for fixed steps: dop853's) is dop853 with AUTO_STIFF beside it */
+	/* --method auto (the default, but for fixed steps and large scenes: dop853) is dop853 with
+	   AUTO_STIFF beside it */
 	const char *method = o->method && strcmp(o->method, "auto") != 0 ? o->method : NULL;
-	int autom_on = !method && !o->fixed;
+	int autom_on = !method && !o->fixed && p->ny <= AUTO_MAX_N;
 	double *y = NULL;
 	int fixed = 0;
 	struct timespec t0, t1;
