@@ -5,7 +5,8 @@
 # stiffness ratio --stats asks for) inside the run, so the share is a ratio
 # of two times of one process, not of two runs on a busy machine.
 # Scenes: the n-body runs of run.sh (NB_N, NB2_N bodies) and its chain, under
-# rk8pd (as run.sh times them) and the default dop853; the chain with fixed
+# rk8pd (as run.sh times them) and the default (dop853: auto is dop853 alone past 200
+# state variables); the chain with fixed
 # rk4 steps and with verlet (a look every 2 / (h rho) steps); the gas of
 # gas.sh (contacts: products by differences of the right-hand side).
 # Writes $OUT/guard.csv and $OUT/guard.txt, and the guard section of $README.

@@ -97,10 +97,10 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 			return 1;
 		} else if (csf_opt_value(argc, argv, &i, "--method", &v)) {
 			o->method = v;
-			int known = 0;
+			int known = strcmp(v, "auto") == 0;
 			for (size_t k = 0; csf_method_name(k); k++) known |= strcmp(csf_method_name(k), o->method) == 0;
 			if (!known) {
-				fprintf(stderr, "%s: unknown method '%s' (one of:", argv[0], o->method);
+				fprintf(stderr, "%s: unknown method '%s' (one of: auto", argv[0], o->method);
 				for (size_t k = 0; csf_method_name(k); k++) fprintf(stderr, " %s", csf_method_name(k));
 				fprintf(stderr, ")\n");
 				return 2;
@@ -200,6 +200,9 @@ typedef struct run {
 	uint32_t stop_src;
 	int stopped;
 	struct guard *g; /* the stability guard, or NULL */
+	csf_ode *ode;     /* the method taking the steps (with --method auto, one of au->m) */
+	int own;          /* the integrator has its own time and state (ti, yi), apart from the rows' */
+	struct autom *au; /* --method auto, or NULL */
 	FILE *err;
 	int prog, shown;  /* the progress line: drawn, and on the screen now */
 	struct timespec start, drawn; /* when the run started, and the line was last drawn */
@@ -331,7 +334,8 @@ static int rhs(double t, const double *y, double *dydt, void *ctx)
 /*
  * With contacts, the Jacobian by central differences of the RHS: the
  * contact routine's forces have no tangent code, and they are smooth while
- * the modes are frozen, as they are between events. The step for component
+ * the modes are frozen, as they are between events. Also for --method
+ * auto's implicit method in a program without a JAC section. The step for component
  * j is cbrt(eps) times its size (at least its unit), which balances the
  * truncation and rounding errors of the difference.
  */
@@ -370,7 +374,7 @@ static int jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx)
 	double *m = r->m, *tan = r->m + p->jtan;
 	uint32_t n = p->ny;
 	r->njac++;
-	if (p->ncrules) return jac_differences(r, t, y, dfdy, dfdt);
+	if (p->ncrules || !p->jtan) return jac_differences(r, t, y, dfdy, dfdt); /* (no JAC: --method auto) */
 	m[p->tslot] = t;
 	memcpy(m + p->ystart, y, n * sizeof *y);
 	for (uint32_t j = 0; j <= n; j++) {
@@ -821,6 +825,46 @@ static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const 
 /* A look costs at most 1 / LOOK_EVERY of the evaluations before it (but for those a fixed step needs). */
 enum { LOOK_EVERY = 100 };
 
+/*
+ * --method auto (the default): dop853 while its steps are held by its
+ * accuracy. When a look of the guard, with a thousand steps or more to go,
+ * finds them held by its stability, as the stiffness warning would (steps
+ * at 0.8 of the largest stable step or more, a stiffness ratio of 100 or
+ * more, or a second look that agrees), or about to be (steps at AUTO_NEAR
+ * of it or more, the dominant eigenvalue nearer the negative real axis
+ * than the imaginary one, a decaying mode, and a stiffness ratio of 1000
+ * or more: the accuracy-held steps of Oregonator's and HIRES's starts,
+ * which cost dop853 4 and 1.3 times what the whole run costs bsimp), the
+ * next step is taken by AUTO_STIFF, implicit. Back to dop853 when two looks
+ * in a row find the implicit method's own step (the one its error control
+ * proposes) shorter than dop853's largest stable step, as in a fast
+ * transient or once the fast modes are gone. The gap between the
+ * thresholds and the second look are the hysteresis that keeps switches
+ * few, as LSODA's. bsimp, not msbdf: on the four reference problems
+ * (bench/stiff.sh) it takes 1.5 to 2.1 times msbdf's evaluations, but
+ * restarts without a history to rebuild (every switch and every event
+ * restarts) and reaches Robertson's kinetics at 1e11 s within 1e-10
+ * relatively, where msbdf at its default tolerance is 7 % off.
+ */
+#define AUTO_STIFF "bsimp"
+#define AUTO_NEAR 0.05
+/*
+ * bsimp works on the dense n-by-n Jacobian: n^2 memory and some n^3/3
+ * operations a step for its LU decompositions. Past AUTO_MAX_N state
+ * variables auto is dop853 alone, which warns of stiffness as when named.
+ */
+enum { AUTO_MAX_N = 200 };
+enum { AUTO_SHOWN = 8 }; /* the switches --stats lists */
+
+typedef struct autom {
+	csf_ode *m[2];              /* dop853 and AUTO_STIFF */
+	int cur;                    /* the one that takes the steps */
+	int want;                   /* the guard asks for the other from the next step on */
+	int soft;                   /* looks in a row (implicit) that found the stiffness passed */
+	unsigned long n;            /* switches */
+	double at[AUTO_SHOWN];      /* the first ones' times (to m[1], m[0], m[1], ...: they alternate) */
+} autom;
+
 typedef struct guard {
 	csf_spectrum *sp;
 	FILE *err;
@@ -848,6 +892,8 @@ typedef struct guard {
 	csf_eigs last, at_max; /* the last look's eigenvalues, and those of the largest rho */
 	double rho_max, ratio, ratio_rho, hrho, hlim_rho; /* fixed: the largest h / largest stable step, at rho */
 	int ratio_exact, have_ratio;
+	double auto_ratio;         /* auto: the largest ratio of the looks that decide (not --stats's) */
+	double aside;              /* auto: the evaluations of --stats's own ratios, left out of the schedule */
 	int warned; /* of stiffness */
 } guard;
 
@@ -880,7 +926,7 @@ static int jvp(void *ctx, const double *v, double *jv)
 }
 
 /* The run's evaluations so far, the guard's own included: an RHS counts 1, a product by the JAC section 2. */
-static double guard_evals(const run *r) { return (double)r->nrhs + 2.0 * (double)r->g->nexact; }
+static double guard_evals(const run *r) { return (double)r->nrhs + 2.0 * (double)r->g->nexact - r->g->aside; }
 
 /* x rounded down to one significant digit: a step to suggest. */
 static double round_down(double x)
@@ -948,7 +994,20 @@ static int guard_ratio(run *r, double rho)
 	g->ratio_rho = rho;
 	if (st) return 1;
 	if (!g->have_ratio || ratio > g->ratio) g->ratio = ratio, g->ratio_exact = exact, g->have_ratio = 1;
+	if (ratio > g->auto_ratio) g->auto_ratio = ratio;
 	return 0;
+}
+
+/*
+ * --method auto: is the stiffness ratio at least min? Measured at the
+ * first look that asks (and kept, the largest, by later ones), never taken
+ * from the looks --stats adds, so that --stats does not steer the run.
+ */
+static int auto_ratio_at_least(run *r, double rho, double min)
+{
+	guard *g = r->g;
+	if (!(g->auto_ratio > 0)) guard_ratio(r, rho);
+	return g->auto_ratio >= min;
 }
 
 /*
@@ -978,9 +1037,23 @@ static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h
 	}
 	g->last = e;
 	if (e.rho > g->rho_max) g->rho_max = e.rho, g->at_max = e;
-	if (g->stats && (!g->have_ratio || e.rho > 1.5 * g->ratio_rho)) guard_ratio(r, e.rho);
+	if (g->stats && (!g->have_ratio || e.rho > 1.5 * g->ratio_rho)) {
+		double b = guard_evals(r), keep = g->auto_ratio;
+		guard_ratio(r, e.rho);
+		if (r->au) g->aside += guard_evals(r) - b, g->auto_ratio = keep;
+	}
 	if (!g->fixed && !g->detect_stiff) goto out;
-	double hs = stable_step(r, ode, &e);
+	autom *au = r->au;
+	if (au && au->cur) {
+		/* implicit: back to dop853 when its own step is within dop853's stable step (not when h rho
+		   is 40 or more, past the region of every explicit method, without the search for it) */
+		double hn = csf_ode_next_step(ode);
+		au->soft = hn * e.rho < 40 && hn < stable_step(r, au->m[0], &e) ? au->soft + 1 : 0;
+		r->fail = 0;
+		if (au->soft >= 2) au->want = 1;
+		goto out;
+	}
+	double hs = stable_step(r, au ? au->m[0] : ode, &e); /* auto: dop853's */
 	r->fail = 0;
 	if (g->fixed) {
 		double hc = g->h; /* the step to judge */
@@ -1017,6 +1090,11 @@ static int guard_check(run *r, csf_ode *ode, double t, const double *y, double h
 			        hs, round_down(0.9 * hs), tolb);
 			halt = 1;
 		}
+	} else if (au) { /* dop853: the implicit method from the next step on when stability holds it */
+		if (h > 0 && hs < INFINITY && (r->tend - t) / h > 1000 &&
+		    ((h >= AUTO_NEAR * hs && e.re[0] < 0 && fabs(e.im[0]) < -e.re[0] && auto_ratio_at_least(r, e.rho, 1000)) ||
+		     (h >= 0.8 * hs && (auto_ratio_at_least(r, e.rho, 100) || ++g->stiff_hits >= 2))))
+			au->want = 1;
 	} else if (h > 0 && hs < INFINITY && h >= 0.8 * hs && (r->tend - t) / h > 1000 &&
 	           ((!g->have_ratio && guard_ratio(r, e.rho)) || g->ratio >= 100 || ++g->stiff_hits >= 2)) {
 		/* steps held near the stability limit, with many steps to go: stiff if the spectrum spans
@@ -1272,11 +1350,36 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
 }
 
 /*
+ * --method auto: the other method takes the steps from (r->ti, r->yi) on,
+ * restarted there (no history: the state is the one the last step ended
+ * at), with a first step from its estimate. 0, or CSF_ODE_STOPPED if f
+ * failed there.
+ */
+static int switch_method(run *r)
+{
+	autom *au = r->au;
+	csf_ode *to = au->m[!au->cur];
+	au->want = 0, au->soft = 0;
+	csf_ode_restart(to);
+	if (csf_ode_first_step(to, r->ti, r->yi)) return CSF_ODE_STOPPED;
+	r->fail = 0; /* an Euler step of the estimate that failed was tried again shorter */
+	au->cur = !au->cur;
+	if (au->n < AUTO_SHOWN) au->at[au->n] = r->ti;
+	au->n++;
+	r->ode = to;
+	r->dense = csf_ode_dense(to);
+	return 0;
+}
+
+/*
  * A method with a continuous extension (csf_ode_dense): the integrator, at
  * (r->ti, r->yi), steps as far as its error control allows towards the
  * last output time, past tk, and the state y at tk is computed from the
  * last step's extension (or is its end), never by shortening a step to end
- * at tk. With events, a step is cut at its earliest event: the integrator
+ * at tk. With --method auto, also the implicit method, which has none: its
+ * steps end at tk. Each row comes from the method that took the step it is
+ * in: a switch takes effect at the next step, when the rows before the
+ * integrator's time have been computed. With events, a step is cut at its earliest event: the integrator
  * stops there, the rows before it come from the step's extension, and the
  * event is taken (modes, impacts, a restart) before the next step
  * (r->pending). An event within location_tol before an output time is moved
@@ -1284,8 +1387,9 @@ static int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed,
  * r->ga and r->fa hold the guards and derivative at (r->ti, r->yi) unless
  * an event is pending there.
  */
-static int advance_dense(run *r, csf_ode *ode, double tk, double *y, char *msg, size_t msglen)
+static int advance_dense(run *r, double tk, double *y, char *msg, size_t msglen)
 {
+	csf_ode *ode = r->ode;
 	const csf_prog *p = r->p;
 	size_t n = p->ny;
 	unsigned long same = 0, work = 0;
@@ -1299,8 +1403,12 @@ static int advance_dense(run *r, csf_ode *ode, double tk, double *y, char *msg, 
 			if (st == TERMINAL) memcpy(y, r->yi, n * sizeof *y);
 			return st;
 		}
+		if (r->au && r->au->want) {
+			if ((st = switch_method(r))) return st;
+			ode = r->ode;
+		}
 		if (events) memcpy(r->ya, r->yi, n * sizeof *y);
-		st = csf_ode_step(ode, &r->ti, r->tend, 0, 0, r->yi, msg, msglen);
+		st = csf_ode_step(ode, &r->ti, r->dense ? r->tend : tk, 0, 0, r->yi, msg, msglen);
 		if (st != CSF_ODE_OK) return st;
 		r->last_h = r->ti - ta;
 		if (!events) continue;
@@ -1326,7 +1434,12 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 {
 	run r = { .p = p, .exec = exec };
 	guard gd = { 0 };
-	watch_ctx wc = { &r, NULL };
+	autom au = { 0 };
+	watch_ctx wc = { &r, NULL }, wc_stiff = { &r, NULL };
+	/* --method auto (the default, but for fixed steps and large scenes: dop853) is dop853 with
+	   AUTO_STIFF beside it */
+	const char *method = o->method && strcmp(o->method, "auto") != 0 ? o->method : NULL;
+	int autom_on = !method && !o->fixed && p->ny <= AUTO_MAX_N;
 	double *y = NULL;
 	int fixed = 0;
 	struct timespec t0, t1;
@@ -1344,7 +1457,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	/* events: comparisons, or contacts (whose candidates come and go) */
 	int events = p->nevents || p->ncrules;
 	double *work = NULL;
-	if (events) {
+	if (events || autom_on) { /* (auto: jw, for a Jacobian by differences) */
 		size_t n = p->ny ? p->ny : 1;
 		work = malloc(12 * n * sizeof *work);
 		if (work) {
@@ -1352,22 +1465,22 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			r.jw = r.ye + n;
 			r.yh = r.jw + 3 * n;
 		}
-		room_for_guards(&r, r.ng ? r.ng : 1);
 	}
+	if (events) room_for_guards(&r, r.ng ? r.ng : 1);
 	if (p->ncrules) {
 		r.cs = csf_contacts_new(p);
 		((csf_prog *)p)->crun = r.cs; /* the CONTACT instruction's state (p is the caller's, not const data) */
 	}
-	if (!r.m || !y || (events && (!work || r.nomem)) || (p->ncrules && !r.cs)) {
+	if (!r.m || !y || ((events || autom_on) && !work) || r.nomem || (p->ncrules && !r.cs)) {
 		fprintf(err, "error: out of memory\n");
 		status = 2;
 		goto done;
 	}
 	memcpy(r.m, p->mem0, p->nmem * sizeof(double));
 	memcpy(y, p->mem0 + p->ystart, p->ny * sizeof(double));
-	if (p->ncrules && !csf_method_contacts(o->method)) {
+	if (p->ncrules && !csf_method_contacts(method)) {
 		fprintf(err, "error: method '%s' cannot run a model with contacts (mechanics/rules: their friction "
-		        "depends on v); one of:", o->method);
+		        "depends on v); one of:", method);
 		for (size_t k = 0; csf_method_name(k); k++)
 			if (csf_method_contacts(csf_method_name(k))) fprintf(err, " %s", csf_method_name(k));
 		fprintf(err, "\n");
@@ -1382,11 +1495,21 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		/* a dense method steps as far as its error control allows (--hmax caps it), the others
 		   to each output time; with events, steps of at most by, so that a guard that dips below
 		   zero and back is not missed between the points each step looks at (events, below) */
-		int unbounded = !o->fixed && csf_method_dense(o->method) && !events;
+		int unbounded = !o->fixed && csf_method_dense(method) && !events;
 		double hmax = unbounded ? (r.tend > p->by ? r.tend : p->by) : p->by;
 		if (o->hmax > 0 && o->hmax < hmax) hmax = o->hmax;
-		ode = csf_ode_new(o->method, o->fixed, p->ny, p->by, hmax, o->tol, o->atol, p->yatol, p->yscale, p->vpair, rhs,
+		ode = csf_ode_new(method, o->fixed, p->ny, p->by, hmax, o->tol, o->atol, p->yatol, p->yscale, p->vpair, rhs,
 		                  p->jtan ? jac : NULL, &r, msg, sizeof msg);
+		if (ode && autom_on) { /* the implicit method ends its steps on the rows: at most by */
+			au.m[0] = ode;
+			au.m[1] = csf_ode_new(AUTO_STIFF, 0, p->ny, p->by, o->hmax > 0 && o->hmax < p->by ? o->hmax : p->by,
+			                      o->tol, o->atol, p->yatol, p->yscale, p->vpair, rhs, jac, &r, msg, sizeof msg);
+			r.au = &au;
+			if (!au.m[1]) {
+				csf_ode_free(ode);
+				ode = NULL;
+			}
+		}
 		if (!ode) {
 			fprintf(err, "error: %s\n", msg);
 			status = 2;
@@ -1431,10 +1554,14 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	if (ode) {
 		wc.ode = ode;
 		csf_ode_watch(ode, step_watch, &wc);
+		if (r.au) {
+			wc_stiff.ode = au.m[1];
+			csf_ode_watch(au.m[1], step_watch, &wc_stiff);
+		}
 	}
 	/* a train of bounces that would end within zeno is at rest; the integrator's accuracy (contact.c) */
 	r.zeno = 1e-6 * p->by;
-	r.tol = o->tol > 0 ? o->tol : csf_method_tol(o->method);
+	r.tol = o->tol > 0 ? o->tol : csf_method_tol(method);
 	if (events) {
 		/* the masses first, as the rules make them: the impulses and forces of contacts divide
 		   by them (a derivative that is not finite is reported by update_modes below) */
@@ -1466,7 +1593,9 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		stop_now(&r, 0); /* a 'stop when' condition true at the start: the row at t = 0 is the last */
 	}
 	r.dense = ode && !fixed && csf_ode_dense(ode);
-	if (r.dense) { /* the integrator's own state, apart from the rows' */
+	r.own = r.dense; /* (auto: dop853, dense) */
+	r.ode = ode;
+	if (r.own) { /* the integrator's own state, apart from the rows' */
 		if (!(r.yi = malloc(p->ny * sizeof *r.yi))) {
 			fprintf(err, "error: out of memory\n");
 			status = 2;
@@ -1501,7 +1630,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 		if (r.prog) progress(&r, t);
 		if (ode && tk > t) {
 			double trow = t; /* the last row's time */
-			int st = r.dense  ? advance_dense(&r, ode, tk, y, msg, sizeof msg)
+			int st = r.own    ? advance_dense(&r, tk, y, msg, sizeof msg)
 			         : events ? advance_events(&r, ode, &t, tk, fixed, fixed_h, y, msg, sizeof msg)
 			         : fixed  ? csf_ode_advance_fixed(ode, &t, tk, fixed_h, y, msg, sizeof msg)
 			                  : advance_plain(&r, ode, &t, tk, y, msg, sizeof msg);
@@ -1534,11 +1663,11 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			}
 			if (st == TOO_MUCH) {
 				char tb[32], ta[32], hb[32], why[160];
-				csf_fmt_double(tb, r.dense ? r.ti : t);
+				csf_fmt_double(tb, r.own ? r.ti : t);
 				csf_fmt_double(ta, tk - p->by);
 				csf_fmt_double(hb, r.last_h);
 				/* stiff only when measured so: the step at the stability limit of the guard's last look */
-				double hs = r.g && gd.checks && !fixed ? stable_step(&r, ode, &gd.last) : INFINITY;
+				double hs = r.g && gd.checks && !fixed && !au.cur ? stable_step(&r, ode, &gd.last) : INFINITY;
 				if (hs < INFINITY && r.last_h >= 0.8 * hs)
 					snprintf(why, sizeof why,
 					         "the problem is stiff: the explicit method's largest stable step is %.3g s here; try "
@@ -1560,7 +1689,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			}
 			if (st == CHATTER) {
 				char tb[32];
-				csf_fmt_double(tb, r.dense ? r.ti : t);
+				csf_fmt_double(tb, r.own ? r.ti : t);
 				if (r.last >= (long)p->nevents) { /* a contact: the bodies are the user's, the rule the library's */
 					uint32_t oi, oj;
 					csf_contacts_objects(r.cs, (uint32_t)(r.last - (long)p->nevents) / 2, &oi, &oj);
@@ -1583,7 +1712,7 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 			}
 			if (st == CSF_ODE_FAILED) {
 				char tb[32];
-				csf_fmt_double(tb, r.dense ? r.ti : t);
+				csf_fmt_double(tb, r.own ? r.ti : t);
 				fprintf(err,
 				        "error: integration failed at t=%s: %s (the step size collapsed: the solution may be "
 				        "singular there, or the problem stiff; try another --method or a smaller 'by')\n",
@@ -1633,6 +1762,11 @@ done:
 	clock_gettime(CLOCK_MONOTONIC, &t1);
 	unsigned long steps = 0, rejected = 0;
 	if (ode) csf_ode_stats(ode, &steps, &rejected);
+	if (au.m[1]) {
+		unsigned long s1, r1;
+		csf_ode_stats(au.m[1], &s1, &r1);
+		steps += s1, rejected += r1;
+	}
 	o->run_steps = steps;
 	o->run_rhs = r.nrhs;
 	o->run_seconds = seconds(t0, t1);
@@ -1641,11 +1775,20 @@ done:
 		if (r.cs)
 			snprintf(cand, sizeof cand, ", %.1f contact pairs watched (candidates) on average, at most %lu",
 			         r.nchoices ? (double)r.ncand / (double)r.nchoices : 0.0, r.maxcand);
+		char name[64];
+		snprintf(name, sizeof name, "%s%s%s%s", r.au ? "auto (" : "", ode ? csf_ode_method(ode) : "none",
+		         r.au && au.n ? " and " AUTO_STIFF : "", r.au ? ")" : "");
 		fprintf(err,
 		        "stats: method %s%s, %lu steps (%lu rejected), %lu right-hand side and %lu Jacobian evaluations, "
 		        "%lu events%s, %.6f s\n",
-		        ode ? csf_ode_method(ode) : "none", fixed ? " (fixed steps)" : "", steps, rejected, r.nrhs, r.njac,
-		        r.nevents, cand, o->run_seconds);
+		        name, fixed ? " (fixed steps)" : "", steps, rejected, r.nrhs, r.njac, r.nevents, cand,
+		        o->run_seconds);
+	}
+	if (o->stats && au.n) { /* the switches, alternately to the implicit method and back */
+		fprintf(err, "stats: auto: %lu switch%s:", au.n, au.n > 1 ? "es" : "");
+		for (unsigned long i = 0; i < au.n && i < AUTO_SHOWN; i++)
+			fprintf(err, "%s at t=%.6g to %s", i ? "," : "", au.at[i], i % 2 ? csf_ode_method(ode) : AUTO_STIFF);
+		fprintf(err, "%s\n", au.n > AUTO_SHOWN ? ", ..." : "");
 	}
 	if (o->stats && r.g && gd.checks) {
 		char rb[64] = "", hb[160] = "";
@@ -1681,6 +1824,7 @@ done:
 	csf_spectrum_free(gd.sp);
 	free(gd.y);
 	csf_ode_free(ode);
+	csf_ode_free(au.m[1]);
 	if (r.cs) ((csf_prog *)p)->crun = NULL;
 	csf_contacts_free(r.cs);
 	free(r.ga);

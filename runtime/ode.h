@@ -153,6 +153,12 @@ void csf_ode_cap_step(csf_ode *o, double h);
  */
 double csf_ode_stable_step(csf_ode *o, int fixed, double re, double im, double span);
 
+/*
+ * The step the error control proposes for the next adaptive step (after a
+ * step cut short to end at an output time, the one it would have taken).
+ */
+double csf_ode_next_step(const csf_ode *o);
+
 /* The method's name. */
 const char *csf_ode_method(const csf_ode *o);
 

@@ -11,7 +11,9 @@
 #    step unstable, not before (every row before is stable, the next step is not);
 #  - explicit adaptive methods on a stiff scene (eigenvalues -1, -1e6) warn within
 #    the first 100 steps, naming the stiffness ratio 1e6;
-#  - --stats reports rho, the stiffness ratio and h*rho against the limit.
+#  - --stats reports rho, the stiffness ratio and h*rho against the limit;
+#  - --method auto (the default) switches to bsimp on the stiff scene, and keeps
+#    dop853's rows on one that is not.
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3
 pass=0 fail=0
@@ -99,6 +101,23 @@ then ok; else bad "oscillator --stats: $(grep stability "$T/st.err")"; fi
 run stiff --method dop853 --stats
 if [ $st -eq 0 ] && grep -q "^stats: stability: rho 1e+06 1/s (fastest time scale 1e-06 s, dominant eigenvalues real), stiffness ratio 1e6;" "$T/st.err"
 then ok; else bad "stiff --stats: $(grep stability "$T/st.err")"; fi
+
+# 7. --method auto, the default: the stiff scene switches to bsimp without a warning and says so in
+# --stats; --method auto is the default spelt out; a scene that is not stiff stays on dop853, its rows
+# those of --method dop853 byte for byte
+run stiff --stats
+if [ $st -eq 0 ] && ! grep -q "looks stiff" "$T/st.err" && grep -q "^stats: method auto (dop853 and bsimp), " "$T/st.err" &&
+	grep -q "^stats: auto: 1 switch: at t=[0-9.e-]* to bsimp$" "$T/st.err"
+then ok; else bad "stiff at the defaults: exit $st, $(cat "$T/st.err")"; fi
+cp "$T/st.csv" "$T/st_default.csv"
+run stiff --method auto
+if [ $st -eq 0 ] && cmp -s "$T/st.csv" "$T/st_default.csv"; then ok; else bad "--method auto is not the default"; fi
+run oscillator --stats
+cp "$T/st.csv" "$T/st_default.csv"
+if [ $st -eq 0 ] && grep -q "^stats: method auto (dop853), " "$T/st.err" && ! grep -q "^stats: auto:" "$T/st.err"
+then ok; else bad "oscillator at the defaults: $(cat "$T/st.err")"; fi
+run oscillator --method dop853
+if [ $st -eq 0 ] && cmp -s "$T/st.csv" "$T/st_default.csv"; then ok; else bad "oscillator: auto's rows are not dop853's"; fi
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
