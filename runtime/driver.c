@@ -457,21 +457,20 @@ static void report_unsettled(const run *r, FILE *err)
 	if (r->unsettled != CSF_SETTLE_ENDLESS) {
 		/* the lightest and the heaviest mass point that can touch: blame the masses only if they differ */
 		const csf_prog *p = r->p;
-		long lo = -1, hi = -1;
+		uint32_t lo = 0, hi = 0; /* objects */
+		double mlo = INFINITY, mhi = 0;
 		for (uint32_t b = 0; b < p->ncbodies; b++) {
 			if (p->cbodies[b].plane) continue;
 			double mb = r->m[p->cbodies[b].s[CSF_CF_M]];
-			if (lo < 0 || mb < r->m[p->cbodies[lo].s[CSF_CF_M]]) lo = b;
-			if (hi < 0 || mb > r->m[p->cbodies[hi].s[CSF_CF_M]]) hi = b;
+			if (mb < mlo) mlo = mb, lo = p->cbodies[b].object;
+			if (mb > mhi) mhi = mb, hi = p->cbodies[b].object;
 		}
 		const char *what = r->unsettled == CSF_SETTLE_IMPULSES ? "impulses of an impact" : "contact forces";
-		double mlo = lo >= 0 ? r->m[p->cbodies[lo].s[CSF_CF_M]] : 1, mhi = hi >= 0 ? r->m[p->cbodies[hi].s[CSF_CF_M]] : 1;
 		if (mhi > 1e9 * mlo) {
 			fprintf(err,
 			        "error: at t=%s, the %s among bodies in contact could not be solved: their masses differ by more "
 			        "than about 1e10 ('%s' %g and '%s' %g, in the model's units); make them less different\n",
-			        tb, what, csf_str(p, p->objects[p->cbodies[lo].object]), mlo,
-			        csf_str(p, p->objects[p->cbodies[hi].object]), mhi);
+			        tb, what, csf_str(p, p->objects[lo]), mlo, csf_str(p, p->objects[hi]), mhi);
 			return;
 		}
 		fprintf(err,

@@ -13,15 +13,19 @@
 
 #include "csf.h"
 
+/* --method and --tol, as csfvm and a generated program both explain them */
+#define METHOD_TOL_HELP \
+	"  --method NAME  ODE stepper: auto (default: dop853, and bsimp while the scene is\n" \
+	"                 stiff), dop853, dopri5, rk8pd, rk2, rk4, rkf45, rkck, msadams;\n" \
+	"                 implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp, bsimp,\n" \
+	"                 msbdf; symplectic, fixed steps (--step): verlet\n" \
+	"  --tol EPS      relative local error bound per internal step, 1e-15 <= EPS < 1\n" \
+	"                 (default 1e-12 for dop853, 1e-10 for the others)\n"
+
 static const char vm_usage[] =
 	"usage: csfvm [--method NAME] [--tol EPS] [--atol A] MODEL.csfb  (- reads standard input)\n"
 	"Runs a compiled CSF model and writes its watched variables as CSV on stdout.\n"
-	"  --method NAME  ODE stepper: auto (default: dop853, and bsimp while the scene is\n"
-	"                 stiff), dop853, dopri5, rk8pd, rk2, rk4, rkf45, rkck, msadams;\n"
-	"                 implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp, bsimp,\n"
-	"                 msbdf; symplectic, fixed steps (--step): verlet\n"
-	"  --tol EPS      relative local error bound per internal step, 1e-15 <= EPS < 1\n"
-	"                 (default 1e-12 for dop853, 1e-10 for the others)\n"
+	METHOD_TOL_HELP
 	"  --atol A       absolute local error bound, in the model's units, for every state\n"
 	"                 variable the scene gives no atol (default: EPS times one unit, or\n"
 	"                 times the initial size)\n"
@@ -41,7 +45,8 @@ static const char vm_usage[] =
 	"                 --sweep run their Cartesian product, in one CSV with the swept\n"
 	"                 values as leading columns\n"
 	"  --sweep-file FILE.csv  one variant per row (a header names the parameters)\n"
-	"  --sweep-summary 'max(COL),min(COL),final(COL)'  one row per variant\n"
+	"  --sweep-summary 'max(COL) from T, mean(COL), ...'  one row per variant: final,\n"
+	"                 max, min, mean or rms of columns, optionally over 'from T'/'to T'\n"
 	"  --out-dir DIR  one CSV per variant, DIR/run-00001.csv..., and DIR/index.csv\n"
 	"  -j N           N worker processes for a sweep (default: every CPU)\n"
 	"  --help, --version\n";
@@ -49,12 +54,7 @@ static const char vm_usage[] =
 static const char exe_usage[] =
 	"usage: %s [--method NAME] [--tol EPS] [--atol A]\n"
 	"Runs the CSF model compiled into this program and writes its watched variables as CSV on stdout.\n"
-	"  --method NAME  ODE stepper: auto (default: dop853, and bsimp while the scene is\n"
-	"                 stiff), dop853, dopri5, rk8pd, rk2, rk4, rkf45, rkck, msadams;\n"
-	"                 implicit, with the exact Jacobian: rk1imp, rk2imp, rk4imp, bsimp,\n"
-	"                 msbdf; symplectic, fixed steps (--step): verlet\n"
-	"  --tol EPS      relative local error bound per internal step, 1e-15 <= EPS < 1\n"
-	"                 (default 1e-12 for dop853, 1e-10 for the others)\n"
+	METHOD_TOL_HELP
 	"  --atol A       absolute local error bound, in the model's units (as csfvm(1))\n"
 	"  --hmax H, --fixed, --step H, --stats, --progress, --no-progress,\n"
 	"  --compare-methods, -D NAME=VALUE, --sweep 'NAME=FROM:TO:COUNT [UNIT]',\n"
