@@ -339,9 +339,15 @@ step:
 
 eqn:
 	  expr '=' expr      { $$ = eqn($1, 0, $3, @$); }
-	| IDENT '\'' '=' expr {
-		Expr *e = ast_expr(E_NAME, LOC(@1)); e->name = $1;
-		$$ = eqn(e, 1, $4, @$);
+	| expr '\'' '=' expr {
+		/* the derivative of a name of the rule's own objects; of anything else, one clear error */
+		$$ = NULL;
+		if ($1->kind == E_NAME) $$ = eqn($1, 1, $4, @$);
+		else if ($1->kind == E_FIELD && $1->a->kind == E_NAME)
+			error_at(LOC(@2), "a derivative is written for the rule's own objects: 'rule for %s: %s' = ...', not "
+			         "'%s.%s' = ...'", $1->a->name, $1->name, $1->a->name, $1->name);
+		else
+			error_at(LOC(@2), "only a name can have a derivative ('v' = a')");
 	}
 	;
 
