@@ -123,6 +123,7 @@ $(BUILD)/fuzz-replay-csfb: tests/fuzz/fuzz_csfb.c tests/fuzz/replay.c $(BUILD)/l
 test: all $(BUILD)/unit-tests $(BUILD)/fuzz-bytecode $(BUILD)/fuzz-replay-csfc $(BUILD)/fuzz-replay-csfb $(if $(HAVE_MPICC),$(BUILD)/csfvm-mpi)
 	CSF_STDLIB=$(CURDIR)/stdlib $(BUILD)/unit-tests
 	CSF_BUILD=$(BUILD) CFLAGS="$(CFLAGS) $(SANFLAGS)" sh tests/run.sh
+	sh tests/layout/check.sh $(BUILD)
 
 check:
 	$(MAKE) test
