@@ -37,19 +37,27 @@ FUZZ_PACKAGES = clang libfuzzer-14-dev
 , := ,
 SANFLAGS = $(if $(SAN),-fsanitize=address$(,)undefined$(,)float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer)
 CSF_CFLAGS = -std=c11 -Wall -Wextra -ffp-contract=off -D_DEFAULT_SOURCE $(SANFLAGS)
-CPPFLAGS_ALL = -Iruntime -Icompiler -I$(BUILD)
+CPPFLAGS_ALL = $(addprefix -I,$(RT_DIRS) $(CC_DIRS)) -I$(BUILD)
 LDLIBS_GSL = $(shell pkg-config --libs gsl 2>/dev/null || echo -lgsl -lgslcblas) -lm
 LDFLAGS_SAN = $(if $(SAN),-fsanitize=address$(,)undefined)
 
-RT_SRC = runtime/bytecode.c runtime/vm.c runtime/driver.c runtime/ode.c runtime/contact.c runtime/main.c runtime/compare.c runtime/units.c runtime/param.c runtime/sweep.c runtime/erk.c runtime/dop853.c runtime/dopri5.c runtime/spectrum.c
+# The sources, by stage (README.md, "How the code is laid out"): every .c of
+# compiler/ and runtime/ and of their folders is part of the compiler or of
+# libcsfrt, but the programs' main files.
+RT_DIRS = runtime $(patsubst %/,%,$(sort $(dir $(wildcard runtime/*/*.c))))
+CC_DIRS = compiler $(patsubst %/,%,$(sort $(dir $(wildcard compiler/*/*.c compiler/*/*.y))))
+RT_MAINS = runtime/tools/csfvm.c runtime/tools/sweep_mpi.c
+RT_SRC = $(filter-out $(RT_MAINS),$(wildcard runtime/*.c runtime/*/*.c))
+RT_H = $(wildcard runtime/*.h runtime/*/*.h) runtime/opcodes.def
 RT_OBJ = $(RT_SRC:runtime/%.c=$(BUILD)/rt/%.o)
-CC_SRC = compiler/util.c compiler/units.c compiler/layout.c compiler/sema.c compiler/gen.c compiler/emit_c.c compiler/dims.c compiler/lint.c
+CC_SRC = $(filter-out compiler/main.c,$(wildcard compiler/*.c compiler/*/*.c))
+CC_H = $(wildcard compiler/*.h compiler/*/*.h)
 CC_GEN = $(BUILD)/lex.c $(BUILD)/parse.c
 CC_OBJ = $(CC_SRC:compiler/%.c=$(BUILD)/cc/%.o) $(BUILD)/cc/lex.o $(BUILD)/cc/parse.o
 
 all: $(BUILD)/csfc $(BUILD)/csfvm $(BUILD)/libcsfrt.a $(BUILD)/csfview $(if $(MPI),$(BUILD)/csfvm-mpi)
 
-$(BUILD)/rt/%.o: runtime/%.c runtime/*.h runtime/opcodes.def
+$(BUILD)/rt/%.o: runtime/%.c $(RT_H)
 	@mkdir -p $(@D)
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
 
@@ -57,19 +65,19 @@ $(BUILD)/libcsfrt.a: $(RT_OBJ)
 	rm -f $@
 	ar rcs $@ $^
 
-$(BUILD)/parse.c $(BUILD)/parse.h: compiler/parse.y
+$(BUILD)/parse.c $(BUILD)/parse.h &: compiler/front/parse.y
 	@mkdir -p $(BUILD)
 	bison -Wall -Werror --defines=$(BUILD)/parse.h -o $(BUILD)/parse.c $<
 
-$(BUILD)/lex.c: compiler/lex.re
+$(BUILD)/lex.c: compiler/front/lex.re
 	@mkdir -p $(BUILD)
 	re2c -W -Werror -o $@ $<
 
-$(BUILD)/cc/%.o: compiler/%.c compiler/*.h runtime/*.h runtime/opcodes.def $(BUILD)/parse.h
+$(BUILD)/cc/%.o: compiler/%.c $(CC_H) $(RT_H) $(BUILD)/parse.h
 	@mkdir -p $(@D)
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
 
-$(BUILD)/cc/%.o: $(BUILD)/%.c compiler/*.h runtime/*.h $(BUILD)/parse.h
+$(BUILD)/cc/%.o: $(BUILD)/%.c $(CC_H) $(RT_H) $(BUILD)/parse.h
 	@mkdir -p $(@D)
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
 
@@ -79,12 +87,12 @@ $(BUILD)/csfc: $(CC_OBJ) $(BUILD)/cc/main.o $(BUILD)/libcsfrt.a
 $(BUILD)/csfvm: $(BUILD)/rt/csfvm.o $(BUILD)/libcsfrt.a
 	$(CC) $(LDFLAGS_SAN) -o $@ $^ $(LDLIBS_GSL)
 
-$(BUILD)/rt/csfvm.o: runtime/csfvm.c runtime/*.h runtime/opcodes.def
+$(BUILD)/rt/csfvm.o: runtime/tools/csfvm.c $(RT_H)
 	@mkdir -p $(@D)
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
 
 # csfvm-mpi: csfvm with sweeps across MPI ranks; only this program needs MPI
-$(BUILD)/csfvm-mpi: runtime/sweep_mpi.c runtime/*.h $(BUILD)/libcsfrt.a
+$(BUILD)/csfvm-mpi: runtime/tools/sweep_mpi.c $(RT_H) $(BUILD)/libcsfrt.a
 	$(MPICC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
 
 # csfview, a shell script: the in-tree copy reads its page template from viewer/
@@ -98,7 +106,7 @@ TEST_SRC = $(wildcard tests/unit/*.c)
 TEST_OBJ = $(TEST_SRC:tests/unit/%.c=$(BUILD)/tests/%.o)
 LDLIBS_CHECK = $(shell pkg-config --libs check 2>/dev/null || echo -lcheck -lsubunit -lrt -lpthread) -lm
 
-$(BUILD)/tests/%.o: tests/unit/%.c tests/unit/*.h compiler/*.h runtime/*.h $(BUILD)/parse.h
+$(BUILD)/tests/%.o: tests/unit/%.c tests/unit/*.h $(CC_H) $(RT_H) $(BUILD)/parse.h
 	@mkdir -p $(@D)
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -Itests/unit -c $< -o $@
 

@@ -1,13 +1,13 @@
 /*
  * ref.h - what the hand-written reference programs (nbody.c, chain.c) share:
- * their command line, the integrator set up as runtime/ode.c sets it up
+ * their command line, the integrator set up as runtime/ode/ode.c sets it up
  * (GSL rk8pd, driver_alloc_scaled_new with h0 = by, epsabs = epsrel = 1e-10,
  * a_y = 1, a_dydt = 0 and the absolute tolerance of each property scaled as
  * csfc scales it: by its largest initial magnitude over the objects when
  * that is below one unit;
  * hmax = by, evolve_apply up to each t_k = k*by, a step that would end
  * just short of it stretched to end there, as csf_ode_step), and the output loop of
- * runtime/driver.c, numbers formatted by the runtime's own csf_fmt_double.
+ * runtime/run/driver.c, numbers formatted by the runtime's own csf_fmt_double.
  * Each program supplies its right-hand side, where a watched object's pos
  * and v sit in the state, and a check run at every row under --stats.
  */

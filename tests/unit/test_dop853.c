@@ -1,5 +1,5 @@
 /*
- * The DOP853 stepper (runtime/dop853.c): its coefficient table, read back
+ * The DOP853 stepper (runtime/ode/dop853.c): its coefficient table, read back
  * through the stepper itself and held against the order conditions; the
  * order of a step, of the global error and of the continuous extension,
  * measured against exact solutions; the stepper under GSL's own

@@ -1,5 +1,5 @@
 /*
- * The DOPRI5 stepper (runtime/dopri5.c): its coefficient table, read back
+ * The DOPRI5 stepper (runtime/ode/dopri5.c): its coefficient table, read back
  * through the stepper itself and held against the order conditions; the
  * order of a step, of the global error and of the continuous extension,
  * measured against exact solutions; the stepper under GSL's own

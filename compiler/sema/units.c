@@ -1,6 +1,6 @@
 /*
  * units.c - unit names for the compiler's unit literals, from the one unit
- * table the compiler and the runtime share (runtime/units.c).
+ * table the compiler and the runtime share (runtime/prog/units.c).
  */
 #include <string.h>
 

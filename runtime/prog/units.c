@@ -6,7 +6,7 @@
  * GSL's constant tables wherever GSL has the unit; the rest are exact by
  * definition (SI prefixes, minute, hour, degree).
  *
- * The compiler reads unit expressions from its tokens (compiler/layout.c);
+ * The compiler reads unit expressions from its tokens (compiler/front/layout.c);
  * the runtime reads them from text (csf_unit_parse: the values of -D and
  * --sweep) with the same arithmetic, left to right, `^` by pow(), so a
  * value given on the command line is the same double as the same literal
