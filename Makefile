@@ -11,6 +11,7 @@
 #   make deps-fuzz  install what make fuzz needs (clang, libfuzzer-14-dev)
 #   make bench      benchmarks; results under bench/results, summary in bench/README.md
 #   make bench-peers  CSF beside SciPy's solve_ivp (installs python3-scipy: deps-peers)
+#   make deps-cvode  libsundials-dev, only for make -C bench cvode (CVODE beside msbdf and bsimp)
 #   make install    PREFIX=/usr/local DESTDIR=
 #   make uninstall  the same PREFIX and DESTDIR: removes what install put there
 
@@ -28,6 +29,7 @@ VIEW_PACKAGES = libjs-three libjs-dygraphs
 # only for the browser test of csfview's page (tests/view/check.sh skips without it)
 CHROMIUM_PACKAGES = chromium
 PEER_PACKAGES = python3-scipy
+CVODE_PACKAGES = libsundials-dev
 # only for csfvm-mpi (make MPI=1) and its test (skipped without them)
 MPI_PACKAGES = libopenmpi-dev openmpi-bin
 MPI ?=
@@ -182,6 +184,9 @@ deps-fuzz:
 deps-peers:
 	@$(call deb_install,deps-peers,$(PEER_PACKAGES))
 
+deps-cvode:
+	@$(call deb_install,deps-cvode,$(CVODE_PACKAGES))
+
 # only for csfvm-mpi (make MPI=1) and its test
 deps-mpi:
 	@$(call deb_install,deps-mpi,$(MPI_PACKAGES))
@@ -247,4 +252,4 @@ bench-peers: all deps-peers
 clean:
 	rm -rf build build-san build-fuzz
 
-.PHONY: all deps deps-mpi deps-peers deps-view deps-chromium deps-fuzz demo test check fuzz fuzz-targets install uninstall bench bench-peers clean
+.PHONY: all deps deps-mpi deps-peers deps-cvode deps-view deps-chromium deps-fuzz demo test check fuzz fuzz-targets install uninstall bench bench-peers clean
