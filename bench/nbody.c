@@ -5,7 +5,7 @@
  *
  * Integrates the model that gen_nbody.sh writes as CSF, the way csfvm does:
  * the integrator, output loop and number format of ref.h (as runtime/ode/ode.c
- * and runtime/run/driver.c set them up). It prints the same
+ * and runtime/run/run.c set them up). It prints the same
  * CSV as csfvm for the watched bodies (pos and v of each WATCH index, in the
  * order given), formatted as csfvm formats numbers, so the two outputs can
  * be compared value by value.

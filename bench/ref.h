@@ -7,7 +7,7 @@
  * that is below one unit;
  * hmax = by, evolve_apply up to each t_k = k*by, a step that would end
  * just short of it stretched to end there, as csf_ode_step), and the output loop of
- * runtime/run/driver.c, numbers formatted by the runtime's own csf_fmt_double.
+ * runtime/run/run.c, numbers formatted by the runtime's own csf_fmt_double.
  * Each program supplies its right-hand side, where a watched object's pos
  * and v sit in the state, and a check run at every row under --stats.
  */
@@ -92,7 +92,7 @@ static double ref_run(int (*rhs)(double, const double *, double *, void *), size
 		for (int c = 0; c < 6; c++) printf(",p%zu.%s", w[k], comp[c]);
 	putchar('\n');
 
-	/* The last k with k*by <= till, allowing for till/by's rounding (as driver.c). */
+	/* The last k with k*by <= till, allowing for till/by's rounding (as runtime/run/run.c). */
 	double kmax = floor(till / by);
 	if ((kmax + 1) * by <= till * (1 + 1e-12)) kmax += 1;
 

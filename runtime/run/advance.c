@@ -1,0 +1,187 @@
+/*
+ * advance.c - the advance loops: from one output time to the next, by plain
+ * adaptive steps, by steps stopped at events, or (a method with a continuous
+ * extension, and --method auto) by the integrator's own steps; the taking of
+ * an event and of a 'stop when' condition.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "run_int.h"
+
+/* After the modes were set at t from scratch: a 'stop when' condition already true ends the run there. */
+void stop_now(run *r, double t)
+{
+	const csf_prog *p = r->p;
+	for (uint32_t i = 0; i < p->nevents && !r->stopped; i++)
+		if (p->events[i].kind & CSF_EVENT_TERMINAL && r->m[p->events[i].mode] > 0)
+			r->stopped = 1, r->stop_t = t, r->stop_src = p->events[i].src;
+}
+
+/*
+ * Takes the event r->last at (t, y): the modes brought up to date, the
+ * integrator restarted. A 'stop when' condition's ends the run instead:
+ * TERMINAL, with its time in r->stop_t. 0, or CSF_ODE_STOPPED when a
+ * derivative is not finite.
+ */
+int take_event(run *r, csf_ode *ode, double t, double *y)
+{
+	r->nevents++;
+	r->pending = 0;
+	if (r->last >= 0 && r->last < (long)r->p->nevents && r->p->events[r->last].kind & CSF_EVENT_TERMINAL) {
+		r->stop_src = r->last_src;
+		r->stop_t = t;
+		return TERMINAL;
+	}
+	if (r->g) r->g->due = 1; /* the scene may have changed: with fixed steps, look after the next one */
+	if (update_modes(r, t, y)) return CSF_ODE_STOPPED;
+	csf_ode_restart(ode);
+	if (guards_at(r, t, y, r->ga)) return CSF_ODE_STOPPED;
+	memcpy(r->fa, r->fs, r->p->ny * sizeof *r->fa);
+	return 0;
+}
+
+/* Advances (*t, y) to t1 by adaptive steps, at most MAX_WORK of them. */
+int advance_plain(run *r, csf_ode *ode, double *t, double t1, double *y, char *msg, size_t msglen)
+{
+	for (unsigned long work = 0; *t < t1; work++) {
+		double ta = *t;
+		if (work == MAX_WORK) return TOO_MUCH;
+		int st = csf_ode_step(ode, t, t1, 0, 0, y, msg, msglen);
+		if (st != CSF_ODE_OK) return st;
+		r->last_h = *t - ta;
+	}
+	return CSF_ODE_OK;
+}
+
+/* One more event at time te after a step from ta: CHATTER after 1000 in a row that do not advance time. */
+static int chatter(unsigned long *same, double ta, double te, char *msg, size_t msglen)
+{
+	if (te - ta > 1e-12 * (1 + fabs(te))) {
+		*same = 0;
+		return 0;
+	}
+	if (++*same <= 1000) return 0;
+	snprintf(msg, msglen, "%lu events without time advancing", *same);
+	return CHATTER;
+}
+
+/*
+ * Advances (*t, y) to t1 as csf_ode_step does, stopping at events. On entry
+ * r->ga and r->fa hold the guards and derivative at (*t, y), unless an event
+ * located at the last output time is pending: it happens first.
+ */
+int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed, double h, double *y, char *msg,
+                          size_t msglen)
+{
+	const csf_prog *p = r->p;
+	size_t n = p->ny;
+	unsigned long same = 0, work = 0;
+	int st;
+	if (r->pending && (st = take_event(r, ode, *t, y))) return st;
+	while (*t < t1) {
+		double ta = *t, best;
+		long which;
+		if (++work > MAX_WORK) return TOO_MUCH;
+		memcpy(r->ya, y, n * sizeof *y);
+		st = csf_ode_step(ode, t, t1, fixed, h, y, msg, msglen);
+		if (st != CSF_ODE_OK) return st;
+		r->last_h = *t - ta;
+		if ((st = step_events(r, ode, ta, *t, y, &best, &which, msg, msglen))) return st;
+		if (which < 0) {
+			same = 0;
+			continue;
+		}
+		memcpy(y, r->ye, n * sizeof *y);
+		*t = best;
+		if (t1 - best <= location_tol(p)) { /* at an output time: its row shows the state before the event */
+			*t = t1;
+			r->pending = 1;
+			return CSF_ODE_OK;
+		}
+		if ((st = take_event(r, ode, best, y))) return st;
+		if ((st = chatter(&same, ta, best, msg, msglen))) return st;
+	}
+	return CSF_ODE_OK;
+}
+
+/*
+ * --method auto: the other method takes the steps from (r->ti, r->yi) on,
+ * restarted there (no history: the state is the one the last step ended
+ * at), with a first step from its estimate. 0, or CSF_ODE_STOPPED if f
+ * failed there.
+ */
+static int switch_method(run *r)
+{
+	autom *au = r->au;
+	csf_ode *to = au->m[!au->cur];
+	au->want = 0, au->soft = 0;
+	csf_ode_restart(to);
+	if (csf_ode_first_step(to, r->ti, r->yi)) return CSF_ODE_STOPPED;
+	r->fail = 0; /* an Euler step of the estimate that failed was tried again shorter */
+	au->cur = !au->cur;
+	if (au->n < AUTO_SHOWN) au->at[au->n] = r->ti;
+	au->n++;
+	r->ode = to;
+	r->dense = csf_ode_dense(to);
+	return 0;
+}
+
+/*
+ * A method with a continuous extension (csf_ode_dense): the integrator, at
+ * (r->ti, r->yi), steps as far as its error control allows towards the
+ * last output time, past tk, and the state y at tk is computed from the
+ * last step's extension (or is its end), never by shortening a step to end
+ * at tk. With --method auto, also the implicit method, which has none: its
+ * steps end at tk. Each row comes from the method that took the step it is
+ * in: a switch takes effect at the next step, when the rows before the
+ * integrator's time have been computed. With events, a step is cut at its earliest event: the integrator
+ * stops there, the rows before it come from the step's extension, and the
+ * event is taken (modes, impacts, a restart) before the next step
+ * (r->pending). An event within location_tol before an output time is moved
+ * to it: the row shows the state before the event. On entry with events,
+ * r->ga and r->fa hold the guards and derivative at (r->ti, r->yi) unless
+ * an event is pending there.
+ */
+int advance_dense(run *r, double tk, double *y, char *msg, size_t msglen)
+{
+	csf_ode *ode = r->ode;
+	const csf_prog *p = r->p;
+	size_t n = p->ny;
+	unsigned long same = 0, work = 0;
+	int events = p->nevents || p->ncrules;
+	while (r->ti < tk) {
+		double ta = r->ti, te;
+		long which;
+		if (++work > MAX_WORK) return TOO_MUCH;
+		int st;
+		if (r->pending && (st = take_event(r, ode, r->ti, r->yi))) {
+			if (st == TERMINAL) memcpy(y, r->yi, n * sizeof *y);
+			return st;
+		}
+		if (r->au && r->au->want) {
+			if ((st = switch_method(r))) return st;
+			ode = r->ode;
+		}
+		if (events) memcpy(r->ya, r->yi, n * sizeof *y);
+		st = csf_ode_step(ode, &r->ti, r->dense ? r->tend : tk, 0, 0, r->yi, msg, msglen);
+		if (st != CSF_ODE_OK) return st;
+		r->last_h = r->ti - ta;
+		if (!events) continue;
+		if ((st = step_events(r, ode, ta, r->ti, r->yi, &te, &which, msg, msglen))) return st;
+		if (which < 0) {
+			same = 0;
+			continue;
+		}
+		double row = ceil(te / p->by) * p->by; /* the first output time at or after the event */
+		if (row < te) row += p->by;
+		if (row - te <= location_tol(p) && row <= r->ti) te = row;
+		r->ti = te;
+		memcpy(r->yi, r->ye, n * sizeof *y);
+		r->pending = 1;
+		if ((st = chatter(&same, ta, te, msg, msglen))) return st;
+	}
+	if (tk == r->ti) memcpy(y, r->yi, n * sizeof *y);
+	else if (csf_ode_dense_eval(ode, tk, y)) return CSF_ODE_STOPPED;
+	return CSF_ODE_OK;
+}

@@ -1,0 +1,89 @@
+/*
+ * eval.c - the model as the integrators see it: the right-hand side (the RHS
+ * section, with a check that every derivative is finite) and the Jacobian
+ * (the JAC section's tangents, or central differences).
+ */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "run_int.h"
+
+int rhs(double t, const double *y, double *dydt, void *ctx)
+{
+	run *r = ctx;
+	const csf_prog *p = r->p;
+	double *m = r->m;
+	m[p->tslot] = t;
+	r->exec(p, CSF_SEC_RHS, m, y, dydt);
+	r->nrhs++;
+	for (uint32_t i = 0; i < p->ny; i++)
+		if (!isfinite(dydt[i])) {
+			r->fail = 1;
+			r->fail_t = t;
+			/* every value the section computed, in m for report_nonfinite: the VM's, bit for bit the same */
+			csf_vm_exec(p, CSF_SEC_RHS, m, y, m + p->dstart);
+			return 1;
+		}
+	return 0;
+}
+
+/*
+ * With contacts, the Jacobian by central differences of the RHS: the
+ * contact routine's forces have no tangent code, and they are smooth while
+ * the modes are frozen, as they are between events. Also for --method
+ * auto's implicit method in a program without a JAC section. The step for component
+ * j is cbrt(eps) times its size (at least its unit), which balances the
+ * truncation and rounding errors of the difference.
+ */
+static int jac_differences(run *r, double t, const double *y, double *dfdy, double *dfdt)
+{
+	const csf_prog *p = r->p;
+	uint32_t n = p->ny;
+	double *yd = r->jw, *fp = yd + n, *fm = fp + n, c = cbrt(DBL_EPSILON);
+	memcpy(yd, y, n * sizeof *y);
+	for (uint32_t j = 0; j <= n; j++) {
+		double x = j < n ? y[j] : t;
+		double h = c * csf_max(fabs(x), j < n ? p->yscale[j] : p->by);
+		double xp = x + h, xm = x - h; /* divided by the steps actually taken */
+		if (j < n) yd[j] = xp;
+		if (rhs(j < n ? t : xp, yd, fp, r)) return 1;
+		if (j < n) yd[j] = xm;
+		if (rhs(j < n ? t : xm, yd, fm, r)) return 1;
+		if (j < n) yd[j] = y[j];
+		for (uint32_t i = 0; i < n; i++) {
+			double d = (fp[i] - fm[i]) / (xp - xm);
+			if (j < n) dfdy[(size_t)i * n + j] = d;
+			else dfdt[i] = d;
+		}
+	}
+	return 0;
+}
+
+/*
+ * The exact Jacobian: JAC run once per state component with that
+ * component's tangent set to 1 (a column), then once with t's (dfdt).
+ */
+int jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx)
+{
+	run *r = ctx;
+	const csf_prog *p = r->p;
+	double *m = r->m, *tan = r->m + p->jtan;
+	uint32_t n = p->ny;
+	r->njac++;
+	if (p->ncrules || !p->jtan) return jac_differences(r, t, y, dfdy, dfdt); /* (no JAC: --method auto) */
+	m[p->tslot] = t;
+	memcpy(m + p->ystart, y, n * sizeof *y);
+	for (uint32_t j = 0; j <= n; j++) {
+		memset(tan + p->ystart, 0, n * sizeof *tan);
+		tan[p->tslot] = j == n ? 1.0 : 0.0;
+		if (j < n) tan[p->ystart + j] = 1.0;
+		r->exec(p, CSF_SEC_JAC, m, m + p->ystart, m + p->dstart);
+		for (uint32_t i = 0; i < n; i++) {
+			double d = tan[p->dstart + i];
+			if (j < n) dfdy[(size_t)i * n + j] = d;
+			else dfdt[i] = d;
+		}
+	}
+	return 0;
+}

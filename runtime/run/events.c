@@ -1,0 +1,379 @@
+/*
+ * events.c - guards and events: the guards' values, the modes, the candidate
+ * contacts, the Hermite interpolant of a step, the Illinois location of a
+ * crossing, and the earliest event of a step (step_events).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "run_int.h"
+
+/*
+ * A guard is a continuous function of t and the state that is >= 0 while
+ * the current mode holds: for a conditional rule's comparison, its value
+ * on the side it was last found on; for a contact, see contact.c. After
+ * each step the guards are checked at its end and at three points of the
+ * step's cubic Hermite interpolant (so that a guard which dips below zero
+ * and back within one step is seen). A guard that was >= 0 at the step's
+ * start and is negative at one of them is an event: its crossing is
+ * bracketed and narrowed by the Illinois method on states computed by one
+ * step of the method from the step's start, to 1e-13 s. The earliest
+ * crossing ends the step there; the modes are brought up to date (and
+ * impacts applied), the integrator restarts, and integration goes on.
+ */
+
+/* The guards of the last RHS evaluation of r->m into g. */
+static void read_guards(run *r, double *g)
+{
+	const csf_prog *p = r->p;
+	const double *m = r->m;
+	for (uint32_t i = 0; i < p->nevents; i++) {
+		const csf_event *e = &p->events[i];
+		g[i] = m[e->mode] > 0 ? m[e->value] : -m[e->value];
+	}
+	if (r->cs) csf_contacts_guards(r->cs, g + p->nevents);
+}
+
+/* Guards g at (t, y), and the derivative in r->fs. 0, or 1 if a derivative is not finite. */
+int guards_at(run *r, double t, const double *y, double *g)
+{
+	if (rhs(t, y, r->fs, r)) return 1;
+	read_guards(r, g);
+	return 0;
+}
+
+/* Sets each comparison's side from its value at the state in r->m (after an RHS evaluation). */
+void free_modes(run *r, double t, const double *y)
+{
+	const csf_prog *p = r->p;
+	for (uint32_t i = 0; i < p->nevents; i++) r->m[p->events[i].mode] = -1;
+	(void)rhs(t, y, r->fs, r);
+	for (uint32_t i = 0; i < p->nevents; i++) {
+		const csf_event *e = &p->events[i];
+		double v = r->m[e->value];
+		r->m[e->mode] = (e->kind & 1 ? v >= 0 : v > 0) ? 1 : 0;
+	}
+}
+
+typedef struct settle_ctx { run *r; double t; double *y; } settle_ctx;
+
+/* RHS on the state in r->m (which csf_contact_settle changes), keeping y in step with it. */
+static int settle_eval(void *ctx)
+{
+	settle_ctx *s = ctx;
+	const csf_prog *p = s->r->p;
+	memcpy(s->y, s->r->m + p->ystart, p->ny * sizeof *s->y);
+	return rhs(s->t, s->y, s->r->fs, s->r);
+}
+
+/* Room for ng guards in each guard vector (keeping their values). 0, or -1 when memory runs out. */
+int room_for_guards(run *r, size_t ng)
+{
+	if (ng <= r->capg) return 0;
+	size_t cap = r->capg ? r->capg : 16;
+	while (cap < ng) cap *= 2;
+	double **g[6] = { &r->ga, &r->gb, &r->gs, &r->gh, &r->gt, &r->gl };
+	for (int i = 0; i < 6; i++) {
+		double *q = realloc(*g[i], cap * sizeof *q);
+		if (!q) {
+			r->nomem = 1;
+			return -1;
+		}
+		*g[i] = q;
+	}
+	r->capg = cap;
+	return 0;
+}
+
+/*
+ * Chooses the candidate contacts for the ns states ys (contact.c): the
+ * instants at which their guards will be looked at. The guard vectors
+ * g[0..ng) (ga, gb) become those of the new candidates, a new pair's
+ * computed from state gy[q]. 0, or -1 when memory runs out.
+ */
+static int choose_contacts(run *r, const double *const *ys, int ns, double **g[], const double *const *gy, int ng)
+{
+	const csf_prog *p = r->p;
+	long k = csf_contacts_find(r->cs, r->m, ys, ns);
+	if (k < 0 || room_for_guards(r, p->nevents + 2 * (size_t)k)) {
+		r->nomem = 1;
+		return -1;
+	}
+	double *gc[2];
+	for (int q = 0; q < ng; q++) gc[q] = *g[q] + p->nevents;
+	csf_contacts_commit(r->cs, r->m, gc, gy, ng);
+	r->ng = p->nevents + 2 * (uint32_t)k;
+	r->nchoices++, r->ncand += (unsigned long)k;
+	if ((unsigned long)k > r->maxcand) r->maxcand = (unsigned long)k;
+	return 0;
+}
+
+/* Brings every mode up to date at (t, y): at the start, and after an event. */
+int update_modes(run *r, double t, double *y)
+{
+	const csf_prog *p = r->p;
+	free_modes(r, t, y);
+	if (r->cs) {
+		const double *ys[1] = { y };
+		if (choose_contacts(r, ys, 1, NULL, NULL, 0)) return 1;
+		settle_ctx s = { r, t, y };
+		memcpy(r->m + p->ystart, y, p->ny * sizeof *y);
+		int st = csf_contact_settle(p, r->m, r->zeno, r->tol, settle_eval, &s);
+		if (st > 0) r->unsettled = st, r->unsettled_t = t;
+		if (!st && csf_contacts_unsolved(r->cs)) r->unsettled = CSF_SETTLE_FORCES, r->unsettled_t = t, st = 1;
+		if (st) return 1;
+		memcpy(y, r->m + p->ystart, p->ny * sizeof *y);
+		free_modes(r, t, y);
+	}
+	return r->fail;
+}
+
+/* How closely events are located in time: 1e-13 s, finer for scenes on tiny time scales. */
+double location_tol(const csf_prog *p) { return csf_min(1e-13, 1e-10 * p->by); }
+
+/*
+ * The cubic Hermite interpolant of the step from (ta, r->ya), derivative
+ * r->fa, to (ta + dt, yb), derivative r->fb, at ta + s dt, into out.
+ */
+static void hermite(const run *r, double dt, const double *yb, double s, double *out)
+{
+	double s2 = s * s, s3 = s2 * s;
+	double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
+	for (size_t i = 0; i < r->p->ny; i++)
+		out[i] = h00 * r->ya[i] + h10 * dt * r->fa[i] + h01 * yb[i] + h11 * dt * r->fb[i];
+}
+
+/*
+ * The state at ta + s (tb - ta) within the step just taken from (ta, r->ya)
+ * to (tb, yb): the method's continuous extension, or the cubic Hermite
+ * interpolant of the values and derivatives (r->fa, r->fb) at its ends.
+ * 0, or 1 if an evaluation failed.
+ */
+int interp(run *r, csf_ode *ode, double ta, double tb, const double *yb, double s, double *out)
+{
+	if (r->dense) return csf_ode_dense_eval(ode, ta + s * (tb - ta), out);
+	hermite(r, tb - ta, yb, s, out);
+	return 0;
+}
+
+/*
+ * The guards at time tc on the state stepped exactly from the step's start
+ * (ta, r->ya) of the step that ended at (tb, yb), into r->gs, the state left
+ * in r->ys. Within 1e-6 of the step from its start, the state is the step's
+ * interpolant (exact there to far below rounding), not a substep: a method's
+ * step that short can be off by many units in the last place (bsimp's
+ * extrapolation), enough to put a gap that has just opened below zero.
+ * CSF_ODE_OK, STOPPED if a derivative was not finite, FAILED (with msg) if
+ * the step failed.
+ */
+static int substep_guards(run *r, csf_ode *ode, double ta, double tb, const double *yb, double tc, char *msg,
+                          size_t msglen)
+{
+	if (tc - ta < 1e-6 * (tb - ta)) {
+		if (interp(r, ode, ta, tb, yb, (tc - ta) / (tb - ta), r->ys)) return CSF_ODE_STOPPED;
+	} else if (csf_ode_substep(ode, ta, r->ya, tc - ta, r->ys)) {
+		if (r->fail) return CSF_ODE_STOPPED;
+		snprintf(msg, msglen, "the %s step from t=%.17g to locate an event at t=%.17g failed", csf_ode_method(ode),
+		         ta, tc);
+		return CSF_ODE_FAILED;
+	}
+	return guards_at(r, tc, r->ys, r->gs) ? CSF_ODE_STOPPED : CSF_ODE_OK;
+}
+
+/*
+ * Guard k at time tc of the step from (ta, r->ya) to (tb, yb), into r->gs (the
+ * state in r->ys): on the state stepped exactly from the step's start, or
+ * (dense) on the step's continuous extension, which costs no step.
+ */
+static int guard_at(run *r, csf_ode *ode, int dense, double ta, double tb, const double *yb, double tc, char *msg,
+                    size_t msglen)
+{
+	if (!dense) return substep_guards(r, ode, ta, tb, yb, tc, msg, msglen);
+	if (csf_ode_dense_eval(ode, tc, r->ys)) return CSF_ODE_STOPPED;
+	return guards_at(r, tc, r->ys, r->gs) ? CSF_ODE_STOPPED : CSF_ODE_OK;
+}
+
+/*
+ * Narrows [*lo, *hi], where guard k is >= 0 at *lo (value *glo) and < 0 at
+ * *hi (*ghi), to at most tol by the Illinois method, on exact states or on
+ * the continuous extension (guard_at).
+ */
+static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, double tb, const double *yb, double *lo,
+                    double *glo, double *hi, double *ghi, double tol, char *msg, size_t msglen)
+{
+	int side = 0, st;
+	/* Each pass moves an end of the bracket inwards by at least one double, so the loop ends:
+	   it stops when the bracket is tol wide or its ends are adjacent doubles (the spacing of
+	   doubles at the event's time can exceed tol: 1.1e-13 s past 512 s). */
+	while (*hi - *lo > tol && nextafter(*lo, *hi) < *hi) {
+		if (csf_signal) return CSF_ODE_HALTED;
+		double c = *hi - *ghi * (*hi - *lo) / (*ghi - *glo);
+		/* the secant's point rounds to an end when the guard there is tiny (a crossing found
+		   exactly): it then moves in by tol / 4 below, which ends the search; only a point
+		   that is not a number, or outside the bracket, is a bisection */
+		if (!(c >= *lo && c <= *hi)) c = *lo + (*hi - *lo) / 2;
+		if (c - *lo < tol / 4) c = *lo + tol / 4; /* shrink the bracket from both ends */
+		if (*hi - c < tol / 4) c = *hi - tol / 4;
+		/* tol / 4 can be under half the spacing of doubles at c: the nudge rounds back onto the end */
+		if (c <= *lo) c = nextafter(*lo, *hi);
+		if (c >= *hi) c = nextafter(*hi, *lo);
+		if ((st = guard_at(r, ode, dense, ta, tb, yb, c, msg, msglen))) return st;
+		double gc = r->gs[k];
+		if (gc < 0) {
+			*hi = c, *ghi = gc;
+			if (side < 0) *glo /= 2;
+			side = -1;
+		} else {
+			*lo = c, *glo = gc;
+			if (side > 0) *ghi /= 2;
+			side = 1;
+		}
+	}
+	return CSF_ODE_OK;
+}
+
+/*
+ * The time *tk of guard k's crossing in (lo, hi], where g(lo) >= 0 > g(hi),
+ * on states stepped from the step's start (ta, r->ya) that ended at
+ * (tb, yb); leaves the state at that time in r->ys. With a continuous
+ * extension, the crossing is found on it first, without steps; then a
+ * bracket around it, 1000 times the location tolerance wide (wider, by
+ * factors of 1000, when the exact guards do not change sign across it), is
+ * narrowed on exact states, a few steps instead of some forty. *tl is the
+ * bracket's other end: the guard is >= 0 there. Returns as substep_guards.
+ */
+static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const double *yb, double lo, double glo,
+                  double hi, double ghi, double *tk, double *tl, char *msg, size_t msglen)
+{
+	const double tol = location_tol(r->p);
+	int st;
+	if (r->dense) {
+		double l = lo, gl = glo, u = hi, gu = ghi;
+		if ((st = illinois(r, ode, 1, k, ta, tb, yb, &l, &gl, &u, &gu, tol, msg, msglen))) return st;
+		for (double w = 1e3 * tol; w < hi - lo; w *= 1e3) {
+			double a = u - w > lo ? u - w : lo, b = u + w < hi ? u + w : hi, gla = glo, ghb = ghi;
+			if (a > lo) {
+				if ((st = substep_guards(r, ode, ta, tb, yb, a, msg, msglen))) return st;
+				gla = r->gs[k];
+			}
+			if (b < hi) {
+				if ((st = substep_guards(r, ode, ta, tb, yb, b, msg, msglen))) return st;
+				ghb = r->gs[k];
+			}
+			if (gla >= 0 && ghb < 0) {
+				lo = a, glo = gla, hi = b, ghi = ghb;
+				break;
+			}
+		}
+	}
+	if ((st = illinois(r, ode, 0, k, ta, tb, yb, &lo, &glo, &hi, &ghi, tol, msg, msglen))) return st;
+	*tk = hi, *tl = lo;
+	if (hi == tb) {
+		memcpy(r->ys, yb, r->p->ny * sizeof *yb);
+		return CSF_ODE_OK;
+	}
+	return substep_guards(r, ode, ta, tb, yb, hi, msg, msglen);
+}
+
+/*
+ * After a step from (ta, r->ya), with guards r->ga and derivative r->fa
+ * there, to (tb, y): the earliest event in (ta, tb]. *which is its guard, or
+ * -1 when there is none (r->ga and r->fa then move on to tb); *te is its
+ * time, r->ye the state there, r->last and r->last_src name it.
+ */
+int step_events(run *r, csf_ode *ode, double ta, double tb, const double *y, double *te, long *which, char *msg,
+                       size_t msglen)
+{
+	const csf_prog *p = r->p;
+	size_t n = p->ny;
+	int st;
+	*which = -1;
+	if (r->cs && csf_contacts_unsolved(r->cs)) { /* the forces of the step did not hold the contacts */
+		r->unsettled = CSF_SETTLE_FORCES, r->unsettled_t = ta;
+		return CSF_ODE_STOPPED;
+	}
+	if (guards_at(r, tb, y, r->gb)) return CSF_ODE_STOPPED;
+	memcpy(r->fb, r->fs, n * sizeof *y);
+	double lo = ta, hi = tb, dt = tb - ta;
+	if (r->cs) {
+		/* the candidate contacts of this step: every pair that can touch at the instants
+		   its guards are looked at (the start, 3 interpolated points, the end) */
+		for (int j = 1; j < 4; j++)
+			if (interp(r, ode, ta, tb, y, j / 4.0, r->yh + (size_t)(j - 1) * n)) return CSF_ODE_STOPPED;
+		const double *ys[5] = { r->ya, r->yh, r->yh + n, r->yh + 2 * n, y }, *gy[2] = { r->ya, y };
+		double **g[2] = { &r->ga, &r->gb };
+		if (choose_contacts(r, ys, 5, g, gy, 2)) return CSF_ODE_STOPPED;
+	}
+	size_t ng = r->ng;
+	/* the first of the sample points (3 interpolated, then the step's end) where an armed
+	   guard is negative: [lo, hi], with hi's guards in r->gh */
+	int found = 0;
+	for (int j = 1; j <= 4 && !found; j++) {
+		if (j < 4) {
+			const double *yj = r->yh + (size_t)(j - 1) * n; /* with contacts, computed above */
+			if (!r->cs) {
+				if (interp(r, ode, ta, tb, y, j / 4.0, r->ys)) return CSF_ODE_STOPPED;
+				yj = r->ys;
+			}
+			hi = ta + j / 4.0 * dt;
+			if (guards_at(r, hi, yj, r->gh)) return CSF_ODE_STOPPED;
+		} else {
+			hi = tb;
+			memcpy(r->gh, r->gb, ng * sizeof *r->gh);
+		}
+		for (size_t k = 0; k < ng; k++) found |= r->ga[k] >= 0 && r->gh[k] < 0;
+		if (!found) lo = hi;
+	}
+	/* the earliest crossing among the guards negative at hi, each bracketed on exact states;
+	   once one is located in (bl, best], a guard that is not yet negative at best crosses later,
+	   and one negative at best but not at bl crosses at the same instant (to the location's
+	   tolerance): neither is located, so that many pairs that switch at once (a row of blocks
+	   that stop together) cost one location, not one each */
+	double best = tb, bl = ta;
+	int known = 0; /* the guards at best and at bl are in r->gt and r->gl */
+	for (size_t k = 0; found && k < ng; k++) {
+		if (!(r->ga[k] >= 0 && r->gh[k] < 0)) continue;
+		if (*which >= 0 && !known) {
+			if (guards_at(r, best, r->ye, r->gt)) return CSF_ODE_STOPPED;
+			if ((st = substep_guards(r, ode, ta, tb, y, bl, msg, msglen))) return st;
+			memcpy(r->gl, r->gs, ng * sizeof *r->gl);
+			known = 1;
+		}
+		if (*which >= 0 && (r->gt[k] >= 0 || r->gl[k] >= 0)) continue;
+		/* the exact state's guards at lo and hi (the interpolant only pointed here) */
+		double l = lo, gl = r->ga[k], u = hi, gu = r->gh[k];
+		if (lo > ta) {
+			if ((st = substep_guards(r, ode, ta, tb, y, lo, msg, msglen))) return st;
+			if (r->gs[k] < 0) l = ta; /* already below at lo: the crossing is earlier */
+			else gl = r->gs[k];
+		}
+		if (*which >= 0) { /* below at bl: the crossing is before it */
+			if (bl <= l) continue; /* (it cannot be: bl is past a state where the guard is >= 0) */
+			u = bl, gu = r->gl[k];
+		} else if (hi < tb) {
+			if ((st = substep_guards(r, ode, ta, tb, y, hi, msg, msglen))) return st;
+			gu = r->gs[k];
+			if (gu >= 0) { /* not below on the exact state: try the step's end */
+				u = tb, gu = r->gb[k];
+				if (gu >= 0) continue;
+			}
+		}
+		double tk, tl;
+		if ((st = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, &tk, &tl, msg, msglen))) return st;
+		if (tk < best || *which < 0) {
+			best = tk, bl = tl, *which = (long)k, known = 0;
+			memcpy(r->ye, r->ys, n * sizeof *r->ye);
+		}
+	}
+	if (*which < 0) { /* none, or the interpolant's alarm was false */
+		memcpy(r->ga, r->gb, ng * sizeof *r->ga);
+		memcpy(r->fa, r->fb, n * sizeof *r->fa);
+		return CSF_ODE_OK;
+	}
+	*te = best;
+	r->last = *which;
+	r->last_src = *which < (long)p->nevents ? p->events[*which].src
+	                                        : csf_contacts_src(r->cs, (uint32_t)(*which - (long)p->nevents) / 2);
+	return CSF_ODE_OK;
+}

@@ -1,0 +1,45 @@
+/*
+ * output.c - the CSV rows on out, and the flush that reports a write error
+ * (or ends quietly for a reader that went away).
+ */
+#include <errno.h>
+#include <signal.h>
+#include <string.h>
+
+#include "run_int.h"
+
+int write_row(const csf_prog *p, const double *m, double t, FILE *out)
+{
+	char b[32];
+	csf_out_begin();
+	csf_fmt_double(b, t);
+	fputs(b, out);
+	for (uint32_t i = 0; i < p->ncols; i++) {
+		csf_fmt_double(b, m[p->cols[i].slot]);
+		putc(',', out);
+		fputs(b, out);
+	}
+	putc('\n', out);
+	csf_out_end();
+	return ferror(out) ? -1 : 0;
+}
+
+/*
+ * Flushes out: its error (werr, from a row, or fflush's) is reported with
+ * status 2, but for a reader that went away (EPIPE: `csfvm ... | head`),
+ * which ends the run quietly as it ends cat, with the status of SIGPIPE.
+ */
+int finish(FILE *out, FILE *err, int status, int werr)
+{
+	csf_out_begin();
+	int bad = fflush(out) != 0 || ferror(out);
+	csf_out_end();
+	if (bad) {
+		int e = werr ? werr : errno;
+		if (e == EPIPE) return 128 + SIGPIPE;
+		fprintf(err, "error: cannot write output: %s\n", strerror(e));
+		return 2;
+	}
+	return status;
+}
+

@@ -1,0 +1,190 @@
+/*
+ * run_int.h - what the files of runtime/run share (not installed): the
+ * run's state, the stability guard's and --method auto's, and the functions
+ * one file calls in another. The run reads top-down: options.c, signals.c,
+ * progress.c, fmt.c; eval.c (the model for the integrators); report.c and
+ * output.c; events.c, guard.c, advance.c; run.c (csf_run).
+ */
+#ifndef CSF_RUN_INT_H
+#define CSF_RUN_INT_H
+
+#include <signal.h>
+#include <stdio.h>
+#include <time.h>
+
+#include "csf.h"
+#include "ode.h"
+#include "spectrum.h"
+
+typedef struct run {
+	const csf_prog *p;
+	csf_exec_fn exec;
+	double *m;
+	double fail_t; /* time of a non-finite derivative */
+	int fail;
+	unsigned long nrhs, njac; /* evaluations, for --stats */
+	unsigned long nevents;
+	long last; /* the guard of the last event */
+	uint32_t last_src; /* its rule's statement */
+	int pending; /* it was located at an output time and happens after that row */
+	double last_h; /* the last step's length */
+	double zeno, tol; /* for csf_contact_settle */
+	int dense;        /* the method's continuous extension gives the rows (advance_dense) */
+	double ti, tend;  /* dense: the integrator's time (at or past the last row), the last output time */
+	double *yi;       /* dense: the integrator's state at ti */
+	/* events: guards (conditional rules' comparisons, then two per candidate contact), ng of them
+	   (room for capg), and work vectors */
+	uint32_t ng;
+	size_t capg;
+	double *ga, *gb, *gs, *gh, *gt, *gl, *ya, *fa, *fb, *ys, *fs, *ye;
+	double *jw; /* with contacts: 3 work vectors for the Jacobian by differences */
+	double *yh; /* with contacts: the 3 interpolated states of a step, one after the other */
+	csf_contacts *cs; /* with contacts: the candidate pairs (contact.c) */
+	unsigned long nchoices, ncand, maxcand; /* for --stats: the choices of candidates, their sum and largest */
+	int nomem; /* memory ran out */
+	int unsettled;     /* why the contacts stopped the run: CSF_SETTLE_ENDLESS, _IMPULSES, _FORCES (csf.h) */
+	double unsettled_t;
+	double stop_t; /* a 'stop when' condition ended the run at stop_t: the statement stop_src's */
+	uint32_t stop_src;
+	int stopped;
+	struct guard *g; /* the stability guard, or NULL */
+	csf_ode *ode;     /* the method taking the steps (with --method auto, one of au->m) */
+	int own;          /* the integrator has its own time and state (ti, yi), apart from the rows' */
+	struct autom *au; /* --method auto, or NULL */
+	FILE *err;
+	int prog, shown;  /* the progress line: drawn, and on the screen now */
+	struct timespec start, drawn; /* when the run started, and the line was last drawn */
+	unsigned long rows; /* rows written */
+} run;
+
+/*
+ * advance_events: modes switch back and forth at one instant (CHATTER);
+ * both advances: more than MAX_WORK steps (and events) in one output
+ * interval (TOO_MUCH), a run that cannot get on, halted instead of hanging.
+ */
+enum { CHATTER = 10, TOO_MUCH = 11, TERMINAL = 12, MAX_WORK = 1000000 };
+
+/* A look costs at most 1 / LOOK_EVERY of the evaluations before it (but for those a fixed step needs). */
+enum { LOOK_EVERY = 100 };
+
+/*
+ * --method auto (the default): dop853 while its steps are held by its
+ * accuracy. When a look of the guard, with a thousand steps or more to go,
+ * finds them held by its stability, as the stiffness warning would (steps
+ * at 0.8 of the largest stable step or more, a stiffness ratio of 100 or
+ * more, or a second look that agrees), or about to be (steps at AUTO_NEAR
+ * of it or more, the dominant eigenvalue nearer the negative real axis
+ * than the imaginary one, a decaying mode, and a stiffness ratio of 1000
+ * or more: the accuracy-held steps of Oregonator's and HIRES's starts,
+ * which cost dop853 4 and 1.3 times what the whole run costs bsimp), the
+ * next step is taken by AUTO_STIFF, implicit. Back to dop853 when two looks
+ * in a row find the implicit method's own step (the one its error control
+ * proposes) shorter than dop853's largest stable step, as in a fast
+ * transient or once the fast modes are gone. The gap between the
+ * thresholds and the second look are the hysteresis that keeps switches
+ * few, as LSODA's. bsimp, not msbdf: on the four reference problems
+ * (bench/stiff.sh) it takes 1.5 to 2.1 times msbdf's evaluations, but
+ * restarts without a history to rebuild (every switch and every event
+ * restarts) and reaches Robertson's kinetics at 1e11 s within 1e-10
+ * relatively, where msbdf at its default tolerance is 7 % off.
+ */
+#define AUTO_STIFF "bsimp"
+#define AUTO_NEAR 0.05
+/*
+ * bsimp works on the dense n-by-n Jacobian: n^2 memory and some n^3/3
+ * operations a step for its LU decompositions. Past AUTO_MAX_N state
+ * variables auto is dop853 alone, which warns of stiffness as when named.
+ */
+enum { AUTO_MAX_N = 200 };
+enum { AUTO_SHOWN = 8 }; /* the switches --stats lists */
+
+typedef struct autom {
+	csf_ode *m[2];              /* dop853 and AUTO_STIFF */
+	int cur;                    /* the one that takes the steps */
+	int want;                   /* the guard asks for the other from the next step on */
+	int soft;                   /* looks in a row (implicit) that found the stiffness passed */
+	unsigned long n;            /* switches */
+	double at[AUTO_SHOWN];      /* the first ones' times (to m[1], m[0], m[1], ...: they alternate) */
+} autom;
+
+typedef struct guard {
+	csf_spectrum *sp;
+	FILE *err;
+	double *y, *f0, *yd, *fd; /* the state looked at, f there; with differences, a state along v and f there */
+	double t;
+	int exact;                 /* J v from the JAC section, not by differences */
+	int check_step;            /* a fixed step of an explicit method: halt past the limit */
+	int auto_step;             /* verlet's own step (no --step), from the tolerance and the time scale */
+	double vfrac;              /* verlet: sqrt(tol / 1e-4) */
+	double user_step;          /* --step */
+	int detect_stiff;          /* an explicit adaptive method: warn when stability holds its steps */
+	int fixed;                 /* fixed steps */
+	int stats;
+	int due;                   /* look after the next step (an event happened) */
+	int stiff_hits;
+	double h;                  /* the fixed step (the longest a row's interval is cut into) */
+	double span;               /* the run's length */
+	double smin;               /* fixed steps: the method's least limit of h |lambda| on the two axes */
+	unsigned long nexact;      /* J v products by the JAC section */
+	double next;               /* look when guard_evals reaches this */
+	unsigned long next_step;   /* fixed steps: look after this many */
+	unsigned long steps, checks;
+	double seconds;
+	/* what it saw */
+	csf_eigs last, at_max; /* the last look's eigenvalues, and those of the largest rho */
+	double rho_max, ratio, ratio_rho, hrho, hlim_rho; /* fixed: the largest h / largest stable step, at rho */
+	int ratio_exact, have_ratio;
+	double auto_ratio;         /* auto: the largest ratio of the looks that decide (not --stats's) */
+	double aside;              /* auto: the evaluations of --stats's own ratios, left out of the schedule */
+	int warned; /* of stiffness */
+} guard;
+
+typedef struct watch_ctx { run *r; csf_ode *ode; } watch_ctx;
+
+/* progress.c */
+double seconds(struct timespec a, struct timespec b);
+void progress(run *r, double t);
+void progress_off(run *r);
+
+/* fmt.c */
+double round_down(double x);
+void fmt_ratio(char buf[32], double x);
+
+/* eval.c */
+int rhs(double t, const double *y, double *dydt, void *ctx);
+int jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx);
+
+/* report.c */
+void report_nonfinite(const csf_prog *p, int sec, const double *m, double t, const char *what, int fixed, FILE *err);
+void report_event_src(const csf_prog *p, uint32_t src, FILE *err);
+void report_unsettled(const run *r, FILE *err);
+
+/* output.c */
+int write_row(const csf_prog *p, const double *m, double t, FILE *out);
+int finish(FILE *out, FILE *err, int status, int werr);
+
+/* events.c */
+int guards_at(run *r, double t, const double *y, double *g);
+void free_modes(run *r, double t, const double *y);
+int room_for_guards(run *r, size_t ng);
+int update_modes(run *r, double t, double *y);
+double location_tol(const csf_prog *p);
+int interp(run *r, csf_ode *ode, double ta, double tb, const double *yb, double s, double *out);
+int step_events(run *r, csf_ode *ode, double ta, double tb, const double *y, double *te, long *which, char *msg,
+                size_t msglen);
+
+/* guard.c */
+double stable_step(run *r, csf_ode *ode, const csf_eigs *e);
+const char *eig_kind(const csf_eigs *e);
+int guard_check(run *r, csf_ode *ode, double t, const double *y, double h);
+int step_watch(void *ctx, double t, const double *y, double h);
+
+/* advance.c */
+void stop_now(run *r, double t);
+int take_event(run *r, csf_ode *ode, double t, double *y);
+int advance_plain(run *r, csf_ode *ode, double *t, double t1, double *y, char *msg, size_t msglen);
+int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed, double h, double *y, char *msg,
+                   size_t msglen);
+int advance_dense(run *r, double tk, double *y, char *msg, size_t msglen);
+
+#endif
