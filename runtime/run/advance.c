@@ -21,7 +21,7 @@ void stop_now(run *r, double t)
 /*
  * Takes the event r->last at (t, y): the modes brought up to date, the
  * integrator restarted. A 'stop when' condition's ends the run instead:
- * TERMINAL, with its time in r->stop_t. 0, or CSF_ODE_STOPPED when a
+ * ADV_TERMINAL, with its time in r->stop_t. 0, or CSF_ODE_STOPPED when a
  * derivative is not finite.
  */
 int take_event(run *r, csf_ode *ode, double t, double *y)
@@ -31,7 +31,7 @@ int take_event(run *r, csf_ode *ode, double t, double *y)
 	if (r->last >= 0 && r->last < (long)r->p->nevents && r->p->events[r->last].kind & CSF_EVENT_TERMINAL) {
 		r->stop_src = r->last_src;
 		r->stop_t = t;
-		return TERMINAL;
+		return ADV_TERMINAL;
 	}
 	if (r->g) r->g->due = 1; /* the scene may have changed: with fixed steps, look after the next one */
 	if (update_modes(r, t, y)) return CSF_ODE_STOPPED;
@@ -46,7 +46,7 @@ int advance_plain(run *r, csf_ode *ode, double *t, double t1, double *y, char *m
 {
 	for (unsigned long work = 0; *t < t1; work++) {
 		double ta = *t;
-		if (work == MAX_WORK) return TOO_MUCH;
+		if (work == MAX_WORK) return ADV_TOO_MUCH;
 		int st = csf_ode_step(ode, t, t1, 0, 0, y, msg, msglen);
 		if (st != CSF_ODE_OK) return st;
 		r->last_h = *t - ta;
@@ -54,7 +54,7 @@ int advance_plain(run *r, csf_ode *ode, double *t, double t1, double *y, char *m
 	return CSF_ODE_OK;
 }
 
-/* One more event at time te after a step from ta: CHATTER after 1000 in a row that do not advance time. */
+/* One more event at time te after a step from ta: ADV_CHATTER after 1000 in a row that do not advance time. */
 static int chatter(unsigned long *same, double ta, double te, char *msg, size_t msglen)
 {
 	if (te - ta > 1e-12 * (1 + fabs(te))) {
@@ -63,7 +63,7 @@ static int chatter(unsigned long *same, double ta, double te, char *msg, size_t 
 	}
 	if (++*same <= 1000) return 0;
 	snprintf(msg, msglen, "%lu events without time advancing", *same);
-	return CHATTER;
+	return ADV_CHATTER;
 }
 
 /*
@@ -82,7 +82,7 @@ int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed, double
 	while (*t < t1) {
 		double ta = *t, best;
 		long which;
-		if (++work > MAX_WORK) return TOO_MUCH;
+		if (++work > MAX_WORK) return ADV_TOO_MUCH;
 		memcpy(r->ya, y, n * sizeof *y);
 		st = csf_ode_step(ode, t, t1, fixed, h, y, msg, msglen);
 		if (st != CSF_ODE_OK) return st;
@@ -153,10 +153,10 @@ int advance_dense(run *r, double tk, double *y, char *msg, size_t msglen)
 	while (r->ti < tk) {
 		double ta = r->ti, te;
 		long which;
-		if (++work > MAX_WORK) return TOO_MUCH;
+		if (++work > MAX_WORK) return ADV_TOO_MUCH;
 		int st;
 		if (r->pending && (st = take_event(r, ode, r->ti, r->yi))) {
-			if (st == TERMINAL) memcpy(y, r->yi, n * sizeof *y);
+			if (st == ADV_TERMINAL) memcpy(y, r->yi, n * sizeof *y);
 			return st;
 		}
 		if (r->au && r->au->want) {

@@ -43,3 +43,13 @@ int finish(FILE *out, FILE *err, int status, int werr)
 	return status;
 }
 
+
+/* The CSV header: t and the columns' names. */
+void write_header(const csf_prog *p, FILE *out)
+{
+	csf_out_begin();
+	fputs("t", out);
+	for (uint32_t i = 0; i < p->ncols; i++) fprintf(out, ",%s", csf_str(p, p->cols[i].name));
+	putc('\n', out);
+	csf_out_end();
+}

@@ -103,3 +103,122 @@ void report_unsettled(const run *r, FILE *err)
 	        tb, (unsigned long long)csf_contact_passes(csf_contacts_count(r->cs)),
 	        (unsigned long)csf_contacts_count(r->cs));
 }
+
+/* Error: the method cannot run contacts; the methods that can. */
+static void report_no_contacts(const char *method, FILE *err)
+{
+	fprintf(err, "error: method '%s' cannot run a model with contacts (mechanics/rules: their friction "
+	        "depends on v); one of:", method);
+	for (size_t k = 0; csf_method_name(k); k++)
+		if (csf_method_contacts(csf_method_name(k))) fprintf(err, " %s", csf_method_name(k));
+	fprintf(err, "\n");
+}
+
+/* Error: MAX_WORK steps in one output interval; why, when the guard measured it. */
+static void report_too_much(const run *r, const stop *s, const char *tb, FILE *err)
+{
+	char ta[32], hb[32], why[160];
+	csf_fmt_double(ta, s->t_row);
+	csf_fmt_double(hb, r->last_h);
+	/* stiff only when measured so: the step at the stability limit of the guard's last look */
+	if (s->hs < INFINITY && r->last_h >= 0.8 * s->hs)
+		snprintf(why, sizeof why,
+		         "the problem is stiff: the explicit method's largest stable step is %.3g s here; try "
+		         "--method msbdf or --method bsimp",
+		         s->hs);
+	else
+		snprintf(why, sizeof why, "the steps are held by the error control, not by stability: the "
+		                          "solution may be singular there");
+	if (r->nevents) report_event_src(r->p, r->last_src, err);
+	fprintf(err,
+	        "error: at t=%s, %d steps%s since the row at t=%s, the last of %s s: the run cannot get "
+	        "on (%s)\n",
+	        tb, MAX_WORK, s->events ? " and events" : "", ta, hb,
+	        r->nevents ? "the last event was of the rule on this line: events that follow each other "
+	                     "ever faster, or a force that switches within each step"
+	                   : why);
+}
+
+/* Error: modes that switch back and forth at one instant (a contact's, or a conditional rule's). */
+static void report_chatter(const run *r, const stop *s, const char *tb, FILE *err)
+{
+	const csf_prog *p = r->p;
+	if (r->last >= (long)p->nevents) { /* a contact: the bodies are the user's, the rule the library's */
+		uint32_t oi, oj;
+		csf_contacts_objects(r->cs, (uint32_t)(r->last - (long)p->nevents) / 2, &oi, &oj);
+		fprintf(err,
+		        "error: at t=%s the contact of '%s' and '%s' switches between touching and parting, "
+		        "or sticking and sliding, again and again (%s): no set of contacts among the "
+		        "bodies touching there is consistent, and the run cannot go on\n",
+		        tb, csf_str(p, p->objects[oi]), csf_str(p, p->objects[oj]), s->msg);
+		return;
+	}
+	report_event_src(p, r->last_src, err);
+	fprintf(err,
+	        "error: at t=%s the conditions switch back and forth without time advancing (%s): "
+	        "the model has no solution past this point (a sliding mode; make the switching "
+	        "condition depend on the mode, or smooth the force)\n",
+	        tb, s->msg);
+}
+
+/*
+ * Why the run ended: its message on err (after the progress line is
+ * erased), and its exit status. fixed: --fixed, for a non-finite value's note.
+ */
+int report_stop(run *r, const stop *s, int fixed, FILE *err)
+{
+	const csf_prog *p = r->p;
+	char tb[32];
+	progress_off(r);
+	csf_fmt_double(tb, s->t);
+	switch (s->kind) {
+	case STOP_END:
+	case STOP_SIGNAL:
+		return csf_signal ? 128 + csf_signal : 0;
+	case STOP_HALTED:
+		return 1;
+	case STOP_NOMEM:
+		fprintf(err, "error: out of memory\n");
+		return 2;
+	case STOP_SETUP:
+		fprintf(err, "error: %s\n", s->msg);
+		return 2;
+	case STOP_NO_CONTACTS:
+		report_no_contacts(s->method, err);
+		return 2;
+	case STOP_BAD_MASS: {
+		const csf_cbody *b = &p->cbodies[s->which];
+		fprintf(err, "error: the mass of %s is %g: a body in contact needs a positive mass\n",
+		        csf_str(p, p->objects[b->object]), r->m[b->s[CSF_CF_M]]);
+		return 1;
+	}
+	case STOP_UNSETTLED:
+		report_unsettled(r, err);
+		return 1;
+	case STOP_NONFINITE:
+		report_nonfinite(p, CSF_SEC_RHS, r->m, s->t, "a state derivative", fixed, err);
+		return 1;
+	case STOP_NONFINITE_ROW:
+		report_nonfinite(p, CSF_SEC_OUT, r->m, s->t, "a watched or state value", fixed, err);
+		return 1;
+	case STOP_ASSERT: {
+		const csf_src *src = &p->srcs[p->asserts[s->which].src];
+		fprintf(err, "%s:%lu: assertion failed at t=%s: %s (object %s)\n", csf_str(p, p->files[src->file]),
+		        (unsigned long)src->line, tb, csf_str(p, src->text), csf_str(p, p->asserts[s->which].object));
+		return 1;
+	}
+	case STOP_TOO_MUCH:
+		report_too_much(r, s, tb, err);
+		return 1;
+	case STOP_CHATTER:
+		report_chatter(r, s, tb, err);
+		return 1;
+	case STOP_FAILED:
+		fprintf(err,
+		        "error: integration failed at t=%s: %s (the step size collapsed: the solution may be "
+		        "singular there, or the problem stiff; try another --method or a smaller 'by')\n",
+		        tb, s->msg);
+		return 1;
+	}
+	return 1;
+}

@@ -58,11 +58,46 @@ typedef struct run {
 } run;
 
 /*
- * advance_events: modes switch back and forth at one instant (CHATTER);
- * both advances: more than MAX_WORK steps (and events) in one output
- * interval (TOO_MUCH), a run that cannot get on, halted instead of hanging.
+ * What an advance returns (advance.c): one of csf_ode_step's statuses
+ * (CSF_ODE_OK, _STOPPED, _FAILED, _HALTED: ode.h), or one of the run's own:
+ * modes switch back and forth at one instant (ADV_CHATTER); more than
+ * MAX_WORK steps (and events) in one output interval (ADV_TOO_MUCH), a run
+ * that cannot get on, halted instead of hanging; a 'stop when' condition
+ * became true (ADV_TERMINAL, at r->stop_t). csf_run turns it into a stop.
  */
-enum { CHATTER = 10, TOO_MUCH = 11, TERMINAL = 12, MAX_WORK = 1000000 };
+enum adv_status { ADV_CHATTER = CSF_ODE_HALTED + 1, ADV_TOO_MUCH, ADV_TERMINAL };
+enum { MAX_WORK = 1000000 };
+
+/*
+ * Why csf_run ended: one kind for each message, each with its exit status
+ * (report_stop, report.c). The first three write no message.
+ */
+typedef enum stop_kind {
+	STOP_END,          /* the last row, or a 'stop when' condition's, or a failed write: 0 (finish) */
+	STOP_SIGNAL,       /* SIGINT or SIGTERM, after the last whole row: 128 + the signal */
+	STOP_HALTED,       /* the stability guard halted a fixed step and said why: 1 */
+	STOP_NOMEM,        /* memory ran out: 2 */
+	STOP_SETUP,        /* the method could not be set up (msg): 2 */
+	STOP_NO_CONTACTS,  /* the method cannot run contacts (method): 2 */
+	STOP_BAD_MASS,     /* body which, in contact, has no positive mass: 1 */
+	STOP_UNSETTLED,    /* contacts that could not be settled (r->unsettled, r->unsettled_t): 1 */
+	STOP_NONFINITE,    /* a state derivative that is not finite at t: 1 */
+	STOP_NONFINITE_ROW,/* a watched or state value that is not finite at the row at t: 1 */
+	STOP_ASSERT,       /* assertion which failed at the row at t: 1 */
+	STOP_TOO_MUCH,     /* ADV_TOO_MUCH at t, since the row at t_row (hs: the largest stable step, or INFINITY): 1 */
+	STOP_CHATTER,      /* ADV_CHATTER at t (msg; the event r->last): 1 */
+	STOP_FAILED,       /* the integration failed at t (msg): 1 */
+} stop_kind;
+
+typedef struct stop {
+	stop_kind kind;
+	double t;           /* when */
+	double t_row, hs;   /* STOP_TOO_MUCH */
+	long which;         /* STOP_ASSERT: the assertion; STOP_BAD_MASS: the body (p->cbodies) */
+	int events;         /* STOP_TOO_MUCH: the scene has events */
+	const char *method; /* STOP_NO_CONTACTS */
+	const char *msg;    /* STOP_SETUP, STOP_CHATTER, STOP_FAILED: the integrator's words */
+} stop;
 
 /* A look costs at most 1 / LOOK_EVERY of the evaluations before it (but for those a fixed step needs). */
 enum { LOOK_EVERY = 100 };
@@ -158,10 +193,12 @@ int jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx);
 void report_nonfinite(const csf_prog *p, int sec, const double *m, double t, const char *what, int fixed, FILE *err);
 void report_event_src(const csf_prog *p, uint32_t src, FILE *err);
 void report_unsettled(const run *r, FILE *err);
+int report_stop(run *r, const stop *s, int fixed, FILE *err);
 
 /* output.c */
 int write_row(const csf_prog *p, const double *m, double t, FILE *out);
 int finish(FILE *out, FILE *err, int status, int werr);
+void write_header(const csf_prog *p, FILE *out);
 
 /* events.c */
 int guards_at(run *r, double t, const double *y, double *g);
