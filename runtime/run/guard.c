@@ -118,6 +118,54 @@ static int auto_ratio_at_least(run *r, double rho, double min)
 }
 
 /*
+ * Error: a fixed step hc at or beyond the largest stable step hs for the
+ * eigenvalues e, at t after a step of h (0: before the first); what to use.
+ */
+static void refuse_step(run *r, csf_ode *ode, double t, double h, double hc, double hs, const csf_eigs *e)
+{
+	guard *g = r->g;
+	const csf_prog *p = r->p;
+	progress_off(r);
+	char hb[32], tb[32], why[96] = "", tolb[64] = "";
+	snprintf(hb, sizeof hb, "%.3g", hc);
+	csf_fmt_double(tb, t);
+	if (g->user_step > 0 && fabs(g->user_step - hc) > 1e-12 * hc)
+		snprintf(why, sizeof why, " (from --step %g)", g->user_step);
+	if (g->auto_step && h == 0) {
+		double tau = e->rho > 0 ? fmin(p->by, 1 / e->rho) : p->by;
+		snprintf(why, sizeof why, " (verlet's step for --tol %g)", g->vfrac * g->vfrac * 1e-4);
+		snprintf(tolb, sizeof tolb, ", --tol %g", round_down(0.81e-4 * (hs / tau) * (hs / tau)));
+	}
+	fprintf(g->err,
+	        "error: %s%s%sstep %s s%s is %s the stability limit of %s for this scene (fastest time scale "
+	        "%.3g s; largest stable step %.3g s): use --step %g%s or an adaptive method\n",
+	        h > 0 ? "at t=" : "", h > 0 ? tb : "", h > 0 ? ", " : "", hb, why, hc < hs ? "at" : "beyond",
+	        csf_ode_method(ode), 1 / e->rho,
+	        hs, round_down(0.9 * hs), tolb);
+}
+
+/* Warning: an explicit method's steps of h held by its stability at t, for the eigenvalues e. */
+static void warn_stiff(run *r, csf_ode *ode, double t, double h, const csf_eigs *e)
+{
+	guard *g = r->g;
+	char tb[32], rb[64] = "";
+	csf_fmt_double(tb, t);
+	if (g->have_ratio && g->ratio > 0) {
+		char x[32];
+		fmt_ratio(x, g->ratio);
+		snprintf(rb, sizeof rb, ", stiffness ratio %s%s", g->ratio_exact ? "" : "about ", x);
+	}
+	char more[32];
+	fmt_ratio(more, (r->tend - t) / h);
+	progress_off(r);
+	fprintf(g->err,
+	        "warning: at t=%s, after %lu steps, the problem looks stiff: the explicit method %s is held to steps "
+	        "of %.3g s by its stability (fastest time scale %.3g s%s) and needs some %s more; an implicit method "
+	        "is not: try --method msbdf or --method bsimp\n",
+	        tb, g->steps, csf_ode_method(ode), h, 1 / e->rho, rb, more);
+}
+
+/*
  * Looks at the scene at (t, y) after a step of h (0 at the start).
  * Returns 1 after writing why the run must halt, else 0. A state where an
  * estimate cannot be made (a derivative not finite nearby) is passed
@@ -178,23 +226,7 @@ int guard_check(run *r, csf_ode *ode, double t, const double *y, double h)
 			g->smin = fmin(sr, si) * e.rho;
 		}
 		if (g->check_step && hc >= hs * (1 - 1e-6)) { /* at the limit nothing decays: refused too */
-			progress_off(r);
-			char hb[32], tb[32], why[96] = "", tolb[64] = "";
-			snprintf(hb, sizeof hb, "%.3g", hc);
-			csf_fmt_double(tb, t);
-			if (g->user_step > 0 && fabs(g->user_step - hc) > 1e-12 * hc)
-				snprintf(why, sizeof why, " (from --step %g)", g->user_step);
-			if (g->auto_step && h == 0) {
-				double tau = e.rho > 0 ? fmin(p->by, 1 / e.rho) : p->by;
-				snprintf(why, sizeof why, " (verlet's step for --tol %g)", g->vfrac * g->vfrac * 1e-4);
-				snprintf(tolb, sizeof tolb, ", --tol %g", round_down(0.81e-4 * (hs / tau) * (hs / tau)));
-			}
-			fprintf(g->err,
-			        "error: %s%s%sstep %s s%s is %s the stability limit of %s for this scene (fastest time scale "
-			        "%.3g s; largest stable step %.3g s): use --step %g%s or an adaptive method\n",
-			        h > 0 ? "at t=" : "", h > 0 ? tb : "", h > 0 ? ", " : "", hb, why, hc < hs ? "at" : "beyond",
-			        csf_ode_method(ode), 1 / e.rho,
-			        hs, round_down(0.9 * hs), tolb);
+			refuse_step(r, ode, t, h, hc, hs, &e);
 			halt = 1;
 		}
 	} else if (au) { /* dop853: the implicit method from the next step on when stability holds it */
@@ -206,21 +238,7 @@ int guard_check(run *r, csf_ode *ode, double t, const double *y, double h)
 	           ((!g->have_ratio && guard_ratio(r, e.rho)) || g->ratio >= 100 || ++g->stiff_hits >= 2)) {
 		/* steps held near the stability limit, with many steps to go: stiff if the spectrum spans
 		   100 times or more, or (a spread that cannot be measured) when a second look agrees */
-		char tb[32], rb[64] = "";
-		csf_fmt_double(tb, t);
-		if (g->have_ratio && g->ratio > 0) {
-			char x[32];
-			fmt_ratio(x, g->ratio);
-			snprintf(rb, sizeof rb, ", stiffness ratio %s%s", g->ratio_exact ? "" : "about ", x);
-		}
-		char more[32];
-		fmt_ratio(more, (r->tend - t) / h);
-		progress_off(r);
-		fprintf(g->err,
-		        "warning: at t=%s, after %lu steps, the problem looks stiff: the explicit method %s is held to steps "
-		        "of %.3g s by its stability (fastest time scale %.3g s%s) and needs some %s more; an implicit method "
-		        "is not: try --method msbdf or --method bsimp\n",
-		        tb, g->steps, csf_ode_method(ode), h, 1 / e.rho, rb, more);
+		warn_stiff(r, ode, t, h, &e);
 		g->detect_stiff = 0;
 		g->warned = 1;
 	}
