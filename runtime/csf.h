@@ -454,6 +454,24 @@ int csf_sweep_main(csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char 
 int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *err);
 
 /*
+ * A row sink (csf_run_sink): row receives each row's values as its CSV row
+ * shows them, v[0] = t and then the p->ncols columns (n = ncols + 1). It
+ * returns 0, or -1 to end the run after that row as a failed write does
+ * (errno set).
+ */
+typedef struct csf_sink {
+	int (*row)(void *ctx, const double *v, size_t n);
+	void *ctx;
+} csf_sink;
+
+/*
+ * csf_run that also gives each row's values to sink (when not NULL); with
+ * out NULL, no CSV is written and the rows go to the sink alone. The same
+ * run, messages and exit statuses as csf_run.
+ */
+int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, const csf_sink *sink, FILE *err);
+
+/*
  * The whole command line of csfvm (image NULL: the bytecode file is the
  * argument) and of a generated executable (image: its embedded bytecode,
  * exec: its compiled code). Returns the process exit status.

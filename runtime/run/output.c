@@ -32,7 +32,7 @@ int write_row(const csf_prog *p, const double *m, double t, FILE *out)
 int finish(FILE *out, FILE *err, int status, int werr)
 {
 	csf_out_begin();
-	int bad = fflush(out) != 0 || ferror(out);
+	int bad = out ? fflush(out) != 0 || ferror(out) : werr != 0; /* (no out: rows to a sink alone) */
 	csf_out_end();
 	if (bad) {
 		int e = werr ? werr : errno;

@@ -33,6 +33,9 @@ typedef struct session {
 	double kmax;        /* the last output time is kmax * by */
 	double fixed_h;     /* the fixed step */
 	struct timespec t0; /* when the run started */
+	FILE *out;          /* the CSV rows, or NULL */
+	const csf_sink *sink; /* the rows' values, or NULL */
+	double *v;          /* with a sink: a row's values */
 	int werr;           /* a row's write error (errno) */
 	char msg[256];      /* the integrator's words */
 } session;
@@ -73,7 +76,9 @@ static stop run_alloc(session *S)
 		r->cs = csf_contacts_new(p);
 		((csf_prog *)p)->crun = r->cs; /* the CONTACT instruction's state (p is the caller's, not const data) */
 	}
-	if (!r->m || !S->y || ((S->events || S->autom_on) && !S->work) || r->nomem || (p->ncrules && !r->cs))
+	if (S->sink) S->v = malloc((p->ncols + 1) * sizeof *S->v);
+	if (!r->m || !S->y || ((S->events || S->autom_on) && !S->work) || r->nomem || (p->ncrules && !r->cs) ||
+	    (S->sink && !S->v))
 		return stop_kind_only(STOP_NOMEM);
 	memcpy(r->m, p->mem0, p->nmem * sizeof(double));
 	memcpy(S->y, p->mem0 + p->ystart, p->ny * sizeof(double));
@@ -295,8 +300,19 @@ static stop run_advance(session *S, double *t, double *tk, int *last)
 	return advance_stop(S, st, *t, *tk);
 }
 
+/* The row at tk to the CSV output and to the sink. 0, or -1 (errno set) when either failed. */
+static int emit_row(session *S, double tk)
+{
+	const csf_prog *p = S->r.p;
+	if (S->out && write_row(p, S->r.m, tk, S->out)) return -1;
+	if (!S->sink) return 0;
+	S->v[0] = tk;
+	for (uint32_t i = 0; i < p->ncols; i++) S->v[i + 1] = S->r.m[p->cols[i].slot];
+	return S->sink->row(S->sink->ctx, S->v, (size_t)p->ncols + 1);
+}
+
 /* The row at tk: the OUT section, its assertions, finiteness, and the CSV row. */
-static stop run_row(session *S, double tk, FILE *out, int *last)
+static stop run_row(session *S, double tk, int *last)
 {
 	run *r = &S->r;
 	const csf_prog *p = r->p;
@@ -320,7 +336,7 @@ static stop run_row(session *S, double tk, FILE *out, int *last)
 		csf_vm_exec(p, CSF_SEC_OUT, r->m, r->m + p->ystart, r->m + p->dstart); /* every value, for the report */
 		return stop_at(STOP_NONFINITE_ROW, tk);
 	}
-	if (write_row(p, r->m, tk, out)) {
+	if (emit_row(S, tk)) {
 		S->werr = errno;
 		*last = 1;
 		return stop_kind_only(STOP_END);
@@ -331,7 +347,7 @@ static stop run_row(session *S, double tk, FILE *out, int *last)
 }
 
 /* The rows t_k = k*by, k = 0 .. kmax, each after the advance to it. */
-static stop run_rows(session *S, FILE *out)
+static stop run_rows(session *S)
 {
 	run *r = &S->r;
 	const csf_prog *p = r->p;
@@ -346,7 +362,7 @@ static stop run_rows(session *S, FILE *out)
 			if (s.kind != STOP_END || last) return s;
 		}
 		t = tk;
-		stop s = run_row(S, tk, out, &last);
+		stop s = run_row(S, tk, &last);
 		if (s.kind != STOP_END || last) return s;
 	}
 	return stop_kind_only(STOP_END);
@@ -455,13 +471,14 @@ static void run_free(session *S)
 	free(r->gl);
 	free(S->work);
 	free(S->y);
+	free(S->v);
 	free(r->yi);
 	free(r->m);
 }
 
-int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *err)
+int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, const csf_sink *sink, FILE *err)
 {
-	session S = { .r = { .p = p, .exec = exec } };
+	session S = { .r = { .p = p, .exec = exec }, .out = out, .sink = sink };
 	S.wc.r = S.wc_stiff.r = &S.r;
 	/* --method auto (the default, but for fixed steps and large scenes: dop853) is dop853 with
 	   AUTO_STIFF beside it */
@@ -476,13 +493,18 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
 	stop s = run_alloc(&S);
 	if (s.kind == STOP_END) s = run_method(&S, o);
 	if (s.kind == STOP_END) {
-		write_header(p, out);
+		if (out) write_header(p, out);
 		s = run_guard(&S, o);
 	}
 	if (s.kind == STOP_END) s = run_start(&S);
-	if (s.kind == STOP_END) s = run_rows(&S, out);
+	if (s.kind == STOP_END) s = run_rows(&S);
 	int status = report_stop(&S.r, &s, o->fixed, err);
 	run_stats(&S, o, err);
 	run_free(&S);
 	return finish(out, err, status, S.werr);
+}
+
+int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *err)
+{
+	return csf_run_sink(p, exec, o, out, NULL, err);
 }

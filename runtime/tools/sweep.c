@@ -6,8 +6,9 @@
  * first axis, whose entries are its rows (one value per named parameter),
  * then each --sweep, in order, an axis of COUNT evenly spaced values of
  * one parameter; the last axis varies fastest. Variant i sets its values in the program's initial
- * memory (every swept value is a parameter, param.c), runs csf_run with
- * its output captured, and turns that output into its text: each row with
+ * memory (every swept value is a parameter, param.c), runs csf_run_sink with
+ * its output captured (a summary's values taken from its row sink, not read
+ * back from the text), and turns that output into its text: each row with
  * the variant's values as leading columns (or, with --sweep-summary, one
  * row of final/max/min/mean/rms of columns, over a window of time). A variant's result is one message
  * (status, text, diagnostics), so it can be made anywhere: here, in a
@@ -472,42 +473,50 @@ static void put_values(const csf_sweep *S, size_t i, FILE *f, int how)
 }
 
 /*
- * One summary value over a run's rows (text after the header) whose time is
- * in the window: the last value, the largest, the smallest, or the time
- * average of the value (mean) or of its square (rms, then its root) by the
- * trapezoid rule over those rows (a window of one row: its value). NaN when
- * no row is in the window.
+ * One summary value over a run's rows whose time is in the window: the last
+ * value, the largest, the smallest, or the time average of the value (mean)
+ * or of its square (rms, then its root) by the trapezoid rule over those
+ * rows (a window of one row: its value). NaN when no row is in the window.
+ * It is made as the rows come (sum_row, from the run's row sink), and
+ * summary gives it at the end.
  */
-static double summarize(const char *rows, const sumcol *c)
+typedef struct sumacc { double acc, t0, tp, xp, area; } sumacc;
+
+static void sum_start(sumacc *a) { *a = (sumacc){ NAN, NAN, NAN, NAN, 0 }; }
+
+/* The row at t whose value in c's column is x. */
+static void sum_row(sumacc *a, const sumcol *c, double t, double x)
 {
-	double acc = NAN, t0 = NAN, tp = NAN, xp = NAN, area = 0;
-	for (const char *s = rows; *s;) {
-		const char *f = s;
-		for (uint32_t k = 0; k < c->col && f; k++) {
-			f = strchr(f, ',');
-			if (f) f++;
-		}
-		const char *eol = strchr(s, '\n');
-		double t = strtod(s, NULL);
-		if (f && (!eol || f < eol) && t >= c->from && t <= c->to) {
-			double x = strtod(f, NULL);
-			if (c->func == SUM_RMS) x *= x;
-			if (c->func == SUM_MEAN || c->func == SUM_RMS) {
-				if (isnan(t0)) t0 = t, acc = x;
-				else area += (t - tp) * (xp + x) / 2;
-				tp = t, xp = x;
-			} else if (c->func == SUM_FINAL || isnan(acc)) acc = x;
-			else if (c->func == SUM_MAX ? x > acc : x < acc) acc = x;
-		}
-		if (!eol) break;
-		s = eol + 1;
-	}
-	if ((c->func == SUM_MEAN || c->func == SUM_RMS) && tp > t0) acc = area / (tp - t0);
+	if (!(t >= c->from && t <= c->to)) return;
+	if (c->func == SUM_RMS) x *= x;
+	if (c->func == SUM_MEAN || c->func == SUM_RMS) {
+		if (isnan(a->t0)) a->t0 = t, a->acc = x;
+		else a->area += (t - a->tp) * (a->xp + x) / 2;
+		a->tp = t, a->xp = x;
+	} else if (c->func == SUM_FINAL || isnan(a->acc)) a->acc = x;
+	else if (c->func == SUM_MAX ? x > a->acc : x < a->acc) a->acc = x;
+}
+
+static double summary(const sumacc *a, const sumcol *c)
+{
+	double acc = a->acc;
+	if ((c->func == SUM_MEAN || c->func == SUM_RMS) && a->tp > a->t0) acc = a->area / (a->tp - a->t0);
 	return c->func == SUM_RMS ? sqrt(acc) : acc;
 }
 
+/* A run's summaries, made by its row sink. */
+typedef struct summaries { const csf_sweep *S; sumacc *acc; } summaries;
+
+static int summary_row(void *ctx, const double *v, size_t n)
+{
+	summaries *u = ctx;
+	(void)n;
+	for (int k = 0; k < u->S->nsum; k++) sum_row(&u->acc[k], &u->S->sum[k], v[0], v[u->S->sum[k].col]);
+	return 0;
+}
+
 /* The text of variant i from its run's output: rows prefixed by its values, or its summary row. */
-static void variant_text(const csf_sweep *S, size_t i, const char *out, FILE *f)
+static void variant_text(const csf_sweep *S, size_t i, const char *out, const sumacc *acc, FILE *f)
 {
 	if (S->out_dir) {
 		fputs(out, f);
@@ -523,7 +532,7 @@ static void variant_text(const csf_sweep *S, size_t i, const char *out, FILE *f)
 		put_values(S, i, f, VALS_ROW);
 		for (int k = 0; k < S->nsum; k++) {
 			char b[32];
-			csf_fmt_double(b, summarize(nl + 1, &S->sum[k]));
+			csf_fmt_double(b, summary(&acc[k], &S->sum[k]));
 			fprintf(f, k ? ",%s" : "%s", b);
 		}
 		fputc('\n', f);
@@ -565,15 +574,18 @@ unsigned char *csf_sweep_run(csf_sweep *S, size_t i, size_t *len)
 	size_t olen = 0, elen = 0, tlen = 0;
 	FILE *fo = open_memstream(&out, &olen), *fe = open_memstream(&err, &elen);
 	int st = 2;
-	if (fo && fe) {
+	summaries u = { S, S->nsum ? malloc((size_t)S->nsum * sizeof *u.acc) : NULL };
+	for (int k = 0; u.acc && k < S->nsum; k++) sum_start(&u.acc[k]);
+	if (fo && fe && (u.acc || !S->nsum)) {
 		csf_opts o = S->o;
-		st = csf_run(S->p, S->exec, &o, fo, fe);
+		csf_sink sink = { summary_row, &u };
+		st = csf_run_sink(S->p, S->exec, &o, fo, S->nsum ? &sink : NULL, fe);
 	}
 	if (fo) fclose(fo);
 	if (fe) fclose(fe);
 	FILE *ft = out ? open_memstream(&text, &tlen) : NULL;
 	if (ft) {
-		variant_text(S, i, out, ft);
+		variant_text(S, i, out, u.acc, ft);
 		fclose(ft);
 	}
 	unsigned char *m = text && err ? malloc(MSG_HEAD + tlen + elen) : NULL;
@@ -589,6 +601,7 @@ unsigned char *csf_sweep_run(csf_sweep *S, size_t i, size_t *len)
 	free(out);
 	free(err);
 	free(text);
+	free(u.acc);
 	return m;
 }
 
