@@ -83,4 +83,12 @@ void gen_jacobian(Gen *G, csf_prog *p);
 /* pairs.c: velocity Verlet's pairs */
 void gen_pairs(Gen *G, Model *M, csf_prog *p);
 
+/* tables.c: the tables beside the code, in the order gen_program fills them */
+void gen_state_scales(Model *M, csf_prog *p);
+void gen_contact_tables(Gen *G, Model *M, csf_prog *p);
+void gen_columns(Gen *G, Model *M, csf_prog *p);
+void gen_globals(Gen *G, Model *M, csf_prog *p);
+void gen_objects(Gen *G, Model *M, csf_prog *p);
+void gen_source_tables(Gen *G, Model *M, csf_prog *p);
+
 #endif

@@ -57,6 +57,91 @@ static int jact(Jac *J, int kind, uint32_t s) { return any_marked(J->act, s, kin
 #define T(x) ((x) + J->P)
 #define WK(i) (J->W + (i))
 
+/* Emits the tangent of vector instruction op (operands o[], inputs' activity in[]) as tangent
+   does; returns 0 if op is not one of these. */
+static int tangent_vec(Jac *J, int op, const uint32_t *o, const int *in)
+{
+	uint32_t a = o[0], b = o[1], c = o[2];
+	uint32_t ta = T(a), tc = in[1] ? T(c) : J->zero;
+	uint32_t vtb = in[0] ? T(b) : J->zvec, vtc = in[1] ? T(c) : J->zvec;
+	switch (op) {
+	case CSF_OP_VMUL: /* dv s + v ds */
+		JE(VMUL, WK(0), vtb, c, 0);
+		JE(VMUL, WK(3), b, tc, 0);
+		JE(VADD, ta, WK(0), WK(3), 0);
+		break;
+	case CSF_OP_VDIV: /* (dv - z ds) / s */
+		JE(VDIV, WK(0), b, c, 0);
+		JE(VMUL, WK(3), WK(0), tc, 0);
+		JE(VSUB, WK(6), vtb, WK(3), 0);
+		JE(VDIV, ta, WK(6), c, 0);
+		break;
+	case CSF_OP_VDOT:
+		JE(VDOT, WK(0), vtb, c, 0);
+		JE(VDOT, WK(1), b, vtc, 0);
+		JE(ADD, ta, WK(0), WK(1), 0);
+		break;
+	case CSF_OP_VCROSS:
+		JE(VCROSS, WK(0), vtb, c, 0);
+		JE(VCROSS, WK(3), b, vtc, 0);
+		JE(VADD, ta, WK(0), WK(3), 0);
+		break;
+	case CSF_OP_VMAG: /* (v . dv) / |v| */
+		JE(VMAG, WK(0), b, 0, 0);
+		JE(VDOT, WK(1), b, vtb, 0);
+		JE(DIV, ta, WK(1), WK(0), 0);
+		break;
+	case CSF_OP_VUNIT: /* (dv - u (u . dv)) / |v| */
+		JE(VMAG, WK(0), b, 0, 0);
+		JE(VDIV, WK(1), b, WK(0), 0);
+		JE(VDOT, WK(4), WK(1), vtb, 0);
+		JE(VMUL, WK(5), WK(1), WK(4), 0);
+		JE(VSUB, WK(8), vtb, WK(5), 0);
+		JE(VDIV, ta, WK(8), WK(0), 0);
+		break;
+	case CSF_OP_VPROJ: { /* p = k w, k = (u.w)/(w.w): dp = dk w + k dw */
+		JE(VDOT, WK(0), b, c, 0);                    /* u.w */
+		JE(VDOT, WK(1), c, c, 0);                    /* w.w */
+		JE(DIV, WK(2), WK(0), WK(1), 0);             /* k */
+		JE(VDOT, WK(3), vtb, c, 0);
+		JE(VDOT, WK(4), b, vtc, 0);
+		JE(ADD, WK(5), WK(3), WK(4), 0);             /* d(u.w) */
+		JE(VDOT, WK(6), c, vtc, 0);
+		JE(MUL, WK(7), WK(6), J->two, 0);            /* d(w.w) */
+		JE(MUL, WK(8), WK(2), WK(7), 0);
+		JE(SUB, WK(9), WK(5), WK(8), 0);
+		JE(DIV, WK(10), WK(9), WK(1), 0);            /* dk */
+		JE(VMUL, WK(11), c, WK(10), 0);
+		JE(VMUL, WK(14), vtc, WK(2), 0);
+		JE(VADD, ta, WK(11), WK(14), 0);
+		break;
+	}
+	case CSF_OP_VANGLE: { /* theta = atan2(|u x w|, u.w) */
+		JE(VCROSS, WK(0), b, c, 0);                  /* x = u x w */
+		JE(VMAG, WK(3), WK(0), 0, 0);                /* s = |x| */
+		JE(VDOT, WK(4), b, c, 0);                    /* q = u.w */
+		JE(VCROSS, WK(5), vtb, c, 0);
+		JE(VCROSS, WK(8), b, vtc, 0);
+		JE(VADD, WK(11), WK(5), WK(8), 0);           /* dx */
+		JE(VDOT, WK(14), WK(0), WK(11), 0);
+		JE(DIV, WK(15), WK(14), WK(3), 0);           /* ds = x.dx / s */
+		JE(VDOT, WK(16), vtb, c, 0);
+		JE(VDOT, WK(17), b, vtc, 0);
+		JE(ADD, WK(18), WK(16), WK(17), 0);          /* dq */
+		JE(MUL, WK(19), WK(4), WK(15), 0);
+		JE(MUL, WK(20), WK(3), WK(18), 0);
+		JE(SUB, WK(21), WK(19), WK(20), 0);          /* q ds - s dq */
+		JE(MUL, WK(22), WK(3), WK(3), 0);
+		JE(MUL, WK(23), WK(4), WK(4), 0);
+		JE(ADD, WK(24), WK(22), WK(23), 0);
+		JE(DIV, ta, WK(21), WK(24), 0);
+		break;
+	}
+	default: return 0;
+	}
+	return 1;
+}
+
 /* Emits the tangent of instruction ins (operands o[]); its inputs' activity in in[]. */
 static void tangent(Jac *J, int op, const uint32_t *o, const int *in)
 {
@@ -159,80 +244,8 @@ static void tangent(Jac *J, int op, const uint32_t *o, const int *in)
 		JE(SUB, WK(2), J->one, WK(1), 0);
 		JE(MUL, ta, WK(2), tb, 0);
 		break;
-	case CSF_OP_VMUL: /* dv s + v ds */
-		JE(VMUL, WK(0), vtb, c, 0);
-		JE(VMUL, WK(3), b, tc, 0);
-		JE(VADD, ta, WK(0), WK(3), 0);
-		break;
-	case CSF_OP_VDIV: /* (dv - z ds) / s */
-		JE(VDIV, WK(0), b, c, 0);
-		JE(VMUL, WK(3), WK(0), tc, 0);
-		JE(VSUB, WK(6), vtb, WK(3), 0);
-		JE(VDIV, ta, WK(6), c, 0);
-		break;
-	case CSF_OP_VDOT:
-		JE(VDOT, WK(0), vtb, c, 0);
-		JE(VDOT, WK(1), b, vtc, 0);
-		JE(ADD, ta, WK(0), WK(1), 0);
-		break;
-	case CSF_OP_VCROSS:
-		JE(VCROSS, WK(0), vtb, c, 0);
-		JE(VCROSS, WK(3), b, vtc, 0);
-		JE(VADD, ta, WK(0), WK(3), 0);
-		break;
-	case CSF_OP_VMAG: /* (v . dv) / |v| */
-		JE(VMAG, WK(0), b, 0, 0);
-		JE(VDOT, WK(1), b, vtb, 0);
-		JE(DIV, ta, WK(1), WK(0), 0);
-		break;
-	case CSF_OP_VUNIT: /* (dv - u (u . dv)) / |v| */
-		JE(VMAG, WK(0), b, 0, 0);
-		JE(VDIV, WK(1), b, WK(0), 0);
-		JE(VDOT, WK(4), WK(1), vtb, 0);
-		JE(VMUL, WK(5), WK(1), WK(4), 0);
-		JE(VSUB, WK(8), vtb, WK(5), 0);
-		JE(VDIV, ta, WK(8), WK(0), 0);
-		break;
-	case CSF_OP_VPROJ: { /* p = k w, k = (u.w)/(w.w): dp = dk w + k dw */
-		JE(VDOT, WK(0), b, c, 0);                    /* u.w */
-		JE(VDOT, WK(1), c, c, 0);                    /* w.w */
-		JE(DIV, WK(2), WK(0), WK(1), 0);             /* k */
-		JE(VDOT, WK(3), vtb, c, 0);
-		JE(VDOT, WK(4), b, vtc, 0);
-		JE(ADD, WK(5), WK(3), WK(4), 0);             /* d(u.w) */
-		JE(VDOT, WK(6), c, vtc, 0);
-		JE(MUL, WK(7), WK(6), J->two, 0);            /* d(w.w) */
-		JE(MUL, WK(8), WK(2), WK(7), 0);
-		JE(SUB, WK(9), WK(5), WK(8), 0);
-		JE(DIV, WK(10), WK(9), WK(1), 0);            /* dk */
-		JE(VMUL, WK(11), c, WK(10), 0);
-		JE(VMUL, WK(14), vtc, WK(2), 0);
-		JE(VADD, ta, WK(11), WK(14), 0);
-		break;
-	}
-	case CSF_OP_VANGLE: { /* theta = atan2(|u x w|, u.w) */
-		JE(VCROSS, WK(0), b, c, 0);                  /* x = u x w */
-		JE(VMAG, WK(3), WK(0), 0, 0);                /* s = |x| */
-		JE(VDOT, WK(4), b, c, 0);                    /* q = u.w */
-		JE(VCROSS, WK(5), vtb, c, 0);
-		JE(VCROSS, WK(8), b, vtc, 0);
-		JE(VADD, WK(11), WK(5), WK(8), 0);           /* dx */
-		JE(VDOT, WK(14), WK(0), WK(11), 0);
-		JE(DIV, WK(15), WK(14), WK(3), 0);           /* ds = x.dx / s */
-		JE(VDOT, WK(16), vtb, c, 0);
-		JE(VDOT, WK(17), b, vtc, 0);
-		JE(ADD, WK(18), WK(16), WK(17), 0);          /* dq */
-		JE(MUL, WK(19), WK(4), WK(15), 0);
-		JE(MUL, WK(20), WK(3), WK(18), 0);
-		JE(SUB, WK(21), WK(19), WK(20), 0);          /* q ds - s dq */
-		JE(MUL, WK(22), WK(3), WK(3), 0);
-		JE(MUL, WK(23), WK(4), WK(4), 0);
-		JE(ADD, WK(24), WK(22), WK(23), 0);
-		JE(DIV, ta, WK(21), WK(24), 0);
-		break;
-	}
-	default: /* comparisons and logic: not differentiable, zero */
-		JE(MOV, ta, J->zero, 0, 0);
+	default: /* the vector operations; comparisons and logic: not differentiable, zero */
+		if (!tangent_vec(J, op, o, in)) JE(MOV, ta, J->zero, 0, 0);
 		break;
 	}
 }
