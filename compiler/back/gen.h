@@ -1,5 +1,5 @@
 /*
- * gen.h - bytecode generation (gen.c).
+ * gen.h - bytecode generation (gen.c and the files it names).
  */
 #ifndef CSF_GEN_H
 #define CSF_GEN_H
