@@ -22,6 +22,13 @@ char *xstrdup(const char *s);
 char *xstrndup(const char *s, size_t n);
 char *xprintf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void arena_free(void);
+/* Heap memory for what outlives the arena (csf_prog's tables, freed with csf_prog_free, and
+   work arrays freed at once). Never NULL: running out of memory, here or in xalloc, ends in
+   xoom, the one place that writes "csfc: out of memory" and exits with status 2. */
+void *xmalloc(size_t n);
+void *xcalloc(size_t n, size_t size);
+void *xrealloc(void *p, size_t n);
+void xoom(void) __attribute__((noreturn));
 /* Everything allocated after a mark is released by arena_release (temporary work). */
 typedef struct ArenaMark { void *blocks; char *bump, *bump_end; } ArenaMark;
 ArenaMark arena_mark(void);

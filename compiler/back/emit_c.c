@@ -88,8 +88,7 @@ static void use_local(Emit *E, uint32_t s)
 {
 	if (E->decl[s] == E->fn) return;
 	E->decl[s] = E->fn;
-	if (E->nloc == E->caploc && !(E->loc = realloc(E->loc, (E->caploc = E->caploc ? 2 * E->caploc : 64) * sizeof *E->loc)))
-		exit(2);
+	if (E->nloc == E->caploc) E->loc = xrealloc(E->loc, (E->caploc = E->caploc ? 2 * E->caploc : 64) * sizeof *E->loc);
 	E->loc[E->nloc++] = s;
 }
 
@@ -342,7 +341,7 @@ static void emit_function(Emit *E, int sec, uint32_t from, uint32_t to, const ch
 	size_t blen;
 	FILE *out = E->f;
 	E->f = open_memstream(&body, &blen);
-	if (!E->f) exit(2);
+	if (!E->f) xoom(); /* open_memstream fails only for want of memory */
 	E->sec = sec;
 	E->fn++;
 	E->nloc = 0;
@@ -469,13 +468,12 @@ void emit_c(const csf_prog *p, const unsigned char *image, size_t len, const cha
 	      f);
 	put_image(f, image, len);
 	Emit E = { .S = &S, .p = p, .f = f };
-	E.decl = calloc(S.n + 1, sizeof *E.decl);
-	E.readin = calloc(S.n + 1, sizeof *E.readin);
+	E.decl = xcalloc(S.n + 1, sizeof *E.decl);
+	E.readin = xcalloc(S.n + 1, sizeof *E.readin);
 	uint32_t maxcode = 0;
 	for (int sec = 0; sec < CSF_NSEC; sec++)
 		if (p->ncode[sec] > maxcode) maxcode = p->ncode[sec];
-	E.target = calloc((size_t)maxcode + 1, 1);
-	if (!E.decl || !E.readin || !E.target) exit(2);
+	E.target = xcalloc((size_t)maxcode + 1, 1);
 	for (int sec = 0; sec < CSF_NSEC; sec++) emit_section(&E, sec, names[sec], starts, nfn);
 	fputs("static int csf_model_exec(const csf_prog *p, int sec, double *m, const double *y, double *dydt)\n{\n"
 	      "\treturn sec == CSF_SEC_RHS ? csf_model_rhs(p, m, y, dydt)\n"

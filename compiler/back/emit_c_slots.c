@@ -95,9 +95,8 @@ static uint32_t split_section(const csf_prog *p, int sec, uint32_t **starts)
 {
 	uint32_t n = p->ncode[sec];
 	const uint32_t *code = p->code[sec];
-	long *span = calloc((size_t)n + 2, sizeof *span); /* +1 where a span starts, -1 past its end */
-	uint32_t *st = malloc(((size_t)p->nlines[sec] + 2) * sizeof *st), ns = 0;
-	if (!span || !st) exit(2);
+	long *span = xcalloc((size_t)n + 2, sizeof *span); /* +1 where a span starts, -1 past its end */
+	uint32_t *st = xmalloc(((size_t)p->nlines[sec] + 2) * sizeof *st), ns = 0;
 	for (uint32_t pc = 0; pc < n; pc += insn_len(code, pc)) {
 		uint32_t op = code[pc], to;
 		if (op == CSF_OP_LOOP) to = code[pc + 3] - 1;
@@ -134,8 +133,7 @@ static void meet(uint64_t **pend, uint32_t from, uint32_t to, uint32_t t, const 
 	if (!live || t < from || t > to) return;
 	uint64_t **q = &pend[t - from];
 	if (!*q) {
-		*q = malloc((2 * nw + 1) * sizeof **q);
-		if (!*q) exit(2);
+		*q = xmalloc((2 * nw + 1) * sizeof **q);
 		memcpy(*q, cur, 2 * nw * sizeof **q);
 	} else
 		for (uint32_t i = 0; i < 2 * nw; i++) (*q)[i] &= cur[i];
@@ -159,8 +157,7 @@ static void check_reads(Slots *S, int sec, uint32_t from, uint32_t to, uint32_t 
 {
 	const csf_prog *p = S->p;
 	const uint32_t *code = p->code[sec];
-	uint32_t nc = 0, cap = 64, *cand = malloc(cap * sizeof *cand);
-	if (!cand) exit(2);
+	uint32_t nc = 0, cap = 64, *cand = xmalloc(cap * sizeof *cand);
 	for (uint32_t pc = from; pc < to; pc += insn_len(code, pc)) {
 		const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
 		for (int k = 0; k < oi->nops; k++) {
@@ -168,7 +165,7 @@ static void check_reads(Slots *S, int sec, uint32_t from, uint32_t to, uint32_t 
 			if (!slot_kind(oi->kind[k]) || csf_reg(w)) continue;
 			for (uint32_t s = w; s < w + kind_width(oi->kind[k]) && s < S->n; s++) {
 				if (idx[s] != UINT32_MAX || S->ext[s] || region(p, s) == C_STATE) continue;
-				if (nc == cap && !(cand = realloc(cand, (cap *= 2) * sizeof *cand))) exit(2);
+				if (nc == cap) cand = xrealloc(cand, (cap *= 2) * sizeof *cand);
 				idx[s] = nc;
 				cand[nc++] = s;
 			}
@@ -176,8 +173,7 @@ static void check_reads(Slots *S, int sec, uint32_t from, uint32_t to, uint32_t 
 	}
 	/* cur[0, nw): written in the section; cur[nw, 2 nw): written in this function */
 	uint32_t nw = (nc + 63) / 64;
-	uint64_t *cur = calloc(2 * nw + 1, sizeof *cur), **pend = calloc((size_t)(to - from) + 1, sizeof *pend);
-	if (!cur || !pend) exit(2);
+	uint64_t *cur = xcalloc(2 * nw + 1, sizeof *cur), **pend = xcalloc((size_t)(to - from) + 1, sizeof *pend);
 	for (uint32_t i = 0; i < nc; i++)
 		if (sofar[cand[i]]) cur[i / 64] |= 1ull << (i % 64);
 	int live = 1;
@@ -283,16 +279,15 @@ static uint32_t slots_named(const csf_prog *p)
 void slots_analyse(Slots *S, const csf_prog *p, uint32_t **starts, uint32_t *nfn)
 {
 	*S = (Slots){ .p = p, .n = slots_named(p), .direct = 1 };
-	S->ext = calloc(S->n + 1, 1);
-	S->written = calloc(S->n + 1, 1);
-	S->rel = calloc(S->n + 1, 1);
-	S->bad = calloc(S->n + 1, 1);
-	S->cross = calloc(S->n + 1, 1);
-	unsigned char *sofar = calloc(S->n + 1, 1);
-	S->cls = calloc(S->n + 1, 1);
-	S->vb = calloc(S->n + 1, sizeof *S->vb);
-	uint32_t *idx = malloc(((size_t)S->n + 1) * sizeof *idx);
-	if (!S->ext || !S->written || !S->rel || !S->bad || !S->cross || !sofar || !S->cls || !S->vb || !idx) exit(2);
+	S->ext = xcalloc(S->n + 1, 1);
+	S->written = xcalloc(S->n + 1, 1);
+	S->rel = xcalloc(S->n + 1, 1);
+	S->bad = xcalloc(S->n + 1, 1);
+	S->cross = xcalloc(S->n + 1, 1);
+	unsigned char *sofar = xcalloc(S->n + 1, 1);
+	S->cls = xcalloc(S->n + 1, 1);
+	S->vb = xcalloc(S->n + 1, sizeof *S->vb);
+	uint32_t *idx = xmalloc(((size_t)S->n + 1) * sizeof *idx);
 	memset(idx, 0xff, ((size_t)S->n + 1) * sizeof *idx);
 	scan_slots(S);
 	for (int sec = 0; sec < CSF_NSEC; sec++) {

@@ -76,10 +76,9 @@ static void place_scratch(Gen *G, csf_prog *p)
 		}
 }
 
-int gen_program(Model *M, csf_prog *p)
+/* The pass, on G (zeroed) after gen_program has cleared p and set where a scene too big to compile goes. */
+static void gen_run(Gen *G, Model *M, csf_prog *p)
 {
-	Gen G0 = { 0 }, *G = &G0;
-	memset(p, 0, sizeof *p);
 	G->M = M;
 	G->p = p;
 	G->Finsts = live_forces(M);
@@ -107,7 +106,7 @@ int gen_program(Model *M, csf_prog *p)
 	gen_objects(G, M, p);
 	place_scratch(G, p);
 	if (!p->ncrules) gen_pairs(G, M, p); /* the contact routine's forces depend on v */
-	else if (!(p->vpair = calloc(p->ny ? p->ny : 1, sizeof *p->vpair))) exit(2);
+	else p->vpair = xcalloc(p->ny ? p->ny : 1, sizeof *p->vpair);
 	gen_jacobian(G, p);
 	gen_source_tables(G, M, p);
 	str_intern(G, "");
@@ -118,6 +117,38 @@ int gen_program(Model *M, csf_prog *p)
 	p->till = M->till;
 	p->by = M->by;
 	p->nevents = G->nevents;
-	p->events = G->events ? G->events : calloc(1, sizeof *p->events);
+	p->events = G->events ? G->events : xcalloc(1, sizeof *p->events);
+}
+
+/* After a failure: frees what G holds that p does not (p's tables are csf_prog_free's). */
+static void gen_drop(Gen *G, csf_prog *p)
+{
+	int code = 0, lines = 0, targets = 0;
+	for (int sec = 0; sec < CSF_NSEC; sec++) {
+		code |= G->code == p->code[sec];
+		lines |= G->lines == p->lines[sec];
+		targets |= G->targets == p->targets[sec];
+	}
+	if (!code) free(G->code);
+	if (!lines) free(G->lines);
+	if (!targets) free(G->targets);
+	if (G->pclasses != p->pclasses) free(G->pclasses);
+	free(G->mem); /* these go to p only at the end */
+	free(G->strs);
+	free(G->events);
+	for (int i = 0; i < 3; i++) free(G->work[i]);
+}
+
+int gen_program(Model *M, csf_prog *p)
+{
+	Gen *G = xalloc(sizeof *G); /* zeroed; not a local, so that it is intact after longjmp */
+	jmp_buf fail;
+	memset(p, 0, sizeof *p);
+	G->fail = &fail;
+	if (setjmp(fail)) { /* too big to compile: alloc_mem wrote the error */
+		gen_drop(G, p);
+		return 1;
+	}
+	gen_run(G, M, p);
 	return 0;
 }

@@ -6,6 +6,8 @@
 #ifndef CSF_GEN_INT_H
 #define CSF_GEN_INT_H
 
+#include <setjmp.h>
+
 #include "csfc.h"
 #include "sema.h"
 #include "csf.h"
@@ -42,6 +44,8 @@ typedef struct Gen {
 	csf_event *events;
 	uint32_t nevents, capevents;
 	Vec assert_tab, assert_obj; /* of Inst* and Object*, in assertion index order */
+	jmp_buf *fail; /* alloc_mem's way out of a scene too big to compile, back to gen_program */
+	void *work[3]; /* gen_jacobian's heap arrays while it runs, for gen_program to free after that */
 } Gen;
 
 /* slots.c: memory, strings and parameter classes */

@@ -298,8 +298,7 @@ void gen_jacobian(Gen *G, csf_prog *p)
 	J->two = const_slot(G, (double[3]){ 2, 0, 0 }, 0);
 	J->ln10 = const_slot(G, (double[3]){ M_LN10, 0, 0 }, 0);
 	uint32_t nprimal = G->nmem;
-	J->act = calloc(nprimal, 1);
-	if (!J->act) exit(2);
+	J->act = G->work[0] = xcalloc(nprimal, 1);
 	J->act[p->tslot] = 1;
 	for (uint32_t i = 0; i < p->ny; i++) J->act[p->ystart + i] = 1;
 	depends(rc, rn, J->act, 1);
@@ -312,9 +311,8 @@ void gen_jacobian(Gen *G, csf_prog *p)
 	G->ncode = G->capcode = 0;
 	G->lines = NULL;
 	G->nlines = G->caplines = 0;
-	uint32_t *map = calloc((size_t)rn + 1, sizeof *map); /* RHS pc -> JAC pc, for jumps */
+	uint32_t *map = G->work[1] = xcalloc((size_t)rn + 1, sizeof *map); /* RHS pc -> JAC pc, for jumps */
 	uint32_t *fix = NULL, nfix = 0, capfix = 0;            /* JAC word positions of jump targets */
-	if (!map) exit(2);
 	uint32_t li = 0;
 	for (uint32_t pc = 0; pc < rn;) {
 		map[pc] = G->ncode;
@@ -338,8 +336,7 @@ void gen_jacobian(Gen *G, csf_prog *p)
 			if (oi->kind[k] == CSF_K_J || oi->kind[k] == CSF_K_B) {
 				if (nfix == capfix) {
 					capfix = capfix ? 2 * capfix : 16;
-					fix = realloc(fix, capfix * sizeof *fix);
-					if (!fix) exit(2);
+					fix = G->work[2] = xrealloc(fix, capfix * sizeof *fix);
 				}
 				fix[nfix++] = G->ncode - (uint32_t)oi->nops + (uint32_t)k;
 			}
@@ -354,6 +351,7 @@ void gen_jacobian(Gen *G, csf_prog *p)
 	free(map);
 	free(fix);
 	free(J->act);
+	G->work[0] = G->work[1] = G->work[2] = NULL;
 }
 #undef JE
 #undef T

@@ -41,9 +41,8 @@ static void mark_var(unsigned char *act, const Var *v)
 
 void gen_pairs(Gen *G, Model *M, csf_prog *p)
 {
-	p->vpair = calloc(p->ny ? p->ny : 1, sizeof *p->vpair);
-	unsigned char *all = calloc(G->nmem, 1), *act = malloc(G->nmem);
-	if (!p->vpair || !all || !act) exit(2);
+	p->vpair = xcalloc(p->ny ? p->ny : 1, sizeof *p->vpair);
+	unsigned char *all = xcalloc(G->nmem, 1), *act = xmalloc(G->nmem);
 	for (int i = 0; i < M->insts.n; i++) {
 		Var *v = pair_velocity(M->insts.v[i]);
 		if (v) mark_var(all, v);

@@ -17,9 +17,8 @@ static double init_mag(const Var *v) { return v->isvec ? csf_vmag3(v->init[0], v
 /* Each state component's scale (one SI unit, or smaller: csf_prog.yscale) and absolute tolerance. */
 void gen_state_scales(Model *M, csf_prog *p)
 {
-	p->yscale = malloc((p->ny ? p->ny : 1) * sizeof *p->yscale);
-	p->yatol = calloc(p->ny ? p->ny : 1, sizeof *p->yatol);
-	if (!p->yscale || !p->yatol) exit(2);
+	p->yscale = xmalloc((p->ny ? p->ny : 1) * sizeof *p->yscale);
+	p->yatol = xcalloc(p->ny ? p->ny : 1, sizeof *p->yatol);
 	/* the state variable of each property name that starts largest, over all objects */
 	Map largest = { 0 };
 	for (int i = 0; i < M->objects.n; i++) {
@@ -55,9 +54,8 @@ void gen_contact_tables(Gen *G, Model *M, csf_prog *p)
 {
 	p->ncbodies = M->contacts.n ? (uint32_t)M->cbodies.n : 0;
 	p->ncrules = (uint32_t)M->contacts.n;
-	p->cbodies = calloc(p->ncbodies + 1, sizeof *p->cbodies);
-	p->crules = calloc(p->ncrules + 1, sizeof *p->crules);
-	if (!p->cbodies || !p->crules) exit(2);
+	p->cbodies = xcalloc(p->ncbodies + 1, sizeof *p->cbodies);
+	p->crules = xcalloc(p->ncrules + 1, sizeof *p->crules);
 	for (uint32_t i = 0; i < p->ncbodies; i++) {
 		ContactBody *b = M->cbodies.v[i];
 		csf_cbody *pb = &p->cbodies[i];
@@ -75,8 +73,7 @@ void gen_contact_tables(Gen *G, Model *M, csf_prog *p)
 		Contact *c = M->contacts.v[i];
 		p->ncmembers += (uint32_t)(c->b0.n + c->b1.n);
 	}
-	p->cmembers = calloc(p->ncmembers + 1, sizeof *p->cmembers);
-	if (!p->cmembers) exit(2);
+	p->cmembers = xcalloc(p->ncmembers + 1, sizeof *p->cmembers);
 	uint32_t nm = 0;
 	for (int i = 0; i < M->contacts.n; i++) {
 		Contact *c = M->contacts.v[i];
@@ -96,7 +93,7 @@ void gen_contact_tables(Gen *G, Model *M, csf_prog *p)
 void gen_columns(Gen *G, Model *M, csf_prog *p)
 {
 	p->ncols = (uint32_t)M->cols.n;
-	p->cols = calloc(p->ncols + 1, sizeof *p->cols);
+	p->cols = xcalloc(p->ncols + 1, sizeof *p->cols);
 	for (int i = 0; i < M->cols.n; i++) {
 		WatchCol *w = M->cols.v[i];
 		const char *unit = w->var->dimk == DK_KNOWN ? dims_unit(w->var->dim) : "";
@@ -110,8 +107,7 @@ void gen_columns(Gen *G, Model *M, csf_prog *p)
 void gen_globals(Gen *G, Model *M, csf_prog *p)
 {
 	p->nglobals = (uint32_t)M->globals.n;
-	p->globals = calloc(p->nglobals + 1, sizeof *p->globals);
-	if (!p->globals) exit(2);
+	p->globals = xcalloc(p->nglobals + 1, sizeof *p->globals);
 	for (int i = 0; i < M->globals.n; i++) {
 		Var *g = M->globals.v[i];
 		p->globals[i] = (csf_global){ str_intern(G, g->name), var_slot(G, g), g->isvec ? 3u : 1u, param_class(G, g) };
@@ -123,8 +119,7 @@ void gen_globals(Gen *G, Model *M, csf_prog *p)
 void gen_objects(Gen *G, Model *M, csf_prog *p)
 {
 	p->nobjects = (uint32_t)M->objects.n;
-	p->objects = calloc(p->nobjects + 1, sizeof *p->objects);
-	if (!p->objects) exit(2);
+	p->objects = xcalloc(p->nobjects + 1, sizeof *p->objects);
 	Vec props = { 0 };
 	for (int i = 0; i < M->objects.n; i++) {
 		Object *o = M->objects.v[i];
@@ -133,31 +128,30 @@ void gen_objects(Gen *G, Model *M, csf_prog *p)
 			if (((Var *)o->props.v[j])->slot >= 0) vec_push(&props, o->props.v[j]);
 	}
 	p->nprops = (uint32_t)props.n;
-	p->props = calloc(p->nprops + 1, sizeof *p->props);
-	if (!p->props) exit(2);
+	p->props = xcalloc(p->nprops + 1, sizeof *p->props);
 	for (int i = 0; i < props.n; i++) {
 		Var *v = props.v[i];
 		p->props[i] = (csf_prop){ (uint32_t)v->obj->index, str_intern(G, v->name), (uint32_t)v->slot, v->isvec ? 3u : 1u,
 		                          param_class(G, v) };
 	}
 	p->npclasses = G->npclasses;
-	p->pclasses = G->pclasses ? G->pclasses : calloc(1, sizeof *p->pclasses);
+	p->pclasses = G->pclasses ? G->pclasses : xcalloc(1, sizeof *p->pclasses);
 }
 
 /* Source tables. */
 void gen_source_tables(Gen *G, Model *M, csf_prog *p)
 {
 	p->nfiles = (uint32_t)sources.n;
-	p->files = calloc(p->nfiles + 1, sizeof *p->files);
+	p->files = xcalloc(p->nfiles + 1, sizeof *p->files);
 	for (int i = 0; i < sources.n; i++) p->files[i] = str_intern(G, ((Source *)sources.v[i])->path);
 	p->nsrcs = (uint32_t)M->srcs.n;
-	p->srcs = calloc(p->nsrcs + 1, sizeof *p->srcs);
+	p->srcs = xcalloc(p->nsrcs + 1, sizeof *p->srcs);
 	for (int i = 0; i < M->srcs.n; i++) {
 		SrcEntry *e = M->srcs.v[i];
 		p->srcs[i] = (csf_src){ (uint32_t)e->loc.file, (uint32_t)e->loc.line, str_intern(G, e->text) };
 	}
 	p->nasserts = (uint32_t)G->assert_tab.n;
-	p->asserts = calloc(p->nasserts + 1, sizeof *p->asserts);
+	p->asserts = xcalloc(p->nasserts + 1, sizeof *p->asserts);
 	for (int i = 0; i < G->assert_tab.n; i++) {
 		Inst *I = G->assert_tab.v[i];
 		p->asserts[i] = (csf_assert){ (uint32_t)I->src, str_intern(G, ((Object *)G->assert_obj.v[i])->name) };
