@@ -3,9 +3,12 @@
  *
  * Pipeline: lex.re (re2c scanner) -> layout.c (indentation, `using`
  * inclusion, unit literals) -> parse.y (bison, builds the AST) -> sema.c
- * (objects, rule instances, resolution, solving) -> gen.c (bytecode).
+ * (objects, rule instances, resolution, solving) -> mid/liveness.c (what
+ * each section needs) -> back/gen.c and the files it names (bytecode) ->
+ * back/emit_c.c (C, with --emit-c).
  * Memory: everything the compiler allocates comes from one arena (xalloc)
- * and is released at exit by arena_free().
+ * and is released at exit by arena_free(), but the program's tables and the
+ * back end's work arrays (xmalloc, xcalloc, xrealloc: heap memory).
  */
 #ifndef CSFC_H
 #define CSFC_H
@@ -16,7 +19,7 @@
 #include "csf.h"
 
 /* ---- memory ---- */
-void *xalloc(size_t n);                 /* zeroed; never returns NULL (exits on OOM) */
+void *xalloc(size_t n);                 /* zeroed; never returns NULL (xoom on OOM) */
 void *xrealloc_arr(void *p, size_t n);  /* grows an xalloc'd array to n bytes (copies) */
 char *xstrdup(const char *s);
 char *xstrndup(const char *s, size_t n);
