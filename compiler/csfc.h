@@ -3,9 +3,12 @@
  *
  * Pipeline: lex.re (re2c scanner) -> layout.c (indentation, `using`
  * inclusion, unit literals) -> parse.y (bison, builds the AST) -> sema.c
- * (objects, rule instances, resolution, solving) -> gen.c (bytecode).
+ * (objects, rule instances, resolution, solving) -> mid/liveness.c (what
+ * each section needs) -> back/gen.c and the files it names (bytecode) ->
+ * back/emit_c.c (C, with --emit-c).
  * Memory: everything the compiler allocates comes from one arena (xalloc)
- * and is released at exit by arena_free().
+ * and is released at exit by arena_free(), but the program's tables and the
+ * back end's work arrays (xmalloc, xcalloc, xrealloc: heap memory).
  */
 #ifndef CSFC_H
 #define CSFC_H
@@ -16,12 +19,19 @@
 #include "csf.h"
 
 /* ---- memory ---- */
-void *xalloc(size_t n);                 /* zeroed; never returns NULL (exits on OOM) */
+void *xalloc(size_t n);                 /* zeroed; never returns NULL (xoom on OOM) */
 void *xrealloc_arr(void *p, size_t n);  /* grows an xalloc'd array to n bytes (copies) */
 char *xstrdup(const char *s);
 char *xstrndup(const char *s, size_t n);
 char *xprintf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void arena_free(void);
+/* Heap memory for what outlives the arena (csf_prog's tables, freed with csf_prog_free, and
+   work arrays freed at once). Never NULL: running out of memory, here or in xalloc, ends in
+   xoom, the one place that writes "csfc: out of memory" and exits with status 2. */
+void *xmalloc(size_t n);
+void *xcalloc(size_t n, size_t size);
+void *xrealloc(void *p, size_t n);
+void xoom(void) __attribute__((noreturn));
 /* Everything allocated after a mark is released by arena_release (temporary work). */
 typedef struct ArenaMark { void *blocks; char *bump, *bump_end; } ArenaMark;
 ArenaMark arena_mark(void);

@@ -190,7 +190,10 @@ static int run(int argc, char **argv)
 	Model *M = sema_run(stmts);
 	if (diag_errors) return 1;
 	csf_prog p;
-	gen_program(M, &p);
+	if (gen_program(M, &p)) {
+		csf_prog_free(&p);
+		return 1;
+	}
 	lint_model(M);
 	if (diag_errors) { /* -Werror */
 		csf_prog_free(&p);

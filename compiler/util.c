@@ -26,13 +26,37 @@ typedef struct Block { struct Block *next; max_align_t data[]; } Block;
 static Block *blocks;
 static char *bump, *bump_end;
 
+void xoom(void)
+{
+	fprintf(stderr, "csfc: out of memory\n");
+	exit(2);
+}
+
+void *xmalloc(size_t n)
+{
+	void *p = malloc(n ? n : 1);
+	if (!p) xoom();
+	return p;
+}
+
+void *xcalloc(size_t n, size_t size)
+{
+	void *p = calloc(n ? n : 1, size ? size : 1);
+	if (!p) xoom();
+	return p;
+}
+
+void *xrealloc(void *p, size_t n)
+{
+	void *q = realloc(p, n ? n : 1);
+	if (!q) xoom();
+	return q;
+}
+
 static void *new_block(size_t n)
 {
 	Block *b = calloc(1, sizeof(Block) + n);
-	if (!b) {
-		fprintf(stderr, "csfc: out of memory\n");
-		exit(2);
-	}
+	if (!b) xoom();
 	b->next = blocks;
 	blocks = b;
 	return b->data;

@@ -1,5 +1,5 @@
 /*
- * emit_c.h - the C back end (emit_c.c).
+ * emit_c.h - the C back end (emit_c.c, emit_c_slots.c, cc.c).
  */
 #ifndef CSF_EMIT_C_H
 #define CSF_EMIT_C_H

@@ -1,0 +1,159 @@
+/*
+ * tables.c - the tables of the program beside its code: the state's scales
+ * and tolerances, the contact bodies and rules, the watched columns, the
+ * globals, objects and properties -D may set, and the source tables (files,
+ * statements, assertions) its messages quote.
+ */
+#include <math.h>
+#include <stdlib.h>
+
+#include "csfc.h"
+#include "sema.h"
+#include "gen_int.h"
+
+/* The magnitude of v's initial value. */
+static double init_mag(const Var *v) { return v->isvec ? csf_vmag3(v->init[0], v->init[1], v->init[2]) : fabs(v->init[0]); }
+
+/* Each state component's scale (one SI unit, or smaller: csf_prog.yscale) and absolute tolerance. */
+void gen_state_scales(Model *M, csf_prog *p)
+{
+	p->yscale = xmalloc((p->ny ? p->ny : 1) * sizeof *p->yscale);
+	p->yatol = xcalloc(p->ny ? p->ny : 1, sizeof *p->yatol);
+	/* the state variable of each property name that starts largest, over all objects */
+	Map largest = { 0 };
+	for (int i = 0; i < M->objects.n; i++) {
+		Object *o = M->objects.v[i];
+		for (int j = 0; j < o->props.n; j++) {
+			Var *v = o->props.v[j], *w = v->state ? map_get(&largest, v->name) : NULL;
+			if (v->state && (!w || init_mag(v) > init_mag(w))) map_put(&largest, v->name, v);
+		}
+	}
+	for (int i = 0; i < M->objects.n; i++) {
+		Object *o = M->objects.v[i];
+		for (int j = 0; j < o->props.n; j++) {
+			Var *v = o->props.v[j];
+			if (!v->state) continue;
+			/* one SI unit of v, in the system's units; smaller when the property starts
+			   smaller in every object (so that a 1e-20 m orbit keeps the relative accuracy
+			   of a 1 m one), but not because it starts near zero in this one (a normal
+			   mode's node: cos(pi/2) is 6e-17) */
+			double one = v->dimk == DK_KNOWN ? dims_to_system(1.0, v->dim) : 1.0;
+			if (!(one > 0) || !isfinite(one)) one = 1.0; /* a dimension such as m^100 kg^100 in cgs */
+			double mag = init_mag(map_get(&largest, v->name));
+			if (mag > 0 && mag < one && isfinite(mag)) one = mag;
+			for (int k = 0; k < (v->isvec ? 3 : 1); k++) {
+				p->yscale[(uint32_t)v->slot - p->ystart + (uint32_t)k] = one;
+				p->yatol[(uint32_t)v->slot - p->ystart + (uint32_t)k] = v->atol ? v->atol->c[0] : 0;
+			}
+		}
+	}
+}
+
+/* The contact tables: the bodies' property slots, and each rule's lists of bodies (csf.h). */
+void gen_contact_tables(Gen *G, Model *M, csf_prog *p)
+{
+	p->ncbodies = M->contacts.n ? (uint32_t)M->cbodies.n : 0;
+	p->ncrules = (uint32_t)M->contacts.n;
+	p->cbodies = xcalloc(p->ncbodies + 1, sizeof *p->cbodies);
+	p->crules = xcalloc(p->ncrules + 1, sizeof *p->crules);
+	for (uint32_t i = 0; i < p->ncbodies; i++) {
+		ContactBody *b = M->cbodies.v[i];
+		csf_cbody *pb = &p->cbodies[i];
+		pb->plane = (uint32_t)b->plane;
+		pb->object = (uint32_t)b->o->index;
+		for (int f = 0; f < CSF_CF_N; f++) {
+			Var *v = b->f[f];
+			pb->s[f] = v ? var_slot(G, v) : p->tslot;
+			/* the radius, or a plane's geometry, computed or integrated: not known from positions */
+			if (v && (f == CSF_CF_R || (b->plane && (f == CSF_CF_POS || f == CSF_CF_V))) && (v->state || v->det))
+				pb->varies = 1;
+		}
+	}
+	for (int i = 0; i < M->contacts.n; i++) {
+		Contact *c = M->contacts.v[i];
+		p->ncmembers += (uint32_t)(c->b0.n + c->b1.n);
+	}
+	p->cmembers = xcalloc(p->ncmembers + 1, sizeof *p->cmembers);
+	uint32_t nm = 0;
+	for (int i = 0; i < M->contacts.n; i++) {
+		Contact *c = M->contacts.v[i];
+		csf_crule *pr = &p->crules[i];
+		pr->src = (uint32_t)c->src;
+		pr->every = (uint32_t)c->every;
+		for (int k = 0; k < 2; k++) {
+			Vec *L = k ? &c->b1 : &c->b0;
+			*(k ? &pr->first1 : &pr->first0) = nm;
+			*(k ? &pr->n1 : &pr->n0) = (uint32_t)L->n;
+			for (int j = 0; j < L->n; j++) p->cmembers[nm++] = (uint32_t)((ContactBody *)L->v[j])->index;
+		}
+	}
+}
+
+/* Columns. */
+void gen_columns(Gen *G, Model *M, csf_prog *p)
+{
+	p->ncols = (uint32_t)M->cols.n;
+	p->cols = xcalloc(p->ncols + 1, sizeof *p->cols);
+	for (int i = 0; i < M->cols.n; i++) {
+		WatchCol *w = M->cols.v[i];
+		const char *unit = w->var->dimk == DK_KNOWN ? dims_unit(w->var->dim) : "";
+		p->cols[i].name = str_intern(G, *unit ? xprintf("%s [%s]", w->name, unit) : w->name);
+		p->cols[i].slot = (w->var->kind == V_TIME ? p->tslot : var_slot(G, w->var)) +
+		                  (uint32_t)(w->member * (w->var->isvec ? 3 : 1) + w->comp);
+	}
+}
+
+/* The globals, every one in memory so that -D can set it. */
+void gen_globals(Gen *G, Model *M, csf_prog *p)
+{
+	p->nglobals = (uint32_t)M->globals.n;
+	p->globals = xcalloc(p->nglobals + 1, sizeof *p->globals);
+	for (int i = 0; i < M->globals.n; i++) {
+		Var *g = M->globals.v[i];
+		p->globals[i] = (csf_global){ str_intern(G, g->name), var_slot(G, g), g->isvec ? 3u : 1u, param_class(G, g) };
+	}
+	dims_system_base(p->ubase);
+}
+
+/* The object table: every object and the properties the program keeps in memory. */
+void gen_objects(Gen *G, Model *M, csf_prog *p)
+{
+	p->nobjects = (uint32_t)M->objects.n;
+	p->objects = xcalloc(p->nobjects + 1, sizeof *p->objects);
+	Vec props = { 0 };
+	for (int i = 0; i < M->objects.n; i++) {
+		Object *o = M->objects.v[i];
+		p->objects[i] = str_intern(G, o->name);
+		for (int j = 0; j < o->props.n; j++)
+			if (((Var *)o->props.v[j])->slot >= 0) vec_push(&props, o->props.v[j]);
+	}
+	p->nprops = (uint32_t)props.n;
+	p->props = xcalloc(p->nprops + 1, sizeof *p->props);
+	for (int i = 0; i < props.n; i++) {
+		Var *v = props.v[i];
+		p->props[i] = (csf_prop){ (uint32_t)v->obj->index, str_intern(G, v->name), (uint32_t)v->slot, v->isvec ? 3u : 1u,
+		                          param_class(G, v) };
+	}
+	p->npclasses = G->npclasses;
+	p->pclasses = G->pclasses ? G->pclasses : xcalloc(1, sizeof *p->pclasses);
+}
+
+/* Source tables. */
+void gen_source_tables(Gen *G, Model *M, csf_prog *p)
+{
+	p->nfiles = (uint32_t)sources.n;
+	p->files = xcalloc(p->nfiles + 1, sizeof *p->files);
+	for (int i = 0; i < sources.n; i++) p->files[i] = str_intern(G, ((Source *)sources.v[i])->path);
+	p->nsrcs = (uint32_t)M->srcs.n;
+	p->srcs = xcalloc(p->nsrcs + 1, sizeof *p->srcs);
+	for (int i = 0; i < M->srcs.n; i++) {
+		SrcEntry *e = M->srcs.v[i];
+		p->srcs[i] = (csf_src){ (uint32_t)e->loc.file, (uint32_t)e->loc.line, str_intern(G, e->text) };
+	}
+	p->nasserts = (uint32_t)G->assert_tab.n;
+	p->asserts = xcalloc(p->nasserts + 1, sizeof *p->asserts);
+	for (int i = 0; i < G->assert_tab.n; i++) {
+		Inst *I = G->assert_tab.v[i];
+		p->asserts[i] = (csf_assert){ (uint32_t)I->src, str_intern(G, ((Object *)G->assert_obj.v[i])->name) };
+	}
+}
