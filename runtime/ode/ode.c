@@ -6,6 +6,7 @@
  * error. The method table is the one list of steppers CSF offers.
  */
 #include <complex.h>
+#include <float.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <math.h>
@@ -87,8 +88,11 @@ struct csf_ode {
 	double *yerr;
 	unsigned long fixed_steps;
 	unsigned long past_steps, past_rejected; /* GSL's counts before the last restart */
-	const double *scale;       /* each component's absolute tolerance, in units of tol */
-	double *atol_scale;        /* atol_each, --atol: the scale, atol / tol where one is set (owned) */
+	const double *scale;       /* each component's absolute tolerance, in units of tol (o->live) */
+	const double *base;        /* the program's scale: one unit, or less (csf_ode_new's scale) */
+	double *live;              /* the scale now: as the component has grown, within base (owned) */
+	unsigned char *fixed_atol; /* the scene's atol or --atol holds this component's scale fixed (owned) */
+	int live_set;              /* live has been set from a state (live_start) */
 	const uint32_t *vpair;     /* verlet: 1 + velocity index of each position component */
 	double *acc;               /* verlet: the derivative at the current point */
 	double acc_t;
@@ -131,6 +135,106 @@ static int gsl_jac(double t, const double y[], double *dfdy, double dfdt[], void
 	return o->jac(t, y, dfdy, dfdt, o->ctx) ? TOO_LONG : GSL_SUCCESS;
 }
 
+/*
+ * The error control. GSL's standard control, as its manual states it: each
+ * component may err by D_i = tol (scale_i + |y_i|); the step shrinks when the
+ * largest E_i / D_i is over 1.1, to S (E/D)^(-1/q) of itself (S = 0.9, q the
+ * method's order, at most 5 times shorter), and grows when it is under 0.5, by
+ * S (E/D)^(-1/(q+1)) (at least 1, at most 4.9 times). Unlike GSL's scaled
+ * control, which copies its scales once, it reads scale_i where csf_ode keeps
+ * it, so the scale can follow the component as it grows (live_scale).
+ */
+typedef struct control {
+	double eps_abs, eps_rel, a_y, a_dydt;
+	const double *scale;
+} control;
+
+static void *control_alloc(void) { return calloc(1, sizeof(control)); }
+
+static int control_init(void *state, double eps_abs, double eps_rel, double a_y, double a_dydt)
+{
+	control *c = state;
+	if (eps_abs < 0 || eps_rel < 0 || a_y < 0 || a_dydt < 0) return GSL_EINVAL;
+	c->eps_abs = eps_abs, c->eps_rel = eps_rel, c->a_y = a_y, c->a_dydt = a_dydt;
+	return GSL_SUCCESS;
+}
+
+static double control_level(const control *c, double y, double dydt, double h, size_t i)
+{
+	return c->eps_rel * (c->a_y * fabs(y) + c->a_dydt * fabs(h * dydt)) + c->eps_abs * c->scale[i];
+}
+
+static int control_hadjust(void *state, size_t dim, unsigned int ord, const double y[], const double yerr[],
+                           const double yp[], double *h)
+{
+	const control *c = state;
+	const double S = 0.9, h_old = *h;
+	double rmax = DBL_MIN;
+	for (size_t i = 0; i < dim; i++) {
+		double r = fabs(yerr[i]) / fabs(control_level(c, y[i], yp ? yp[i] : 0, h_old, i));
+		if (r > rmax) rmax = r;
+	}
+	if (rmax > 1.1) {
+		double r = S / pow(rmax, 1.0 / ord);
+		*h = (r < 0.2 ? 0.2 : r) * h_old;
+		return GSL_ODEIV_HADJ_DEC;
+	}
+	if (rmax < 0.5) {
+		double r = S / pow(rmax, 1.0 / (ord + 1.0));
+		*h = (r > 4.9 ? 4.9 : r < 1.0 ? 1.0 : r) * h_old;
+		return GSL_ODEIV_HADJ_INC;
+	}
+	return GSL_ODEIV_HADJ_NIL;
+}
+
+static int control_errlevel(void *state, const double y, const double dydt, const double h, const size_t i,
+                            double *errlev)
+{
+	*errlev = control_level(state, y, dydt, h, i);
+	return *errlev > 0 ? GSL_SUCCESS : GSL_ESANITY;
+}
+
+static int control_set_driver(void *state, const gsl_odeiv2_driver *d)
+{
+	(void)state, (void)d;
+	return GSL_SUCCESS;
+}
+
+static const gsl_odeiv2_control_type control_type = { "csf", control_alloc, control_init, control_hadjust,
+	                                                control_errlevel, control_set_driver, free };
+
+/*
+ * The scale of a component's absolute error follows its size. It starts at
+ * the component's initial size and grows with the largest size the component
+ * reaches, but stays within [LIVE_FLOOR, 1] times the program's scale (one
+ * unit of the component, or less when the property starts smaller in every
+ * object: gen.c). So a concentration that starts at 0 and never exceeds
+ * 3.6e-5 mol/L is held to the tolerance relative to 3.6e-5, not to 1 mol/L
+ * (where it would be free to go negative: Robertson's kinetics), while a
+ * component that stays at rounding-error size, such as a normal mode's node,
+ * is held absolutely, at LIVE_FLOOR of its unit. A component the scene gives
+ * an atol (or --atol) keeps that.
+ */
+#define LIVE_FLOOR 1e-6
+
+static void live_grow(csf_ode *o, const double *y)
+{
+	for (size_t i = 0; i < o->n; i++) {
+		if (o->fixed_atol[i]) continue;
+		double a = fabs(y[i]);
+		if (a > o->live[i]) o->live[i] = a < o->base[i] ? a : o->base[i];
+	}
+}
+
+static void live_start(csf_ode *o, const double *y)
+{
+	if (o->live_set) return;
+	o->live_set = 1;
+	for (size_t i = 0; i < o->n; i++)
+		if (!o->fixed_atol[i]) o->live[i] = LIVE_FLOOR * o->base[i];
+	live_grow(o, y);
+}
+
 csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double hmax, double tol, double atol,
                      const double *atol_each, const double *scale, const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err,
                      size_t errlen)
@@ -156,21 +260,20 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 		return NULL;
 	}
 	o->tol = tol;
-	o->scale = scale;
-	int some = atol > 0;
-	for (size_t i = 0; atol_each && i < n; i++) some |= atol_each[i] > 0;
-	if (some) { /* the control's absolute bound is tol * scale[i]: atol_each[i], else atol */
-		if (!(o->atol_scale = malloc((n ? n : 1) * sizeof *o->atol_scale))) {
-			snprintf(err, errlen, "out of memory");
-			free(o);
-			return NULL;
-		}
-		for (size_t i = 0; i < n; i++) {
-			double a = atol_each && atol_each[i] > 0 ? atol_each[i] : atol;
-			o->atol_scale[i] = a > 0 ? a / tol : scale[i];
-		}
-		o->scale = o->atol_scale;
+	o->base = scale;
+	o->live = malloc((n ? n : 1) * sizeof *o->live);
+	o->fixed_atol = calloc(n ? n : 1, 1);
+	if (!o->live || !o->fixed_atol) {
+		snprintf(err, errlen, "out of memory");
+		csf_ode_free(o);
+		return NULL;
 	}
+	for (size_t i = 0; i < n; i++) { /* the control's absolute bound is tol * scale[i]: atol_each[i], else atol */
+		double a = atol_each && atol_each[i] > 0 ? atol_each[i] : atol;
+		o->fixed_atol[i] = a > 0;
+		o->live[i] = a > 0 ? a / tol : scale[i];
+	}
+	o->scale = o->live;
 	o->m = m;
 	o->n = n;
 	o->sys = (gsl_odeiv2_system){ gsl_rhs, jac ? gsl_jac : NULL, n, o };
@@ -195,9 +298,16 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 		return o;
 	}
 	/* error control as driver_alloc_y_new (a_y = 1, a_dydt = 0), with the absolute
-	   tolerance of each component scaled to its unit */
-	o->drv = gsl_odeiv2_driver_alloc_scaled_new(&o->sys, *m->type, h0 < hmax ? h0 : hmax, tol, tol, 1.0, 0.0, o->scale);
-	if (!o->drv || gsl_odeiv2_driver_set_hmax(o->drv, hmax) != GSL_SUCCESS) {
+	   tolerance of each component scaled as o->scale is now (control_type) */
+	o->drv = gsl_odeiv2_driver_alloc_y_new(&o->sys, *m->type, h0 < hmax ? h0 : hmax, tol, tol);
+	if (o->drv) {
+		gsl_odeiv2_control_free(o->drv->c);
+		o->drv->c = gsl_odeiv2_control_alloc(&control_type);
+		if (o->drv->c) ((control *)o->drv->c->state)->scale = o->scale;
+	}
+	if (!o->drv || !o->drv->c || gsl_odeiv2_control_init(o->drv->c, tol, tol, 1.0, 0.0) != GSL_SUCCESS ||
+	    gsl_odeiv2_control_set_driver(o->drv->c, o->drv) != GSL_SUCCESS ||
+	    gsl_odeiv2_driver_set_hmax(o->drv, hmax) != GSL_SUCCESS) {
 		snprintf(err, errlen, "cannot set up the integrator");
 		csf_ode_free(o);
 		return NULL;
@@ -314,7 +424,9 @@ int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *
 	double left = t1 - *t;
 	if (d->h <= left && left <= d->h * (1 + 1e-4)) d->h = nextafter(left, INFINITY);
 	double ta = *t;
+	live_start(o, y);
 	int st = gsl_odeiv2_evolve_apply(d->e, d->c, d->s, &o->sys, t, t1, &d->h, y);
+	if (st == GSL_SUCCESS) live_grow(o, y);
 	if (st == GSL_SUCCESS) return o->watch && o->watch(o->watch_ctx, *t, y, *t - ta) ? CSF_ODE_HALTED : CSF_ODE_OK;
 	if (st == TOO_LONG) return CSF_ODE_STOPPED;
 	snprintf(err, errlen, "%s", gsl_strerror(st));
@@ -365,6 +477,7 @@ int csf_ode_first_step(csf_ode *o, double t, const double *y)
 	size_t n = o->n;
 	gsl_odeiv2_driver *d = o->drv;
 	if (!d || work(o)) return 0;
+	live_start(o, y);
 	double *f0 = o->k, *y1 = f0 + n, *f1 = y1 + n;
 	if (o->f(t, y, f0, o->ctx)) return 1;
 	double d0 = wrms(o, y, y), d1 = wrms(o, f0, y);
@@ -545,7 +658,8 @@ void csf_ode_free(csf_ode *o)
 	free(o->k);
 	free(o->acc);
 	free(o->yerr);
-	free(o->atol_scale);
+	free(o->live);
+	free(o->fixed_atol);
 	if (o->sub) gsl_odeiv2_step_free(o->sub);
 	if (o->drv) gsl_odeiv2_driver_free(o->drv);
 	free(o);

@@ -27,8 +27,8 @@ static const char vm_usage[] =
 	"Runs a compiled CSF model and writes its watched variables as CSV on stdout.\n"
 	METHOD_TOL_HELP
 	"  --atol A       absolute local error bound, in the model's units, for every state\n"
-	"                 variable the scene gives no atol (default: EPS times one unit, or\n"
-	"                 times the initial size)\n"
+	"                 variable the scene gives no atol (default: EPS times the largest\n"
+	"                 size the variable has reached, within 1e-6 and 1 of one unit)\n"
 	"  --hmax H       internal steps of at most H seconds (dop853 and dopri5 step past the\n"
 	"                 output times and compute the rows from their dense output)\n"
 	"  --fixed        no error control: internal steps of 'by' (or --step H); a step\n"
