@@ -159,4 +159,12 @@ static inline double mu_s(const cpair *c, const double *m) { return csf_max(m[I(
 static inline double mu_k(const cpair *c, const double *m) { return csf_max(m[I(c, MUK)], m[J(c, MUK)]); }
 static inline double restitution(const cpair *c, const double *m) { return csf_min(m[I(c, CR)], m[J(c, CR)]); }
 
+/* ---- the functions one file calls in another ---- */
+
+/* geometry.c: a pair's normal, gap and edge (at the positions pi, pj or those in m), its length
+   scale and the smallest gap it resolves, tangential parts and the slip velocity */
+double csf_contact_geometry_at(const cpair *c, const double *m, const double *pi, const double *pj, double n[3],
+                              double *curv);
+double csf_contact_inside_at(const cpair *c, const double *m, const double *pi);
+
 #endif
