@@ -164,7 +164,25 @@ static inline double restitution(const cpair *c, const double *m) { return csf_m
 /* geometry.c: a pair's normal, gap and edge (at the positions pi, pj or those in m), its length
    scale and the smallest gap it resolves, tangential parts and the slip velocity */
 double csf_contact_geometry_at(const cpair *c, const double *m, const double *pi, const double *pj, double n[3],
-                              double *curv);
+                               double *curv);
+double csf_contact_geometry(const cpair *c, const double *m, double n[3], double *curv);
 double csf_contact_inside_at(const cpair *c, const double *m, const double *pi);
+double csf_contact_inside(const cpair *c, const double *m);
+double csf_contact_scale(const cpair *c, const double *m);
+double csf_contact_resolution(const cpair *c, const double *m);
+void csf_contact_tangential(const double x[3], const double n[3], double out[3]);
+void csf_contact_slip_velocity(const cpair *c, const double *m, const double n[3], double vt[3]);
+
+/* cluster.c: the coupling of two pairs, the clusters of the pairs pick() takes (in cs->cl,
+   cs->cstart; returns their number), and the direct solve of cs->K x = cs->rhs (-1: singular) */
+double csf_contact_coupling(const csf_contacts *cs, const cpair *c, const cpair *d, const double *m);
+uint32_t csf_contact_clusters(csf_contacts *cs, int (*pick)(const cpair *, const void *), const void *arg);
+int csf_contact_solve(csf_contacts *cs, uint32_t dim);
+
+/* impulse.c: a change dv of a pair's relative velocity; the impact of pair hit, whose relative
+   normal velocity vn becomes target (1: not solved); the velocities before an impact, into W_VR */
+void csf_contact_add_impulse(cpair *c, double *m, const double dv[3]);
+int csf_contact_collide(csf_contacts *cs, double *m, cpair *hit, double target, double vn);
+void csf_contact_before_impact(csf_contacts *cs, const double *m);
 
 #endif
