@@ -1,0 +1,188 @@
+/*
+ * contact_int.h - what the files of the contact routine share, and no more:
+ * the modes of a pair, a candidate pair, the run-time state (struct
+ * csf_contacts), the small helpers every stage uses, and the functions one
+ * file calls in another. Private: csf.h declares the routine's entry points.
+ *
+ * The contact routine: mechanics/rules 1 to 4: normal force, collision,
+ * static and dynamic friction between a mass point and another mass point
+ * or a plane.
+ *
+ * A pair is apart (mode 0), hopping (3), or in contact, sliding (1) or
+ * sticking (2). The mode changes only at events, which the driver locates
+ * in time:
+ *
+ *   apart:    guard 0 is the gap; when it closes the bodies collide (an
+ *             impulse along the normal with restitution min(cr_i, cr_j); a
+ *             plane has infinite mass; the pairs in contact do not close,
+ *             and those whose velocity it changed take their mode afresh:
+ *             apart, sliding or sticking), or come to rest in contact when
+ *             the train of bounces that would follow ends within the Zeno
+ *             time.
+ *   hopping:  apart, on a hop too low for the positions to follow; guard 0
+ *             is the time left until it lands, known from its flight time.
+ *   contact:  the normal force N n is the constraint force that keeps the
+ *             relative normal acceleration zero; guard 0 is N, and the
+ *             bodies separate when it would pull (N < 0).
+ *   sliding:  friction -mu_k |N| v_t/|v_t|; guard 1 is v_t . d, with d the
+ *             direction of sliding at its start: sticking begins when the
+ *             relative tangential velocity reaches zero.
+ *   sticking: friction is the force that keeps the relative tangential
+ *             acceleration zero; guard 1 is mu_s |N| - |f|, and sliding
+ *             begins when static friction cannot hold.
+ *
+ * No threshold is a length or a time of its own: the gap's resolution
+ * follows from the magnitudes of the positions, the Zeno time from the
+ * output interval (csf(5), Rest).
+ *
+ * Materials combine as mu = max(mu_i, mu_j) (the rougher surface) and
+ * restitution e = min(cr_i, cr_j) (the less elastic one), so the defaults
+ * (cr 1, mu 0) leave the other body's coefficient as it is. Several
+ * simultaneous contacts are solved together, exactly: the pairs that share
+ * bodies form a cluster, whose forces (and impulses) are the solution of
+ * one linear system (cluster.c).
+ *
+ * The program lists the bodies of each contact rule, not its pairs; the
+ * routine works on the candidate pairs only, those near enough to matter,
+ * found by a broad phase (broad.c) and kept in the
+ * order of the pairs, so that what it computes is what it would compute
+ * for every pair of the scene: an apart pair that is not a candidate has
+ * a positive gap at every instant its guard would be looked at, and does
+ * nothing. Two points (radius 0) never touch.
+ *
+ * The files, runtime/contact/, in the order of the work:
+ *
+ *   geometry.c  a pair's normal, gap, edge and length scale; its slip
+ *   cluster.c   the clusters: the pairs in contact that share bodies, and
+ *               the direct (LU) solve of their linear systems
+ *   force.c     the force stage (csf_contact_apply): contact forces and
+ *               friction, directly or by Gauss-Seidel sweeps; the guards
+ *   impulse.c   impacts: impulses by active sets, or by sweeps
+ *   settle.c    the settle state machine (csf_contact_settle): impacts,
+ *               rest, hops, lift-off, sticking and sliding at an instant
+ *   broad.c     the candidate pairs and the broad phase (sort and sweep);
+ *               the run-time state's life and its accessors
+ */
+#ifndef CSF_CONTACT_INT_H
+#define CSF_CONTACT_INT_H
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "csf.h"
+
+enum { APART, SLIDING, STICKING, HOPPING }; /* the modes of a pair */
+
+/* A pair's work values: mode, the two guards, the normal force's size, the friction force,
+   the sliding direction, the time a hop lands, the relative velocity before an impact. A pair
+   that is not a candidate is apart. */
+enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_N = 14 };
+
+/* A candidate pair: body i (a mass point, $0) and body j (a mass point or a plane, $1). */
+typedef struct cpair {
+	uint32_t rule, k0, k1;   /* its place in the order of pairs: its rule, $0's and $1's place in its lists */
+	uint32_t plane;          /* j is a plane */
+	const uint32_t *si, *sj; /* the property slots of i and j (csf_cbody) */
+	double w[W_N];
+} cpair;
+
+/* A pair's key, for sorting: rule, k0, k1. */
+typedef struct pkey { uint32_t rule, k0, k1; } pkey;
+
+/* Where a mass point is in the lists of a rule without `for`: rule, role (0 $0, 1 $1), place. */
+typedef struct memb { uint32_t rule, role, place; } memb;
+
+struct csf_contacts {
+	const csf_prog *p;
+	cpair *pairs, *next;      /* the candidates; the next ones (csf_contacts_find) */
+	uint32_t n, nnext;
+	size_t cap, capnext;
+	long *from;               /* next[k]'s place in pairs, or -1 (new) */
+	double *old;              /* a copy of a guard vector while it is remapped */
+	size_t capfrom, capold;
+	pkey *keys;               /* the pairs found, before sorting */
+	size_t nkeys, capkeys;
+	double *box;              /* 6 per body (lo xyz, hi xyz), its reach over the states; planes: unused */
+	double *mg;               /* per body, the rounding margin of its reach */
+	double *pn;               /* 4 per plane: the unit normal, and |point|_1 */
+	uint32_t *sap, nsap;      /* the mass points of rules without `for`, in sweep order */
+	int axis;                 /* the sweep's axis, -1 before the first */
+	uint32_t *mstart;         /* per body, its memberships: mem[mstart[b] .. mstart[b + 1]) */
+	memb *mem;
+	/* the clusters (cluster.c): per state slot of a position, its union-find parent and cluster;
+	   per candidate, the candidates of the clusters in order, and whether its cluster was
+	   solved directly; a cluster's matrix, right-hand side, solution and unknowns' places */
+	uint32_t *uf, *cid, *cl, *cstart;
+	unsigned char *direct;
+	size_t capcl, capcstart, capdirect;
+	double *K, *G, *rhs, *x, *lam, *v0, *nv;
+	uint32_t *at;
+	unsigned char *act;
+	double *B, *E;             /* per pair of a cluster: its force directions and equations (3 x 3 each) */
+	unsigned char *dc;        /* and its unknowns */
+	int unsolved; /* the sweeps left contact forces that do not hold (csf_contacts_unsolved) */
+};
+
+/* The most unknowns of a cluster solved directly (cluster.c). */
+enum { DIRECT_MAX = 96 };
+
+#define I(c, f) ((c)->si[CSF_CF_##f])
+#define J(c, f) ((c)->sj[CSF_CF_##f])
+#define W(c, k) ((c)->w[W_##k])
+#define WV(c, k) ((c)->w + W_##k)
+
+static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static inline double mag3(const double *a) { return csf_vmag3(a[0], a[1], a[2]); }
+
+static inline double inv_mass_i(const cpair *c, const double *m) { return 1.0 / m[I(c, M)]; }
+static inline double inv_mass_j(const cpair *c, const double *m) { return c->plane ? 0.0 : 1.0 / m[J(c, M)]; }
+
+/* Relative value of vector property field fi of i and fj of j (j a plane: 0). */
+static inline void rel(const cpair *c, const double *m, uint32_t fi, uint32_t fj, double out[3])
+{
+	for (int k = 0; k < 3; k++) out[k] = m[fi + k] - (c->plane ? 0.0 : m[fj + k]);
+}
+
+/* Sliding or sticking: pressed together by a normal force. */
+static inline int in_contact(const cpair *c)
+{
+	return W(c, MODE) == SLIDING || W(c, MODE) == STICKING;
+}
+
+static inline int has_friction(const cpair *c, const double *m)
+{
+	return m[I(c, MUS)] > 0 || m[I(c, MUK)] > 0 || (m[J(c, MUS)] > 0 || m[J(c, MUK)] > 0);
+}
+static inline double mu_s(const cpair *c, const double *m) { return csf_max(m[I(c, MUS)], m[J(c, MUS)]); }
+static inline double mu_k(const cpair *c, const double *m) { return csf_max(m[I(c, MUK)], m[J(c, MUK)]); }
+static inline double restitution(const cpair *c, const double *m) { return csf_min(m[I(c, CR)], m[J(c, CR)]); }
+
+/* ---- the functions one file calls in another ---- */
+
+/* geometry.c: a pair's normal, gap and edge (at the positions pi, pj or those in m), its length
+   scale and the smallest gap it resolves, tangential parts and the slip velocity */
+double csf_contact_geometry_at(const cpair *c, const double *m, const double *pi, const double *pj, double n[3],
+                               double *curv);
+double csf_contact_geometry(const cpair *c, const double *m, double n[3], double *curv);
+double csf_contact_inside_at(const cpair *c, const double *m, const double *pi);
+double csf_contact_inside(const cpair *c, const double *m);
+double csf_contact_scale(const cpair *c, const double *m);
+double csf_contact_resolution(const cpair *c, const double *m);
+void csf_contact_tangential(const double x[3], const double n[3], double out[3]);
+void csf_contact_slip_velocity(const cpair *c, const double *m, const double n[3], double vt[3]);
+
+/* cluster.c: the coupling of two pairs, the clusters of the pairs pick() takes (in cs->cl,
+   cs->cstart; returns their number), and the direct solve of cs->K x = cs->rhs (-1: singular) */
+double csf_contact_coupling(const csf_contacts *cs, const cpair *c, const cpair *d, const double *m);
+uint32_t csf_contact_clusters(csf_contacts *cs, int (*pick)(const cpair *, const void *), const void *arg);
+int csf_contact_solve(csf_contacts *cs, uint32_t dim);
+
+/* impulse.c: a change dv of a pair's relative velocity; the impact of pair hit, whose relative
+   normal velocity vn becomes target (1: not solved); the velocities before an impact, into W_VR */
+void csf_contact_add_impulse(cpair *c, double *m, const double dv[3]);
+int csf_contact_collide(csf_contacts *cs, double *m, cpair *hit, double target, double vn);
+void csf_contact_before_impact(csf_contacts *cs, const double *m);
+
+#endif

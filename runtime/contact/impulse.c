@@ -1,0 +1,146 @@
+/*
+ * impulse.c - impacts: the impulses of a pair that is hit and of the pairs
+ * in contact with it, solved directly by active sets (a linear
+ * complementarity problem) or by Gauss-Seidel sweeps.
+ */
+#include "contact_int.h"
+
+/* Changes the relative velocity of the pair by dv (along any direction), conserving momentum. */
+void csf_contact_add_impulse(cpair *c, double *m, const double dv[3])
+{
+	double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), w = wi + wj;
+	for (int k = 0; k < 3; k++) {
+		double j = dv[k] / w; /* the impulse on i */
+		m[I(c, V) + k] += j * wi;
+		if (!c->plane) m[J(c, V) + k] -= j * wj;
+	}
+}
+
+/* For csf_contact_clusters(): the pairs in contact, and the pair hit (arg). */
+static int picks_impact(const cpair *c, const void *hit)
+{
+	return c == hit || in_contact(c);
+}
+
+/*
+ * The impact of pair hit, whose relative normal velocity is to become
+ * target, on the cluster it forms with the pairs in contact, solved
+ * directly: the normal impulses P make the hit's velocity target, and each
+ * pair in contact either pushes (P >= 0) and is left with a relative normal
+ * velocity of zero, or takes no impulse and does not close (v >= 0): a
+ * linear complementarity problem, whose matrix (the coupling of the pairs'
+ * normals) is symmetric and positive definite when it is not singular. It
+ * is solved by active sets: starting with the hit alone, the pair in
+ * contact that closes fastest joins, or the one that would pull most leaves,
+ * until neither happens. Fails (-1, nothing changed) for a cluster of more
+ * than DIRECT_MAX pairs, a singular system or one that does not settle in
+ * 4 np + 8 changes of the set; size is the scale of the velocities.
+ */
+static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, double target, double size)
+{
+	uint32_t nq = csf_contact_clusters(cs, picks_impact, hit), h = (uint32_t)(hit - cs->pairs), q = 0, np = 0, ih = 0;
+	const uint32_t *cl = NULL;
+	for (; q < nq && !cl; q++)
+		for (uint32_t a = cs->cstart[q]; a < cs->cstart[q + 1]; a++)
+			if (cs->cl[a] == h) cl = cs->cl + cs->cstart[q], np = cs->cstart[q + 1] - cs->cstart[q], ih = a - cs->cstart[q];
+	if (!cl || np > DIRECT_MAX) return -1;
+	double *G = cs->G, *n = cs->nv;
+	for (uint32_t a = 0; a < np; a++) {
+		const cpair *c = &cs->pairs[cl[a]];
+		double curv, vr[3];
+		csf_contact_geometry(c, m, n + 3 * a, &curv);
+		rel(c, m, I(c, V), J(c, V), vr);
+		cs->v0[a] = dot3(vr, n + 3 * a);
+		cs->act[a] = a == ih;
+		cs->lam[a] = 0;
+	}
+	for (uint32_t a = 0; a < np; a++) /* G = the normals' coupling, once each normal is known */
+		for (uint32_t b = 0; b < np; b++) {
+			double w = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], m);
+			G[a * np + b] = w == 0 ? 0 : w * dot3(n + 3 * a, n + 3 * b);
+		}
+	for (uint32_t iter = 0; iter < 4 * np + 8; iter++) {
+		uint32_t dim = 0;
+		for (uint32_t a = 0; a < np; a++) {
+			if (!cs->act[a]) continue;
+			cs->at[dim] = a;
+			cs->rhs[dim] = (a == ih ? target : 0) - cs->v0[a];
+			dim++;
+		}
+		for (uint32_t r = 0; r < dim; r++)
+			for (uint32_t k = 0; k < dim; k++) cs->K[r * dim + k] = G[cs->at[r] * np + cs->at[k]];
+		if (csf_contact_solve(cs, dim)) return -1;
+		for (uint32_t a = 0; a < np; a++) cs->lam[a] = 0;
+		for (uint32_t r = 0; r < dim; r++) cs->lam[cs->at[r]] = cs->x[r];
+		long out = -1, in = -1;
+		double worst = -1e-14 * size;
+		for (uint32_t a = 0; a < np; a++) /* a contact that would pull: its impulse's effect */
+			if (cs->act[a] && a != ih && cs->lam[a] * G[a * np + a] < worst) worst = cs->lam[a] * G[a * np + a], out = a;
+		if (out < 0) {
+			worst = -1e-14 * size;
+			for (uint32_t a = 0; a < np; a++) { /* a contact that would close */
+				if (cs->act[a]) continue;
+				double v = cs->v0[a];
+				for (uint32_t b = 0; b < np; b++) v += G[a * np + b] * cs->lam[b];
+				if (v < worst) worst = v, in = a;
+			}
+		}
+		if (out >= 0) cs->act[out] = 0;
+		else if (in >= 0) cs->act[in] = 1;
+		else {
+			for (uint32_t a = 0; a < np; a++) {
+				cpair *c = &cs->pairs[cl[a]];
+				double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), P = cs->lam[a];
+				for (int k = 0; k < 3; k++) {
+					m[I(c, V) + k] += P * n[3 * a + k] * wi;
+					if (!c->plane) m[J(c, V) + k] -= P * n[3 * a + k] * wj;
+				}
+			}
+			return 0;
+		}
+	}
+	return -1;
+}
+
+/*
+ * The impact of pair hit, whose relative normal velocity vn becomes target,
+ * together with the pairs in contact, which stay in contact (their normal
+ * velocities do not close): a ball landing on one that rests on the floor
+ * rebounds as from the floor. Their impulses are solved directly
+ * (cluster_impulses), or where that fails by Gauss-Seidel sweeps, each
+ * pair's correcting its velocity in turn (the contacts' only pushing).
+ * Returns 0, or 1 when the sweeps did not converge either (masses that
+ * differ by more than the direct solve's 1e10 in a cluster).
+ */
+int csf_contact_collide(csf_contacts *cs, double *m, cpair *hit, double target, double vn)
+{
+	double size = fabs(target) + fabs(vn);
+	if (!cluster_impulses(cs, m, hit, target, size)) return 0;
+	for (int sweep = 0; sweep < 1000; sweep++) {
+		double change = 0;
+		for (uint32_t i = 0; i < cs->n; i++) {
+			cpair *c = &cs->pairs[i];
+			if (c != hit && !in_contact(c)) continue;
+			double n[3], curv, vr[3], dv[3];
+			csf_contact_geometry(c, m, n, &curv);
+			rel(c, m, I(c, V), J(c, V), vr);
+			double v = dot3(vr, n), d = c == hit ? target - v : csf_max(0, -v);
+			size = csf_max(size, fabs(v)); /* converged: to the rounding of the fastest pair's velocity */
+			if (d == 0) continue;
+			for (int k = 0; k < 3; k++) dv[k] = d * n[k];
+			csf_contact_add_impulse(c, m, dv);
+			change = csf_max(change, fabs(d));
+		}
+		if (change <= 1e-15 * size) return 0;
+	}
+	return 1;
+}
+
+/* Before an impact: each pair in contact's relative velocity into W_VR, for after_impact. */
+void csf_contact_before_impact(csf_contacts *cs, const double *m)
+{
+	for (uint32_t i = 0; i < cs->n; i++) {
+		cpair *c = &cs->pairs[i];
+		if (in_contact(c)) rel(c, m, I(c, V), J(c, V), WV(c, VR));
+	}
+}

@@ -1,0 +1,271 @@
+/*
+ * settle.c - the settle state machine (csf_contact_settle): at an instant,
+ * the changes of mode a pair goes through (impact, rest, hop, lift-off,
+ * sticking, sliding) until the modes stand, and the transitions
+ * themselves.
+ */
+#include "contact_int.h"
+
+/*
+ * Moves the bodies along n so that the gap is zero (they move by the event's
+ * location error): then, if rounding left it negative, body i outward by the
+ * least amount that makes it non-negative, so that the gap's guard is armed.
+ */
+static void close_gap(cpair *c, double *m, const double n[3], double gap)
+{
+	double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), w = wi + wj, nn[3], curv;
+	for (int k = 0; k < 3; k++) {
+		m[I(c, POS) + k] -= gap * n[k] * (wi / w);
+		if (!c->plane) m[J(c, POS) + k] += gap * n[k] * (wj / w);
+	}
+	double push = DBL_EPSILON * csf_contact_scale(c, m) / 8;
+	for (int i = 0; i < 64 && (gap = csf_contact_geometry(c, m, nn, &curv)) < 0; i++, push *= 2)
+		for (int k = 0; k < 3; k++) m[I(c, POS) + k] += csf_max(push, -gap) * n[k];
+}
+
+/* Enters contact: the relative normal velocity is zero; sticks if the tangential one is too. */
+static void enter_contact(cpair *c, double *m, const double n[3])
+{
+	double vt[3];
+	csf_contact_slip_velocity(c, m, n, vt);
+	double s = mag3(vt);
+	W(c, MODE) = s == 0 && has_friction(c, m) ? STICKING : SLIDING;
+	for (int k = 0; k < 3; k++) WV(c, DS)[k] = s > 0 ? vt[k] / s : 0;
+}
+
+/* Is the pair touching: the gap closed, up to the event's location error? */
+static int touching(const cpair *c, const double *m, double gap)
+{
+	return gap <= 1e-12 * csf_contact_scale(c, m) && csf_contact_inside(c, m) >= 0;
+}
+
+/* Lift-off: apart, exactly touching. */
+static void separate(cpair *c, double *m)
+{
+	double n[3], curv, gap = csf_contact_geometry(c, m, n, &curv);
+	W(c, MODE) = APART;
+	close_gap(c, m, n, gap);
+}
+
+/* Sliding has stopped: the relative tangential velocity becomes exactly zero, and the pair sticks. */
+static void stick(cpair *c, double *m)
+{
+	double n[3], curv, vt[3];
+	csf_contact_geometry(c, m, n, &curv);
+	csf_contact_slip_velocity(c, m, n, vt);
+	for (int k = 0; k < 3; k++) vt[k] = -vt[k];
+	csf_contact_add_impulse(c, m, vt);
+	W(c, MODE) = STICKING;
+}
+
+/* Static friction cannot hold: the pair slides, the way the friction force held it back from. */
+static void slide(cpair *c, double *m)
+{
+	(void)m; /* as stick */
+	double *f = WV(c, F), s = mag3(f);
+	for (int k = 0; k < 3; k++) WV(c, DS)[k] = s > 0 ? -f[k] / s : 0;
+	W(c, MODE) = SLIDING;
+}
+
+/*
+ * A touching pair pressed together (relative normal acceleration an < 0)
+ * that separates at normal speed vn >= 0 hops for 2 vn/|an|, to the height
+ * vn^2/(2|an|); with restitution e < 1 the hops that follow shrink by e and
+ * end (Zeno's accumulation of bounces) after 2 vn/(|an| (1 - e)).
+ *
+ * At rest: that train ends within zeno seconds (a single hop, with e = 1).
+ */
+static int at_rest(const cpair *c, const double *m, double vn, double an, double zeno)
+{
+	double e = restitution(c, m);
+	return an < 0 && 2 * vn / -an <= zeno * (e < 1 ? 1 - e : 1);
+}
+
+/*
+ * Hopping: the hop is too low for the positions to follow: within 1024
+ * times the gap's resolution (where the rounding of positions far from the
+ * origin would misplace its landing), or 100 times the integrator's
+ * accuracy, tol times the pair's length scale (an implicit method's
+ * iteration leaves errors of that size). It lands at the time its flight
+ * takes, 2 vn/|an|, found from the velocity alone.
+ */
+/* The height below which a hop is too low (as hops() says). */
+static double too_low(const cpair *c, const double *m, double tol)
+{
+	return csf_max(1024 * csf_contact_resolution(c, m), 100 * tol * csf_contact_scale(c, m));
+}
+
+static int hops(const cpair *c, const double *m, double vn, double an, double tol)
+{
+	return an < 0 && vn * vn / (-2 * an) <= too_low(c, m, tol);
+}
+
+/*
+ * After an impact (whose impulses are normal: impacts are frictionless),
+ * each pair in contact whose relative velocity it changed (from W_VR) takes
+ * its mode afresh from the velocity it is left with. It separates if its
+ * bodies move apart (a pair in contact takes no impulse that would pull,
+ * and may be left separating: a ball struck from below its centre leaves
+ * the table), unless they part so slowly that the hop that follows would
+ * end within the Zeno time (at_rest, with the relative normal acceleration
+ * that the pair's normal force alone would leave: an overestimate among
+ * several contacts): such a parting is the rounding of the impulses (some
+ * 1e-9 of the impact's speed among masses 1e7 apart), and the pair stays
+ * in contact. In contact, it slides the way it now slips or,
+ * if it no longer slips, sticks (until static friction cannot hold). Its
+ * mode from before the impact would keep it in contact as it moves away,
+ * hold it at the new velocity (sticking), or stop it by an impulse of
+ * friction (sliding, the slip turned back).
+ */
+static void after_impact(csf_contacts *cs, double *m, double zeno)
+{
+	for (uint32_t i = 0; i < cs->n; i++) {
+		cpair *c = &cs->pairs[i];
+		double n[3], curv, vr[3];
+		if (!in_contact(c)) continue;
+		rel(c, m, I(c, V), J(c, V), vr);
+		if (memcmp(vr, WV(c, VR), sizeof vr) == 0) continue;
+		csf_contact_geometry(c, m, n, &curv);
+		double vn = dot3(vr, n), an = -W(c, LAM) * (inv_mass_i(c, m) + inv_mass_j(c, m));
+		if (vn > 0 && !at_rest(c, m, vn, an, zeno)) separate(c, m);
+		else enter_contact(c, m, n);
+	}
+}
+
+/* Do pairs c and d share a body (a plane is no body: it does not move)? */
+static int share_body(const cpair *c, const cpair *d)
+{
+	uint32_t ci = I(c, POS), cj = c->plane ? 0 : J(c, POS), di = I(d, POS), dj = d->plane ? 0 : J(d, POS);
+	return c != d && (ci == di || ci == dj || (cj && (cj == di || cj == dj)));
+}
+
+/* Is a body of pair c in contact with, or touching, a third one? */
+static int crowded(csf_contacts *cs, const double *m, const cpair *c)
+{
+	for (uint32_t i = 0; i < cs->n; i++) {
+		cpair *d = &cs->pairs[i];
+		double n[3], curv;
+		if (share_body(c, d) && (in_contact(d) || touching(d, m, csf_contact_geometry(d, m, n, &curv)))) return 1;
+	}
+	return 0;
+}
+
+/*
+ * How a touching pair goes on that separates at normal speed v >= 0 with
+ * relative normal acceleration an (after its impact, lifted off by
+ * another's, or at the start): at rest in contact (at_rest), on a hop too
+ * low for the positions to follow (hops), followed by its flight time, or
+ * apart. A low hop among several touching bodies (a ball on a ball on the
+ * floor; a ball lifted off by an impact, which touches the body that hit
+ * it) is a rest: the impulses that follow are passed on within this
+ * instant.
+ */
+enum { FLIES, HOPS, RESTS };
+
+static int departure(csf_contacts *cs, const double *m, const cpair *c, double v, double an, double zeno, double tol)
+{
+	if (at_rest(c, m, v, an, zeno)) return RESTS;
+	if (!hops(c, m, v, an, tol)) return FLIES;
+	return crowded(cs, m, c) ? RESTS : HOPS;
+}
+
+/* Hops from time t at normal speed v >= 0 (an < 0): it lands after 2 v/|an|. */
+static void hop(cpair *c, double t, double v, double an)
+{
+	W(c, MODE) = HOPPING;
+	W(c, TL) = t + 2 * v / -an;
+}
+
+/*
+ * The impacts csf_contact_settle follows at one instant before it gives
+ * up: each is one pass (an evaluation and a look at the n pairs), and
+ * impacts propagate pair by pair. A light ball between heavy ones goes back
+ * and forth between them some pi sqrt(M/m) times (as the block on a wall
+ * counts pi's digits), so a bound of 1e6/(n + 1) beyond 100 + 10 n admits
+ * mass ratios up to about 1e9 in a small scene, in well under a second.
+ */
+uint64_t csf_contact_passes(uint32_t n)
+{
+	return 100 + 10 * (uint64_t)n + 1000000 / ((uint64_t)n + 1);
+}
+
+int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, csf_eval_fn eval, void *ctx)
+{
+	csf_contacts *cs = p->crun;
+	if (!cs) return 0;
+	/* each pass evaluates the forces and guards of the current modes, then acts on what they say */
+	/* impacts, up to csf_contact_passes; other changes of mode (rest, lift-off, stick, slip),
+	   up to 100 + 10 n passes in all, after which the modes stand as they are (if they are
+	   not consistent, the events that follow at this instant say so: csfvm(1)) */
+	uint64_t hits = 0, others = 0;
+	for (;;) {
+		if (eval(ctx)) return -1;
+		/* the most violent impact first; each changes velocities, so look again */
+		long hit = -1;
+		double worst = 0;
+		int changed = 0;
+		for (uint32_t i = 0; i < cs->n; i++) {
+			cpair *c = &cs->pairs[i];
+			if (in_contact(c)) continue;
+			double n[3], curv, vr[3], ar[3];
+			double gap = csf_contact_geometry(c, m, n, &curv);
+			int landing = 0;
+			if (W(c, MODE) == HOPPING) { /* nothing until it lands (it may have been knocked away) */
+				if (W(c, G0) >= 0) continue;
+				W(c, MODE) = APART;
+				changed = 1;
+				/* its positions are no closer than that; past the plane's edge it falls */
+				landing = gap <= too_low(c, m, tol) && csf_contact_inside(c, m) > 0;
+			}
+			if (!landing && !touching(c, m, gap)) continue;
+			rel(c, m, I(c, V), J(c, V), vr);
+			rel(c, m, I(c, A), J(c, A), ar);
+			double vn = dot3(vr, n), an = dot3(ar, n) + curv;
+			if (vn < 0) {
+				if (vn < worst) worst = vn, hit = (long)i;
+				continue;
+			}
+			if (gap < 0) close_gap(c, m, n, gap), gap = 0; /* apart by rounding: arm its guard */
+			if (hit >= 0) continue;
+			int how = departure(cs, m, c, vn, an, zeno, tol);
+			if (how == RESTS) { /* pressed together, at rest: contact */
+				close_gap(c, m, n, gap);
+				for (int k = 0; k < 3; k++) vr[k] = -vn * n[k];
+				csf_contact_add_impulse(c, m, vr);
+				enter_contact(c, m, n);
+				changed = 1;
+			} else if (how == HOPS) { /* alone, parting a little (at the start) */
+				hop(c, m[p->tslot], vn, an);
+				changed = 1;
+			}
+		}
+		if (hit >= 0) {
+			if (++hits > csf_contact_passes(cs->n)) return CSF_SETTLE_ENDLESS;
+			cpair *c = &cs->pairs[hit];
+			double n[3], curv, vr[3], ar[3];
+			double gap = csf_contact_geometry(c, m, n, &curv);
+			rel(c, m, I(c, V), J(c, V), vr);
+			rel(c, m, I(c, A), J(c, A), ar);
+			double vn = dot3(vr, n), an = dot3(ar, n) + curv, sep = -restitution(c, m) * vn;
+			int how = sep == 0 ? RESTS : departure(cs, m, c, sep, an, zeno, tol);
+			csf_contact_before_impact(cs, m);
+			if (csf_contact_collide(cs, m, c, how == RESTS ? 0 : sep, vn)) return CSF_SETTLE_IMPULSES;
+			after_impact(cs, m, zeno);
+			close_gap(c, m, n, gap);
+			if (how == RESTS) enter_contact(c, m, n);
+			else if (how == HOPS) hop(c, m[p->tslot], sep, an);
+			for (uint32_t i = 0; i < cs->n; i++) /* flights whose velocities just changed */
+				if (share_body(c, &cs->pairs[i]) && W(&cs->pairs[i], MODE) == HOPPING)
+					W(&cs->pairs[i], MODE) = APART;
+			continue;
+		}
+		/* a guard of a pair in contact that is negative: its transition (contact_int.h's header) */
+		for (uint32_t i = 0; i < cs->n; i++) {
+			cpair *c = &cs->pairs[i];
+			if (!in_contact(c)) continue;
+			if (W(c, G0) < 0) separate(c, m), changed = 1;
+			else if (W(c, G1) < 0) (W(c, MODE) == SLIDING ? stick : slide)(c, m), changed = 1;
+		}
+		if (!changed || ++others >= 100 + 10 * (uint64_t)cs->n) return 0;
+	}
+}
