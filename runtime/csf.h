@@ -120,7 +120,7 @@ typedef struct csf_event { uint32_t kind, value, mode, src; } csf_event;
 #define CSF_EVENT_TERMINAL 2u
 
 /*
- * The contact routine's tables (mechanics/rules, rules 1 to 4; contact.c).
+ * The contact routine's tables (mechanics/rules, rules 1 to 4; runtime/contact/).
  * There is no list of pairs: the program lists the bodies that can touch,
  * and the routine finds the pairs near or in contact at run time.
  *
@@ -149,7 +149,7 @@ typedef struct csf_cbody { uint32_t plane, object, varies, s[CSF_CF_N]; } csf_cb
  * by their $0's place in its list, then their $1's.
  */
 typedef struct csf_crule { uint32_t src, every, first0, n0, first1, n1; } csf_crule;
-/* The run-time state of the contact routine: the candidate pairs and their modes (contact.c). */
+/* The run-time state of the contact routine: the candidate pairs and their modes (runtime/contact/broad.c). */
 typedef struct csf_contacts csf_contacts;
 
 /*
@@ -277,7 +277,7 @@ typedef int (*csf_exec_fn)(const csf_prog *p, int sec, double *m, const double *
 int csf_vm_exec(const csf_prog *p, int sec, double *m, const double *y, double *dydt);
 
 /*
- * The contact routine (the CONTACT instruction; contact.c), on the
+ * The contact routine (the CONTACT instruction; runtime/contact/force.c), on the
  * candidate pairs of p->crun (nothing when it is NULL): for every pair in
  * contact, the normal force that keeps the relative normal acceleration
  * zero and the friction force of its mode, added to both bodies' a, FN and

@@ -12,7 +12,7 @@
 /*
  * A guard is a continuous function of t and the state that is >= 0 while
  * the current mode holds: for a conditional rule's comparison, its value
- * on the side it was last found on; for a contact, see contact.c. After
+ * on the side it was last found on; for a contact, see runtime/contact/. After
  * each step the guards are checked at its end and at three points of the
  * step's cubic Hermite interpolant (so that a guard which dips below zero
  * and back within one step is seen). A guard that was >= 0 at the step's
@@ -87,7 +87,7 @@ int room_for_guards(run *r, size_t ng)
 }
 
 /*
- * Chooses the candidate contacts for the ns states ys (contact.c): the
+ * Chooses the candidate contacts for the ns states ys (runtime/contact/broad.c): the
  * instants at which their guards will be looked at. The guard vectors
  * g[0..ng) (ga, gb) become those of the new candidates, a new pair's
  * computed from state gy[q]. 0, or -1 when memory runs out.

@@ -165,7 +165,7 @@ static stop run_guard(session *S, csf_opts *o)
 			csf_ode_watch(S->au.m[1], step_watch, &S->wc_stiff);
 		}
 	}
-	/* a train of bounces that would end within zeno is at rest; the integrator's accuracy (contact.c) */
+	/* a train of bounces that would end within zeno is at rest; the integrator's accuracy (runtime/contact/) */
 	r->zeno = 1e-6 * p->by;
 	r->tol = o->tol > 0 ? o->tol : csf_method_tol(S->method);
 	return stop_kind_only(STOP_END);
