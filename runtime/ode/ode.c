@@ -226,12 +226,18 @@ static void live_grow(csf_ode *o, const double *y)
 	}
 }
 
-static void live_start(csf_ode *o, const double *y)
+/* The scales at their floor, before any state has been seen. */
+static void live_init(csf_ode *o)
 {
-	if (o->live_set) return;
 	o->live_set = 1;
 	for (size_t i = 0; i < o->n; i++)
 		if (!o->fixed_atol[i]) o->live[i] = LIVE_FLOOR * o->base[i];
+}
+
+static void live_start(csf_ode *o, const double *y)
+{
+	if (o->live_set) return;
+	live_init(o);
 	live_grow(o, y);
 }
 
@@ -517,6 +523,14 @@ void csf_ode_restart(csf_ode *o)
 		gsl_odeiv2_evolve_reset(o->drv->e);
 		gsl_odeiv2_step_reset(o->drv->s);
 	}
+}
+
+void csf_ode_take_scale(csf_ode *o, const csf_ode *from)
+{
+	if (!from->live_set || o->n != from->n) return;
+	if (!o->live_set) live_init(o);
+	for (size_t i = 0; i < o->n; i++)
+		if (!o->fixed_atol[i] && from->live[i] > o->live[i]) o->live[i] = from->live[i];
 }
 
 void csf_ode_stats(const csf_ode *o, unsigned long *steps, unsigned long *rejected)

@@ -104,6 +104,13 @@ int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out
 /* Forgets the history of the integration: the state jumped (an event). */
 void csf_ode_restart(csf_ode *o);
 
+/*
+ * o's error scales become at least those from has reached (each component's
+ * largest size so far, within its bounds: ode.c): for a method that takes
+ * over from another over the same state (--method auto).
+ */
+void csf_ode_take_scale(csf_ode *o, const csf_ode *from);
+
 /* Steps taken and rejected so far. */
 void csf_ode_stats(const csf_ode *o, unsigned long *steps, unsigned long *rejected);
 

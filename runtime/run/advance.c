@@ -108,8 +108,9 @@ int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed, double
 /*
  * --method auto: the other method takes the steps from (r->ti, r->yi) on,
  * restarted there (no history: the state is the one the last step ended
- * at), with a first step from its estimate. 0, or CSF_ODE_STOPPED if f
- * failed there.
+ * at), with the error scales the first one has reached (the sizes the
+ * state has had so far) and a first step from its estimate. 0, or
+ * CSF_ODE_STOPPED if f failed there.
  */
 static int switch_method(run *r)
 {
@@ -117,6 +118,7 @@ static int switch_method(run *r)
 	csf_ode *to = au->m[!au->cur];
 	au->want = 0, au->soft = 0;
 	csf_ode_restart(to);
+	csf_ode_take_scale(to, au->m[au->cur]);
 	if (csf_ode_first_step(to, r->ti, r->yi)) return CSF_ODE_STOPPED;
 	r->fail = 0; /* an Euler step of the estimate that failed was tried again shorter */
 	au->cur = !au->cur;
