@@ -41,12 +41,16 @@ int take_event(run *r, csf_ode *ode, double t, double *y)
 	return 0;
 }
 
+/* Has the run spent more evaluations than its budget (csf_opts.max_rhs)? */
+static int over_budget(const run *r) { return r->max_rhs && r->nrhs > r->max_rhs; }
+
 /* Advances (*t, y) to t1 by adaptive steps, at most MAX_WORK of them. */
 int advance_plain(run *r, csf_ode *ode, double *t, double t1, double *y, char *msg, size_t msglen)
 {
 	for (unsigned long work = 0; *t < t1; work++) {
 		double ta = *t;
 		if (work == MAX_WORK) return ADV_TOO_MUCH;
+		if (over_budget(r)) return ADV_BUDGET;
 		int st = csf_ode_step(ode, t, t1, 0, 0, y, msg, msglen);
 		if (st != CSF_ODE_OK) return st;
 		r->last_h = *t - ta;
@@ -83,6 +87,7 @@ int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed, double
 		double ta = *t, best;
 		long which;
 		if (++work > MAX_WORK) return ADV_TOO_MUCH;
+		if (over_budget(r)) return ADV_BUDGET;
 		memcpy(r->ya, y, n * sizeof *y);
 		st = csf_ode_step(ode, t, t1, fixed, h, y, msg, msglen);
 		if (st != CSF_ODE_OK) return st;
@@ -156,6 +161,7 @@ int advance_dense(run *r, double tk, double *y, char *msg, size_t msglen)
 		double ta = r->ti, te;
 		long which;
 		if (++work > MAX_WORK) return ADV_TOO_MUCH;
+		if (over_budget(r)) return ADV_BUDGET;
 		int st;
 		if (r->pending && (st = take_event(r, ode, r->ti, r->yi))) {
 			if (st == ADV_TERMINAL) memcpy(y, r->yi, n * sizeof *y);

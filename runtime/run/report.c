@@ -213,6 +213,9 @@ int report_stop(run *r, const stop *s, int fixed, FILE *err)
 	case STOP_CHATTER:
 		report_chatter(r, s, tb, err);
 		return 1;
+	case STOP_BUDGET:
+		fprintf(err, "error: at t=%s, over the budget of %lu right-hand side evaluations\n", tb, r->max_rhs);
+		return 1;
 	case STOP_FAILED:
 		fprintf(err,
 		        "error: integration failed at t=%s: %s (the step size collapsed: the solution may be "

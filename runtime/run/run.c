@@ -255,6 +255,9 @@ static stop advance_stop(session *S, int st, double t, double tk)
 		/* stiff only when measured so: the step at the stability limit of the guard's last look */
 		s.hs = r->g && S->gd.checks && !S->fixed && !S->au.cur ? stable_step(r, S->ode, &S->gd.last) : INFINITY;
 		break;
+	case ADV_BUDGET:
+		s.kind = STOP_BUDGET;
+		break;
 	case ADV_CHATTER:
 		s.kind = STOP_CHATTER;
 		s.msg = S->msg;
@@ -478,7 +481,7 @@ static void run_free(session *S)
 
 int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, const csf_sink *sink, FILE *err)
 {
-	session S = { .r = { .p = p, .exec = exec }, .out = out, .sink = sink };
+	session S = { .r = { .p = p, .exec = exec, .max_rhs = o->max_rhs }, .out = out, .sink = sink };
 	S.wc.r = S.wc_stiff.r = &S.r;
 	/* --method auto (the default, but for fixed steps and large scenes: dop853) is dop853 with
 	   AUTO_STIFF beside it */

@@ -23,6 +23,7 @@ typedef struct run {
 	double fail_t; /* time of a non-finite derivative */
 	int fail;
 	unsigned long nrhs, njac; /* evaluations, for --stats */
+	unsigned long max_rhs;    /* csf_opts.max_rhs: past it, ADV_BUDGET (0: no limit) */
 	unsigned long nevents;
 	long last; /* the guard of the last event */
 	uint32_t last_src; /* its rule's statement */
@@ -63,9 +64,10 @@ typedef struct run {
  * modes switch back and forth at one instant (ADV_CHATTER); more than
  * MAX_WORK steps (and events) in one output interval (ADV_TOO_MUCH), a run
  * that cannot get on, halted instead of hanging; a 'stop when' condition
- * became true (ADV_TERMINAL, at r->stop_t). csf_run turns it into a stop.
+ * became true (ADV_TERMINAL, at r->stop_t); more right-hand side
+ * evaluations than r->max_rhs (ADV_BUDGET). csf_run turns it into a stop.
  */
-enum adv_status { ADV_CHATTER = CSF_ODE_HALTED + 1, ADV_TOO_MUCH, ADV_TERMINAL };
+enum adv_status { ADV_CHATTER = CSF_ODE_HALTED + 1, ADV_TOO_MUCH, ADV_TERMINAL, ADV_BUDGET };
 enum { MAX_WORK = 1000000 };
 
 /*
@@ -87,6 +89,7 @@ typedef enum stop_kind {
 	STOP_TOO_MUCH,     /* ADV_TOO_MUCH at t, since the row at t_row (hs: the largest stable step, or INFINITY): 1 */
 	STOP_CHATTER,      /* ADV_CHATTER at t (msg; the event r->last): 1 */
 	STOP_FAILED,       /* the integration failed at t (msg): 1 */
+	STOP_BUDGET,       /* ADV_BUDGET at t: 1 */
 } stop_kind;
 
 typedef struct stop {
