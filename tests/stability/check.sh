@@ -13,7 +13,9 @@
 #    the first 100 steps, naming the stiffness ratio 1e6;
 #  - --stats reports rho, the stiffness ratio and h*rho against the limit;
 #  - --method auto (the default) switches to bsimp on the stiff scene, and keeps
-#    dop853's rows on one that is not.
+#    dop853's rows on one that is not;
+#  - --compare-methods on the stiff scene: an exact reference, auto and bsimp
+#    rows that agree with it, rk8pd's rows over budget.
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3
 pass=0 fail=0
@@ -118,6 +120,18 @@ if [ $st -eq 0 ] && grep -q "^stats: method auto (dop853), " "$T/st.err" && ! gr
 then ok; else bad "oscillator at the defaults: $(cat "$T/st.err")"; fi
 run oscillator --method dop853
 if [ $st -eq 0 ] && cmp -s "$T/st.csv" "$T/st_default.csv"; then ok; else bad "oscillator: auto's rows are not dop853's"; fi
+
+# 8. --compare-methods on the stiff scene: the reference (auto at 1e-13) is the exact e^-t at the
+# last row to 1e-9; auto's and bsimp's rows agree with it, at 1e-10, to 1e-9; rk8pd cannot get on
+# and every one of its rows says "over budget" (100 times the reference's evaluations, at least 1e6)
+run stiff --method auto --tol 1e-13
+ref_ok=$(tail -n 1 "$T/st.csv" | awk -F, '{ e = exp(-$1); d = $2 - e; if (d < 0) d = -d; print (d < 1e-9 * e) }')
+run stiff --compare-methods
+if [ $st -eq 0 ] && [ "$ref_ok" = 1 ] && grep -q "^reference: auto at tol 1e-13" "$T/st.csv" &&
+	awk '($1 == "auto" || $1 == "bsimp") && $2 == "1e-10" { n++; if ($6 + 0 < 1e-9 && $6 ~ /^[0-9.e+-]+$/) good++ }
+		$1 == "rk8pd" { r++; if ($6 " " $7 == "over budget") over++ }
+		END { exit !(n == 2 && good == 2 && r == 5 && over == 5) }' "$T/st.csv"
+then ok; else bad "--compare-methods on the stiff scene: exit $st, reference exact: $ref_ok, $(head -n 4 "$T/st.csv" | tr '\n' ' ')"; fi
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
