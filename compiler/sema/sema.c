@@ -35,16 +35,34 @@
 
 /* ---- state of the pass ---- */
 
-static Model *M;
-static Map objects_by_name, globals_by_name, kinds, temps, prop_names, vector_decls;
-static int def_counter;
-static int shaped;             /* resolving once per shape (sema_run's first attempt) */
-static const char *unshaped;   /* why the model cannot be: the attempt is given up */
+/* The state of one resolution (sema_run resolves twice: by shape, then, if need be, by object);
+ * sema_reset starts it anew. */
+typedef struct Sema {
+	Model *M;
+	Map objects_by_name, globals_by_name, kinds, temps, prop_names, vector_decls;
+	int def_counter;
+	int shaped;             /* resolving once per shape (sema_run's first attempt) */
+	const char *unshaped;   /* why the model cannot be: the attempt is given up */
+	int cur_src;            /* source entry of the statement being instantiated */
+	Map watched;            /* names in the watch list, and OBJECT\x01NAME */
+	Vec *cur_insts;         /* where the instances of rules, assertions and stops go */
+	Vec deriv_insts;        /* the derivative rules' instances, resolved after the others */
+} Sema;
+
+static Sema sema;
+
+/* Starts a resolution: nothing defined yet, a new model; shaped: once per shape. */
+static void sema_reset(int shaped)
+{
+	sema = (Sema){ 0 };
+	sema.M = xalloc(sizeof *sema.M);
+	sema.shaped = shaped;
+}
 
 /* Gives up resolving by shape (the model is resolved again, object by object). */
 static void unshape(const char *why)
 {
-	if (!unshaped) unshaped = why;
+	if (!sema.unshaped) sema.unshaped = why;
 }
 
 static const char *const predefined_names[] = { "t", "RF", NULL };
@@ -216,8 +234,8 @@ static char *temp_key(const char *name, Object **bind, int nbind)
 /* The temporary `name` of a binding: the tuple's own, else $0's. */
 static Var *find_temp(const char *name, Object **bind, int nbind)
 {
-	Var *v = map_get(&temps, temp_key(name, bind, nbind));
-	if (!v && nbind > 1) v = map_get(&temps, temp_key(name, bind, 1));
+	Var *v = map_get(&sema.temps, temp_key(name, bind, nbind));
+	if (!v && nbind > 1) v = map_get(&sema.temps, temp_key(name, bind, 1));
 	return v;
 }
 
@@ -258,9 +276,9 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 			break;
 		}
 	/* by shape, a member stands for its shape: the representative's variables, at o's place */
-	if (shaped && o && !C->init && o->sidx) o = o->shape->members[0];
+	if (sema.shaped && o && !C->init && o->sidx) o = o->shape->members[0];
 	if (!explicit_obj) {
-		if (strcmp(name, "t") == 0) return var_ref(C, M->time, l, -1);
+		if (strcmp(name, "t") == 0) return var_ref(C, sema.M->time, l, -1);
 		if (strcmp(name, "RF") == 0) {
 			if (C->init || !o) {
 				error_at(l, "RF is only defined in rules");
@@ -274,7 +292,7 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 			add_unique(C->rf, o);
 			return e;
 		}
-		Var *g = map_get(&globals_by_name, name);
+		Var *g = map_get(&sema.globals_by_name, name);
 		if (g) return var_ref(C, g, l, -1);
 	}
 	if (o) {
@@ -292,9 +310,9 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 		C->failed = 1;
 		return rconst(0, l);
 	}
-	if (map_get(&prop_names, name) || explicit_obj) {
+	if (map_get(&sema.prop_names, name) || explicit_obj) {
 		if (explicit_obj) {
-			Var *t = map_get(&temps, temp_key(name, &o, 1));
+			Var *t = map_get(&sema.temps, temp_key(name, &o, 1));
 			if (t) return var_ref(C, t, l, -1);
 			error_at(l, "object '%s' has no property '%s'", o->name, name);
 		}
@@ -323,10 +341,10 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 		t->obj = o;
 		t->loc = l;
 		t->slot = -1;
-		t->isvec = map_get(&vector_decls, name) != NULL;
+		t->isvec = map_get(&sema.vector_decls, name) != NULL;
 		t->key = temp_key(name, bind, nbind);
 		t->pair = nbind > 1;
-		t->order = def_counter++;
+		t->order = sema.def_counter++;
 		vec_push(C->pending, t);
 	}
 	return var_ref(C, t, l, place);
@@ -341,7 +359,7 @@ static void type_error(Ctx *C, Loc l, const char *msg)
 /* A temporary no rule has determined yet takes the type its use asks for. */
 static int infer_vector(RExpr *r)
 {
-	if (r->k != R_VAR || r->var->kind != V_TEMP || determined(r->var) || map_get(&temps, r->var->key)) return 0;
+	if (r->k != R_VAR || r->var->kind != V_TEMP || determined(r->var) || map_get(&sema.temps, r->var->key)) return 0;
 	r->isvec = r->var->isvec = 1;
 	return 1;
 }
@@ -464,8 +482,8 @@ static RExpr *build(Ctx *C, Expr *x)
 		return build_name(C, x, x->name, C->bind[x->n], 0);
 	case E_FIELD: {
 		if (x->a->kind == E_NAME) {
-			Object *o = map_get(&objects_by_name, x->a->name);
-			if (o && !(C->bind && prop_of(C->bind[0], x->a->name)) && !map_get(&globals_by_name, x->a->name))
+			Object *o = map_get(&sema.objects_by_name, x->a->name);
+			if (o && !(C->bind && prop_of(C->bind[0], x->a->name)) && !map_get(&sema.globals_by_name, x->a->name))
 				return build_name(C, x, x->name, o, 1);
 		}
 		RExpr *r = build(C, x->a);
@@ -562,9 +580,9 @@ static Var *new_global(const char *name, int isvec, const double *v, Loc l)
 	memcpy(g->init, v, sizeof g->init);
 	g->loc = l;
 	g->slot = -1;
-	g->order = def_counter++;
-	vec_push(&M->globals, g);
-	map_put(&globals_by_name, g->name, g);
+	g->order = sema.def_counter++;
+	vec_push(&sema.M->globals, g);
+	map_put(&sema.globals_by_name, g->name, g);
 	return g;
 }
 
@@ -585,11 +603,11 @@ static void predefine_const(const char *name, int isvec, const double *si, doubl
 
 static void predefine(void)
 {
-	M->time = xalloc(sizeof *M->time);
-	M->time->kind = V_TIME;
-	M->time->name = "t";
-	M->time->slot = -1;
-	set_dim(M->time, DK_KNOWN, (double[CSF_NDIM]){ 0, 0, 1, 0 });
+	sema.M->time = xalloc(sizeof *sema.M->time);
+	sema.M->time->kind = V_TIME;
+	sema.M->time->name = "t";
+	sema.M->time->slot = -1;
+	set_dim(sema.M->time, DK_KNOWN, (double[CSF_NDIM]){ 0, 0, 1, 0 });
 	predefine_const("g", 1, (double[3]){ 0, 0, -GSL_CONST_MKSA_GRAV_ACCEL }, 1, 0, -2);
 	predefine_const("G", 0, (double[3]){ GSL_CONST_MKSA_GRAVITATIONAL_CONSTANT, 0, 0 }, 3, -1, -2);
 	predefine_const("c", 0, (double[3]){ GSL_CONST_MKSA_SPEED_OF_LIGHT, 0, 0 }, 1, 0, -1);
@@ -624,19 +642,19 @@ static RExpr *const_value(Expr *x, Object *obj, const char *name, int fold, int 
 
 static Object *get_object(const char *name, Loc l)
 {
-	Object *o = map_get(&objects_by_name, name);
+	Object *o = map_get(&sema.objects_by_name, name);
 	if (o) return o;
 	if (!check_name(name, l, "an object")) return NULL;
-	if (map_get(&globals_by_name, name)) {
+	if (map_get(&sema.globals_by_name, name)) {
 		error_at(l, "'%s' is a global and cannot name an object", name);
 		return NULL;
 	}
 	o = xalloc(sizeof *o);
 	o->name = (char *)name;
 	o->loc = l;
-	o->index = M->objects.n;
-	vec_push(&M->objects, o);
-	map_put(&objects_by_name, o->name, o);
+	o->index = sema.M->objects.n;
+	vec_push(&sema.M->objects, o);
+	map_put(&sema.objects_by_name, o->name, o);
 	return o;
 }
 
@@ -687,7 +705,7 @@ static void set_atol(Object *o, Var *p, Stmt *s)
 static void set_prop(Object *o, Stmt *s, int from_kind)
 {
 	if (!check_name(s->prop, s->prop_loc, "a property")) return;
-	if (map_get(&globals_by_name, s->prop)) {
+	if (map_get(&sema.globals_by_name, s->prop)) {
 		error_at(s->prop_loc, "'%s' is a global constant; a property cannot have the same name", s->prop);
 		return;
 	}
@@ -727,14 +745,14 @@ static void set_prop(Object *o, Stmt *s, int from_kind)
 	memcpy(p->init, r->c, sizeof p->init);
 	p->loc = s->prop_loc;
 	p->slot = -1;
-	p->order = def_counter++;
+	p->order = sema.def_counter++;
 	p->from_kind = from_kind;
 	fix_derived(p, read, s->prop_loc.line);
 	if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
 	set_atol(o, p, s);
 	vec_push(&o->props, p);
 	map_put(&o->props_by_name, p->name, p);
-	map_put(&prop_names, p->name, p);
+	map_put(&sema.prop_names, p->name, p);
 }
 
 static void build_objects(Stmt *stmts)
@@ -747,13 +765,13 @@ static void build_objects(Stmt *stmts)
 			Var *read;
 			RExpr *r = const_value(s->value, NULL, s->name, FIX_FOLDED, s->name_loc.line, &ok, &read);
 			if (!ok) break;
-			Var *g = map_get(&globals_by_name, s->name);
+			Var *g = map_get(&sema.globals_by_name, s->name);
 			if (g) {
 				if (!override_ok(s->value->loc, xprintf("'%s'", s->name), g, r)) break;
 				memcpy(g->init, r->c, sizeof g->init);
 				g->loc = s->name_loc;
 				fix_derived(g, read, s->name_loc.line);
-			} else if (map_get(&objects_by_name, s->name) || map_get(&prop_names, s->name)) {
+			} else if (map_get(&sema.objects_by_name, s->name) || map_get(&sema.prop_names, s->name)) {
 				error_at(s->name_loc, "'%s' already names an object or a property", s->name);
 			} else {
 				Var *ng = new_global(s->name, r->isvec, r->c, s->name_loc);
@@ -763,14 +781,14 @@ static void build_objects(Stmt *stmts)
 			break;
 		}
 		case S_DEF:
-			if (map_get(&kinds, s->name)) {
+			if (map_get(&sema.kinds, s->name)) {
 				error_at(s->name_loc, "kind '%s' is already defined", s->name);
 				break;
 			}
-			map_put(&kinds, s->name, s);
+			map_put(&sema.kinds, s->name, s);
 			break;
 		case S_OBJKIND: {
-			Stmt *k = map_get(&kinds, s->prop);
+			Stmt *k = map_get(&sema.kinds, s->prop);
 			if (!k) {
 				error_at(s->prop_loc, "unknown kind '%s'", s->prop);
 				break;
@@ -824,7 +842,7 @@ static int mark_named(Expr *x, void *named)
 {
 	if (!x) return 1;
 	if (x->kind == E_FIELD && x->a->kind == E_NAME) {
-		Object *o = map_get(&objects_by_name, x->a->name);
+		Object *o = map_get(&sema.objects_by_name, x->a->name);
 		if (o) map_put(named, o->name, o);
 	}
 	mark_named(x->a, named);
@@ -843,26 +861,26 @@ static int mark_named(Expr *x, void *named)
 static void build_shapes(Stmt *start)
 {
 	Map named = { 0 }, by_sig = { 0 };
-	for (int i = 0; i < M->stmts.n; i++) { /* the rules and assertions */
-		Stmt *s = M->stmts.v[i];
+	for (int i = 0; i < sema.M->stmts.n; i++) { /* the rules and assertions */
+		Stmt *s = sema.M->stmts.v[i];
 		stmt_each(s, mark_named, &named);
 		for (int i = 0; i < s->fors.n; i++) {
 			ObjRef *r = s->fors.v[i];
-			Object *o = r->name ? map_get(&objects_by_name, r->name)
-			                    : (r->index < M->objects.n ? M->objects.v[r->index] : NULL);
+			Object *o = r->name ? map_get(&sema.objects_by_name, r->name)
+			                    : (r->index < sema.M->objects.n ? sema.M->objects.v[r->index] : NULL);
 			if (o) map_put(&named, o->name, o);
 		}
 	}
 	for (int i = 0; start && i < start->watch.n; i++) {
 		WatchItem *w = start->watch.v[i];
-		Object *o = w->obj ? map_get(&objects_by_name, w->obj) : NULL;
+		Object *o = w->obj ? map_get(&sema.objects_by_name, w->obj) : NULL;
 		if (o && !prop_of(o, w->prop)) map_put(&named, o->name, o);
 	}
-	for (int i = 0; i < M->objects.n; i++) {
-		Object *o = M->objects.v[i];
+	for (int i = 0; i < sema.M->objects.n; i++) {
+		Object *o = sema.M->objects.v[i];
 		char *sig = NULL;
 		ArenaMark mark = arena_mark();
-		if (shaped && !map_get(&named, o->name)) {
+		if (sema.shaped && !map_get(&named, o->name)) {
 			/* each property: its name, then type, dimension kind and dimension as hex digits */
 			size_t len = 0;
 			for (int j = 0; j < o->props.n; j++) len += strlen(((Var *)o->props.v[j])->name) + 1 + 2 * (2 + CSF_NDIM * 8);
@@ -885,17 +903,17 @@ static void build_shapes(Stmt *start)
 		if (S) arena_release(mark); /* the signature of a known shape is not kept */
 		if (!S) {
 			S = xalloc(sizeof *S);
-			S->index = M->shapes.n;
-			vec_push(&M->shapes, S);
+			S->index = sema.M->shapes.n;
+			vec_push(&sema.M->shapes, S);
 			if (sig) map_put(&by_sig, sig, S);
 		}
 		o->shape = S;
 		o->sidx = S->n++;
 	}
-	for (int i = 0; i < M->shapes.n; i++) ((Shape *)M->shapes.v[i])->members = NULL;
-	int *fill = xalloc((size_t)M->shapes.n * sizeof *fill);
-	for (int i = 0; i < M->objects.n; i++) {
-		Object *o = M->objects.v[i];
+	for (int i = 0; i < sema.M->shapes.n; i++) ((Shape *)sema.M->shapes.v[i])->members = NULL;
+	int *fill = xalloc((size_t)sema.M->shapes.n * sizeof *fill);
+	for (int i = 0; i < sema.M->objects.n; i++) {
+		Object *o = sema.M->objects.v[i];
 		if (!o->shape->members) o->shape->members = xalloc((size_t)o->shape->n * sizeof(Object *));
 		o->shape->members[fill[o->shape->index]++] = o;
 	}
@@ -958,14 +976,14 @@ static int names_apply(Expr *x, Object **bind, int nbind, const char **missing)
 	if (x->kind == E_NAME || x->kind == E_DOLLAR) {
 		Object *o = x->kind == E_DOLLAR ? (x->n < nbind ? bind[x->n] : NULL) : bind[0];
 		if (!o) return 1;
-		if (x->kind == E_NAME && (is_predefined(x->name) || map_get(&globals_by_name, x->name))) return 1;
-		if (map_get(&prop_names, x->name) && !prop_of(o, x->name)) {
+		if (x->kind == E_NAME && (is_predefined(x->name) || map_get(&sema.globals_by_name, x->name))) return 1;
+		if (map_get(&sema.prop_names, x->name) && !prop_of(o, x->name)) {
 			*missing = x->name;
 			return 0;
 		}
 		return 1;
 	}
-	if (x->kind == E_FIELD && x->a->kind == E_NAME && map_get(&objects_by_name, x->a->name) &&
+	if (x->kind == E_FIELD && x->a->kind == E_NAME && map_get(&sema.objects_by_name, x->a->name) &&
 	    (!bind[0] || !prop_of(bind[0], x->a->name)))
 		return 1;
 	if (!names_apply(x->a, bind, nbind, missing) || !names_apply(x->b, bind, nbind, missing)) return 0;
@@ -1028,9 +1046,9 @@ static void bind_from(Tuples *T, int j, int after)
 	}
 	for (int i = first_greater(T->fit[j], T->nfit[j], after); i < T->nfit[j] && !T->failed; i++) {
 		if (T->fit[j][i] == T->cur[0]->index) continue;
-		T->cur[j] = M->objects.v[T->fit[j][i]];
+		T->cur[j] = sema.M->objects.v[T->fit[j][i]];
 		/* by shape: $1 is another shape's representative, or the second member of $0's */
-		if (shaped && T->cur[j]->sidx == 1 && T->cur[j]->shape != T->cur[0]->shape) continue;
+		if (sema.shaped && T->cur[j]->sidx == 1 && T->cur[j]->shape != T->cur[0]->shape) continue;
 		bind_from(T, j + 1, T->fit[j][i]);
 	}
 }
@@ -1041,7 +1059,7 @@ static void bind_from(Tuples *T, int j, int after)
 static double count_tuples(const Tuples *T)
 {
 	if (T->k == 0) return T->nfit[0];
-	int nobj = M->objects.n;
+	int nobj = sema.M->objects.n;
 	double *next = xalloc(((size_t)nobj + 1) * sizeof *next), *cur = xalloc(((size_t)nobj + 1) * sizeof *cur);
 	for (int i = T->nfit[T->k]; i >= 0; i--) next[i] = T->nfit[T->k] - i; /* suffix sums of ones */
 	for (int j = T->k - 1; j >= 1; j--) {
@@ -1059,15 +1077,15 @@ static double count_tuples(const Tuples *T)
 static int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 {
 	int k = stmt_max_dollar(s);
-	int nobj = M->objects.n;
+	int nobj = sema.M->objects.n;
 	const char *missing = NULL;
 	if (s->has_for) {
 		int n = s->fors.n;
 		Object **bind = xalloc((size_t)n * sizeof *bind);
 		for (int i = 0; i < n; i++) {
 			ObjRef *r = s->fors.v[i];
-			Object *o = r->name ? map_get(&objects_by_name, r->name)
-			                    : (r->index < nobj ? M->objects.v[r->index] : NULL);
+			Object *o = r->name ? map_get(&sema.objects_by_name, r->name)
+			                    : (r->index < nobj ? sema.M->objects.v[r->index] : NULL);
 			if (!o) {
 				if (r->name) error_at(r->loc, "unknown object '%s'", r->name);
 				else error_at(r->loc, "there is no object number %d (objects are numbered from 0)", r->index);
@@ -1093,13 +1111,13 @@ static int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 	}
 	Tuples T = { s, f, k, xalloc((size_t)(k + 1) * sizeof(int *)), xalloc((size_t)(k + 1) * sizeof(int)),
 		     xalloc((size_t)(k + 1) * sizeof(Object *)), 0, 0 };
-	if (shaped && k > 1) unshape("a rule over $1..$k, k > 1");
+	if (sema.shaped && k > 1) unshape("a rule over $1..$k, k > 1");
 	for (int j = 0; j <= k && k < nobj; j++) { /* a tuple has k + 1 different objects */
 		T.fit[j] = xalloc((size_t)nobj * sizeof(int));
 		for (int i = 0; i < nobj; i++) {
 			/* by shape: the representatives, and for $1 the second members */
-			if (shaped && ((Object *)M->objects.v[i])->sidx > (j ? 1 : 0)) continue;
-			T.cur[j] = M->objects.v[i];
+			if (sema.shaped && ((Object *)sema.M->objects.v[i])->sidx > (j ? 1 : 0)) continue;
+			T.cur[j] = sema.M->objects.v[i];
 			if (stmt_applies(s, T.cur, k + 1, &missing)) T.fit[j][T.nfit[j]++] = i;
 			T.cur[j] = NULL;
 		}
@@ -1113,7 +1131,7 @@ static int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 		return -1;
 	}
 	for (int i = 0; i < T.nfit[0] && !T.failed; i++) {
-		T.cur[0] = M->objects.v[T.fit[0][i]];
+		T.cur[0] = sema.M->objects.v[T.fit[0][i]];
 		bind_from(&T, 1, -1);
 	}
 	if (T.failed) return -1;
@@ -1121,8 +1139,8 @@ static int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 		/* the name to report is the one the last tuple lacks: ($0, $1, ..., $k) = (last, last - k, ..., last - 1) */
 		missing = NULL;
 		if (k < nobj) {
-			T.cur[0] = M->objects.v[nobj - 1];
-			for (int j = 1; j <= k; j++) T.cur[j] = M->objects.v[nobj - 1 - k + j - 1];
+			T.cur[0] = sema.M->objects.v[nobj - 1];
+			for (int j = 1; j <= k; j++) T.cur[j] = sema.M->objects.v[nobj - 1 - k + j - 1];
 			stmt_applies(s, T.cur, k + 1, &missing);
 		}
 		const char *what = s->kind == S_ASSERT ? "assertion" : s->kind == S_STOP ? "stop condition" : "rule";
@@ -1138,8 +1156,8 @@ static int add_src(Loc l, char *text)
 	SrcEntry *e = xalloc(sizeof *e);
 	e->loc = l;
 	e->text = text;
-	vec_push(&M->srcs, e);
-	return M->srcs.n - 1;
+	vec_push(&sema.M->srcs, e);
+	return sema.M->srcs.n - 1;
 }
 
 static Inst *new_inst(Stmt *s, Object **bind, int nbind)
@@ -1319,15 +1337,11 @@ static RExpr *solve(RExpr *lhs, RExpr *rhs, Var *x, Loc l, const char *text)
 
 /* ---- resolving one rule instance ---- */
 
-static int cur_src; /* source entry of the statement being instantiated */
-
-static Map watched; /* names in the watch list, and OBJECT\x01NAME */
-
 static int var_class(Var *v)
 {
 	switch (v->kind) {
 	case V_TEMP:
-		if (map_get(&watched, v->name) || (v->obj && map_get(&watched, xprintf("%s\x01%s", v->obj->name, v->name))))
+		if (map_get(&sema.watched, v->name) || (v->obj && map_get(&sema.watched, xprintf("%s\x01%s", v->obj->name, v->name))))
 			return 2; /* a watched temporary ranks with the watched variables */
 		return 1;
 	case V_PROP: return 2;
@@ -1348,10 +1362,10 @@ static const char *class_name(Var *v)
 
 static void register_temp(Var *t)
 {
-	if (map_get(&temps, t->key)) return;
+	if (map_get(&sema.temps, t->key)) return;
 	if (!check_name(t->name, t->loc, "a temporary")) return;
-	map_put(&temps, t->key, t);
-	vec_push(&M->temps, t);
+	map_put(&sema.temps, t->key, t);
+	vec_push(&sema.M->temps, t);
 }
 
 /* What instance I may have meant by u, a temporary no rule determines: a property of its objects
@@ -1362,10 +1376,10 @@ static const char *near_name(Inst *I, Var *u)
 	Vec c = { 0 };
 	for (int b = 0; b < I->nbind; b++)
 		for (int j = 0; j < I->bind[b]->props.n; j++) vec_push(&c, ((Var *)I->bind[b]->props.v[j])->name);
-	for (int j = 0; j < M->globals.n; j++) vec_push(&c, ((Var *)M->globals.v[j])->name);
+	for (int j = 0; j < sema.M->globals.n; j++) vec_push(&c, ((Var *)sema.M->globals.v[j])->name);
 	const char *s = csf_suggest_name(u->name, (const char *const *)c.v, c.n);
-	for (int j = 0; !s && j < M->temps.n; j++) {
-		Var *t = M->temps.v[j];
+	for (int j = 0; !s && j < sema.M->temps.n; j++) {
+		Var *t = sema.M->temps.v[j];
 		if (t != u && !t->pair && t->obj && t->obj != u->obj && !strcmp(t->name, u->name) && determined(t))
 			s = xprintf("%s.%s", t->obj->name, t->name);
 	}
@@ -1445,11 +1459,11 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 		return NULL;
 	}
 	/* A new temporary takes its type from the other side of its equation. */
-	if (x->kind == V_TEMP && !map_get(&temps, x->key)) {
+	if (x->kind == V_TEMP && !map_get(&sema.temps, x->key)) {
 		RExpr *side = lhs->k == R_VAR && lhs->var == x ? lhs : rhs->k == R_VAR && rhs->var == x ? rhs : NULL;
 		if (side) {
 			side->isvec = (side == lhs ? rhs : lhs)->isvec;
-			if (map_get(&vector_decls, x->name) && !side->isvec) {
+			if (map_get(&sema.vector_decls, x->name) && !side->isvec) {
 				error_at(q->loc, "'%s' is declared a vector, but \"%s\" makes it a scalar", x->name, q->text);
 				return NULL;
 			}
@@ -1461,7 +1475,7 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 		         rhs->isvec ? "vector" : "scalar");
 		return NULL;
 	}
-	if (x->kind == V_TEMP && !map_get(&temps, x->key)) register_temp(x);
+	if (x->kind == V_TEMP && !map_get(&sema.temps, x->key)) register_temp(x);
 	RExpr *sol = solve(lhs, rhs, x, q->loc, q->text);
 	if (!sol) return NULL;
 	if (sol->isvec != x->isvec) {
@@ -1469,9 +1483,9 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 		         x->isvec ? "vector" : "scalar");
 		return NULL;
 	}
-	if (shaped && !I->st->has_for && I->nbind > 1 && !(x->kind == V_TEMP && x->pair))
+	if (sema.shaped && !I->st->has_for && I->nbind > 1 && !(x->kind == V_TEMP && x->pair))
 		unshape("a rule over pairs ($1) determines a variable of one object");
-	if (shaped && sema_per_member(x) && (var_places(lhs, x) | var_places(rhs, x)) & ~2u)
+	if (sema.shaped && sema_per_member(x) && (var_places(lhs, x) | var_places(rhs, x)) & ~2u)
 		unshape("a rule determines a variable of $1");
 	Assign *a = xalloc(sizeof *a);
 	a->var = x;
@@ -1522,8 +1536,6 @@ static RExpr *build_cond(Inst *I, Expr *cond, const char *what)
 }
 
 static int stmt_src(Stmt *s) { return add_src(s->loc, s->text); }
-
-static Vec *cur_insts;
 
 static Branch *resolve_block(Inst *I, If *f, Vec *flat0, Vec *flat1);
 
@@ -1586,11 +1598,11 @@ static Branch *resolve_block(Inst *I, If *f, Vec *flat0, Vec *flat1)
 static void inst_rule(Stmt *s, Object **bind, int nbind)
 {
 	Inst *I = new_inst(s, bind, nbind);
-	I->src = cur_src;
+	I->src = sema.cur_src;
 	if (!s->eqns->nest) {
 		if (!resolve_eqn(I, s->eqns, &I->then, I->src)) return;
 	} else {
-		if (shaped && !s->has_for && nbind > 1) unshape("a conditional rule over pairs ($1)");
+		if (sema.shaped && !s->has_for && nbind > 1) unshape("a conditional rule over pairs ($1)");
 		I->top = resolve_block(I, s->eqns->nest, &I->then, &I->els);
 		if (!I->top) return;
 	}
@@ -1602,7 +1614,7 @@ static void inst_rule(Stmt *s, Object **bind, int nbind)
 				return;
 			}
 		}
-	vec_push(cur_insts, I);
+	vec_push(sema.cur_insts, I);
 }
 
 /* Is the rule's call the contact routine, with properties for arguments? Reports if not. */
@@ -1703,20 +1715,20 @@ static int contact_binding(Stmt *s, Object *a, Object *b, CPair *c)
 static ContactBody *contact_cbody(Object *o, int plane, Var **f)
 {
 	char *key = xprintf("%d %p %p %d", o->index, (void *)f[CSF_CF_POS], (void *)f[CSF_CF_R], plane);
-	ContactBody *b = map_get(&M->cbody_keys, key);
+	ContactBody *b = map_get(&sema.M->cbody_keys, key);
 	if (b) return b;
 	b = xalloc(sizeof *b);
-	b->o = o, b->plane = plane, b->index = M->cbodies.n;
+	b->o = o, b->plane = plane, b->index = sema.M->cbodies.n;
 	memcpy(b->f, f, sizeof b->f);
-	vec_push(&M->cbodies, b);
-	map_put(&M->cbody_keys, key, b);
+	vec_push(&sema.M->cbodies, b);
+	map_put(&sema.M->cbody_keys, key, b);
 	return b;
 }
 
 static Contact *new_contact(Stmt *s, int every)
 {
 	Contact *r = xalloc(sizeof *r);
-	r->st = s, r->src = cur_src, r->every = every;
+	r->st = s, r->src = sema.cur_src, r->every = every;
 	return r;
 }
 
@@ -1737,7 +1749,7 @@ static void inst_contact(Stmt *s, Object **bind, int nbind)
 	vec_push(&r->b0, contact_cbody(c.a, 0, c.f[0]));
 	vec_push(&r->b1, contact_cbody(c.b, c.plane, c.f[1]));
 	r->nplanes = c.plane;
-	vec_push(&M->contacts, r);
+	vec_push(&sema.M->contacts, r);
 }
 
 /* What the search for contact bodies knows of an object, as $0 (k = 0) and as $1 (k = 1). */
@@ -1752,13 +1764,13 @@ typedef struct Body {
 /* What contact rule s needs of every object, in an array indexed like M->objects. */
 static Body *contact_bodies(Stmt *s)
 {
-	Body *B = xalloc((size_t)M->objects.n * sizeof *B);
-	for (int i = 0; i < M->objects.n; i++) {
+	Body *B = xalloc((size_t)sema.M->objects.n * sizeof *B);
+	for (int i = 0; i < sema.M->objects.n; i++) {
 		for (int k = 0; k < 2; k++) {
 			Var *geo[2];
-			if (!contact_geo(s, M->objects.v[i], k, geo)) continue;
+			if (!contact_geo(s, sema.M->objects.v[i], k, geo)) continue;
 			CPair c = { 0 };
-			c.a = c.b = M->objects.v[i];
+			c.a = c.b = sema.M->objects.v[i];
 			c.plane = k && geo[1]->isvec;
 			B[i].geo[k] = 1;
 			B[i].bad[k] = !contact_body(&c, k, geo, s, 0) || !contact_integrated(&c, k);
@@ -1806,12 +1818,12 @@ static void first_bad_pair(Body *B, int n, int *ea, int *eb)
  */
 static void contact_pairs(Stmt *s)
 {
-	int n = M->objects.n, ea, eb;
+	int n = sema.M->objects.n, ea, eb;
 	Body *B = contact_bodies(s);
 	first_bad_pair(B, n, &ea, &eb);
 	if (ea < n) {
 		CPair c;
-		contact_binding(s, M->objects.v[ea], M->objects.v[eb], &c);
+		contact_binding(s, sema.M->objects.v[ea], sema.M->objects.v[eb], &c);
 		return;
 	}
 	/* the bodies it applies to (a bad one here has no binding) */
@@ -1828,11 +1840,11 @@ static void contact_pairs(Stmt *s)
 	if (!touch) return;
 	Contact *r = new_contact(s, 1);
 	for (int i = 0; i < n; i++) {
-		if (B[i].geo[0]) vec_push(&r->b0, contact_cbody(M->objects.v[i], 0, B[i].f[0]));
-		if (B[i].geo[1]) vec_push(&r->b1, contact_cbody(M->objects.v[i], B[i].plane, B[i].f[1]));
+		if (B[i].geo[0]) vec_push(&r->b0, contact_cbody(sema.M->objects.v[i], 0, B[i].f[0]));
+		if (B[i].geo[1]) vec_push(&r->b1, contact_cbody(sema.M->objects.v[i], B[i].plane, B[i].f[1]));
 		if (B[i].geo[1] && B[i].plane) r->nplanes++;
 	}
-	vec_push(&M->contacts, r);
+	vec_push(&sema.M->contacts, r);
 }
 
 /*
@@ -1879,9 +1891,9 @@ static int explain_contacts(Model *Mo, Stmt *s, FILE *f)
 /* Every mass point of a contact rule must have its a determined (by Newton's second law). */
 static void contact_accels(void)
 {
-	char *done = xalloc((size_t)M->cbodies.n + 1);
-	for (int i = 0; i < M->contacts.n; i++) {
-		Contact *r = M->contacts.v[i];
+	char *done = xalloc((size_t)sema.M->cbodies.n + 1);
+	for (int i = 0; i < sema.M->contacts.n; i++) {
+		Contact *r = sema.M->contacts.v[i];
 		for (int k = 0; k < 2; k++) {
 			Vec *L = k ? &r->b1 : &r->b0, *O = k ? &r->b0 : &r->b1;
 			for (int j = 0; j < L->n; j++) {
@@ -1901,14 +1913,12 @@ static void contact_accels(void)
 	}
 }
 
-static Vec deriv_insts;
-
 static void inst_deriv(Stmt *s, Object **bind, int nbind)
 {
 	Inst *I = new_inst(s, bind, nbind);
 	I->isderiv = 1;
-	if (shaped && !s->has_for && nbind > 1) unshape("a derivative rule over pairs ($1)");
-	I->src = cur_src;
+	if (sema.shaped && !s->has_for && nbind > 1) unshape("a derivative rule over pairs ($1)");
+	I->src = sema.cur_src;
 	Var *v = prop_of(bind[0], s->eqns->lhs->name);
 	if (!v) {
 		error_at(s->eqns->lhs->loc, "'%s' is not a property of object '%s': only properties can be integrated",
@@ -1922,14 +1932,14 @@ static void inst_deriv(Stmt *s, Object **bind, int nbind)
 	}
 	v->state = 1;
 	v->deriv = I;
-	for (int q = 1; shaped && q < bind[0]->shape->n; q++) { /* every member's is state */
+	for (int q = 1; sema.shaped && q < bind[0]->shape->n; q++) { /* every member's is state */
 		Var *w = prop_of(bind[0]->shape->members[q], v->name);
 		w->state = 1;
 		w->deriv = I;
 	}
 	add_unique(&I->targets, v);
 	I->why = xprintf("integrates %s (state variable)", v->name);
-	vec_push(&deriv_insts, I);
+	vec_push(&sema.deriv_insts, I);
 }
 
 static void resolve_deriv(Inst *I)
@@ -1975,10 +1985,10 @@ static void inst_assert(Stmt *s, Object **bind, int nbind)
 {
 	Inst *I = new_inst(s, bind, nbind);
 	I->isassert = 1;
-	I->src = cur_src;
+	I->src = sema.cur_src;
 	I->cond = build_cond(I, s->cond, "an assertion");
 	if (!I->cond) return;
-	vec_push(cur_insts, I);
+	vec_push(sema.cur_insts, I);
 }
 
 /*
@@ -1990,7 +2000,7 @@ static void inst_stop(Stmt *s, Object **bind, int nbind)
 {
 	Inst *I = new_inst(s, bind, nbind);
 	I->isstop = 1;
-	I->src = cur_src;
+	I->src = sema.cur_src;
 	I->cond = build_cond(I, s->cond, "a stop condition");
 	if (!I->cond) return;
 	int op = I->cond->k == R_OP ? I->cond->op : -1;
@@ -1999,7 +2009,7 @@ static void inst_stop(Stmt *s, Object **bind, int nbind)
 		                       "becomes true (for 'A or B', write 'stop when A' and 'stop when B')");
 		return;
 	}
-	vec_push(cur_insts, I);
+	vec_push(sema.cur_insts, I);
 }
 
 /* ---- the watch list ---- */
@@ -2012,7 +2022,7 @@ static void add_col(Var *v, const char *label, int member)
 		w->comp = c;
 		w->member = member;
 		w->name = v->isvec ? xprintf("%s.%c", label, 'x' + c) : xstrdup(label);
-		vec_push(&M->cols, w);
+		vec_push(&sema.M->cols, w);
 	}
 }
 
@@ -2023,8 +2033,8 @@ static Var *watch_var(Object *o, const char *name, int *member)
 	Var *v = prop_of(o, name);
 	*member = 0;
 	if (v) return v;
-	Object *r = shaped ? o->shape->members[0] : o;
-	v = map_get(&temps, temp_key(name, &r, 1));
+	Object *r = sema.shaped ? o->shape->members[0] : o;
+	v = map_get(&sema.temps, temp_key(name, &r, 1));
 	if (v) *member = o->sidx;
 	return v;
 }
@@ -2046,41 +2056,41 @@ static void add_comp(WatchItem *w, Var *v, const char *label, int member)
 	col->comp = c[0] - 'x';
 	col->member = member;
 	col->name = xprintf("%s.%s", label, c);
-	vec_push(&M->cols, col);
+	vec_push(&sema.M->cols, col);
 }
 
 static void build_watch(Stmt *st)
 {
 	int member;
 	if (!st || !st->has_watch) {
-		for (int i = 0; i < M->objects.n; i++) {
-			Object *o = M->objects.v[i];
+		for (int i = 0; i < sema.M->objects.n; i++) {
+			Object *o = sema.M->objects.v[i];
 			for (int j = 0; j < o->props.n; j++) add_col(o->props.v[j], var_label(o->props.v[j]), 0);
 		}
 		return;
 	}
 	for (int i = 0; i < st->watch.n; i++) {
 		WatchItem *w = st->watch.v[i];
-		if (w->obj && !w->comp && !map_get(&objects_by_name, w->obj) &&
-		    (map_get(&prop_names, w->obj) || map_get(&globals_by_name, w->obj))) {
+		if (w->obj && !w->comp && !map_get(&sema.objects_by_name, w->obj) &&
+		    (map_get(&sema.prop_names, w->obj) || map_get(&sema.globals_by_name, w->obj))) {
 			/* PROP.c: that component of every object's PROP (or of a global) */
 			WatchItem c = *w;
 			c.obj = NULL, c.prop = w->obj, c.comp = w->prop;
-			Var *g = map_get(&globals_by_name, c.prop);
+			Var *g = map_get(&sema.globals_by_name, c.prop);
 			if (g) {
 				add_comp(&c, g, g->name, 0);
 				continue;
 			}
-			for (int j = 0; j < M->objects.n; j++) {
-				Object *o = M->objects.v[j];
+			for (int j = 0; j < sema.M->objects.n; j++) {
+				Object *o = sema.M->objects.v[j];
 				Var *v = watch_var(o, c.prop, &member);
 				if (v) add_comp(&c, v, xprintf("%s.%s", o->name, c.prop), member);
 			}
 			continue;
 		}
 		if (w->obj) {
-			Object *o = map_get(&objects_by_name, w->obj);
-			if (!o && (map_get(&prop_names, w->obj) || map_get(&globals_by_name, w->obj))) {
+			Object *o = map_get(&sema.objects_by_name, w->obj);
+			if (!o && (map_get(&sema.prop_names, w->obj) || map_get(&sema.globals_by_name, w->obj))) {
 				error_at(w->loc, "'%s.%s': watch the whole variable ('watch %s' gives its x, y and z columns)", w->obj,
 				         w->prop, w->obj);
 				continue;
@@ -2099,14 +2109,14 @@ static void build_watch(Stmt *st)
 			continue;
 		}
 		if (strcmp(w->prop, "t") == 0) continue; /* t is always the first column */
-		Var *g = map_get(&globals_by_name, w->prop);
+		Var *g = map_get(&sema.globals_by_name, w->prop);
 		if (g) {
 			add_col(g, g->name, 0);
 			continue;
 		}
 		int found = 0;
-		for (int j = 0; j < M->objects.n; j++) {
-			Object *o = M->objects.v[j];
+		for (int j = 0; j < sema.M->objects.n; j++) {
+			Object *o = sema.M->objects.v[j];
 			Var *v = watch_var(o, w->prop, &member);
 			if (v) {
 				add_col(v, xprintf("%s.%s", o->name, w->prop), member);
@@ -2178,13 +2188,9 @@ static void check_atols(Model *M)
 	}
 }
 
-static Model *resolve(Stmt *stmts)
+static Model *resolve(Stmt *stmts, int shaped)
 {
-	M = xalloc(sizeof *M);
-	objects_by_name = globals_by_name = kinds = temps = prop_names = vector_decls = watched = (Map){ 0 };
-	def_counter = 0;
-	deriv_insts = (Vec){ 0 };
-	unshaped = NULL;
+	sema_reset(shaped);
 	predefine();
 	check_sections(stmts);
 	build_objects(stmts);
@@ -2194,8 +2200,8 @@ static Model *resolve(Stmt *stmts)
 	for (Stmt *s = stmts; s; s = s->next) {
 		if (s->kind == S_START) start = s;
 		if (s->kind == S_VECDECL)
-			for (int i = 0; i < s->names.n; i++) map_put(&vector_decls, s->names.v[i], s);
-		if (s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_STOP) vec_push(&M->stmts, s);
+			for (int i = 0; i < s->names.n; i++) map_put(&sema.vector_decls, s->names.v[i], s);
+		if (s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_STOP) vec_push(&sema.M->stmts, s);
 		if (s->kind == S_RULE) vec_push(&rules, s);
 	}
 	if (!start) {
@@ -2205,28 +2211,28 @@ static Model *resolve(Stmt *stmts)
 		else error_plain("%s: empty model: there is nothing to simulate", ((Source *)sources.v[0])->path);
 	} else {
 		if (strcmp(start->var, "t") != 0) error_at(start->name_loc, "only time can be incremented: write 'inc t ...'");
-		M->till = const_time(start->till, 10, "till");
-		M->by = const_time(start->by, M->till > 0 ? M->till / 1000 : 0.01, "by");
+		sema.M->till = const_time(start->till, 10, "till");
+		sema.M->by = const_time(start->by, sema.M->till > 0 ? sema.M->till / 1000 : 0.01, "by");
 		double most = opts.max_rows > 0 ? opts.max_rows : CSF_MAX_ROWS;
-		if (!(M->by > 0)) error_at(start->by ? start->by->loc : start->loc, "'by' must be a positive time");
-		else if (M->till / M->by > most)
+		if (!(sema.M->by > 0)) error_at(start->by ? start->by->loc : start->loc, "'by' must be a positive time");
+		else if (sema.M->till / sema.M->by > most)
 			error_at(start->till ? start->till->loc : start->loc,
 			         "'till %g' by '%g' asks for %.3g rows of output, more than the limit of %.3g "
-			         "(csfc --max-rows N raises it)", M->till, M->by, M->till / M->by, most);
-		M->start = start;
+			         "(csfc --max-rows N raises it)", sema.M->till, sema.M->by, sema.M->till / sema.M->by, most);
+		sema.M->start = start;
 	}
-	if (diag_errors) return M;
+	if (diag_errors) return sema.M;
 	build_shapes(start);
 	for (int i = 0; start && i < start->watch.n; i++) {
 		WatchItem *w = start->watch.v[i];
-		map_put(&watched, w->obj ? xprintf("%s\x01%s", w->obj, w->prop) : w->prop, w);
+		map_put(&sema.watched, w->obj ? xprintf("%s\x01%s", w->obj, w->prop) : w->prop, w);
 	}
 
 	/* Derivative rules first: their targets are state, determined from the start. */
 	for (int i = 0; i < rules.n; i++) {
 		Stmt *s = rules.v[i];
 		if (s->eqns && s->eqns->deriv) {
-			cur_src = stmt_src(s);
+			sema.cur_src = stmt_src(s);
 			for_each_binding(s, inst_deriv);
 		}
 	}
@@ -2245,14 +2251,14 @@ static Model *resolve(Stmt *stmts)
 		if (i == lastF)
 			for (int k = 0; k < deferred.n; k++) vec_push(&order, deferred.v[k]);
 	}
-	cur_insts = &M->insts;
+	sema.cur_insts = &sema.M->insts;
 	for (int i = 0; i < order.n; i++) {
 		Stmt *s = order.v[i];
 		if (s->attr && strcmp(s->attr, "F") == 0 && stmt_reads_rf(s)) {
 			error_at(s->loc, "a rule with attribute F cannot read RF: RF is the sum of the F rules");
 			continue;
 		}
-		cur_src = stmt_src(s);
+		sema.cur_src = stmt_src(s);
 		if (!s->call) for_each_binding(s, inst_rule);
 		else if (check_call(s)) {
 			if (s->has_for) for_each_binding(s, inst_contact);
@@ -2260,20 +2266,20 @@ static Model *resolve(Stmt *stmts)
 		}
 	}
 	contact_accels();
-	for (int i = 0; i < deriv_insts.n; i++) {
-		resolve_deriv(deriv_insts.v[i]);
-		vec_push(&M->insts, deriv_insts.v[i]);
+	for (int i = 0; i < sema.deriv_insts.n; i++) {
+		resolve_deriv(sema.deriv_insts.v[i]);
+		vec_push(&sema.M->insts, sema.deriv_insts.v[i]);
 	}
-	for (int i = 0; i < M->stmts.n; i++) {
-		Stmt *s = M->stmts.v[i];
+	for (int i = 0; i < sema.M->stmts.n; i++) {
+		Stmt *s = sema.M->stmts.v[i];
 		if (s->kind != S_ASSERT && s->kind != S_STOP) continue;
-		cur_src = add_src(s->loc, s->text);
+		sema.cur_src = add_src(s->loc, s->text);
 		for_each_binding(s, s->kind == S_STOP ? inst_stop : inst_assert);
 	}
 	build_watch(start);
 	/* by shape, a temporary of a pair lives for one iteration of its rule's loop */
-	for (int i = 0; shaped && i < M->insts.n; i++) {
-		Inst *I = M->insts.v[i];
+	for (int i = 0; sema.shaped && i < sema.M->insts.n; i++) {
+		Inst *I = sema.M->insts.v[i];
 		for (int k = 0; k < I->reads.n; k++) {
 			Var *v = I->reads.v[k];
 			if (v->kind == V_TEMP && v->pair && v->det != I) unshape("a temporary of a pair ($1) read by another rule");
@@ -2281,9 +2287,9 @@ static Model *resolve(Stmt *stmts)
 	}
 	/* Also after errors: the instances that failed are left out, and the dimensions of the
 	 * others are checked all the same, so one run reports both kinds of error. */
-	dims_check(M);
-	check_atols(M);
-	return M;
+	dims_check(sema.M);
+	check_atols(sema.M);
+	return sema.M;
 }
 
 /*
@@ -2298,20 +2304,18 @@ Model *sema_run(Stmt *stmts)
 	const char *why = "";
 	if (null) {
 		diag_out = null;
-		shaped = 1;
-		Model *m = resolve(stmts);
+		Model *m = resolve(stmts, 1);
 		diag_out = saved;
 		fclose(null);
-		if (!unshaped && diag_errors == errors) {
+		if (!sema.unshaped && diag_errors == errors) {
 			m->shaped = 1;
 			return m;
 		}
-		why = unshaped ? unshaped : "";
+		why = sema.unshaped ? sema.unshaped : "";
 		diag_errors = errors;
 		diag_stop = stop;
 	}
-	shaped = 0;
-	Model *m = resolve(stmts);
+	Model *m = resolve(stmts, 0);
 	m->unshaped_why = why;
 	return m;
 }
