@@ -2,8 +2,8 @@
  * csfc.h - shared declarations of the CSF compiler.
  *
  * Pipeline: lex.re (re2c scanner) -> layout.c (indentation, `using`
- * inclusion, unit literals) -> parse.y (bison, builds the AST) -> sema.c
- * (objects, rule instances, resolution, solving) -> gen.c (bytecode).
+ * inclusion, unit literals) -> parse.y (bison, builds the AST) -> sema/
+ * (pass.c: objects, rule instances, resolution, solving) -> gen.c (bytecode).
  * Memory: everything the compiler allocates comes from one arena (xalloc)
  * and is released at exit by arena_free().
  */
@@ -83,6 +83,9 @@ void csfc_reset(void);
 typedef struct Unit { double factor; signed char dim[CSF_NDIM]; } Unit;
 /* Looks up a unit name in the runtime's unit table (csf_unit_table); returns 1 and fills *u if known. */
 int unit_lookup(const char *name, Unit *u);
+/* A known unit, or a quotient of two ("mps": "m/s"), near the unknown unit name; NULL if none
+ * (names: csf_suggest_name, which -D shares). */
+const char *suggest_unit(const char *name);
 
 /* ---- tokens (lex.re, layout.c) ---- */
 typedef struct Token {
