@@ -2,7 +2,6 @@
  * explain.c - csfc --explain: what each rule solves for, for which objects,
  * which rules were left out, and what each property is.
  */
-
 #include "csfc.h"
 #include "sema.h"
 #include "explain.h"

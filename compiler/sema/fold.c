@@ -2,7 +2,6 @@
  * fold.c - folding constant operands with the runtime's own arithmetic: the
  * instruction's function from opcodes.def, as the VM computes it.
  */
-
 #include "csfc.h"
 #include "sema.h"
 #include "csf.h"

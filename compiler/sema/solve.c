@@ -2,7 +2,6 @@
  * solve.c - an equation solved symbolically for its target: it must be linear
  * in it.
  */
-
 #include "csfc.h"
 #include "sema.h"
 #include "sema_int.h"

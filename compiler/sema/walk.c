@@ -2,7 +2,6 @@
  * walk.c - the expressions of a statement: its condition, its call, both sides
  * of its equations, at every depth of its conditional blocks.
  */
-
 #include "csfc.h"
 #include "sema.h"
 #include "sema_int.h"
