@@ -2,10 +2,10 @@
  * csfc.h - shared declarations of the CSF compiler.
  *
  * Pipeline: lex.re (re2c scanner) -> layout.c (indentation, `using`
- * inclusion, unit literals) -> parse.y (bison, builds the AST) -> sema.c
- * (objects, rule instances, resolution, solving) -> mid/liveness.c (what
- * each section needs) -> back/gen.c and the files it names (bytecode) ->
- * back/emit_c.c (C, with --emit-c).
+ * inclusion, unit literals) -> parse.y (bison, builds the AST) -> sema/
+ * (pass.c: objects, rule instances, resolution, solving) -> mid/liveness.c
+ * (what each section needs) -> back/gen.c and the files it names (bytecode)
+ * -> back/emit_c.c (C, with --emit-c).
  * Memory: everything the compiler allocates comes from one arena (xalloc)
  * and is released at exit by arena_free(), but the program's tables and the
  * back end's work arrays (xmalloc, xcalloc, xrealloc: heap memory).
@@ -93,6 +93,9 @@ void csfc_reset(void);
 typedef struct Unit { double factor; signed char dim[CSF_NDIM]; } Unit;
 /* Looks up a unit name in the runtime's unit table (csf_unit_table); returns 1 and fills *u if known. */
 int unit_lookup(const char *name, Unit *u);
+/* A known unit, or a quotient of two ("mps": "m/s"), near the unknown unit name; NULL if none
+ * (names: csf_suggest_name, which -D shares). */
+const char *suggest_unit(const char *name);
 
 /* ---- tokens (lex.re, layout.c) ---- */
 typedef struct Token {

@@ -15,6 +15,7 @@
 #include "gen.h"
 #include "csf.h"
 #include "emit_c.h"
+#include "explain.h"
 
 static const char usage[] =
 	"usage: csfc [options] MODEL.csf   (- reads standard input)\n"
@@ -200,7 +201,7 @@ static int run(int argc, char **argv)
 		return 1;
 	}
 	if (explain) {
-		sema_explain(M, stdout);
+		explain_model(M, stdout);
 		csf_params_list(&p, stdout);
 	}
 	char err[256];

@@ -8,7 +8,6 @@
  */
 %code requires {
 #include "csfc.h"
-#include "lint.h"
 #include "ast.h"
 typedef struct YYLoc { int file, first_line, first_column, last_line, last_column; } YYLoc;
 #define YYLLOC_DEFAULT(Cur, Rhs, N) \

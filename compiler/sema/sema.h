@@ -188,9 +188,6 @@ int sema_per_member(const Var *v);
  * their blocks' (gen.c gives the others zero). */
 void sema_steps_targets(const Vec *steps, Vec *v);
 
-/* Writes what each rule solves for and which rules were left out (csfc --explain). */
-void sema_explain(Model *M, FILE *f);
-
 /* Checks and infers the dimensions of the whole model (dims.c). Errors are reported. */
 void dims_check(Model *M);
 /* The dimension of constant op(args) (for the folder); reports a mismatch at l. */

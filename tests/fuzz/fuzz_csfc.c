@@ -20,6 +20,7 @@
 #include "csfc.h"
 #include "ast.h"
 #include "sema.h"
+#include "explain.h"
 #include "gen.h"
 #include "emit_c.h"
 #include "csf.h"
@@ -48,7 +49,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		if (!diag_errors) {
 			csf_prog p;
 			gen_program(M, &p);
-			sema_explain(M, null_out);
+			explain_model(M, null_out);
 			char err[256];
 			if (csf_verify(&p, err, sizeof err)) {
 				fprintf(stderr, "fuzz_csfc: the generated code does not verify: %s\n", err);

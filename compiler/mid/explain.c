@@ -1,0 +1,130 @@
+/*
+ * explain.c - csfc --explain: what each rule solves for, for which objects,
+ * which rules were left out, and what each property is.
+ */
+#include "csfc.h"
+#include "sema.h"
+#include "explain.h"
+#include "csf.h"
+
+/*
+ * For --explain: which bodies the contact rules of statement s apply to.
+ * Returns how many lines it wrote.
+ */
+static int explain_contacts(Model *Mo, Stmt *s, FILE *f)
+{
+	int lines = 0;
+	for (int k = 0; k < Mo->contacts.n; k++) {
+		Contact *r = Mo->contacts.v[k];
+		if (r->st != s) continue;
+		lines++;
+		if (!r->every) {
+			fprintf(f, "  for %s with %s: the contact routine (%s); computed in rhs and out\n",
+			        ((ContactBody *)r->b0.v[0])->o->name, ((ContactBody *)r->b1.v[0])->o->name,
+			        r->nplanes ? "a mass point and a plane" : "two mass points");
+			continue;
+		}
+		/* the mass points ($0, and $1 that are not planes) and the planes, each once */
+		char *seen = xalloc((size_t)Mo->cbodies.n + 1);
+		Vec names = { 0 };
+		int npts = 0;
+		for (int q = 0; q < 2; q++)
+			for (int j = 0; j < (q ? r->b1.n : r->b0.n); j++) {
+				ContactBody *b = (q ? r->b1.v : r->b0.v)[j];
+				if (b->plane || seen[b->index]) continue;
+				seen[b->index] = 1, npts++;
+				vec_push(&names, b->o->name);
+			}
+		for (int j = 0; j < r->b1.n; j++)
+			if (((ContactBody *)r->b1.v[j])->plane) vec_push(&names, ((ContactBody *)r->b1.v[j])->o->name);
+		fprintf(f, "  for %d mass point%s", npts, npts == 1 ? "" : "s");
+		if (r->nplanes) fprintf(f, " and %d plane%s", r->nplanes, r->nplanes == 1 ? "" : "s");
+		if (names.n <= 6)
+			for (int j = 0; j < names.n; j++) fprintf(f, "%s%s", j ? ", " : " (", (char *)names.v[j]);
+		fprintf(f, "%s: the contact routine (%s), on the pairs it finds near at run time%s; computed in rhs and out\n",
+		        names.n <= 6 ? ")" : "", r->nplanes == r->b1.n ? "a mass point and a plane" : r->nplanes ? "two mass points, a mass point and a plane" : "two mass points",
+		        r->nplanes == r->b1.n ? "" : " (two points never touch)");
+	}
+	return lines;
+}
+
+/* Writes conditional block B, indented by depth levels: each branch's line with its equations and
+ * the variables it leaves zero, then its nested blocks, deeper; an elif at the depth of its if. */
+static void explain_block(FILE *f, Branch *B, int depth)
+{
+	for (int b = 0; b < 2; b++) {
+		Vec *st = &B->steps[b], set = { 0 };
+		Assign *one = st->n == 1 ? st->v[0] : NULL;
+		if (b && one && one->nest && one->nest->ast->elif) {
+			explain_block(f, one->nest, depth);
+			continue;
+		}
+		if (!b) fprintf(f, "%*sline %d: %s", 2 * depth, "", B->ast->loc.line, B->ast->text);
+		else if (B->ast->els) fprintf(f, "%*sline %d: else:", 2 * depth, "", B->ast->else_loc.line);
+		else fprintf(f, "%*sotherwise:", 2 * depth, "");
+		const char *sep = " ";
+		for (int i = 0; i < st->n; i++) {
+			Assign *a = st->v[i];
+			if (!a->nest) fprintf(f, "%s%s", sep, a->text), sep = "; ";
+		}
+		sema_steps_targets(st, &set);
+		for (int i = 0; i < B->targets.n; i++)
+			if (!vec_has(&set, B->targets.v[i])) fprintf(f, "%s%s = 0 (not stated)", sep, ((Var *)B->targets.v[i])->name), sep = "; ";
+		fputc('\n', f);
+		for (int i = 0; i < st->n; i++)
+			if (((Assign *)st->v[i])->nest) explain_block(f, ((Assign *)st->v[i])->nest, depth + 1);
+	}
+}
+
+void explain_model(Model *Mo, FILE *f)
+{
+	for (int i = 0; i < Mo->stmts.n; i++) {
+		Stmt *s = Mo->stmts.v[i];
+		Source *src = sources.v[s->loc.file];
+		fprintf(f, "%s:%d: %s%s\n", src->path, s->loc.line,
+		        s->kind == S_ASSERT ? "assert " : s->kind == S_STOP ? "stop when " : "", s->text);
+		int n = 0;
+		Inst *cond = NULL; /* an instance of a conditional rule: its branches are every instance's */
+		for (int k = 0; k < Mo->insts.n; k++) {
+			Inst *I = Mo->insts.v[k];
+			if (I->st != s) continue;
+			n++;
+			if (I->top && !cond) cond = I;
+			Shape *S = Mo->shaped && !s->has_for ? I->bind[0]->shape : NULL;
+			fprintf(f, "  for %s", I->bind[0]->name);
+			if (S && S->n > 1) fprintf(f, " and the %d other object%s of its shape", S->n - 1, S->n > 2 ? "s" : "");
+			for (int b = 1; b < I->nbind; b++) {
+				Object *o = I->bind[b];
+				if (S && o->shape == S) fprintf(f, ", each with every other one");
+				else if (S && o->shape->n > 1)
+					fprintf(f, ", each with %s and the %d other object%s of its shape", o->name, o->shape->n - 1,
+					        o->shape->n > 2 ? "s" : "");
+				else fprintf(f, "%s%s", b == 1 ? " with " : ", ", o->name);
+			}
+			if (I->isassert) fprintf(f, ": checked at every output step");
+			else if (I->isstop) fprintf(f, ": ends the run at the instant it becomes true (a terminal event)");
+			else fprintf(f, ": %s%s", I->isderiv ? "" : "solves for ", I->why ? I->why : "?");
+			if (!I->isassert && !I->isstop && !I->needed[0] && !I->needed[1]) fprintf(f, "; left out: nothing needs it");
+			else if (!I->isassert && !I->isstop)
+				fprintf(f, "; computed in %s", I->needed[0] && I->needed[1] ? "rhs and out" : I->needed[0] ? "rhs" : "out");
+			fputc('\n', f);
+		}
+		if (cond) {
+			fprintf(f, "  branches%s:\n", cond->needed[CSF_SEC_RHS] ? " (their comparisons <, <=, >, >= are events, located in time)" : "");
+			explain_block(f, cond->top, 2);
+		}
+		n += explain_contacts(Mo, s, f);
+		if (!n) fprintf(f, "  applies to no %s\n", s->call ? "pair that can touch" : "object");
+	}
+	if (!Mo->shaped && *Mo->unshaped_why) fprintf(f, "rules compiled once per object, not per shape: %s\n", Mo->unshaped_why);
+	for (int i = 0; i < Mo->objects.n; i++) {
+		Object *o = Mo->objects.v[i];
+		fprintf(f, "object %s:", o->name);
+		for (int j = 0; j < o->props.n; j++) {
+			Var *v = o->props.v[j], *r = sema_canon(v);
+			fprintf(f, "%s %s (%s)", j ? "," : "", v->name,
+			        r->state ? "state" : r->det ? xprintf("computed, line %d", r->det->st->loc.line) : "constant");
+		}
+		fputc('\n', f);
+	}
+}

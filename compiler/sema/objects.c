@@ -1,0 +1,262 @@
+/*
+ * objects.c - objects, kinds and globals from their statements, and the
+ * predefined constants; initial values are constant expressions (context.c)
+ * folded with the runtime's arithmetic.
+ */
+#include <math.h>
+#include <string.h>
+
+#include <gsl/gsl_const_mksa.h>
+
+#include "csfc.h"
+#include "sema.h"
+#include "sema_int.h"
+#include "csf.h"
+
+int check_name(const char *n, Loc l, const char *what)
+{
+	if (is_predefined(n)) {
+		error_at(l, "'%s' is predefined and cannot name %s", n, what);
+		return 0;
+	}
+	return 1;
+}
+
+static Var *new_global(const char *name, int isvec, const double *v, Loc l)
+{
+	Var *g = xalloc(sizeof *g);
+	g->kind = V_GLOBAL;
+	g->name = (char *)name;
+	g->isvec = isvec;
+	memcpy(g->init, v, sizeof g->init);
+	g->loc = l;
+	g->slot = -1;
+	g->order = sema.def_counter++;
+	vec_push(&sema.M->globals, g);
+	map_put(&sema.globals_by_name, g->name, g);
+	return g;
+}
+
+static void set_dim(Var *v, int k, const double *d)
+{
+	v->dimk = k;
+	if (k == DK_KNOWN) memcpy(v->dim, d, sizeof v->dim);
+}
+
+/* A predefined constant: its SI value, converted to the unit system in use. */
+static void predefine_const(const char *name, int isvec, const double *si, double dl, double dm, double dt)
+{
+	Loc none = { 0, 0, 0 };
+	double d[CSF_NDIM] = { dl, dm, dt, 0 }, v[3];
+	for (int i = 0; i < 3; i++) v[i] = dims_to_system(si[i], d);
+	set_dim(new_global(name, isvec, v, none), DK_KNOWN, d);
+}
+
+void predefine(void)
+{
+	sema.M->time = xalloc(sizeof *sema.M->time);
+	sema.M->time->kind = V_TIME;
+	sema.M->time->name = "t";
+	sema.M->time->slot = -1;
+	set_dim(sema.M->time, DK_KNOWN, (double[CSF_NDIM]){ 0, 0, 1, 0 });
+	predefine_const("g", 1, (double[3]){ 0, 0, -GSL_CONST_MKSA_GRAV_ACCEL }, 1, 0, -2);
+	predefine_const("G", 0, (double[3]){ GSL_CONST_MKSA_GRAVITATIONAL_CONSTANT, 0, 0 }, 3, -1, -2);
+	predefine_const("c", 0, (double[3]){ GSL_CONST_MKSA_SPEED_OF_LIGHT, 0, 0 }, 1, 0, -1);
+	predefine_const("e", 0, (double[3]){ M_E, 0, 0 }, 0, 0, 0);
+	predefine_const("pi", 0, (double[3]){ M_PI, 0, 0 }, 0, 0, 0);
+}
+
+/*
+ * The constant value of x, the value of obj.name (obj NULL: the global
+ * name; fold FIX_RUN: the run's name) defined on line. The values it reads
+ * are folded into it, so -D cannot set them (Var.fix); *read, if not NULL,
+ * gets the first one it read (NULL: none, it is a literal).
+ */
+RExpr *const_value(Expr *x, Object *obj, const char *name, int fold, int line, int *ok, Var **read)
+{
+	Ctx C = { 0 };
+	C.init = 1;
+	C.self = obj;
+	C.fold = fold;
+	C.fold_obj = obj ? obj->name : NULL;
+	C.fold_name = name;
+	C.fold_line = line;
+	RExpr *r = build(&C, x);
+	if (read) *read = C.first_read;
+	*ok = !C.failed;
+	if (*ok && (r->k != R_CONST || r->isbool)) {
+		error_at(x->loc, r->isbool ? "a value cannot be a condition" : "this value is not known at compile time");
+		*ok = 0;
+	}
+	return r;
+}
+
+static Object *get_object(const char *name, Loc l)
+{
+	Object *o = map_get(&sema.objects_by_name, name);
+	if (o) return o;
+	if (!check_name(name, l, "an object")) return NULL;
+	if (map_get(&sema.globals_by_name, name)) {
+		error_at(l, "'%s' is a global and cannot name an object", name);
+		return NULL;
+	}
+	o = xalloc(sizeof *o);
+	o->name = (char *)name;
+	o->loc = l;
+	o->index = sema.M->objects.n;
+	vec_push(&sema.M->objects, o);
+	map_put(&sema.objects_by_name, o->name, o);
+	return o;
+}
+
+/* v's value, defined on line, is computed from read's (if not NULL): -D cannot set it. */
+static void fix_derived(Var *v, Var *read, int line)
+{
+	if (!read || v->fix == FIX_FOLDED) {
+		if (!read && v->fix == FIX_DERIVED) v->fix = FIX_NONE;
+		return;
+	}
+	v->fix = FIX_DERIVED;
+	v->fix_obj = read->obj ? read->obj->name : NULL;
+	v->fix_name = read->name;
+	v->fix_line = line;
+}
+
+/* May constant r replace the value of v (a kind's default, a predefined constant)? Same type, same dimension. */
+static int override_ok(Loc l, const char *what, Var *v, RExpr *r)
+{
+	if (v->isvec != r->isvec) {
+		error_at(l, "%s is a %s; it cannot take a %s", what, v->isvec ? "vector" : "scalar", r->isvec ? "vector" : "scalar");
+		return 0;
+	}
+	if (r->dimk == DK_KNOWN && v->dimk == DK_KNOWN && memcmp(r->dim, v->dim, sizeof v->dim) != 0) {
+		error_at(l, "%s is %s; this value is %s", what, dims_describe(v->dim), dims_operand(r, r->dim));
+		return 0;
+	}
+	return 1;
+}
+
+/* Property p of o takes the absolute tolerance `atol A` of statement s, if it has one: a positive
+ * scalar constant (its dimension is checked against p's by check_atols). */
+static void set_atol(Object *o, Var *p, Stmt *s)
+{
+	if (!s->atol) return;
+	int ok;
+	RExpr *r = const_value(s->atol, o, s->prop, FIX_NONE, s->prop_loc.line, &ok, NULL);
+	if (!ok) return;
+	if (r->isvec || !(r->c[0] > 0) || !isfinite(r->c[0])) {
+		error_at(s->atol->loc, "the atol of '%s' must be a positive number%s", s->prop,
+		         r->isvec ? " (one for every component)" : "");
+		return;
+	}
+	p->atol = r;
+}
+
+/* Defines or overrides property p of o from a property statement. */
+static void set_prop(Object *o, Stmt *s, int from_kind)
+{
+	if (!check_name(s->prop, s->prop_loc, "a property")) return;
+	if (map_get(&sema.globals_by_name, s->prop)) {
+		error_at(s->prop_loc, "'%s' is a global constant; a property cannot have the same name", s->prop);
+		return;
+	}
+	int ok;
+	Var *read;
+	/* the value's expression is folded to a constant and then not needed: one object's
+	   values take no memory from the next's */
+	ArenaMark mark = arena_mark();
+	RExpr rv = *const_value(s->value, o, s->prop, FIX_FOLDED, s->prop_loc.line, &ok, &read), *r = &rv;
+	arena_release(mark);
+	if (!ok) return;
+	if (s->isvec && !r->isvec) {
+		error_at(s->value->loc, "property '%s' is declared a vector but its value is a scalar", s->prop);
+		return;
+	}
+	Var *p = prop_of(o, s->prop);
+	if (p) {
+		if (!p->from_kind) {
+			error_at(s->prop_loc, "property '%s' of object '%s' is already defined", s->prop, o->name);
+			note_at(p->loc, "defined here");
+			return;
+		}
+		if (!override_ok(s->value->loc, xprintf("property '%s'", s->prop), p, r)) return;
+		memcpy(p->init, r->c, sizeof p->init);
+		p->loc = s->prop_loc;
+		p->from_kind = from_kind;
+		fix_derived(p, read, s->prop_loc.line);
+		if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
+		set_atol(o, p, s);
+		return;
+	}
+	p = xalloc(sizeof *p);
+	p->kind = V_PROP;
+	p->name = s->prop;
+	p->obj = o;
+	p->isvec = r->isvec;
+	memcpy(p->init, r->c, sizeof p->init);
+	p->loc = s->prop_loc;
+	p->slot = -1;
+	p->order = sema.def_counter++;
+	p->from_kind = from_kind;
+	fix_derived(p, read, s->prop_loc.line);
+	if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
+	set_atol(o, p, s);
+	vec_push(&o->props, p);
+	map_put(&o->props_by_name, p->name, p);
+	map_put(&sema.prop_names, p->name, p);
+}
+
+void build_objects(Stmt *stmts)
+{
+	for (Stmt *s = stmts; s; s = s->next) {
+		switch (s->kind) {
+		case S_GLOBAL: {
+			if (!check_name(s->name, s->name_loc, "a global")) break;
+			int ok;
+			Var *read;
+			RExpr *r = const_value(s->value, NULL, s->name, FIX_FOLDED, s->name_loc.line, &ok, &read);
+			if (!ok) break;
+			Var *g = map_get(&sema.globals_by_name, s->name);
+			if (g) {
+				if (!override_ok(s->value->loc, xprintf("'%s'", s->name), g, r)) break;
+				memcpy(g->init, r->c, sizeof g->init);
+				g->loc = s->name_loc;
+				fix_derived(g, read, s->name_loc.line);
+			} else if (map_get(&sema.objects_by_name, s->name) || map_get(&sema.prop_names, s->name)) {
+				error_at(s->name_loc, "'%s' already names an object or a property", s->name);
+			} else {
+				Var *ng = new_global(s->name, r->isvec, r->c, s->name_loc);
+				fix_derived(ng, read, s->name_loc.line);
+				set_dim(ng, r->dimk == DK_KNOWN ? DK_KNOWN : DK_UNKNOWN, r->dim);
+			}
+			break;
+		}
+		case S_DEF:
+			if (map_get(&sema.kinds, s->name)) {
+				error_at(s->name_loc, "kind '%s' is already defined", s->name);
+				break;
+			}
+			map_put(&sema.kinds, s->name, s);
+			break;
+		case S_OBJKIND: {
+			Stmt *k = map_get(&sema.kinds, s->prop);
+			if (!k) {
+				error_at(s->prop_loc, "unknown kind '%s'", s->prop);
+				break;
+			}
+			Object *o = get_object(s->name, s->name_loc);
+			if (!o) break;
+			for (Stmt *p = k->body; p; p = p->next)
+				if (!prop_of(o, p->prop)) set_prop(o, p, 1);
+			break;
+		}
+		case S_PROP: {
+			Object *o = get_object(s->name, s->name_loc);
+			if (o) set_prop(o, s, 0);
+			break;
+		}
+		default:
+			break;
+		}
+	}
+}

@@ -1,0 +1,170 @@
+/*
+ * sema_int.h - what the pieces of the semantic pass (the .c files of compiler/sema) share:
+ * the state of the pass, the resolution context, and their functions. The rest
+ * of the compiler sees only sema.h.
+ */
+#ifndef CSF_SEMA_INT_H
+#define CSF_SEMA_INT_H
+
+#include "csfc.h"
+#include "ast.h"
+#include "sema.h"
+
+/* The state of one resolution (sema_run resolves twice: by shape, then, if need be, by object);
+ * sema_reset starts it anew. */
+typedef struct Sema {
+	Model *M;
+	Map objects_by_name, globals_by_name, kinds, temps, prop_names, vector_decls;
+	int def_counter;
+	int shaped;             /* resolving once per shape (sema_run's first attempt) */
+	const char *unshaped;   /* why the model cannot be: the attempt is given up */
+	int cur_src;            /* source entry of the statement being instantiated */
+	Map watched;            /* names in the watch list, and OBJECT\x01NAME */
+	Vec *cur_insts;         /* where the instances of rules, assertions and stops go */
+	Vec deriv_insts;        /* the derivative rules' instances, resolved after the others */
+} Sema;
+
+/* A resolution context: what an expression is built for (context.c). */
+typedef struct Ctx {
+	int init;          /* building an initial value: only constants */
+	Object *self;      /* init: the object being defined, if any */
+	Object **bind;
+	int nbind;
+	Vec *reads;        /* Var* read */
+	Vec *rf;           /* Object* whose RF is read */
+	Vec *pending;      /* Var* temporaries read but not yet existing */
+	int failed;
+	int key_nbind;     /* how much of the binding keys a temporary: 1 for `for` rules, all for $n tuples */
+	int fold;          /* init: the values it reads are folded into (FIX_FOLDED or FIX_RUN) ... */
+	const char *fold_obj, *fold_name; /* ... this value, */
+	int fold_line;     /* defined on this line (see Var.fix) */
+	Var *first_read;   /* init: the first global or property it read */
+} Ctx;
+
+/* A function of one expression (NULL for none) and a context; 0 stops a walk. */
+typedef int (*ExprFn)(Expr *x, void *ctx);
+
+/* ---- pass.c: the pass ---- */
+
+extern Sema sema;
+
+/* Gives up resolving by shape (the model is resolved again, object by object). */
+void unshape(const char *why);
+
+/* ---- expr.c: resolved expressions ---- */
+
+RExpr *rnew(RKind k, Loc l);
+RExpr *rconst(double x, Loc l);
+RExpr *rvconst(const double *v, Loc l);
+
+/* A constant standing for a variable's value (initial values): it has the variable's dimension. */
+RExpr *rvarconst(Var *v, Loc l);
+
+int is_const(RExpr *e, double x);
+
+/* Builds op(a, b, c) of the given result type, folding constant operands. */
+RExpr *rop(int op, int isvec, Loc l, RExpr *a, RExpr *b, RExpr *c);
+
+int opcode_of_func(const char *name, int *nargs);
+
+/* ---- context.c: the resolution context ---- */
+
+void add_unique(Vec *v, void *x);
+int is_predefined(const char *n);
+Var *prop_of(Object *o, const char *name);
+char *temp_key(const char *name, Object **bind, int nbind);
+RExpr *build(Ctx *C, Expr *x);
+
+/* ---- objects.c: objects, kinds, globals ---- */
+
+int check_name(const char *n, Loc l, const char *what);
+void predefine(void);
+
+/*
+ * The constant value of x, the value of obj.name (obj NULL: the global
+ * name; fold FIX_RUN: the run's name) defined on line. The values it reads
+ * are folded into it, so -D cannot set them (Var.fix); *read, if not NULL,
+ * gets the first one it read (NULL: none, it is a literal).
+ */
+RExpr *const_value(Expr *x, Object *obj, const char *name, int fold, int line, int *ok, Var **read);
+
+void build_objects(Stmt *stmts);
+
+/* ---- walk.c: the expressions of a statement ---- */
+
+/* Calls f on every expression of statement s: its condition, its call, its steps'. As eqns_each. */
+int stmt_each(Stmt *s, ExprFn f, void *ctx);
+
+/* ---- shapes.c: shapes ---- */
+
+/*
+ * Groups the objects into shapes: by the names, types and dimensions of
+ * their properties, in order (what decides which rules apply to an object
+ * and how each resolves). By object (not shaped), or when a rule, a `for`
+ * list or the watch list names the object and one of its temporaries, an
+ * object is a shape of its own.
+ */
+void build_shapes(Stmt *start);
+
+/* ---- instances.c: rule instances ---- */
+
+int stmt_reads_rf(Stmt *s);
+
+/* Calls f for every binding the statement applies to; returns how many, -1 after an error. */
+int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int));
+
+int add_src(Loc l, char *text);
+Inst *new_inst(Stmt *s, Object **bind, int nbind);
+const char *var_label(Var *v);
+int determined(Var *v);
+
+/* The places ($n) at which e reads x, as bits 1 << (place + 1). */
+unsigned var_places(const RExpr *e, const Var *x);
+
+void explain_det(Var *v);
+
+/* ---- solve.c: solving ---- */
+
+/* Solves lhs = rhs for x. Returns NULL (after an error) when it cannot. */
+RExpr *solve(RExpr *lhs, RExpr *rhs, Var *x, Loc l, const char *text);
+
+/* ---- resolve.c: resolving one rule instance ---- */
+
+int stmt_src(Stmt *s);
+void inst_rule(Stmt *s, Object **bind, int nbind);
+void inst_deriv(Stmt *s, Object **bind, int nbind);
+void resolve_deriv(Inst *I);
+void inst_assert(Stmt *s, Object **bind, int nbind);
+
+/*
+ * stop when COND: a terminal event. COND is one comparison, located in
+ * time like a conditional rule's; its instance is computed in RHS (where
+ * the runtime reads the guards), never in OUT.
+ */
+void inst_stop(Stmt *s, Object **bind, int nbind);
+
+/* ---- contacts.c: contact rules ---- */
+
+/* Is the rule's call the contact routine, with properties for arguments? Reports if not. */
+int check_call(Stmt *s);
+
+/* Rule s with `for`: the pair (bind[0], bind[1]), unless it is two points (they never touch). */
+void inst_contact(Stmt *s, Object **bind, int nbind);
+
+/*
+ * A contact rule without `for`: every mass point with its geometry as $0,
+ * every object with its geometry as $1, in the order of definition; the
+ * first binding that is an error is reported instead. Kept only if one of
+ * its pairs can touch: a mass point and a plane (of another object), or
+ * two mass points the sum of whose radii is positive.
+ */
+void contact_pairs(Stmt *s);
+
+/* Every mass point of a contact rule must have its a determined (by Newton's second law). */
+void contact_accels(void);
+
+/* ---- watch.c: the watch list ---- */
+
+void build_watch(Stmt *st);
+
+#endif

@@ -1,0 +1,92 @@
+/*
+ * shapes.c - the objects grouped into shapes (sema.h): a rule is resolved once
+ * per shape, for its representative.
+ */
+#include <string.h>
+
+#include "csfc.h"
+#include "sema.h"
+#include "sema_int.h"
+#include "csf.h"
+
+/* Marks in named (a Map) the objects expression x names (NAME.PROP). Returns 1. */
+static int mark_named(Expr *x, void *named)
+{
+	if (!x) return 1;
+	if (x->kind == E_FIELD && x->a->kind == E_NAME) {
+		Object *o = map_get(&sema.objects_by_name, x->a->name);
+		if (o) map_put(named, o->name, o);
+	}
+	mark_named(x->a, named);
+	mark_named(x->b, named);
+	for (int i = 0; i < x->nargs; i++) mark_named(x->args[i], named);
+	return 1;
+}
+
+/*
+ * Groups the objects into shapes: by the names, types and dimensions of
+ * their properties, in order (what decides which rules apply to an object
+ * and how each resolves). By object (not shaped), or when a rule, a `for`
+ * list or the watch list names the object and one of its temporaries, an
+ * object is a shape of its own.
+ */
+void build_shapes(Stmt *start)
+{
+	Map named = { 0 }, by_sig = { 0 };
+	for (int i = 0; i < sema.M->stmts.n; i++) { /* the rules and assertions */
+		Stmt *s = sema.M->stmts.v[i];
+		stmt_each(s, mark_named, &named);
+		for (int i = 0; i < s->fors.n; i++) {
+			ObjRef *r = s->fors.v[i];
+			Object *o = r->name ? map_get(&sema.objects_by_name, r->name)
+			                    : (r->index < sema.M->objects.n ? sema.M->objects.v[r->index] : NULL);
+			if (o) map_put(&named, o->name, o);
+		}
+	}
+	for (int i = 0; start && i < start->watch.n; i++) {
+		WatchItem *w = start->watch.v[i];
+		Object *o = w->obj ? map_get(&sema.objects_by_name, w->obj) : NULL;
+		if (o && !prop_of(o, w->prop)) map_put(&named, o->name, o);
+	}
+	for (int i = 0; i < sema.M->objects.n; i++) {
+		Object *o = sema.M->objects.v[i];
+		char *sig = NULL;
+		ArenaMark mark = arena_mark();
+		if (sema.shaped && !map_get(&named, o->name)) {
+			/* each property: its name, then type, dimension kind and dimension as hex digits */
+			size_t len = 0;
+			for (int j = 0; j < o->props.n; j++) len += strlen(((Var *)o->props.v[j])->name) + 1 + 2 * (2 + CSF_NDIM * 8);
+			char *at = sig = xalloc(len + 1);
+			for (int j = 0; j < o->props.n; j++) {
+				Var *v = o->props.v[j];
+				unsigned char bits[2 + CSF_NDIM * 8] = { (unsigned char)v->isvec, (unsigned char)v->dimk };
+				memcpy(bits + 2, v->dim, sizeof v->dim);
+				size_t n = strlen(v->name);
+				memcpy(at, v->name, n);
+				at += n;
+				*at++ = ':';
+				for (size_t k = 0; k < sizeof bits; k++) {
+					*at++ = "0123456789abcdef"[bits[k] >> 4];
+					*at++ = "0123456789abcdef"[bits[k] & 15];
+				}
+			}
+		}
+		Shape *S = sig ? map_get(&by_sig, sig) : NULL;
+		if (S) arena_release(mark); /* the signature of a known shape is not kept */
+		if (!S) {
+			S = xalloc(sizeof *S);
+			S->index = sema.M->shapes.n;
+			vec_push(&sema.M->shapes, S);
+			if (sig) map_put(&by_sig, sig, S);
+		}
+		o->shape = S;
+		o->sidx = S->n++;
+	}
+	for (int i = 0; i < sema.M->shapes.n; i++) ((Shape *)sema.M->shapes.v[i])->members = NULL;
+	int *fill = xalloc((size_t)sema.M->shapes.n * sizeof *fill);
+	for (int i = 0; i < sema.M->objects.n; i++) {
+		Object *o = sema.M->objects.v[i];
+		if (!o->shape->members) o->shape->members = xalloc((size_t)o->shape->n * sizeof(Object *));
+		o->shape->members[fill[o->shape->index]++] = o;
+	}
+}

@@ -1,0 +1,122 @@
+/*
+ * watch.c - the watch list: the columns of the output.
+ */
+#include <string.h>
+
+#include "csfc.h"
+#include "sema.h"
+#include "sema_int.h"
+#include "csf.h"
+
+static void add_col(Var *v, const char *label, int member)
+{
+	for (int c = 0; c < (v->isvec ? 3 : 1); c++) {
+		WatchCol *w = xalloc(sizeof *w);
+		w->var = v;
+		w->comp = c;
+		w->member = member;
+		w->name = v->isvec ? xprintf("%s.%c", label, 'x' + c) : xstrdup(label);
+		vec_push(&sema.M->cols, w);
+	}
+}
+
+/* Object o's property or temporary `name`, or NULL; a temporary of a shape's member is the
+ * representative's, at *member. */
+static Var *watch_var(Object *o, const char *name, int *member)
+{
+	Var *v = prop_of(o, name);
+	*member = 0;
+	if (v) return v;
+	Object *r = sema.shaped ? o->shape->members[0] : o;
+	v = map_get(&sema.temps, temp_key(name, &r, 1));
+	if (v) *member = o->sidx;
+	return v;
+}
+
+/* Column label.comp of vector v (the watch item w names a component), or an error. */
+static void add_comp(WatchItem *w, Var *v, const char *label, int member)
+{
+	const char *c = w->comp;
+	if (!v->isvec) {
+		error_at(w->loc, "'%s' is a scalar: it has no component '%s'", label, c);
+		return;
+	}
+	if (strlen(c) != 1 || c[0] < 'x' || c[0] > 'z') {
+		error_at(w->loc, "'%s' is not a component of a vector: watch %s.x, %s.y or %s.z", c, label, label, label);
+		return;
+	}
+	WatchCol *col = xalloc(sizeof *col);
+	col->var = v;
+	col->comp = c[0] - 'x';
+	col->member = member;
+	col->name = xprintf("%s.%s", label, c);
+	vec_push(&sema.M->cols, col);
+}
+
+void build_watch(Stmt *st)
+{
+	int member;
+	if (!st || !st->has_watch) {
+		for (int i = 0; i < sema.M->objects.n; i++) {
+			Object *o = sema.M->objects.v[i];
+			for (int j = 0; j < o->props.n; j++) add_col(o->props.v[j], var_label(o->props.v[j]), 0);
+		}
+		return;
+	}
+	for (int i = 0; i < st->watch.n; i++) {
+		WatchItem *w = st->watch.v[i];
+		if (w->obj && !w->comp && !map_get(&sema.objects_by_name, w->obj) &&
+		    (map_get(&sema.prop_names, w->obj) || map_get(&sema.globals_by_name, w->obj))) {
+			/* PROP.c: that component of every object's PROP (or of a global) */
+			WatchItem c = *w;
+			c.obj = NULL, c.prop = w->obj, c.comp = w->prop;
+			Var *g = map_get(&sema.globals_by_name, c.prop);
+			if (g) {
+				add_comp(&c, g, g->name, 0);
+				continue;
+			}
+			for (int j = 0; j < sema.M->objects.n; j++) {
+				Object *o = sema.M->objects.v[j];
+				Var *v = watch_var(o, c.prop, &member);
+				if (v) add_comp(&c, v, xprintf("%s.%s", o->name, c.prop), member);
+			}
+			continue;
+		}
+		if (w->obj) {
+			Object *o = map_get(&sema.objects_by_name, w->obj);
+			if (!o && (map_get(&sema.prop_names, w->obj) || map_get(&sema.globals_by_name, w->obj))) {
+				error_at(w->loc, "'%s.%s': watch the whole variable ('watch %s' gives its x, y and z columns)", w->obj,
+				         w->prop, w->obj);
+				continue;
+			}
+			if (!o) {
+				error_at(w->loc, "unknown object '%s'", w->obj);
+				continue;
+			}
+			Var *v = watch_var(o, w->prop, &member);
+			if (!v) {
+				error_at(w->loc, "object '%s' has no property or temporary '%s'", o->name, w->prop);
+				continue;
+			}
+			if (w->comp) add_comp(w, v, xprintf("%s.%s", o->name, w->prop), member);
+			else add_col(v, xprintf("%s.%s", o->name, w->prop), member);
+			continue;
+		}
+		if (strcmp(w->prop, "t") == 0) continue; /* t is always the first column */
+		Var *g = map_get(&sema.globals_by_name, w->prop);
+		if (g) {
+			add_col(g, g->name, 0);
+			continue;
+		}
+		int found = 0;
+		for (int j = 0; j < sema.M->objects.n; j++) {
+			Object *o = sema.M->objects.v[j];
+			Var *v = watch_var(o, w->prop, &member);
+			if (v) {
+				add_col(v, xprintf("%s.%s", o->name, w->prop), member);
+				found = 1;
+			}
+		}
+		if (!found) error_at(w->loc, "nothing to watch: no object has '%s'", w->prop);
+	}
+}
