@@ -489,8 +489,8 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *err);
 
 /*
- * Reads all of path into a malloc'd buffer (the caller frees it) with one
- * spare byte after the *len bytes read. Returns NULL with errno set on failure.
+ * Reads all of path (- : standard input) into a malloc'd buffer (the caller frees it) with one
+ * spare byte after the *len bytes read. Returns NULL with errno set on failure. (file.c)
  */
 unsigned char *csf_read_file(const char *path, size_t *len);
 

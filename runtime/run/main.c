@@ -61,32 +61,6 @@ static const char exe_usage[] =
 	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, -j N: as csfvm(1)\n"
 	"  --help, --version\n";
 
-unsigned char *csf_read_file(const char *path, size_t *len)
-{
-	int in = strcmp(path, "-") == 0;
-	FILE *f = in ? stdin : fopen(path, "rb");
-	if (!f) return NULL;
-	size_t cap = 1 << 16, n = 0;
-	unsigned char *buf = malloc(cap);
-	while (buf) {
-		n += fread(buf + n, 1, cap - n, f);
-		if (n < cap) break;
-		unsigned char *b = realloc(buf, cap *= 2);
-		if (!b) free(buf);
-		buf = b;
-	}
-	int bad = !buf || ferror(f);
-	int e = errno;
-	if (!in) fclose(f);
-	if (bad) {
-		free(buf);
-		errno = e ? e : EIO;
-		return NULL;
-	}
-	*len = n;
-	return buf;
-}
-
 /* Text (no NUL or other control bytes but white space in the first 4 KiB), as a .csf file is. */
 static int looks_like_source(const unsigned char *b, size_t len)
 {
