@@ -242,12 +242,27 @@ int csf_param_value(const csf_prog *p, const char *name, const csf_pref *r, cons
                     size_t errlen);
 
 /*
- * -D NAME=VALUE: sets the initial value of a global or an object's
- * property in p->mem0. Returns 0, or -1 with the reason in err
- * ("-D NAME=VALUE: ..."): an unknown name, a value that cannot be
- * overridden (and why), a wrong kind or dimension.
+ * A parameter overlay: initial values that replace the program's, set by
+ * -D and by each variant of a sweep, so that the program stays as it was
+ * loaded. csf_run applies them in order (a later value of a slot wins) to
+ * the run's memory after copying p->mem0 into it (csf_opts.init).
  */
-int csf_param_set(csf_prog *p, const char *assign, char *err, size_t errlen);
+typedef struct csf_setting { uint32_t slot; double value; } csf_setting;
+typedef struct csf_overlay { csf_setting *v; size_t n, cap; } csf_overlay;
+/* Appends slot := value. Returns 0, or -1 when memory runs out. */
+int csf_overlay_add(csf_overlay *ov, uint32_t slot, double value);
+/* Writes ov's values (NULL: none) into m, a memory of the program's nmem slots. */
+void csf_overlay_apply(const csf_overlay *ov, double *m);
+/* Frees ov's values; ov is then empty. */
+void csf_overlay_free(csf_overlay *ov);
+
+/*
+ * -D NAME=VALUE: sets the initial value of a global or an object's
+ * property in the overlay ov (p is not changed). Returns 0, or -1 with the
+ * reason in err ("-D NAME=VALUE: ..."): an unknown name, a value that
+ * cannot be overridden (and why), a wrong kind or dimension.
+ */
+int csf_param_set(const csf_prog *p, csf_overlay *ov, const char *assign, char *err, size_t errlen);
 
 /* Lists every parameter of p with its initial value and unit, or why -D cannot set it (csfc --explain). */
 void csf_params_list(const csf_prog *p, FILE *f);
@@ -393,6 +408,8 @@ typedef struct csf_opts {
 	const char *summary;    /* --sweep-summary EXPR */
 	const char *out_dir;    /* --out-dir DIR */
 	long jobs;              /* -j N: worker processes of a sweep (0: the number of online CPUs) */
+	const csf_overlay *init; /* initial values over p->mem0 (-D; a sweep's variant), NULL: none; not
+	                            csf_parse_opts', and not freed by csf_opts_free */
 	/* filled in by csf_run: */
 	unsigned long run_steps, run_rhs;
 	double run_seconds;
@@ -437,14 +454,14 @@ int csf_sweep_take(csf_sweep *s, size_t i, const unsigned char *msg, size_t len)
  */
 extern int (*csf_sweep_distribute)(csf_sweep *s);
 /*
- * csfvm --sweep / --sweep-file: runs the variants of p (its initial memory,
- * after -D, is changed) with -j worker processes and writes one CSV to out
+ * csfvm --sweep / --sweep-file: runs the variants of p (each with o->init, -D's
+ * values, and then its own in an overlay of its own; p is not changed) with -j worker processes and writes one CSV to out
  * (or one file per run under o->out_dir), a failing variant's diagnostics
  * to err with its run number. Returns the exit status: 0, 1 when a variant
  * failed (its rows up to the failure are written), 2 on bad options or an
  * output error.
  */
-int csf_sweep_main(csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char *prog, FILE *out, FILE *err);
+int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char *prog, FILE *out, FILE *err);
 
 /*
  * Simulates p: integrates the state from t = 0 to till, evaluating OUT at
@@ -484,9 +501,10 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
  * csfvm --compare-methods: runs p with a range of methods and tolerances,
  * compares each run's output with the most accurate run's, and prints a
  * table (method, tolerance, seconds, steps, evaluations, largest
- * difference) to out. Returns an exit status.
+ * difference) to out. Every run starts from p's initial memory with init
+ * (-D's values; NULL: none) over it. Returns an exit status.
  */
-int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *err);
+int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, const csf_overlay *init, FILE *out, FILE *err);
 
 /*
  * Reads all of path (- : standard input) into a malloc'd buffer (the caller frees it) with one

@@ -115,9 +115,13 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		return 2;
 	}
 	free(buf);
+	/* -D's values: an overlay over the program's initial memory, which stays as loaded */
+	csf_overlay init = { 0 };
+	o.init = &init;
 	for (int i = 0; i < o.ndefs; i++)
-		if (csf_param_set(&p, o.defs[i], err, sizeof err)) {
+		if (csf_param_set(&p, &init, o.defs[i], err, sizeof err)) {
 			fprintf(stderr, "%s: %s\n", prog, err);
+			csf_overlay_free(&init);
 			csf_prog_free(&p);
 			csf_opts_free(&o);
 			return 2;
@@ -127,7 +131,8 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 	/* SIGINT, SIGTERM: csf_run ends after the current row (csf_signal), or the watchdog ends it */
 	csf_signals_install(stdout, prog);
 	if (sweep) st = csf_sweep_main(&p, exec, &o, prog, stdout, stderr);
-	else st = o.compare ? csf_compare_methods(&p, exec, stdout, stderr) : csf_run(&p, exec, &o, stdout, stderr);
+	else st = o.compare ? csf_compare_methods(&p, exec, &init, stdout, stderr) : csf_run(&p, exec, &o, stdout, stderr);
+	csf_overlay_free(&init);
 	csf_prog_free(&p);
 	csf_opts_free(&o);
 	if (st == 128 + SIGPIPE) { /* as cat: killed by the signal the closed pipe sent */

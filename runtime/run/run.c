@@ -36,6 +36,7 @@ typedef struct session {
 	FILE *out;          /* the CSV rows, or NULL */
 	const csf_sink *sink; /* the rows' values, or NULL */
 	double *v;          /* with a sink: a row's values */
+	const csf_overlay *init; /* initial values over p->mem0 (csf_opts.init) */
 	int werr;           /* a row's write error (errno) */
 	char msg[256];      /* the integrator's words */
 } session;
@@ -81,7 +82,8 @@ static stop run_alloc(session *S)
 	    (S->sink && !S->v))
 		return stop_kind_only(STOP_NOMEM);
 	memcpy(r->m, p->mem0, p->nmem * sizeof(double));
-	memcpy(S->y, p->mem0 + p->ystart, p->ny * sizeof(double));
+	csf_overlay_apply(S->init, r->m); /* -D's values, a sweep variant's */
+	memcpy(S->y, r->m + p->ystart, p->ny * sizeof(double));
 	if (p->ncrules && !csf_method_contacts(S->method)) {
 		stop s = stop_kind_only(STOP_NO_CONTACTS);
 		s.method = S->method;
@@ -481,7 +483,7 @@ static void run_free(session *S)
 
 int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, const csf_sink *sink, FILE *err)
 {
-	session S = { .r = { .p = p, .exec = exec, .max_rhs = o->max_rhs }, .out = out, .sink = sink };
+	session S = { .r = { .p = p, .exec = exec, .max_rhs = o->max_rhs }, .out = out, .sink = sink, .init = o->init };
 	S.wc.r = S.wc_stiff.r = &S.r;
 	/* --method auto (the default, but for fixed steps and large scenes: dop853) is dop853 with
 	   AUTO_STIFF beside it */
