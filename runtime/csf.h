@@ -177,7 +177,6 @@ typedef struct csf_prog {
 	csf_cbody *cbodies;
 	uint32_t *cmembers;
 	csf_crule *crules;
-	csf_contacts *crun; /* during csf_run, the contact routine's state; NULL otherwise (not in the file) */
 	uint32_t *objects; /* object names, in definition order */
 	csf_prop *props;
 	double ubase[CSF_NDIM]; /* the model's unit system: its units of length, mass, time, current in SI */
@@ -282,23 +281,35 @@ void csf_disassemble(const csf_prog *p, FILE *f);
  * state and of the derivatives) is in m; the values only a section uses
  * need not be: csf_vm_exec stores every value it computes, a generated
  * program keeps the rest in registers (re-run a section on csf_vm_exec to
- * see them all, as the driver does to name a non-finite value). Returns
+ * see them all, as the driver does to name a non-finite value). x is the
+ * run's state that the code reaches (csf_exec_ctx; NULL: none). Returns
  * -1, or the index of the first assertion that failed (execution stops
  * there).
  */
-typedef int (*csf_exec_fn)(const csf_prog *p, int sec, double *m, const double *y, double *dydt);
+typedef struct csf_exec_ctx csf_exec_ctx;
+typedef int (*csf_exec_fn)(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, const double *y, double *dydt);
+
+/*
+ * The run-time state an execution function passes on, which the program
+ * (const, as loaded) does not hold: the contact routine's candidate pairs
+ * and modes, for the CONTACT instruction (csf_run owns them; NULL: no
+ * contacts, and CONTACT does nothing).
+ */
+struct csf_exec_ctx {
+	csf_contacts *contacts;
+};
 
 /* The interpreter: a csf_exec_fn for verified programs (it copies y into m and the derivatives out). */
-int csf_vm_exec(const csf_prog *p, int sec, double *m, const double *y, double *dydt);
+int csf_vm_exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, const double *y, double *dydt);
 
 /*
  * The contact routine (the CONTACT instruction; runtime/contact/force.c), on the
- * candidate pairs of p->crun (nothing when it is NULL): for every pair in
+ * candidate pairs of x->contacts (nothing when x or they are NULL): for every pair in
  * contact, the normal force that keeps the relative normal acceleration
  * zero and the friction force of its mode, added to both bodies' a, FN and
  * Ff; and each candidate's two guards (an event when one becomes negative).
  */
-void csf_contact_apply(const csf_prog *p, double *m);
+void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m);
 
 /* Evaluates the RHS section on m (the current state): for csf_contact_settle. */
 typedef int (*csf_eval_fn)(void *ctx);
@@ -307,8 +318,8 @@ typedef int (*csf_eval_fn)(void *ctx);
  * Makes every contact's mode consistent at the current instant, changing
  * the velocities (and positions, by rounding-size amounts) in m: impacts
  * (restitution), the contacts that come to rest, lift-off, stick and slip,
- * as the guards of the current modes call for, over the candidates of
- * p->crun (chosen at this instant: csf_contacts_find with one state).
+ * as the guards of the current modes call for, over the candidates cs
+ * (NULL: none; chosen at this instant: csf_contacts_find with one state).
  * zeno: the time below which a train of bounces counts as at rest; tol:
  * the integrator's relative tolerance (the accuracy of the positions it
  * computes). Returns 0; -1 if eval failed; CSF_SETTLE_ENDLESS if the
@@ -317,11 +328,12 @@ typedef int (*csf_eval_fn)(void *ctx);
  * solved (masses in a cluster that differ by more than about 1e10).
  */
 enum { CSF_SETTLE_ENDLESS = 1, CSF_SETTLE_IMPULSES = 2, CSF_SETTLE_FORCES = 3 /* csf_contacts_unsolved */ };
-int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, csf_eval_fn eval, void *ctx);
+int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, double tol, csf_eval_fn eval,
+                       void *ctx);
 uint64_t csf_contact_passes(uint32_t n);
 
 /*
- * The contact routine's state during a run (csf_run keeps it in p->crun):
+ * The contact routine's state during a run (csf_run keeps it, and passes it to the code in csf_exec_ctx):
  * the candidate pairs, those that can touch soon enough to matter, in the
  * order of the pairs (csf_crule), each with its mode and work values.
  * NULL when memory runs out.

@@ -75,7 +75,7 @@ static stop run_alloc(session *S)
 	if (S->events) room_for_guards(r, r->ng ? r->ng : 1);
 	if (p->ncrules) {
 		r->cs = csf_contacts_new(p);
-		((csf_prog *)p)->crun = r->cs; /* the CONTACT instruction's state (p is the caller's, not const data) */
+		r->x.contacts = r->cs; /* the CONTACT instruction's state */
 	}
 	if (S->sink) S->v = malloc((p->ncols + 1) * sizeof *S->v);
 	if (!r->m || !S->y || ((S->events || S->autom_on) && !S->work) || r->nomem || (p->ncrules && !r->cs) ||
@@ -327,7 +327,7 @@ static stop run_row(session *S, double tk, int *last)
 	}
 	r->m[p->tslot] = tk;
 	memcpy(r->m + p->ystart, S->y, p->ny * sizeof(double));
-	int a = r->exec(p, CSF_SEC_OUT, r->m, r->m + p->ystart, r->m + p->dstart);
+	int a = r->exec(p, &r->x, CSF_SEC_OUT, r->m, r->m + p->ystart, r->m + p->dstart);
 	if (a >= 0) {
 		stop s = stop_at(STOP_ASSERT, tk);
 		s.which = a;
@@ -338,7 +338,7 @@ static stop run_row(session *S, double tk, int *last)
 	for (uint32_t i = 0; i < p->ncols; i++) bad |= !isfinite(r->m[p->cols[i].slot]);
 	if (bad) {
 		progress_off(r);
-		csf_vm_exec(p, CSF_SEC_OUT, r->m, r->m + p->ystart, r->m + p->dstart); /* every value, for the report */
+		csf_vm_exec(p, &r->x, CSF_SEC_OUT, r->m, r->m + p->ystart, r->m + p->dstart); /* every value, for the report */
 		return stop_at(STOP_NONFINITE_ROW, tk);
 	}
 	if (emit_row(S, tk)) {
@@ -466,7 +466,6 @@ static void run_free(session *S)
 	free(S->gd.y);
 	csf_ode_free(S->ode);
 	csf_ode_free(S->au.m[1]);
-	if (r->cs) ((csf_prog *)r->p)->crun = NULL;
 	csf_contacts_free(r->cs);
 	free(r->ga);
 	free(r->gb);
