@@ -177,7 +177,6 @@ typedef struct csf_prog {
 	csf_cbody *cbodies;
 	uint32_t *cmembers;
 	csf_crule *crules;
-	csf_contacts *crun; /* during csf_run, the contact routine's state; NULL otherwise (not in the file) */
 	uint32_t *objects; /* object names, in definition order */
 	csf_prop *props;
 	double ubase[CSF_NDIM]; /* the model's unit system: its units of length, mass, time, current in SI */
@@ -242,12 +241,27 @@ int csf_param_value(const csf_prog *p, const char *name, const csf_pref *r, cons
                     size_t errlen);
 
 /*
- * -D NAME=VALUE: sets the initial value of a global or an object's
- * property in p->mem0. Returns 0, or -1 with the reason in err
- * ("-D NAME=VALUE: ..."): an unknown name, a value that cannot be
- * overridden (and why), a wrong kind or dimension.
+ * A parameter overlay: initial values that replace the program's, set by
+ * -D and by each variant of a sweep, so that the program stays as it was
+ * loaded. csf_run applies them in order (a later value of a slot wins) to
+ * the run's memory after copying p->mem0 into it (csf_opts.init).
  */
-int csf_param_set(csf_prog *p, const char *assign, char *err, size_t errlen);
+typedef struct csf_setting { uint32_t slot; double value; } csf_setting;
+typedef struct csf_overlay { csf_setting *v; size_t n, cap; } csf_overlay;
+/* Appends slot := value. Returns 0, or -1 when memory runs out. */
+int csf_overlay_add(csf_overlay *ov, uint32_t slot, double value);
+/* Writes ov's values (NULL: none) into m, a memory of the program's nmem slots. */
+void csf_overlay_apply(const csf_overlay *ov, double *m);
+/* Frees ov's values; ov is then empty. */
+void csf_overlay_free(csf_overlay *ov);
+
+/*
+ * -D NAME=VALUE: sets the initial value of a global or an object's
+ * property in the overlay ov (p is not changed). Returns 0, or -1 with the
+ * reason in err ("-D NAME=VALUE: ..."): an unknown name, a value that
+ * cannot be overridden (and why), a wrong kind or dimension.
+ */
+int csf_param_set(const csf_prog *p, csf_overlay *ov, const char *assign, char *err, size_t errlen);
 
 /* Lists every parameter of p with its initial value and unit, or why -D cannot set it (csfc --explain). */
 void csf_params_list(const csf_prog *p, FILE *f);
@@ -267,23 +281,35 @@ void csf_disassemble(const csf_prog *p, FILE *f);
  * state and of the derivatives) is in m; the values only a section uses
  * need not be: csf_vm_exec stores every value it computes, a generated
  * program keeps the rest in registers (re-run a section on csf_vm_exec to
- * see them all, as the driver does to name a non-finite value). Returns
+ * see them all, as the driver does to name a non-finite value). x is the
+ * run's state that the code reaches (csf_exec_ctx; NULL: none). Returns
  * -1, or the index of the first assertion that failed (execution stops
  * there).
  */
-typedef int (*csf_exec_fn)(const csf_prog *p, int sec, double *m, const double *y, double *dydt);
+typedef struct csf_exec_ctx csf_exec_ctx;
+typedef int (*csf_exec_fn)(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, const double *y, double *dydt);
+
+/*
+ * The run-time state an execution function passes on, which the program
+ * (const, as loaded) does not hold: the contact routine's candidate pairs
+ * and modes, for the CONTACT instruction (csf_run owns them; NULL: no
+ * contacts, and CONTACT does nothing).
+ */
+struct csf_exec_ctx {
+	csf_contacts *contacts;
+};
 
 /* The interpreter: a csf_exec_fn for verified programs (it copies y into m and the derivatives out). */
-int csf_vm_exec(const csf_prog *p, int sec, double *m, const double *y, double *dydt);
+int csf_vm_exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, const double *y, double *dydt);
 
 /*
  * The contact routine (the CONTACT instruction; runtime/contact/force.c), on the
- * candidate pairs of p->crun (nothing when it is NULL): for every pair in
+ * candidate pairs of x->contacts (nothing when x or they are NULL): for every pair in
  * contact, the normal force that keeps the relative normal acceleration
  * zero and the friction force of its mode, added to both bodies' a, FN and
  * Ff; and each candidate's two guards (an event when one becomes negative).
  */
-void csf_contact_apply(const csf_prog *p, double *m);
+void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m);
 
 /* Evaluates the RHS section on m (the current state): for csf_contact_settle. */
 typedef int (*csf_eval_fn)(void *ctx);
@@ -292,8 +318,8 @@ typedef int (*csf_eval_fn)(void *ctx);
  * Makes every contact's mode consistent at the current instant, changing
  * the velocities (and positions, by rounding-size amounts) in m: impacts
  * (restitution), the contacts that come to rest, lift-off, stick and slip,
- * as the guards of the current modes call for, over the candidates of
- * p->crun (chosen at this instant: csf_contacts_find with one state).
+ * as the guards of the current modes call for, over the candidates cs
+ * (NULL: none; chosen at this instant: csf_contacts_find with one state).
  * zeno: the time below which a train of bounces counts as at rest; tol:
  * the integrator's relative tolerance (the accuracy of the positions it
  * computes). Returns 0; -1 if eval failed; CSF_SETTLE_ENDLESS if the
@@ -302,11 +328,12 @@ typedef int (*csf_eval_fn)(void *ctx);
  * solved (masses in a cluster that differ by more than about 1e10).
  */
 enum { CSF_SETTLE_ENDLESS = 1, CSF_SETTLE_IMPULSES = 2, CSF_SETTLE_FORCES = 3 /* csf_contacts_unsolved */ };
-int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, csf_eval_fn eval, void *ctx);
+int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, double tol, csf_eval_fn eval,
+                       void *ctx);
 uint64_t csf_contact_passes(uint32_t n);
 
 /*
- * The contact routine's state during a run (csf_run keeps it in p->crun):
+ * The contact routine's state during a run (csf_run keeps it, and passes it to the code in csf_exec_ctx):
  * the candidate pairs, those that can touch soon enough to matter, in the
  * order of the pairs (csf_crule), each with its mode and work values.
  * NULL when memory runs out.
@@ -393,6 +420,8 @@ typedef struct csf_opts {
 	const char *summary;    /* --sweep-summary EXPR */
 	const char *out_dir;    /* --out-dir DIR */
 	long jobs;              /* -j N: worker processes of a sweep (0: the number of online CPUs) */
+	const csf_overlay *init; /* initial values over p->mem0 (-D; a sweep's variant), NULL: none; not
+	                            csf_parse_opts', and not freed by csf_opts_free */
 	/* filled in by csf_run: */
 	unsigned long run_steps, run_rhs;
 	double run_seconds;
@@ -437,14 +466,14 @@ int csf_sweep_take(csf_sweep *s, size_t i, const unsigned char *msg, size_t len)
  */
 extern int (*csf_sweep_distribute)(csf_sweep *s);
 /*
- * csfvm --sweep / --sweep-file: runs the variants of p (its initial memory,
- * after -D, is changed) with -j worker processes and writes one CSV to out
+ * csfvm --sweep / --sweep-file: runs the variants of p (each with o->init, -D's
+ * values, and then its own in an overlay of its own; p is not changed) with -j worker processes and writes one CSV to out
  * (or one file per run under o->out_dir), a failing variant's diagnostics
  * to err with its run number. Returns the exit status: 0, 1 when a variant
  * failed (its rows up to the failure are written), 2 on bad options or an
  * output error.
  */
-int csf_sweep_main(csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char *prog, FILE *out, FILE *err);
+int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char *prog, FILE *out, FILE *err);
 
 /*
  * Simulates p: integrates the state from t = 0 to till, evaluating OUT at
@@ -484,13 +513,14 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
  * csfvm --compare-methods: runs p with a range of methods and tolerances,
  * compares each run's output with the most accurate run's, and prints a
  * table (method, tolerance, seconds, steps, evaluations, largest
- * difference) to out. Returns an exit status.
+ * difference) to out. Every run starts from p's initial memory with init
+ * (-D's values; NULL: none) over it. Returns an exit status.
  */
-int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *err);
+int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, const csf_overlay *init, FILE *out, FILE *err);
 
 /*
- * Reads all of path into a malloc'd buffer (the caller frees it) with one
- * spare byte after the *len bytes read. Returns NULL with errno set on failure.
+ * Reads all of path (- : standard input) into a malloc'd buffer (the caller frees it) with one
+ * spare byte after the *len bytes read. Returns NULL with errno set on failure. (file.c)
  */
 unsigned char *csf_read_file(const char *path, size_t *len);
 

@@ -25,7 +25,7 @@
 #define ARGS3(b, c, d) LOAD_##b(pc[2]), LOAD_##c(pc[3])
 #define ARGS4(b, c, d) LOAD_##b(pc[2]), LOAD_##c(pc[3]), LOAD_##d(pc[4])
 
-static int exec(const csf_prog *p, int sec, double *m)
+static int exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m)
 {
 	const uint32_t *code = p->code[sec];
 	const uint32_t *pc = code, *end = code + p->ncode[sec];
@@ -44,7 +44,7 @@ static int exec(const csf_prog *p, int sec, double *m)
 			pc += 3;
 			continue;
 		case CSF_OP_CONTACT:
-			csf_contact_apply(p, m);
+			csf_contact_apply(p, x, m);
 			pc += 1;
 			continue;
 		case CSF_OP_ASSERT:
@@ -96,10 +96,10 @@ static int exec(const csf_prog *p, int sec, double *m)
  * The state is y and the derivatives go to dydt: copied into and out of
  * m's own slots unless they are those slots.
  */
-int csf_vm_exec(const csf_prog *p, int sec, double *m, const double *y, double *dydt)
+int csf_vm_exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, const double *y, double *dydt)
 {
 	if (y != m + p->ystart) memcpy(m + p->ystart, y, p->ny * sizeof *y);
-	int r = exec(p, sec, m);
+	int r = exec(p, x, sec, m);
 	if (dydt != m + p->dstart) memcpy(dydt, m + p->dstart, p->ny * sizeof *dydt);
 	return r;
 }

@@ -18,11 +18,11 @@
 #include "csf.h"
 #include "bytecode.h"
 
-typedef struct exec_ctx { const csf_prog *p; double *m; } exec_ctx;
+typedef struct exec_ctx { const csf_prog *p; double *m; csf_exec_ctx x; } exec_ctx;
 static int exec_rhs(void *ctx)
 {
 	exec_ctx *e = ctx;
-	csf_vm_exec(e->p, CSF_SEC_RHS, e->m, e->m + e->p->ystart, e->m + e->p->dstart);
+	csf_vm_exec(e->p, &e->x, CSF_SEC_RHS, e->m, e->m + e->p->ystart, e->m + e->p->dstart);
 	return 0;
 }
 
@@ -44,16 +44,15 @@ static int try_one(const unsigned char *buf, size_t len, int must_fail, long *re
 		memcpy(m, p.mem0, p.nmem * sizeof *m);
 		/* the contact routine's tables too: the candidates at this state, settled */
 		csf_contacts *cs = p.ncrules ? csf_contacts_new(&p) : NULL;
+		csf_exec_ctx x = { cs };
 		if (cs) {
-			p.crun = cs;
 			const double *ys[1] = { m + p.ystart };
 			if (csf_contacts_find(cs, m, ys, 1) >= 0) csf_contacts_commit(cs, m, NULL, NULL, 0);
-			exec_ctx e = { &p, m };
-			csf_contact_settle(&p, m, 1e-7, 1e-10, exec_rhs, &e);
+			exec_ctx e = { &p, m, x };
+			csf_contact_settle(&p, cs, m, 1e-7, 1e-10, exec_rhs, &e);
 		}
-		csf_vm_exec(&p, CSF_SEC_RHS, m, m + p.ystart, m + p.dstart);
-		csf_vm_exec(&p, CSF_SEC_OUT, m, m + p.ystart, m + p.dstart);
-		p.crun = NULL;
+		csf_vm_exec(&p, &x, CSF_SEC_RHS, m, m + p.ystart, m + p.dstart);
+		csf_vm_exec(&p, &x, CSF_SEC_OUT, m, m + p.ystart, m + p.dstart);
 		csf_contacts_free(cs);
 		free(m);
 	}

@@ -297,7 +297,7 @@ static void emit_insn(Emit *E, const uint32_t *code, uint32_t pc)
 		return;
 	case CSF_OP_CONTACT:
 		E->used_p = E->used_m = 1;
-		fputs("csf_contact_apply(p, m);\n", E->f);
+		fputs("csf_contact_apply(p, x, m);\n", E->f);
 		return;
 	case CSF_OP_LOOP: { /* a count of 0 runs no iteration, as the VM's jump to the end */
 		unsigned long l = a[0];
@@ -325,7 +325,8 @@ static void mark_targets(const uint32_t *code, uint32_t from, uint32_t to, unsig
 /* The parameters of a section's functions. */
 static const char *params(const Slots *S)
 {
-	return S->direct ? "const csf_prog *p, double *m, const double *y, double *dydt" : "const csf_prog *p, double *m";
+	return S->direct ? "const csf_prog *p, const csf_exec_ctx *x, double *m, const double *y, double *dydt"
+	                 : "const csf_prog *p, const csf_exec_ctx *x, double *m";
 }
 
 /*
@@ -383,7 +384,7 @@ static void emit_function(Emit *E, int sec, uint32_t from, uint32_t to, const ch
 		}
 		if (!first) fputs(";\n", out);
 	}
-	if (!E->used_p) fputs("\t(void)p;\n", out);
+	if (!E->used_p) fputs("\t(void)p;\n\t(void)x;\n", out);
 	if (!E->used_m) fputs("\t(void)m;\n", out);
 	if (E->S->direct && !E->used_y) fputs("\t(void)y;\n", out);
 	if (E->S->direct && !E->used_d) fputs("\t(void)dydt;\n", out);
@@ -401,7 +402,7 @@ static void emit_function(Emit *E, int sec, uint32_t from, uint32_t to, const ch
 static void emit_section(Emit *E, int sec, const char *fname, uint32_t *const *starts, const uint32_t *nfn)
 {
 	const csf_prog *p = E->p;
-	const char *sig = "const csf_prog *p, double *m, const double *y, double *dydt";
+	const char *sig = "const csf_prog *p, const csf_exec_ctx *x, double *m, const double *y, double *dydt";
 	if (E->S->direct && nfn[sec] == 1) {
 		emit_function(E, sec, 0, p->ncode[sec], fname, "static");
 		return;
@@ -413,7 +414,7 @@ static void emit_section(Emit *E, int sec, const char *fname, uint32_t *const *s
 		fprintf(E->f, "\tif (y != m + %luu) memcpy(m + %luu, y, %luu * sizeof *y);\n", (unsigned long)p->ystart,
 		        (unsigned long)p->ystart, (unsigned long)p->ny);
 	for (uint32_t i = 0; i < nfn[sec]; i++)
-		fprintf(E->f, "\tif (r < 0) r = %s_%lu(p, m%s);\n", fname, (unsigned long)i, E->S->direct ? ", y, dydt" : "");
+		fprintf(E->f, "\tif (r < 0) r = %s_%lu(p, x, m%s);\n", fname, (unsigned long)i, E->S->direct ? ", y, dydt" : "");
 	if (!E->S->direct)
 		fprintf(E->f, "\tif (dydt != m + %luu) memcpy(dydt, m + %luu, %luu * sizeof *dydt);\n", (unsigned long)p->dstart,
 		        (unsigned long)p->dstart, (unsigned long)p->ny);
@@ -475,10 +476,11 @@ void emit_c(const csf_prog *p, const unsigned char *image, size_t len, const cha
 		if (p->ncode[sec] > maxcode) maxcode = p->ncode[sec];
 	E.target = xcalloc((size_t)maxcode + 1, 1);
 	for (int sec = 0; sec < CSF_NSEC; sec++) emit_section(&E, sec, names[sec], starts, nfn);
-	fputs("static int csf_model_exec(const csf_prog *p, int sec, double *m, const double *y, double *dydt)\n{\n"
-	      "\treturn sec == CSF_SEC_RHS ? csf_model_rhs(p, m, y, dydt)\n"
-	      "\t     : sec == CSF_SEC_OUT ? csf_model_out(p, m, y, dydt)\n"
-	      "\t                          : csf_model_jac(p, m, y, dydt);\n}\n\n"
+	fputs("static int csf_model_exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, const double *y,\n"
+	      "                          double *dydt)\n{\n"
+	      "\treturn sec == CSF_SEC_RHS ? csf_model_rhs(p, x, m, y, dydt)\n"
+	      "\t     : sec == CSF_SEC_OUT ? csf_model_out(p, x, m, y, dydt)\n"
+	      "\t                          : csf_model_jac(p, x, m, y, dydt);\n}\n\n"
 	      "int main(int argc, char **argv)\n{\n"
 	      "\treturn csf_main(argc, argv, csf_model_image, sizeof csf_model_image, csf_model_exec);\n}\n",
 	      f);

@@ -121,9 +121,9 @@ static double residual(const csf_contacts *cs, const double *m)
 
 int csf_contacts_unsolved(const csf_contacts *c) { return c->unsolved; }
 
-void csf_contact_apply(const csf_prog *p, double *m)
+void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 {
-	csf_contacts *cs = p->crun;
+	csf_contacts *cs = x ? x->contacts : NULL;
 	if (!cs) return;
 	for (uint32_t b = 0; b < p->ncbodies; b++) {
 		const csf_cbody *cb = &p->cbodies[b];

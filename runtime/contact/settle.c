@@ -189,9 +189,9 @@ uint64_t csf_contact_passes(uint32_t n)
 	return 100 + 10 * (uint64_t)n + 1000000 / ((uint64_t)n + 1);
 }
 
-int csf_contact_settle(const csf_prog *p, double *m, double zeno, double tol, csf_eval_fn eval, void *ctx)
+int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, double tol, csf_eval_fn eval,
+                       void *ctx)
 {
-	csf_contacts *cs = p->crun;
 	if (!cs) return 0;
 	/* each pass evaluates the forces and guards of the current modes, then acts on what they say */
 	/* impacts, up to csf_contact_passes; other changes of mode (rest, lift-off, stick, slip),

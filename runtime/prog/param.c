@@ -1,5 +1,6 @@
 /*
- * param.c - parameters: the initial values -D NAME=VALUE sets.
+ * param.c - parameters: the initial values -D NAME=VALUE sets, in an overlay
+ * (csf_overlay) that the run applies over the program's (which stays as loaded).
  *
  * The compiler lists what can be set: every global (p->globals) and every
  * object property the run keeps in memory (p->props), each with a class
@@ -254,7 +255,30 @@ bad:
 	return csf_fail(err, errlen, "cannot read '%s' as a value: %s at '%s'", text, why, V.s);
 }
 
-int csf_param_set(csf_prog *p, const char *assign, char *err, size_t errlen)
+int csf_overlay_add(csf_overlay *ov, uint32_t slot, double value)
+{
+	if (ov->n == ov->cap) {
+		size_t cap = ov->cap ? 2 * ov->cap : 8;
+		csf_setting *v = realloc(ov->v, cap * sizeof *v);
+		if (!v) return -1;
+		ov->v = v, ov->cap = cap;
+	}
+	ov->v[ov->n++] = (csf_setting){ slot, value };
+	return 0;
+}
+
+void csf_overlay_apply(const csf_overlay *ov, double *m)
+{
+	for (size_t i = 0; ov && i < ov->n; i++) m[ov->v[i].slot] = ov->v[i].value;
+}
+
+void csf_overlay_free(csf_overlay *ov)
+{
+	free(ov->v);
+	*ov = (csf_overlay){ 0 };
+}
+
+int csf_param_set(const csf_prog *p, csf_overlay *ov, const char *assign, char *err, size_t errlen)
 {
 	const char *eq = strchr(assign, '=');
 	if (!eq || eq == assign) return csf_fail(err, errlen, "-D %s: expected NAME=VALUE", assign);
@@ -271,7 +295,8 @@ int csf_param_set(csf_prog *p, const char *assign, char *err, size_t errlen)
 	if (*csf_str(p, r.cls->why))
 		return csf_fail(err, errlen, "-D %s: %s cannot be overridden: %s", assign, name, csf_str(p, r.cls->why));
 	if (csf_param_value(p, name, &r, eq + 1, v, why, sizeof why)) return csf_fail(err, errlen, "-D %s: %s", assign, why);
-	memcpy(p->mem0 + r.slot, v, r.width * sizeof(double));
+	for (uint32_t k = 0; k < r.width; k++)
+		if (csf_overlay_add(ov, r.slot + k, v[k])) return csf_fail(err, errlen, "-D %s: out of memory", assign);
 	return 0;
 }
 

@@ -15,14 +15,14 @@ int rhs(double t, const double *y, double *dydt, void *ctx)
 	const csf_prog *p = r->p;
 	double *m = r->m;
 	m[p->tslot] = t;
-	r->exec(p, CSF_SEC_RHS, m, y, dydt);
+	r->exec(p, &r->x, CSF_SEC_RHS, m, y, dydt);
 	r->nrhs++;
 	for (uint32_t i = 0; i < p->ny; i++)
 		if (!isfinite(dydt[i])) {
 			r->fail = 1;
 			r->fail_t = t;
 			/* every value the section computed, in m for report_nonfinite: the VM's, bit for bit the same */
-			csf_vm_exec(p, CSF_SEC_RHS, m, y, m + p->dstart);
+			csf_vm_exec(p, &r->x, CSF_SEC_RHS, m, y, m + p->dstart);
 			return 1;
 		}
 	return 0;
@@ -78,7 +78,7 @@ int jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx)
 		memset(tan + p->ystart, 0, n * sizeof *tan);
 		tan[p->tslot] = j == n ? 1.0 : 0.0;
 		if (j < n) tan[p->ystart + j] = 1.0;
-		r->exec(p, CSF_SEC_JAC, m, m + p->ystart, m + p->dstart);
+		r->exec(p, &r->x, CSF_SEC_JAC, m, m + p->ystart, m + p->dstart);
 		for (uint32_t i = 0; i < n; i++) {
 			double d = tan[p->dstart + i];
 			if (j < n) dfdy[(size_t)i * n + j] = d;

@@ -119,7 +119,7 @@ int update_modes(run *r, double t, double *y)
 		if (choose_contacts(r, ys, 1, NULL, NULL, 0)) return 1;
 		settle_ctx s = { r, t, y };
 		memcpy(r->m + p->ystart, y, p->ny * sizeof *y);
-		int st = csf_contact_settle(p, r->m, r->zeno, r->tol, settle_eval, &s);
+		int st = csf_contact_settle(p, r->cs, r->m, r->zeno, r->tol, settle_eval, &s);
 		if (st > 0) r->unsettled = st, r->unsettled_t = t;
 		if (!st && csf_contacts_unsolved(r->cs)) r->unsettled = CSF_SETTLE_FORCES, r->unsettled_t = t, st = 1;
 		if (st) return 1;

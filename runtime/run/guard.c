@@ -39,7 +39,7 @@ static int jvp(void *ctx, const double *v, double *jv)
 		memcpy(m + p->ystart, g->y, n * sizeof *m);
 		for (uint32_t i = 0; i < n; i++) tan[p->ystart + i] = v[i] * p->yscale[i];
 		tan[p->tslot] = 0;
-		r->exec(p, CSF_SEC_JAC, m, m + p->ystart, m + p->dstart);
+		r->exec(p, &r->x, CSF_SEC_JAC, m, m + p->ystart, m + p->dstart);
 		for (uint32_t i = 0; i < n; i++) jv[i] = tan[p->dstart + i] / p->yscale[i];
 		g->nexact++;
 		return 0;

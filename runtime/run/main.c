@@ -61,32 +61,6 @@ static const char exe_usage[] =
 	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, -j N: as csfvm(1)\n"
 	"  --help, --version\n";
 
-unsigned char *csf_read_file(const char *path, size_t *len)
-{
-	int in = strcmp(path, "-") == 0;
-	FILE *f = in ? stdin : fopen(path, "rb");
-	if (!f) return NULL;
-	size_t cap = 1 << 16, n = 0;
-	unsigned char *buf = malloc(cap);
-	while (buf) {
-		n += fread(buf + n, 1, cap - n, f);
-		if (n < cap) break;
-		unsigned char *b = realloc(buf, cap *= 2);
-		if (!b) free(buf);
-		buf = b;
-	}
-	int bad = !buf || ferror(f);
-	int e = errno;
-	if (!in) fclose(f);
-	if (bad) {
-		free(buf);
-		errno = e ? e : EIO;
-		return NULL;
-	}
-	*len = n;
-	return buf;
-}
-
 /* Text (no NUL or other control bytes but white space in the first 4 KiB), as a .csf file is. */
 static int looks_like_source(const unsigned char *b, size_t len)
 {
@@ -141,9 +115,13 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		return 2;
 	}
 	free(buf);
+	/* -D's values: an overlay over the program's initial memory, which stays as loaded */
+	csf_overlay init = { 0 };
+	o.init = &init;
 	for (int i = 0; i < o.ndefs; i++)
-		if (csf_param_set(&p, o.defs[i], err, sizeof err)) {
+		if (csf_param_set(&p, &init, o.defs[i], err, sizeof err)) {
 			fprintf(stderr, "%s: %s\n", prog, err);
+			csf_overlay_free(&init);
 			csf_prog_free(&p);
 			csf_opts_free(&o);
 			return 2;
@@ -153,7 +131,8 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 	/* SIGINT, SIGTERM: csf_run ends after the current row (csf_signal), or the watchdog ends it */
 	csf_signals_install(stdout, prog);
 	if (sweep) st = csf_sweep_main(&p, exec, &o, prog, stdout, stderr);
-	else st = o.compare ? csf_compare_methods(&p, exec, stdout, stderr) : csf_run(&p, exec, &o, stdout, stderr);
+	else st = o.compare ? csf_compare_methods(&p, exec, &init, stdout, stderr) : csf_run(&p, exec, &o, stdout, stderr);
+	csf_overlay_free(&init);
 	csf_prog_free(&p);
 	csf_opts_free(&o);
 	if (st == 128 + SIGPIPE) { /* as cat: killed by the signal the closed pipe sent */

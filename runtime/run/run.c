@@ -36,6 +36,7 @@ typedef struct session {
 	FILE *out;          /* the CSV rows, or NULL */
 	const csf_sink *sink; /* the rows' values, or NULL */
 	double *v;          /* with a sink: a row's values */
+	const csf_overlay *init; /* initial values over p->mem0 (csf_opts.init) */
 	int werr;           /* a row's write error (errno) */
 	char msg[256];      /* the integrator's words */
 } session;
@@ -74,14 +75,15 @@ static stop run_alloc(session *S)
 	if (S->events) room_for_guards(r, r->ng ? r->ng : 1);
 	if (p->ncrules) {
 		r->cs = csf_contacts_new(p);
-		((csf_prog *)p)->crun = r->cs; /* the CONTACT instruction's state (p is the caller's, not const data) */
+		r->x.contacts = r->cs; /* the CONTACT instruction's state */
 	}
 	if (S->sink) S->v = malloc((p->ncols + 1) * sizeof *S->v);
 	if (!r->m || !S->y || ((S->events || S->autom_on) && !S->work) || r->nomem || (p->ncrules && !r->cs) ||
 	    (S->sink && !S->v))
 		return stop_kind_only(STOP_NOMEM);
 	memcpy(r->m, p->mem0, p->nmem * sizeof(double));
-	memcpy(S->y, p->mem0 + p->ystart, p->ny * sizeof(double));
+	csf_overlay_apply(S->init, r->m); /* -D's values, a sweep variant's */
+	memcpy(S->y, r->m + p->ystart, p->ny * sizeof(double));
 	if (p->ncrules && !csf_method_contacts(S->method)) {
 		stop s = stop_kind_only(STOP_NO_CONTACTS);
 		s.method = S->method;
@@ -325,7 +327,7 @@ static stop run_row(session *S, double tk, int *last)
 	}
 	r->m[p->tslot] = tk;
 	memcpy(r->m + p->ystart, S->y, p->ny * sizeof(double));
-	int a = r->exec(p, CSF_SEC_OUT, r->m, r->m + p->ystart, r->m + p->dstart);
+	int a = r->exec(p, &r->x, CSF_SEC_OUT, r->m, r->m + p->ystart, r->m + p->dstart);
 	if (a >= 0) {
 		stop s = stop_at(STOP_ASSERT, tk);
 		s.which = a;
@@ -336,7 +338,7 @@ static stop run_row(session *S, double tk, int *last)
 	for (uint32_t i = 0; i < p->ncols; i++) bad |= !isfinite(r->m[p->cols[i].slot]);
 	if (bad) {
 		progress_off(r);
-		csf_vm_exec(p, CSF_SEC_OUT, r->m, r->m + p->ystart, r->m + p->dstart); /* every value, for the report */
+		csf_vm_exec(p, &r->x, CSF_SEC_OUT, r->m, r->m + p->ystart, r->m + p->dstart); /* every value, for the report */
 		return stop_at(STOP_NONFINITE_ROW, tk);
 	}
 	if (emit_row(S, tk)) {
@@ -464,7 +466,6 @@ static void run_free(session *S)
 	free(S->gd.y);
 	csf_ode_free(S->ode);
 	csf_ode_free(S->au.m[1]);
-	if (r->cs) ((csf_prog *)r->p)->crun = NULL;
 	csf_contacts_free(r->cs);
 	free(r->ga);
 	free(r->gb);
@@ -481,7 +482,7 @@ static void run_free(session *S)
 
 int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, const csf_sink *sink, FILE *err)
 {
-	session S = { .r = { .p = p, .exec = exec, .max_rhs = o->max_rhs }, .out = out, .sink = sink };
+	session S = { .r = { .p = p, .exec = exec, .max_rhs = o->max_rhs }, .out = out, .sink = sink, .init = o->init };
 	S.wc.r = S.wc_stiff.r = &S.r;
 	/* --method auto (the default, but for fixed steps and large scenes: dop853) is dop853 with
 	   AUTO_STIFF beside it */

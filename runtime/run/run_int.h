@@ -41,6 +41,7 @@ typedef struct run {
 	double *jw; /* with contacts: 3 work vectors for the Jacobian by differences */
 	double *yh; /* with contacts: the 3 interpolated states of a step, one after the other */
 	csf_contacts *cs; /* with contacts: the candidate pairs (runtime/contact/) */
+	csf_exec_ctx x;   /* what exec passes on to the code: cs */
 	unsigned long nchoices, ncand, maxcand; /* for --stats: the choices of candidates, their sum and largest */
 	int nomem; /* memory ran out */
 	int unsettled;     /* why the contacts stopped the run: CSF_SETTLE_ENDLESS, _IMPULSES, _FORCES (csf.h) */

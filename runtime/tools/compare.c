@@ -48,8 +48,8 @@ static int keep_row(void *ctx, const double *v, size_t n)
 }
 
 /* Runs p with method m and tolerance tol; returns its rows (free with free_rows) and exit status. */
-static rows *capture(const csf_prog *p, csf_exec_fn exec, const char *m, double tol, int fixed, unsigned long budget,
-                     csf_opts *o, int *st)
+static rows *capture(const csf_prog *p, csf_exec_fn exec, const csf_overlay *init, const char *m, double tol, int fixed,
+                     unsigned long budget, csf_opts *o, int *st)
 {
 	char *ebuf = NULL;
 	size_t elen = 0;
@@ -66,6 +66,7 @@ static rows *capture(const csf_prog *p, csf_exec_fn exec, const char *m, double 
 	o->tol = tol;
 	o->fixed = fixed;
 	o->max_rhs = budget;
+	o->init = init;
 	csf_sink sink = { keep_row, R };
 	*st = csf_run_sink(p, exec, o, NULL, &sink, e);
 	fclose(e);
@@ -105,13 +106,13 @@ static void say(FILE *out, const char *fmt, ...)
 	va_end(ap);
 }
 
-int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *err)
+int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, const csf_overlay *init, FILE *out, FILE *err)
 {
 	static const char *const methods[] = { "auto", "dop853", "dopri5", "rk8pd", "rkck", "rkf45", "rk4", "rk2", "msadams", "bsimp", "rk4imp", "msbdf" };
 	static const double tols[] = { 1e-4, 1e-6, 1e-8, 1e-10, 1e-12 };
 	csf_opts o;
 	int st;
-	rows *ref = capture(p, exec, "auto", 1e-13, 0, 0, &o, &st);
+	rows *ref = capture(p, exec, init, "auto", 1e-13, 0, 0, &o, &st);
 	if (st != 0 || !ref) {
 		fprintf(err, "error: the reference run (auto, tol 1e-13) failed; run the scene alone to see why\n");
 		free_rows(ref);
@@ -123,7 +124,7 @@ int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *er
 	say(out, "%-8s %-7s %10s %10s %12s %14s\n", "method", "tol", "seconds", "steps", "rhs_evals", "difference");
 	for (size_t i = 0; i < sizeof methods / sizeof methods[0]; i++)
 		for (size_t k = 0; k < sizeof tols / sizeof tols[0]; k++) {
-			rows *run = capture(p, exec, methods[i], tols[k], 0, budget, &o, &st);
+			rows *run = capture(p, exec, init, methods[i], tols[k], 0, budget, &o, &st);
 			char diff[32];
 			double d = run && st == 0 ? difference(run, ref) : -1;
 			if (st != 0 && o.run_rhs > budget) snprintf(diff, sizeof diff, "over budget");
@@ -137,7 +138,7 @@ int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, FILE *out, FILE *er
 	/* Verlet, where the scene has position/velocity pairs: its own step at the default tolerance
 	   (csfvm(1), verlet) */
 	if (p->ny > 0) {
-		rows *run = capture(p, exec, "verlet", 0, 1, budget, &o, &st);
+		rows *run = capture(p, exec, init, "verlet", 0, 1, budget, &o, &st);
 		if (st == 0 && run) {
 			say(out, "%-8s %-7g %10.4f %10lu %12lu %14.3g\n", "verlet", csf_method_tol("verlet"), o.run_seconds,
 			        o.run_steps, o.run_rhs, difference(run, ref));

@@ -5,8 +5,9 @@
  * The variants are the Cartesian product of axes: a --sweep-file is the
  * first axis, whose entries are its rows (one value per named parameter),
  * then each --sweep, in order, an axis of COUNT evenly spaced values of
- * one parameter; the last axis varies fastest. Variant i sets its values in the program's initial
- * memory (every swept value is a parameter, param.c), runs csf_run_sink with
+ * one parameter; the last axis varies fastest. Variant i sets its values in
+ * an overlay of the program's initial memory (every swept value is a
+ * parameter, param.c; the program is not changed), runs csf_run_sink with
  * its output captured (a summary's values taken from its row sink, not read
  * back from the text), and turns that output into its text: each row with
  * the variant's values as leading columns (or, with --sweep-summary, one
@@ -46,7 +47,7 @@ typedef struct axis { int first, n; size_t count; double *vals; } axis;
 typedef struct sumcol { int func; uint32_t col; double from, to; char *head; } sumcol;
 
 struct csf_sweep {
-	csf_prog *p;
+	const csf_prog *p;
 	csf_exec_fn exec;
 	csf_opts o;
 	const char *prog;
@@ -59,6 +60,8 @@ struct csf_sweep {
 	FILE *index;
 	FILE *out, *err;
 	int status, header_done;
+	csf_overlay init; /* o->init (-D's values), then the variant's: the run's initial values over p's */
+	size_t ninit;     /* how many of them are -D's */
 };
 
 static int serr(csf_sweep *S, const char *fmt, ...)
@@ -567,9 +570,11 @@ unsigned char *csf_sweep_run(csf_sweep *S, size_t i, size_t *len)
 {
 	size_t e[64];
 	entries(S, i, e);
+	S->init.n = S->ninit; /* room for every swept value: csf_sweep_main */
 	for (int a = 0; a < S->nax; a++)
 		for (int k = 0; k < S->ax[a].n; k++)
-			S->p->mem0[S->par[S->ax[a].first + k].ref.slot] = S->ax[a].vals[e[a] * (size_t)S->ax[a].n + (size_t)k];
+			S->init.v[S->init.n++] = (csf_setting){ S->par[S->ax[a].first + k].ref.slot,
+			                                        S->ax[a].vals[e[a] * (size_t)S->ax[a].n + (size_t)k] };
 	char *out = NULL, *err = NULL, *text = NULL;
 	size_t olen = 0, elen = 0, tlen = 0;
 	FILE *fo = open_memstream(&out, &olen), *fe = open_memstream(&err, &elen);
@@ -578,6 +583,7 @@ unsigned char *csf_sweep_run(csf_sweep *S, size_t i, size_t *len)
 	for (int k = 0; u.acc && k < S->nsum; k++) sum_start(&u.acc[k]);
 	if (fo && fe && (u.acc || !S->nsum)) {
 		csf_opts o = S->o;
+		o.init = &S->init;
 		csf_sink sink = { summary_row, &u };
 		st = csf_run_sink(S->p, S->exec, &o, fo, S->nsum ? &sink : NULL, fe);
 	}
@@ -834,9 +840,10 @@ static void sweep_free(csf_sweep *S)
 	for (int a = 0; a < S->nax; a++) free(S->ax[a].vals);
 	for (int k = 0; k < S->nsum; k++) free(S->sum[k].head);
 	free(S->par), free(S->ax), free(S->sum);
+	csf_overlay_free(&S->init);
 }
 
-int csf_sweep_main(csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char *prog, FILE *out, FILE *err)
+int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char *prog, FILE *out, FILE *err)
 {
 	csf_sweep S = { .p = p, .exec = exec, .o = *o, .prog = prog, .out = out, .err = err, .out_dir = o->out_dir };
 	S.o.progress = CSF_PROGRESS_OFF;
@@ -858,6 +865,13 @@ int csf_sweep_main(csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char 
 		}
 		S.nvar *= S.ax[a].count;
 	}
+	/* each variant's initial values: -D's, then its swept values (after them, so that they win) */
+	for (size_t k = 0; o->init && k < o->init->n; k++)
+		if (csf_overlay_add(&S.init, o->init->v[k].slot, o->init->v[k].value)) goto nomem;
+	S.ninit = S.init.n;
+	for (int a = 0; a < S.nax; a++)
+		for (int k = 0; k < S.ax[a].n; k++)
+			if (csf_overlay_add(&S.init, 0, 0)) goto nomem; /* room for the variant's values */
 	if (S.out_dir) {
 		if (mkdir(S.out_dir, 0777) && errno != EEXIST) {
 			serr(&S, "--out-dir: cannot create %s: %s", S.out_dir, strerror(errno));
@@ -884,6 +898,9 @@ int csf_sweep_main(csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char 
 	if (S.index && fclose(S.index)) S.status = 2;
 	S.index = NULL;
 	st = csf_signal ? 128 + csf_signal : S.status;
+	goto out;
+nomem:
+	serr(&S, "out of memory");
 out:
 	if (S.index) fclose(S.index);
 	sweep_free(&S);

@@ -30,9 +30,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 static unsigned long evals;
 
-static int exec_bounded(const csf_prog *p, int sec, double *m, const double *y, double *dydt)
+static int exec_bounded(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, const double *y, double *dydt)
 {
-	int r = csf_vm_exec(p, sec, m, y, dydt);
+	int r = csf_vm_exec(p, x, sec, m, y, dydt);
 	if (sec == CSF_SEC_RHS && ++evals > FUZZ_EVALS)
 		for (uint32_t i = 0; i < p->ny; i++) dydt[i] = NAN;
 	return r;

@@ -27,7 +27,7 @@ int main(int argc, char **argv)
 	int n = 0, slow = 0;
 	for (int i = 1; i < argc || (argc == 1 && i == 1); i++) {
 		size_t len;
-		unsigned char *buf = csf_read_file(argc == 1 ? "-" : argv[i], &len); /* runtime/run/main.c */
+		unsigned char *buf = csf_read_file(argc == 1 ? "-" : argv[i], &len); /* runtime/prog/file.c */
 		if (!buf) {
 			perror(argc == 1 ? "stdin" : argv[i]);
 			return 2;

@@ -35,7 +35,10 @@ Suite *signals_suite(void);
 int compile_string(const char *text, csf_prog *p, char **diag);
 
 /* Runs section sec of p on the VM with the state and derivatives in m's own slots. */
-static inline int vm_run(const csf_prog *p, int sec, double *m) { return csf_vm_exec(p, sec, m, m + p->ystart, m + p->dstart); }
+static inline int vm_run(const csf_prog *p, int sec, double *m)
+{
+	return csf_vm_exec(p, NULL, sec, m, m + p->ystart, m + p->dstart);
+}
 
 /* Runs the OUT section of p at t = 0 on a fresh copy of its memory; returns the memory (free it). */
 double *run_out(const csf_prog *p);

@@ -195,20 +195,19 @@ static const char *contact_model =
 	"rule: v' = a\nrule: pos' = v\n"
 	"inc t till 1 s by 0.5 s watch b.a, b.FN, b.Ff\n";
 
-typedef struct eval_ctx { const csf_prog *p; double *m; } eval_ctx;
+typedef struct eval_ctx { const csf_prog *p; double *m; csf_exec_ctx x; } eval_ctx;
 static int eval_rhs(void *ctx)
 {
 	eval_ctx *e = ctx;
-	vm_run(e->p, CSF_SEC_RHS, e->m);
+	csf_vm_exec(e->p, &e->x, CSF_SEC_RHS, e->m, e->m + e->p->ystart, e->m + e->p->dstart);
 	return 0;
 }
 
-/* The contact routine's state for p, its candidates chosen at the state in m; in p->crun. */
-static csf_contacts *contacts_at(csf_prog *p, const double *m)
+/* The contact routine's state for p, its candidates chosen at the state in m. */
+static csf_contacts *contacts_at(const csf_prog *p, const double *m)
 {
 	csf_contacts *cs = csf_contacts_new(p);
 	ck_assert_ptr_nonnull(cs);
-	p->crun = cs;
 	const double *ys[1] = { m + p->ystart };
 	ck_assert_int_ge(csf_contacts_find(cs, m, ys, 1), 0);
 	csf_contacts_commit(cs, m, NULL, NULL, 0);
@@ -238,9 +237,9 @@ START_TEST(test_contact_routine)
 	/* it touches the ramp at rest, pressed into it: it comes to rest in contact, sticking */
 	csf_contacts *cs = contacts_at(&p, m);
 	ck_assert_uint_eq(csf_contacts_count(cs), 1);
-	eval_ctx e = { &p, m };
-	ck_assert_int_eq(csf_contact_settle(&p, m, 5e-7, 1e-10, eval_rhs, &e), 0);
-	ck_assert_int_eq(vm_run(&p, CSF_SEC_RHS, m), -1);
+	eval_ctx e = { &p, m, { cs } };
+	ck_assert_int_eq(csf_contact_settle(&p, cs, m, 5e-7, 1e-10, eval_rhs, &e), 0);
+	ck_assert_int_eq(csf_vm_exec(&p, &e.x, CSF_SEC_RHS, m, m + p.ystart, m + p.dstart), -1);
 	double g = 9.80665, mg = 2 * g, s30 = 0.5, c30 = 0.8660254037844386;
 	const csf_cbody *c = cbody_of(&p, "b");
 	const double *a = m + c->s[CSF_CF_A], *fn = m + c->s[CSF_CF_FN], *ff = m + c->s[CSF_CF_FF];
@@ -255,7 +254,6 @@ START_TEST(test_contact_routine)
 	csf_contacts_guards(cs, gd);
 	ck_assert(fabs(gd[0] - mg * c30) < 1e-13);
 	ck_assert(fabs(gd[1] - mg * (c30 - s30)) < 1e-13);
-	p.crun = NULL;
 	csf_contacts_free(cs);
 	free(m);
 	csf_prog_free(&p);
@@ -413,7 +411,8 @@ START_TEST(test_param_set)
 	csf_prog p;
 	ck_assert_int_eq(compile_string(param_model, &p, NULL), 0);
 	char err[512];
-	int r = csf_param_set(&p, param_cases[_i].assign, err, sizeof err);
+	csf_overlay ov = { 0 };
+	int r = csf_param_set(&p, &ov, param_cases[_i].assign, err, sizeof err);
 	if (param_cases[_i].err) {
 		ck_assert_msg(r == -1, "%s accepted", param_cases[_i].assign);
 		ck_assert_msg(strstr(err, param_cases[_i].err) != NULL, "%s: %s", param_cases[_i].assign, err);
@@ -423,10 +422,16 @@ START_TEST(test_param_set)
 		sscanf(param_cases[_i].assign, "%31[^= ]", name);
 		csf_pref ref;
 		ck_assert_int_eq(csf_param_find(&p, name, &ref, err, sizeof err), 0);
-		double got = ref.width == 3 ? p.mem0[ref.slot + 2] : p.mem0[ref.slot];
+		/* the program is not changed: the value is in the overlay, which the run applies */
+		double *m = malloc(p.nmem * sizeof *m);
+		memcpy(m, p.mem0, p.nmem * sizeof *m);
+		csf_overlay_apply(&ov, m);
+		double got = ref.width == 3 ? m[ref.slot + 2] : m[ref.slot];
+		free(m);
 		double want = ref.width == 3 ? -1.62 : param_cases[_i].want;
 		ck_assert_msg(fabs(got - want) <= 1e-15 * fabs(want), "%s: %.17g, want %.17g", param_cases[_i].assign, got, want);
 	}
+	csf_overlay_free(&ov);
 	csf_prog_free(&p);
 }
 END_TEST
@@ -462,7 +467,7 @@ START_TEST(test_contact_settle)
 	ck_assert_uint_eq(p.ncrules, 1);
 	double *m = malloc(p.nmem * sizeof *m), g = 9.80665;
 	const csf_cbody *c = cbody_of(&p, "b");
-	eval_ctx e = { &p, m };
+	eval_ctx e = { &p, m, { NULL } };
 	enum { APART, REST, HOPPING };
 	static const struct { double w; int mode; double v; } cases[] = {
 		{ 2, APART, 1 },          /* a hop of 0.051 m: apart */
@@ -475,7 +480,8 @@ START_TEST(test_contact_settle)
 		m[c->s[CSF_CF_V] + 2] = -cases[i].w;
 		csf_contacts *cs = contacts_at(&p, m);
 		ck_assert_uint_eq(csf_contacts_count(cs), 1);
-		ck_assert_int_eq(csf_contact_settle(&p, m, 5e-7, 1e-10, eval_rhs, &e), 0);
+		e.x.contacts = cs;
+		ck_assert_int_eq(csf_contact_settle(&p, cs, m, 5e-7, 1e-10, eval_rhs, &e), 0);
 		double gd[2];
 		csf_contacts_guards(cs, gd);
 		ck_assert_msg(m[c->s[CSF_CF_V] + 2] == cases[i].v, "w=%g: v %.17g", cases[i].w, m[c->s[CSF_CF_V] + 2]);
@@ -487,7 +493,6 @@ START_TEST(test_contact_settle)
 			ck_assert_msg(fabs(gd[0] - g) < 1e-12 && fabs(m[c->s[CSF_CF_FN] + 2] - g) < 1e-12 &&
 			                      fabs(m[c->s[CSF_CF_A] + 2]) < 1e-12,
 			              "N %.17g, FN %.17g, a %.17g", gd[0], m[c->s[CSF_CF_FN] + 2], m[c->s[CSF_CF_A] + 2]);
-		p.crun = NULL;
 		csf_contacts_free(cs);
 	}
 	free(m);

@@ -29,7 +29,7 @@ START_TEST(test_each_instruction)
 	if (op == CSF_OP_CONTACT) { /* the runtime's contact routine, which reads the program's tables */
 		uint32_t one = (uint32_t)op;
 		char *c = emit_one(&one, 1);
-		ck_assert_msg(strstr(c, "\tcsf_contact_apply(p, m);\n") != NULL, "%s", c);
+		ck_assert_msg(strstr(c, "\tcsf_contact_apply(p, x, m);\n") != NULL, "%s", c);
 		free(c);
 		return;
 	}
@@ -125,7 +125,7 @@ START_TEST(test_slot_classes)
 	csf_col col;
 	char *c = emit_rhs(code, sizeof code / sizeof code[0], mem, &col);
 	const char *want[] = {
-		"static int csf_model_rhs(const csf_prog *p, double *m, const double *y, double *dydt)\n",
+		"static int csf_model_rhs(const csf_prog *p, const csf_exec_ctx *x, double *m, const double *y, double *dydt)\n",
 		"\tv14 = csf_op_VMUL(csf_vload(y + 0u), 2.5);\n",
 		"\tcsf_vstore(dydt + 0u, csf_op_VMOV(v14));\n",
 		"\tr12 = csf_op_ADD((-0.0), 0.1);\n",
@@ -166,8 +166,10 @@ START_TEST(test_program_shape)
 	emit_c(&p, img, len, "t.csf", f);
 	fclose(f);
 	ck_assert_msg(strstr(buf, "#include \"csf.h\"") &&
-	              strstr(buf, "static int csf_model_rhs(const csf_prog *p, double *m, const double *y, double *dydt)") &&
-	              strstr(buf, "static int csf_model_out(const csf_prog *p, double *m, const double *y, double *dydt)") &&
+	              strstr(buf, "static int csf_model_rhs(const csf_prog *p, const csf_exec_ctx *x, double *m, "
+	                          "const double *y, double *dydt)") &&
+	              strstr(buf, "static int csf_model_out(const csf_prog *p, const csf_exec_ctx *x, double *m, "
+	                          "const double *y, double *dydt)") &&
 	              strstr(buf, "/* t.csf:3: rule: x' = v */") &&
 	              strstr(buf, xprintf("csf_model_image[%zu]", len)) && strstr(buf, "return csf_main(argc, argv"),
 	              "%s", buf);
