@@ -251,12 +251,6 @@ static void tangent(Jac *J, int op, const uint32_t *o, const int *in)
 }
 #define JAC_WORK 26
 
-/* Is op's result a smooth function of its operands (comparisons and logic are not)? */
-static int differentiable(int op)
-{
-	return !(op >= CSF_OP_LT && op <= CSF_OP_EVGE);
-}
-
 /*
  * Marks in act every slot whose value code computes from a marked slot, to a
  * fixed point (slots are reused). smooth: only through differentiable
@@ -273,7 +267,7 @@ int depends(const uint32_t *code, uint32_t n, unsigned char *act, int smooth)
 			if (code[pc] == CSF_OP_LOOP) cnt[code[pc + 1]] = code[pc + 2];
 			if (code[pc] == CSF_OP_JZ && any_marked(act, code[pc + 1], CSF_K_S, cnt)) branch = 1;
 			if (!csf_kind_write(oi->kind[0])) continue;
-			if (smooth && !differentiable((int)code[pc])) continue;
+			if (smooth && !csf_op_differentiable(code[pc])) continue;
 			int any = 0;
 			for (int k = 1; k < oi->nops; k++)
 				if (csf_kind_slot(oi->kind[k])) any |= any_marked(act, code[pc + 1 + k], oi->kind[k], cnt);
@@ -326,10 +320,9 @@ void gen_jacobian(Gen *G, csf_prog *p)
 		for (int k = 0; k < oi->nops; k++) o[k] = rc[pc + 1 + k];
 		if (op == CSF_OP_LOOP) J->cnt[o[0]] = o[1];
 		if (csf_kind_write(oi->kind[0]) && jact(J, oi->kind[0], o[0])) {
-			int in[3] = { 0, 0, 0 };
-			for (int k = 1; k < oi->nops; k++)
-				in[k - 1] = differentiable(op) && csf_kind_slot(oi->kind[k]) && jact(J, oi->kind[k], o[k]);
-			tangent(J, differentiable(op) ? op : -1, o, in);
+			int in[3] = { 0, 0, 0 }, smooth = csf_op_differentiable((uint32_t)op);
+			for (int k = 1; k < oi->nops; k++) in[k - 1] = smooth && csf_kind_slot(oi->kind[k]) && jact(J, oi->kind[k], o[k]);
+			tangent(J, smooth ? op : -1, o, in);
 		}
 		emit_words(G, op, o);
 		for (int k = 0; k < oi->nops; k++)

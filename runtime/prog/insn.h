@@ -32,6 +32,24 @@ static inline uint32_t csf_kind_width(int kind)
 	return kind == CSF_K_DV || kind == CSF_K_V ? 3u : kind == CSF_K_DS || kind == CSF_K_S ? 1u : 0u;
 }
 
+/*
+ * Is op's result a differentiable function of its operands? Not for a STEP
+ * row of opcodes.def (comparisons, logic); control flow has no result.
+ */
+static inline int csf_op_differentiable(uint32_t op)
+{
+	switch (op) {
+#define OP(name, n, a, b, c, d, syn)
+#define CTRL OP
+#define STEP(name, n, a, b, c, d, syn) case CSF_OP_##name: return 0;
+#include "opcodes.def"
+#undef STEP
+#undef CTRL
+#undef OP
+	default: return 1;
+	}
+}
+
 /* The loop level register r (1 to CSF_NREGS - 1) follows. */
 static inline uint32_t csf_reg_level(uint32_t r) { return (r + 1) / 2; }
 
