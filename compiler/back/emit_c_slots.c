@@ -19,7 +19,7 @@ void track_loops(Loops *L, const uint32_t *code, uint32_t pc)
 	if (code[pc] == CSF_OP_LOOP && L->depth < CSF_LOOP_MAX) {
 		L->depth++;
 		L->count[L->depth] = code[pc + 2];
-		L->next[L->depth] = code[pc + 3] - 3; /* the pc of its NEXT (3 words) */
+		L->next[L->depth] = code[pc + 3] - csf_insn_len(CSF_OP_NEXT); /* the pc of its NEXT */
 	} else if (code[pc] == CSF_OP_NEXT && L->depth > 0)
 		L->depth--;
 }

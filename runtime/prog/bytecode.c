@@ -436,10 +436,10 @@ static int check_next(code_check *c, uint32_t pc)
 	if (c->code[pc + 1] != (uint32_t)c->depth)
 		return bad_insn(c, pc, -1, "loop level %lu where the innermost loop is level %d", (unsigned long)c->code[pc + 1],
 		                c->depth);
-	if (c->code[pc + 2] != loop + 4)
+	if (c->code[pc + 2] != loop + csf_insn_len(CSF_OP_LOOP))
 		return bad_insn(c, pc, -1, "start %lu is not the body of its LOOP at %lu", (unsigned long)c->code[pc + 2],
 		                (unsigned long)loop);
-	if (c->code[loop + 3] != pc + 3)
+	if (c->code[loop + 3] != pc + csf_insn_len(CSF_OP_NEXT))
 		return bad_insn(c, loop, -1, "end %lu is not just past its NEXT at %lu", (unsigned long)c->code[loop + 3],
 		                (unsigned long)pc);
 	c->depth--;

@@ -14,8 +14,22 @@
 
 #include "csf.h"
 
-/* The words of the instruction headed by opcode op (< CSF_NOPCODES): the opcode and its operands. */
-static inline uint32_t csf_insn_len(uint32_t op) { return 1u + csf_opinfo_table[op].nops; }
+/*
+ * The words of the instruction headed by opcode op (< CSF_NOPCODES): the
+ * opcode and its operands. A constant for a constant op, as the VM's
+ * control-flow cases need.
+ */
+static inline uint32_t csf_insn_len(uint32_t op)
+{
+	switch (op) {
+#define OP(name, n, a, b, c, d, syn) case CSF_OP_##name: return 1u + (n);
+#define CTRL OP
+#include "opcodes.def"
+#undef CTRL
+#undef OP
+	default: return 1u; /* not an opcode: only a program that is not verified has it */
+	}
+}
 
 /* Does an operand of this kind name memory slots (and so may be relative to a loop register)? */
 static inline int csf_kind_slot(int kind)
