@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "csf.h"
+#include "insn.h"
 
 /* The value of a read operand of kind K: a scalar or vector slot (through the registers), an immediate. */
 #define LOAD_S(w) m[csf_operand(w, reg)]
@@ -41,15 +42,15 @@ static int exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m)
 				pc = code + pc[2];
 				continue;
 			}
-			pc += 3;
+			pc += csf_insn_len(CSF_OP_JZ);
 			continue;
 		case CSF_OP_CONTACT:
 			csf_contact_apply(p, x, m);
-			pc += 1;
+			pc += csf_insn_len(CSF_OP_CONTACT);
 			continue;
 		case CSF_OP_ASSERT:
 			if (m[csf_operand(pc[1], reg)] == 0.0) return (int)csf_operand(pc[2], reg);
-			pc += 3;
+			pc += csf_insn_len(CSF_OP_ASSERT);
 			continue;
 		case CSF_OP_LOOP:
 			reg[2 * pc[1] - 1] = reg[2 * pc[1]] = 0;
@@ -58,7 +59,7 @@ static int exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m)
 				pc = code + pc[3];
 				continue;
 			}
-			pc += 4;
+			pc += csf_insn_len(CSF_OP_LOOP);
 			continue;
 		case CSF_OP_NEXT:
 			reg[2 * pc[1]] += 3;
@@ -66,14 +67,14 @@ static int exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m)
 				pc = code + pc[2];
 				continue;
 			}
-			pc += 3;
+			pc += csf_insn_len(CSF_OP_NEXT);
 			continue;
 		case CSF_OP_JEQ:
 			if (reg[2 * pc[1] - 1] == reg[2 * pc[2] - 1]) {
 				pc = code + pc[3];
 				continue;
 			}
-			pc += 4;
+			pc += csf_insn_len(CSF_OP_JEQ);
 			continue;
 #define OP(name, n, a, b, c, d, syn) \
 	case CSF_OP_##name: \

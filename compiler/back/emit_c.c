@@ -121,7 +121,10 @@ static const char *array_of(Emit *E, int r, uint32_t *first)
 }
 
 /* A loop index term: "i1", or "3u * i1" for the register of three times it. */
-static void put_index(FILE *f, uint32_t r) { fprintf(f, "%si%lu", r % 2 ? "" : "3u * ", (unsigned long)(r + 1) / 2); }
+static void put_index(FILE *f, uint32_t r)
+{
+	fprintf(f, "%si%lu", csf_reg_stride(r) == 3 ? "3u * " : "", (unsigned long)csf_reg_level(r));
+}
 
 /* "ARRAY + OFFSET" or "ARRAY[OFFSET" of a slot operand word (absolute or relative), the index included. */
 static void put_place(Emit *E, uint32_t w, int element)
@@ -202,7 +205,7 @@ static void put_read(Emit *E, int kind, uint32_t w)
 static int dead_local(const Emit *E, int kind, uint32_t w)
 {
 	if (csf_reg(w)) return 0;
-	for (uint32_t k = 0; k < kind_width(kind); k++) {
+	for (uint32_t k = 0; k < csf_kind_width(kind); k++) {
 		int c = slot_class(E, w + k);
 		if ((c != C_LOCAL && c != C_VLOCAL) || E->readin[w + k] == E->fn) return 0;
 	}
@@ -314,7 +317,7 @@ static void emit_insn(Emit *E, const uint32_t *code, uint32_t pc)
 static void mark_targets(const uint32_t *code, uint32_t from, uint32_t to, unsigned char *target)
 {
 	Loops L = { .depth = 0 };
-	for (uint32_t pc = from; pc < to; pc += insn_len(code, pc)) {
+	for (uint32_t pc = from; pc < to; pc += csf_insn_len(code[pc])) {
 		uint32_t t = code[pc] == CSF_OP_JMP ? code[pc + 1] : code[pc] == CSF_OP_JZ ? code[pc + 2]
 		           : code[pc] == CSF_OP_JEQ ? code[pc + 3] : UINT32_MAX;
 		if (t != UINT32_MAX && !is_continue(&L, t)) target[t] = 1;
@@ -349,17 +352,17 @@ static void emit_function(Emit *E, int sec, uint32_t from, uint32_t to, const ch
 	E->used_m = E->used_y = E->used_d = E->used_p = 0;
 	memset(&E->L, 0, sizeof E->L);
 	mark_targets(code, from, to, E->target);
-	for (uint32_t pc = from; pc < to; pc += insn_len(code, pc)) {
+	for (uint32_t pc = from; pc < to; pc += csf_insn_len(code[pc])) {
 		const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
 		for (int k = 0; k < oi->nops; k++) {
 			uint32_t w = code[pc + 1 + k];
-			if (slot_kind(oi->kind[k]) && !write_kind(oi->kind[k]) && !csf_reg(w))
-				for (uint32_t q = 0; q < kind_width(oi->kind[k]) && w + q < E->S->n; q++) E->readin[w + q] = E->fn;
+			if (csf_kind_slot(oi->kind[k]) && !csf_kind_write(oi->kind[k]) && !csf_reg(w))
+				for (uint32_t q = 0; q < csf_kind_width(oi->kind[k]) && w + q < E->S->n; q++) E->readin[w + q] = E->fn;
 		}
 	}
 	uint32_t li = 0;
 	while (li < p->nlines[sec] && p->lines[sec][li].pc < from) li++;
-	for (uint32_t pc = from; pc < to; pc += insn_len(code, pc)) {
+	for (uint32_t pc = from; pc < to; pc += csf_insn_len(code[pc])) {
 		for (; li < p->nlines[sec] && p->lines[sec][li].pc == pc; li++) {
 			const csf_src *s = &p->srcs[p->lines[sec][li].src];
 			indent(E);

@@ -9,13 +9,7 @@
 #include <stdint.h>
 
 #include "csf.h"
-
-static inline uint32_t insn_len(const uint32_t *code, uint32_t pc) { return 1u + csf_opinfo_table[code[pc]].nops; }
-
-/* Operand kinds that name slots (and may be relative to a loop register: csf_operand). */
-static inline int slot_kind(int kind) { return kind == CSF_K_DS || kind == CSF_K_DV || kind == CSF_K_S || kind == CSF_K_V; }
-static inline int write_kind(int kind) { return kind == CSF_K_DS || kind == CSF_K_DV; }
-static inline uint32_t kind_width(int kind) { return kind == CSF_K_DV || kind == CSF_K_V ? 3 : 1; }
+#include "insn.h"
 
 enum { C_MEM, C_STATE, C_DERIV, C_CONST, C_LOCAL, C_VLOCAL };
 

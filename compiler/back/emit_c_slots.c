@@ -19,7 +19,7 @@ void track_loops(Loops *L, const uint32_t *code, uint32_t pc)
 	if (code[pc] == CSF_OP_LOOP && L->depth < CSF_LOOP_MAX) {
 		L->depth++;
 		L->count[L->depth] = code[pc + 2];
-		L->next[L->depth] = code[pc + 3] - 3; /* the pc of its NEXT (3 words) */
+		L->next[L->depth] = code[pc + 3] - csf_insn_len(CSF_OP_NEXT); /* the pc of its NEXT */
 	} else if (code[pc] == CSF_OP_NEXT && L->depth > 0)
 		L->depth--;
 }
@@ -27,10 +27,9 @@ void track_loops(Loops *L, const uint32_t *code, uint32_t pc)
 /* The slots [*lo, *hi) operand word w of width wd reaches under the loops L. */
 static void extent(const Loops *L, uint32_t w, uint32_t wd, uint32_t *lo, uint32_t *hi)
 {
-	uint32_t r = csf_reg(w), base = w & CSF_SLOT_MASK, level = (r + 1) / 2;
-	uint32_t n = r && level <= (uint32_t)L->depth ? L->count[level] : 1, stride = r % 2 ? 1 : 3;
-	*lo = base;
-	*hi = base + (n ? (n - 1) * (r ? stride : 0) : 0) + wd;
+	uint32_t r = csf_reg(w), level = csf_reg_level(r);
+	*lo = w & CSF_SLOT_MASK;
+	*hi = (uint32_t)csf_operand_end(w, wd, r && level <= (uint32_t)L->depth ? L->count[level] : 1);
 }
 
 static void mark_ext(Slots *S, uint32_t s, uint32_t w)
@@ -63,17 +62,17 @@ static void scan_slots(Slots *S)
 	for (int sec = 0; sec < CSF_NSEC; sec++) {
 		const uint32_t *code = p->code[sec];
 		Loops L = { .depth = 0 };
-		for (uint32_t pc = 0; pc < p->ncode[sec]; pc += insn_len(code, pc)) {
+		for (uint32_t pc = 0; pc < p->ncode[sec]; pc += csf_insn_len(code[pc])) {
 			const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
 			if (code[pc] == CSF_OP_CONTACT) S->direct = 0;
 			for (int k = 0; k < oi->nops; k++) {
-				if (!slot_kind(oi->kind[k])) continue;
-				uint32_t w = code[pc + 1 + k], wd = kind_width(oi->kind[k]), lo, hi;
+				if (!csf_kind_slot(oi->kind[k])) continue;
+				uint32_t w = code[pc + 1 + k], wd = csf_kind_width(oi->kind[k]), lo, hi;
 				extent(&L, w, wd, &lo, &hi);
-				if (region(p, lo) != region(p, hi - 1) || (write_kind(oi->kind[k]) && region(p, lo) == C_STATE))
+				if (region(p, lo) != region(p, hi - 1) || (csf_kind_write(oi->kind[k]) && region(p, lo) == C_STATE))
 					S->direct = 0;
 				for (uint32_t s = lo; s < hi && s < S->n; s++) {
-					if (write_kind(oi->kind[k])) S->written[s] = 1;
+					if (csf_kind_write(oi->kind[k])) S->written[s] = 1;
 					if (csf_reg(w)) S->rel[s] = 1;
 				}
 				if (wd == 3 && !csf_reg(w))
@@ -97,7 +96,7 @@ static uint32_t split_section(const csf_prog *p, int sec, uint32_t **starts)
 	const uint32_t *code = p->code[sec];
 	long *span = xcalloc((size_t)n + 2, sizeof *span); /* +1 where a span starts, -1 past its end */
 	uint32_t *st = xmalloc(((size_t)p->nlines[sec] + 2) * sizeof *st), ns = 0;
-	for (uint32_t pc = 0; pc < n; pc += insn_len(code, pc)) {
+	for (uint32_t pc = 0; pc < n; pc += csf_insn_len(code[pc])) {
 		uint32_t op = code[pc], to;
 		if (op == CSF_OP_LOOP) to = code[pc + 3] - 1;
 		else if (op == CSF_OP_JMP) to = code[pc + 1];
@@ -111,7 +110,7 @@ static uint32_t split_section(const csf_prog *p, int sec, uint32_t **starts)
 	for (uint32_t pc = 0; pc <= n; pc++) span[pc] = (open += span[pc]) > 0; /* now: no split at pc */
 	st[ns++] = 0;
 	uint32_t count = 0, li = 0;
-	for (uint32_t pc = 0; pc < n; pc += insn_len(code, pc), count++) {
+	for (uint32_t pc = 0; pc < n; pc += csf_insn_len(code[pc]), count++) {
 		while (li < p->nlines[sec] && p->lines[sec][li].pc < pc) li++;
 		if (count >= CHUNK && !span[pc] && li < p->nlines[sec] && p->lines[sec][li].pc == pc) {
 			st[ns++] = pc;
@@ -158,12 +157,12 @@ static void check_reads(Slots *S, int sec, uint32_t from, uint32_t to, uint32_t 
 	const csf_prog *p = S->p;
 	const uint32_t *code = p->code[sec];
 	uint32_t nc = 0, cap = 64, *cand = xmalloc(cap * sizeof *cand);
-	for (uint32_t pc = from; pc < to; pc += insn_len(code, pc)) {
+	for (uint32_t pc = from; pc < to; pc += csf_insn_len(code[pc])) {
 		const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
 		for (int k = 0; k < oi->nops; k++) {
 			uint32_t w = code[pc + 1 + k];
-			if (!slot_kind(oi->kind[k]) || csf_reg(w)) continue;
-			for (uint32_t s = w; s < w + kind_width(oi->kind[k]) && s < S->n; s++) {
+			if (!csf_kind_slot(oi->kind[k]) || csf_reg(w)) continue;
+			for (uint32_t s = w; s < w + csf_kind_width(oi->kind[k]) && s < S->n; s++) {
 				if (idx[s] != UINT32_MAX || S->ext[s] || region(p, s) == C_STATE) continue;
 				if (nc == cap) cand = xrealloc(cand, (cap *= 2) * sizeof *cand);
 				idx[s] = nc;
@@ -177,7 +176,7 @@ static void check_reads(Slots *S, int sec, uint32_t from, uint32_t to, uint32_t 
 	for (uint32_t i = 0; i < nc; i++)
 		if (sofar[cand[i]]) cur[i / 64] |= 1ull << (i % 64);
 	int live = 1;
-	for (uint32_t pc = from; pc < to; pc += insn_len(code, pc)) {
+	for (uint32_t pc = from; pc < to; pc += csf_insn_len(code[pc])) {
 		uint64_t *in = pend[pc - from];
 		if (in) {
 			for (uint32_t i = 0; i < 2 * nw; i++) cur[i] = live ? cur[i] & in[i] : in[i];
@@ -188,8 +187,8 @@ static void check_reads(Slots *S, int sec, uint32_t from, uint32_t to, uint32_t 
 		for (int pass = 0; pass < 2; pass++) /* the reads, then the writes */
 			for (int k = 0; k < oi->nops; k++) {
 				uint32_t w = code[pc + 1 + k];
-				if (!slot_kind(oi->kind[k]) || csf_reg(w) || write_kind(oi->kind[k]) != pass) continue;
-				for (uint32_t s = w; s < w + kind_width(oi->kind[k]) && s < S->n; s++) {
+				if (!csf_kind_slot(oi->kind[k]) || csf_reg(w) || csf_kind_write(oi->kind[k]) != pass) continue;
+				for (uint32_t s = w; s < w + csf_kind_width(oi->kind[k]) && s < S->n; s++) {
 					uint32_t i = idx[s];
 					if (i == UINT32_MAX) continue;
 					uint64_t bit = 1ull << (i % 64);
@@ -262,12 +261,12 @@ static uint32_t slots_named(const csf_prog *p)
 	for (int sec = 0; sec < CSF_NSEC; sec++) {
 		const uint32_t *code = p->code[sec];
 		Loops L = { .depth = 0 };
-		for (uint32_t pc = 0; pc < p->ncode[sec]; pc += insn_len(code, pc)) {
+		for (uint32_t pc = 0; pc < p->ncode[sec]; pc += csf_insn_len(code[pc])) {
 			const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
 			for (int k = 0; k < oi->nops; k++) {
 				uint32_t lo, hi;
-				if (!slot_kind(oi->kind[k])) continue;
-				extent(&L, code[pc + 1 + k], kind_width(oi->kind[k]), &lo, &hi);
+				if (!csf_kind_slot(oi->kind[k])) continue;
+				extent(&L, code[pc + 1 + k], csf_kind_width(oi->kind[k]), &lo, &hi);
 				if (hi > n) n = hi;
 			}
 			track_loops(&L, code, pc);

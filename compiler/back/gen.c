@@ -70,9 +70,9 @@ static void place_scratch(Gen *G, csf_prog *p)
 			const csf_opinfo *oi = &csf_opinfo_table[p->code[sec][i]];
 			for (int k = 0; k < oi->nops; k++) {
 				uint32_t *w = &p->code[sec][i + 1 + k];
-				if (slot_kind(oi->kind[k]) && (*w & SCRATCH)) *w = base + (*w & ~SCRATCH);
+				if (csf_kind_slot(oi->kind[k]) && (*w & SCRATCH)) *w = base + (*w & ~SCRATCH);
 			}
-			i += 1u + oi->nops;
+			i += csf_insn_len(p->code[sec][i]);
 		}
 }
 

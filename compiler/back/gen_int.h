@@ -11,6 +11,7 @@
 #include "csfc.h"
 #include "sema.h"
 #include "csf.h"
+#include "insn.h"
 
 /* Scratch operands carry this bit until scratch is placed; memory stays below it. */
 #define SCRATCH (1u << 28)
@@ -62,12 +63,6 @@ uint32_t new_scratch(Gen *G, int width);
 static inline uint32_t pc(Gen *G) { return G->ncode; }
 void emit_words(Gen *G, int op, const uint32_t *ops);
 void emit_op(Gen *G, int op, uint32_t a, uint32_t b, uint32_t c, uint32_t d);
-/* Does an operand of this kind (enum csf_operand_kind) name memory slots? */
-static inline int slot_kind(int kind)
-{
-	return kind == CSF_K_S || kind == CSF_K_V || kind == CSF_K_DS || kind == CSF_K_DV;
-}
-
 void emit_pow_const(Gen *G, uint32_t dest, uint32_t x, double k);
 uint32_t acc_slot(Gen *G, Inst *I);
 static inline void cse_reset(Gen *G) { G->ncse = 0; }

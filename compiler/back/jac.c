@@ -37,9 +37,9 @@ typedef struct Jac {
  */
 static void operand_range(uint32_t w, int kind, const uint32_t *cnt, uint32_t *lo, uint32_t *hi)
 {
-	uint32_t r = csf_reg(w), n = r ? cnt[(r + 1) / 2] : 1;
+	uint32_t r = csf_reg(w);
 	*lo = w & CSF_SLOT_MASK;
-	*hi = *lo + (n ? n - 1 : 0) * (r && r % 2 == 0 ? 3u : 1u) + (kind == CSF_K_V || kind == CSF_K_DV ? 3u : 1u);
+	*hi = (uint32_t)csf_operand_end(w, csf_kind_width(kind), r ? cnt[csf_reg_level(r)] : 1);
 }
 
 static int any_marked(const unsigned char *act, uint32_t w, int kind, const uint32_t *cnt)
@@ -251,12 +251,6 @@ static void tangent(Jac *J, int op, const uint32_t *o, const int *in)
 }
 #define JAC_WORK 26
 
-/* Is op's result a smooth function of its operands (comparisons and logic are not)? */
-static int differentiable(int op)
-{
-	return !(op >= CSF_OP_LT && op <= CSF_OP_EVGE);
-}
-
 /*
  * Marks in act every slot whose value code computes from a marked slot, to a
  * fixed point (slots are reused). smooth: only through differentiable
@@ -268,15 +262,15 @@ int depends(const uint32_t *code, uint32_t n, unsigned char *act, int smooth)
 	uint32_t cnt[CSF_LOOP_MAX + 1] = { 0 };
 	for (int changed = 1; changed;) {
 		changed = 0;
-		for (uint32_t pc = 0; pc < n; pc += 1u + csf_opinfo_table[code[pc]].nops) {
+		for (uint32_t pc = 0; pc < n; pc += csf_insn_len(code[pc])) {
 			const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
 			if (code[pc] == CSF_OP_LOOP) cnt[code[pc + 1]] = code[pc + 2];
 			if (code[pc] == CSF_OP_JZ && any_marked(act, code[pc + 1], CSF_K_S, cnt)) branch = 1;
-			if (oi->kind[0] != CSF_K_DS && oi->kind[0] != CSF_K_DV) continue;
-			if (smooth && !differentiable((int)code[pc])) continue;
+			if (!csf_kind_write(oi->kind[0])) continue;
+			if (smooth && !csf_op_differentiable(code[pc])) continue;
 			int any = 0;
 			for (int k = 1; k < oi->nops; k++)
-				if (slot_kind(oi->kind[k])) any |= any_marked(act, code[pc + 1 + k], oi->kind[k], cnt);
+				if (csf_kind_slot(oi->kind[k])) any |= any_marked(act, code[pc + 1 + k], oi->kind[k], cnt);
 			uint32_t lo, hi;
 			operand_range(code[pc + 1], oi->kind[0], cnt, &lo, &hi);
 			for (uint32_t d = lo; any && d < hi; d++)
@@ -325,11 +319,10 @@ void gen_jacobian(Gen *G, csf_prog *p)
 		uint32_t o[4] = { 0, 0, 0, 0 };
 		for (int k = 0; k < oi->nops; k++) o[k] = rc[pc + 1 + k];
 		if (op == CSF_OP_LOOP) J->cnt[o[0]] = o[1];
-		if ((oi->kind[0] == CSF_K_DS || oi->kind[0] == CSF_K_DV) && jact(J, oi->kind[0], o[0])) {
-			int in[3] = { 0, 0, 0 };
-			for (int k = 1; k < oi->nops; k++)
-				in[k - 1] = differentiable(op) && slot_kind(oi->kind[k]) && jact(J, oi->kind[k], o[k]);
-			tangent(J, differentiable(op) ? op : -1, o, in);
+		if (csf_kind_write(oi->kind[0]) && jact(J, oi->kind[0], o[0])) {
+			int in[3] = { 0, 0, 0 }, smooth = csf_op_differentiable((uint32_t)op);
+			for (int k = 1; k < oi->nops; k++) in[k - 1] = smooth && csf_kind_slot(oi->kind[k]) && jact(J, oi->kind[k], o[k]);
+			tangent(J, smooth ? op : -1, o, in);
 		}
 		emit_words(G, op, o);
 		for (int k = 0; k < oi->nops; k++)
@@ -340,7 +333,7 @@ void gen_jacobian(Gen *G, csf_prog *p)
 				}
 				fix[nfix++] = G->ncode - (uint32_t)oi->nops + (uint32_t)k;
 			}
-		pc += 1u + oi->nops;
+		pc += csf_insn_len((uint32_t)op);
 	}
 	map[rn] = G->ncode;
 	for (uint32_t i = 0; i < nfix; i++) G->code[fix[i]] = map[G->code[fix[i]]];

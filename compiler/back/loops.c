@@ -147,7 +147,7 @@ void emit_inst(Gen *G, Inst *I)
 	}
 	if (jeq) G->code[jeq + 3] = pc(G);
 	for (int l = G->loop; l >= 1; l--) {
-		emit_op(G, CSF_OP_NEXT, (uint32_t)l, top[l] + 4, 0, 0);
+		emit_op(G, CSF_OP_NEXT, (uint32_t)l, top[l] + csf_insn_len(CSF_OP_LOOP), 0, 0);
 		G->code[top[l] + 3] = pc(G);
 	}
 	G->loop = 0;

@@ -19,6 +19,7 @@
 
 #include "csf.h"
 #include "bytecode.h"
+#include "insn.h"
 
 _Static_assert(sizeof(csf_src) == 12 && sizeof(csf_col) == 8 && sizeof(csf_assert) == 8 && sizeof(csf_prop) == 20 &&
                sizeof(csf_global) == 16 &&
@@ -376,11 +377,11 @@ static int check_boundaries(code_check *c)
 		if (op >= CSF_NOPCODES)
 			return csf_fail(c->err, c->errlen, "section %d: invalid opcode %lu at %lu", c->sec, (unsigned long)op,
 			            (unsigned long)pc);
-		if (csf_opinfo_table[op].nops >= c->n - pc)
+		if (csf_insn_len(op) > c->n - pc)
 			return csf_fail(c->err, c->errlen, "section %d: instruction at %lu runs past the end of the code", c->sec,
 			            (unsigned long)pc);
 		c->start[pc] = 1;
-		pc += 1u + csf_opinfo_table[op].nops;
+		pc += csf_insn_len(op);
 	}
 	c->start[c->n] = 1;
 	return 0;
@@ -398,17 +399,17 @@ static int check_boundaries(code_check *c)
 static int check_slot(code_check *c, uint32_t pc, int k, uint32_t w, uint32_t width)
 {
 	uint32_t r = csf_reg(w);
-	uint64_t top = w & CSF_SLOT_MASK;
+	uint64_t count = 1;
 	if (r >= CSF_NREGS) return bad_insn(c, pc, k, "uses invalid register %lu", (unsigned long)r);
 	if (r) {
-		uint32_t level = (r + 1) / 2;
+		uint32_t level = csf_reg_level(r);
 		if ((int)level > c->depth)
 			return bad_insn(c, pc, k, "uses the register of loop level %lu, which is not open",
 			                (unsigned long)level);
-		uint64_t count = c->code[c->open[level - 1] + 2];
-		top += (count ? count - 1 : 0) * (r % 2 ? 1u : 3u);
+		count = c->code[c->open[level - 1] + 2];
 	}
-	if (width ? top + width > c->p->nmem : top >= c->p->nasserts)
+	uint64_t end = csf_operand_end(w, width, count);
+	if (width ? end > c->p->nmem : end >= c->p->nasserts)
 		return bad_insn(c, pc, k, "out of range");
 	return 0;
 }
@@ -435,10 +436,10 @@ static int check_next(code_check *c, uint32_t pc)
 	if (c->code[pc + 1] != (uint32_t)c->depth)
 		return bad_insn(c, pc, -1, "loop level %lu where the innermost loop is level %d", (unsigned long)c->code[pc + 1],
 		                c->depth);
-	if (c->code[pc + 2] != loop + 4)
+	if (c->code[pc + 2] != loop + csf_insn_len(CSF_OP_LOOP))
 		return bad_insn(c, pc, -1, "start %lu is not the body of its LOOP at %lu", (unsigned long)c->code[pc + 2],
 		                (unsigned long)loop);
-	if (c->code[loop + 3] != pc + 3)
+	if (c->code[loop + 3] != pc + csf_insn_len(CSF_OP_NEXT))
 		return bad_insn(c, loop, -1, "end %lu is not just past its NEXT at %lu", (unsigned long)c->code[loop + 3],
 		                (unsigned long)pc);
 	c->depth--;
@@ -459,8 +460,9 @@ static int check_insn(code_check *c, uint32_t pc)
 		uint32_t v = c->code[pc + 1 + k];
 		int r = 0;
 		switch (oi->kind[k]) {
-		case CSF_K_DS: case CSF_K_S: r = check_slot(c, pc, k, v, 1); break;
-		case CSF_K_DV: case CSF_K_V: r = check_slot(c, pc, k, v, 3); break;
+		case CSF_K_DS: case CSF_K_S: case CSF_K_DV: case CSF_K_V:
+			r = check_slot(c, pc, k, v, csf_kind_width(oi->kind[k]));
+			break;
 		case CSF_K_AS: r = check_slot(c, pc, k, v, 0); break;
 		case CSF_K_N:
 			if (csf_imm(v) < -CSF_POWI_MAX || csf_imm(v) > CSF_POWI_MAX) r = bad_insn(c, pc, k, "out of range");
@@ -491,7 +493,7 @@ static int check_jumps(code_check *c)
 			if (c->ctx[v] != c->ctx[pc])
 				return bad_insn(c, pc, k, "jumps to %lu into or out of a loop body", (unsigned long)v);
 		}
-		pc += 1u + oi->nops;
+		pc += csf_insn_len(c->code[pc]);
 	}
 	return 0;
 }
@@ -503,7 +505,7 @@ static int check_code(const csf_prog *p, int s, char *err, size_t errlen)
 	c.start = calloc((size_t)c.n + 1, 1);
 	c.ctx = calloc((size_t)c.n + 1, sizeof *c.ctx);
 	int r = !c.start || !c.ctx ? csf_fail(err, errlen, "out of memory") : check_boundaries(&c);
-	for (uint32_t pc = 0; !r && pc < c.n; pc += 1u + csf_opinfo_table[c.code[pc]].nops) r = check_insn(&c, pc);
+	for (uint32_t pc = 0; !r && pc < c.n; pc += csf_insn_len(c.code[pc])) r = check_insn(&c, pc);
 	if (!r && c.depth) r = bad_insn(&c, c.open[c.depth - 1], -1, "loop has no NEXT");
 	if (!r) r = check_jumps(&c);
 	free(c.start);
