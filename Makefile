@@ -118,6 +118,10 @@ $(BUILD)/unit-tests: $(TEST_OBJ) $(CC_OBJ) $(BUILD)/libcsfrt.a
 $(BUILD)/fuzz-bytecode: tests/fuzz_bytecode.c $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
 
+# the sizes of a compiled program's code sections (tests/many/code_size.sh)
+$(BUILD)/code-words: tests/code_words.c $(RT_H) $(BUILD)/libcsfrt.a
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+
 # the fuzz targets (tests/fuzz/) replayed on the regression corpus by an ordinary main()
 FUZZ_DEFS = -DCSF_FUZZ_STDLIB='"$(CURDIR)/stdlib"'
 
@@ -130,13 +134,22 @@ $(BUILD)/fuzz-replay-csfb: tests/fuzz/fuzz_csfb.c tests/fuzz/replay.c $(BUILD)/l
 		$(BUILD)/libcsfrt.a $(LDLIBS_GSL)
 
 # the MPI sweep test runs where Open MPI is installed (tests/sweep/check.sh says SKIP otherwise)
-test: all $(BUILD)/unit-tests $(BUILD)/fuzz-bytecode $(BUILD)/fuzz-replay-csfc $(BUILD)/fuzz-replay-csfb $(if $(HAVE_MPICC),$(BUILD)/csfvm-mpi)
+# test-progs: what the tests run, built alone so that make check builds it nproc at a time
+test-progs: all $(BUILD)/unit-tests $(BUILD)/fuzz-bytecode $(BUILD)/code-words $(BUILD)/fuzz-replay-csfc \
+	$(BUILD)/fuzz-replay-csfb $(if $(HAVE_MPICC),$(BUILD)/csfvm-mpi)
+
+test: test-progs
 	CSF_STDLIB=$(CURDIR)/stdlib $(BUILD)/unit-tests
 	CSF_BUILD=$(BUILD) CFLAGS="$(CFLAGS) $(SANFLAGS)" sh tests/run.sh
 	sh tests/layout/check.sh $(BUILD)
 
+# the programs are built nproc at a time; tests/run.sh and tests/layout/check.sh run their
+# tests nproc at a time too
+NPROC := $(shell nproc 2>/dev/null || echo 2)
 check:
+	$(MAKE) -j$(NPROC) test-progs
 	$(MAKE) test
+	$(MAKE) -j$(NPROC) test-progs BUILD=build-san SAN=1 CFLAGS="-O1 -g"
 	$(MAKE) test BUILD=build-san SAN=1 CFLAGS="-O1 -g"
 
 # ---- fuzzing (not part of make check: needs clang) ----
@@ -252,4 +265,4 @@ bench-peers: all deps-peers
 clean:
 	rm -rf build build-san build-fuzz
 
-.PHONY: all deps deps-mpi deps-peers deps-cvode deps-view deps-chromium deps-fuzz demo test check fuzz fuzz-targets install uninstall bench bench-peers clean
+.PHONY: all deps deps-mpi deps-peers deps-cvode deps-view deps-chromium deps-fuzz demo test test-progs check fuzz fuzz-targets install uninstall bench bench-peers clean

@@ -6,6 +6,9 @@
 # SHA-256 of: the bytecode (.csfb), its warnings, the --dump-bytecode listing,
 # the --explain text, the --emit-c source, and for a model that does not compile, its exit status and
 # diagnostics. The digests are compared with tests/layout/csfc.sha256.
+# csfc is given the standard library as the relative path stdlib
+# (CSF_STDLIB), which it writes where it names one of its files, so that
+# every checkout gives the same digests. The files are compiled nproc at a time.
 #
 #   sh tests/layout/check.sh BUILD          compare (exit 1 on any difference)
 #   sh tests/layout/check.sh BUILD --update rewrite the manifest
@@ -13,26 +16,43 @@
 # The manifest is rewritten only by a commit that means to change what the
 # compiler emits, and that commit says so.
 set -u
-B=$(cd "${1:-build}" && pwd)
 MAN=tests/layout/csfc.sha256
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-for m in $(find examples stdlib tests -name '*.csf' | LC_ALL=C sort); do
+CSF_STDLIB=stdlib
+export CSF_STDLIB
+digest() { sha256sum | cut -c1-64; }
+if [ "${1:-}" = --one ]; then
+	# check.sh --one BUILD DIR MODEL: the digests of MODEL, in DIR/MODEL's number
+	B=$2 T=$3/$4
+	m=$(sed -n "$4p" "$3/list")
+	mkdir -p "$T"
 	d=$(dirname "$m")
 	st=0
 	timeout 60 "$B/csfc" -I "$d" "$m" -o "$T/m.csfb" >"$T/out" 2>"$T/err" || st=$?
 	if [ $st = 0 ]; then
-		echo "$m csfb $(sha256sum <"$T/m.csfb" | cut -c1-64)"
-		echo "$m warnings $( (cat "$T/out" "$T/err") | sha256sum | cut -c1-64)"
+		echo "$m csfb $(digest <"$T/m.csfb")"
+		echo "$m warnings $( (cat "$T/out" "$T/err") | digest)"
 		timeout 60 "$B/csfc" -I "$d" --dump-bytecode "$m" -o "$T/x.csfb" >"$T/dump" 2>&1
-		echo "$m dump $(sha256sum <"$T/dump" | cut -c1-64)"
+		echo "$m dump $(digest <"$T/dump")"
 		timeout 60 "$B/csfc" -I "$d" --explain "$m" -o "$T/x.csfb" >"$T/expl" 2>&1
-		echo "$m explain $(sha256sum <"$T/expl" | cut -c1-64)"
+		echo "$m explain $(digest <"$T/expl")"
 		timeout 60 "$B/csfc" -I "$d" --emit-c "$m" -o "$T/x.c" >"$T/c.err" 2>&1
-		echo "$m emit-c $(cat "$T/x.c" "$T/c.err" | sha256sum | cut -c1-64)"
+		echo "$m emit-c $(cat "$T/x.c" "$T/c.err" | digest)"
 	else
-		echo "$m exit$st $( (cat "$T/out" "$T/err") | sha256sum | cut -c1-64)"
-	fi
+		echo "$m exit$st $( (cat "$T/out" "$T/err") | digest)"
+	fi >"$T/digests"
+	exit 0
+fi
+B=$(cd "${1:-build}" && pwd)
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+find examples stdlib tests -name '*.csf' | LC_ALL=C sort >"$T/list"
+n=$(wc -l <"$T/list")
+awk -v n="$n" 'BEGIN { for (i = 1; i <= n; i++) print i }' |
+	xargs -P "$(nproc 2>/dev/null || echo 2)" -n 1 sh "$0" --one "$B" "$T"
+i=1
+while [ $i -le "$n" ]; do
+	cat "$T/$i/digests" 2>/dev/null || echo "$(sed -n "${i}p" "$T/list") not checked"
+	i=$((i + 1))
 done >"$T/now"
 if [ "${2:-}" = --update ]; then
 	cp "$T/now" "$MAN"

@@ -1,14 +1,18 @@
 #!/bin/sh
-# tests/many/code_size.sh CSFC DIR - the code grows with the scene's text, not
+# tests/many/code_size.sh CSFC DIR CODE_WORDS - the code grows with the scene's text, not
 # with its number of objects: every rule is compiled once per shape of object,
 # as a loop. The code sections (rhs, out, jac) of bench/gen_scene.sh 10 and of
 # gen_scene.sh N have the same number of words, and those of bench/gen_nbody.sh
 # 16 and 2048 (pairwise gravity: a loop over pairs); only the data grows.
-# A deterministic size, not a time. Prints "N passed, N failed".
-CSFC=$1 T=$2
+# A deterministic size, not a time. The sizes are those csfc --dump-bytecode
+# heads its sections with, read from the compiled file by CODE_WORDS
+# (build/code-words, tests/code_words.c): the listing of the large scene takes
+# a minute (five minutes under the sanitizers), its object table listed
+# property by property. Prints "N passed, N failed".
+CSFC=$1 T=$2 CW=$3
 N=${CODE_SIZE_N:-100000}
 pass=0 fail=0
-sections() { "$CSFC" --dump-bytecode "$1" -o "$T/cs.csfb" 2>"$T/cs.err" | grep '^section' | tr '\n' ' '; }
+sections() { "$CSFC" "$1" -o "$T/cs.csfb" 2>"$T/cs.err" && "$CW" "$T/cs.csfb" 2>>"$T/cs.err" | grep '^section' | tr '\n' ' '; }
 check() { # what, small model, large model
 	a=$(sections "$2") b=$(sections "$3")
 	if [ -n "$a" ] && [ "$a" = "$b" ]; then pass=$((pass + 1)); else
