@@ -22,30 +22,100 @@
 #include "ode.h"
 
 
-static const struct method {
+/* The most coefficients of a stability polynomial: more than the most stages (rk8pd's 13) plus one. */
+enum { NSTAB = 16 };
+
+/*
+ * One fixed step of h from (t, y), without error control: CSF_ODE_OK,
+ * CSF_ODE_STOPPED when f failed, CSF_ODE_FAILED with a reason in err.
+ */
+typedef int fixed_fn(csf_ode *o, double t, double h, double *y, char *err, size_t errlen);
+
+/* A continuous extension (erk.c's): its error norm's scale, and the state at tc within the last step. */
+struct dense {
+	void (*set_scale)(gsl_odeiv2_step *s, const double *scale);
+	int (*eval)(csf_ode *o, double tc, double *out);
+};
+
+/*
+ * How csf_ode_stable_step finds the method's stable steps: the stability
+ * polynomial of adaptive and of fixed steps, put in o->stab (NULL: none
+ * needed), and how much faster than the exact solution one step grows a
+ * mode; without excess, the answer for every mode.
+ */
+struct stability {
+	int (*poly)(csf_ode *o);
+	int (*poly_fixed)(csf_ode *o);
+	double (*excess)(const csf_ode *o, double complex z);
+	double every;
+};
+
+/*
+ * A method: what differs from one to the next, as entries (REBOUND's
+ * reb_integrator is the model). The generic code dispatches through them.
+ */
+struct method {
 	const char *name;
-	const gsl_odeiv2_step_type *const *type;
+	const gsl_odeiv2_step_type *const *type; /* the adaptive stepper (NULL: fixed steps only) */
+	/* what csf_ode_new sets up for it (a GSL driver and control, or verlet's pairs) */
+	int (*setup)(csf_ode *o, double h0, double hmax, const uint32_t *vpair, char *err, size_t errlen);
+	fixed_fn *step;                          /* one fixed step (NULL: none, a multistep method) */
+	int (*substep)(csf_ode *o, double t, double h, double *out); /* csf_ode_substep's step, 0 or 1 */
+	const gsl_odeiv2_step_type *const *sub;  /* the one-step stepper of gsl_substep */
+	double (*fixed_h)(const csf_ode *o, double by); /* the fixed step without --step (NULL: by) */
+	const struct dense *dense;               /* a continuous extension: steps past the output times (or NULL) */
+	const struct stability *stab;
 	int jacobian;  /* the stepper uses the Jacobian */
-	int multistep; /* cannot take fixed steps */
-	int dense;     /* has a continuous extension: steps past the output times (csf_ode_dense_eval) */
 	double tol;    /* the default local error bound (the work-precision benchmark: the cheapest that keeps
 	                  every problem with an exact answer within 1e-6) */
-} methods[] = {
-	{ "dop853", &csf_step_dop853, 0, 0, 1, 1e-12 }, /* Dormand-Prince 8(5,3) with dense output (dop853.c) */
-	{ "dopri5", &csf_step_dopri5, 0, 0, 1, CSF_DEFAULT_TOL }, /* Dormand-Prince 5(4), its free extension (dopri5.c) */
-	{ "rk8pd", &gsl_odeiv2_step_rk8pd, 0, 0, 0, CSF_DEFAULT_TOL },
-	{ "rk2", &gsl_odeiv2_step_rk2, 0, 0, 0, CSF_DEFAULT_TOL },
-	{ "rk4", &gsl_odeiv2_step_rk4, 0, 0, 0, CSF_DEFAULT_TOL },
-	{ "rkf45", &gsl_odeiv2_step_rkf45, 0, 0, 0, CSF_DEFAULT_TOL },
-	{ "rkck", &gsl_odeiv2_step_rkck, 0, 0, 0, CSF_DEFAULT_TOL },
-	{ "rk1imp", &gsl_odeiv2_step_rk1imp, 1, 0, 0, CSF_DEFAULT_TOL },
-	{ "rk2imp", &gsl_odeiv2_step_rk2imp, 1, 0, 0, CSF_DEFAULT_TOL },
-	{ "rk4imp", &gsl_odeiv2_step_rk4imp, 1, 0, 0, CSF_DEFAULT_TOL },
-	{ "bsimp", &gsl_odeiv2_step_bsimp, 1, 0, 0, CSF_DEFAULT_TOL },
-	{ "msadams", &gsl_odeiv2_step_msadams, 0, 1, 0, CSF_DEFAULT_TOL },
-	{ "msbdf", &gsl_odeiv2_step_msbdf, 1, 1, 0, CSF_DEFAULT_TOL },
-	{ "verlet", NULL, 0, 0, 0, CSF_DEFAULT_TOL }, /* velocity Verlet, written here: symplectic, fixed steps */
 };
+
+static int gsl_setup(csf_ode *o, double h0, double hmax, const uint32_t *vpair, char *err, size_t errlen);
+static int verlet_setup(csf_ode *o, double h0, double hmax, const uint32_t *vpair, char *err, size_t errlen);
+static fixed_fn gsl_fixed, rk4_fixed, verlet_fixed;
+static int gsl_substep(csf_ode *o, double t, double h, double *out);
+static int rk4_substep(csf_ode *o, double t, double h, double *out);
+static int verlet_substep(csf_ode *o, double t, double h, double *out);
+static double verlet_h(const csf_ode *o, double by);
+static int erk_dense_eval(csf_ode *o, double tc, double *out);
+static int measured_poly(csf_ode *o);
+static int rk4_poly(csf_ode *o);
+static double poly_excess(const csf_ode *o, double complex z);
+static double verlet_excess(const csf_ode *o, double complex z);
+
+static const struct dense erk_dense = { csf_erk_set_scale, erk_dense_eval };
+
+static const struct stability
+	stab_measured = { measured_poly, measured_poly, poly_excess, 0 }, /* explicit Runge-Kutta: the code's polynomial */
+	stab_rk4 = { measured_poly, rk4_poly, poly_excess, 0 },           /* fixed steps: the classical rk4's */
+	stab_verlet = { NULL, NULL, verlet_excess, 0 },                   /* on x'' = lambda^2 x */
+	stab_implicit = { NULL, NULL, NULL, INFINITY },                   /* no step is unstable */
+	stab_unknown = { NULL, NULL, NULL, NAN };                         /* msadams, whose order varies */
+
+#define STEP(T) &gsl_odeiv2_step_##T
+static const struct method methods[] = {
+	/* Dormand-Prince 8(5,3) with dense output (dop853.c) */
+	{ "dop853", &csf_step_dop853, gsl_setup, gsl_fixed, gsl_substep, &csf_step_dop853, NULL, &erk_dense, &stab_measured, 0, 1e-12 },
+	/* Dormand-Prince 5(4), its free extension (dopri5.c) */
+	{ "dopri5", &csf_step_dopri5, gsl_setup, gsl_fixed, gsl_substep, &csf_step_dopri5, NULL, &erk_dense, &stab_measured, 0, CSF_DEFAULT_TOL },
+	{ "rk8pd", STEP(rk8pd), gsl_setup, gsl_fixed, gsl_substep, STEP(rk8pd), NULL, NULL, &stab_measured, 0, CSF_DEFAULT_TOL },
+	{ "rk2", STEP(rk2), gsl_setup, gsl_fixed, gsl_substep, STEP(rk2), NULL, NULL, &stab_measured, 0, CSF_DEFAULT_TOL },
+	/* fixed steps: the classical four-stage method, written here */
+	{ "rk4", STEP(rk4), gsl_setup, rk4_fixed, rk4_substep, NULL, NULL, NULL, &stab_rk4, 0, CSF_DEFAULT_TOL },
+	{ "rkf45", STEP(rkf45), gsl_setup, gsl_fixed, gsl_substep, STEP(rkf45), NULL, NULL, &stab_measured, 0, CSF_DEFAULT_TOL },
+	{ "rkck", STEP(rkck), gsl_setup, gsl_fixed, gsl_substep, STEP(rkck), NULL, NULL, &stab_measured, 0, CSF_DEFAULT_TOL },
+	{ "rk1imp", STEP(rk1imp), gsl_setup, gsl_fixed, gsl_substep, STEP(rk1imp), NULL, NULL, &stab_implicit, 1, CSF_DEFAULT_TOL },
+	{ "rk2imp", STEP(rk2imp), gsl_setup, gsl_fixed, gsl_substep, STEP(rk2imp), NULL, NULL, &stab_implicit, 1, CSF_DEFAULT_TOL },
+	{ "rk4imp", STEP(rk4imp), gsl_setup, gsl_fixed, gsl_substep, STEP(rk4imp), NULL, NULL, &stab_implicit, 1, CSF_DEFAULT_TOL },
+	{ "bsimp", STEP(bsimp), gsl_setup, gsl_fixed, gsl_substep, STEP(bsimp), NULL, NULL, &stab_implicit, 1, CSF_DEFAULT_TOL },
+	/* multistep: no fixed steps; a one-step method of high order takes the substeps (implicit where the
+	   method is, for stiff problems), since they cannot start from anywhere */
+	{ "msadams", STEP(msadams), gsl_setup, NULL, gsl_substep, STEP(rk8pd), NULL, NULL, &stab_unknown, 0, CSF_DEFAULT_TOL },
+	{ "msbdf", STEP(msbdf), gsl_setup, NULL, gsl_substep, STEP(rk4imp), NULL, NULL, &stab_implicit, 1, CSF_DEFAULT_TOL },
+	/* velocity Verlet, written here: symplectic, fixed steps */
+	{ "verlet", NULL, verlet_setup, verlet_fixed, verlet_substep, NULL, verlet_h, NULL, &stab_verlet, 0, CSF_DEFAULT_TOL },
+};
+#undef STEP
 
 const char *csf_method_name(size_t i) { return i < sizeof methods / sizeof methods[0] ? methods[i].name : NULL; }
 
@@ -73,9 +143,6 @@ int csf_method_dense(const char *method)
 	const struct method *m = method ? find_method(method) : &methods[0];
 	return m && m->dense;
 }
-
-/* The most coefficients of a stability polynomial: more than the most stages (rk8pd's 13) plus one. */
-enum { NSTAB = 16 };
 
 struct csf_ode {
 	gsl_odeiv2_system sys;
@@ -251,7 +318,7 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 		snprintf(err, errlen, "unknown method '%s'", method);
 		return NULL;
 	}
-	if (fixed && m->multistep) {
+	if (fixed && !m->step) {
 		snprintf(err, errlen, "--fixed needs a one-step method, not the multistep %s", m->name);
 		return NULL;
 	}
@@ -286,26 +353,41 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 	o->f = f;
 	o->jac = jac;
 	o->ctx = ctx;
-	if (!m->type) { /* verlet: every component a position with a velocity, or that velocity */
-		unsigned char *isvel = calloc(n ? n : 1, 1);
-		int ok = isvel != NULL;
-		for (size_t i = 0; ok && i < n; i++)
-			if (vpair[i]) ok = !isvel[vpair[i] - 1]++ && !vpair[vpair[i] - 1];
-		for (size_t i = 0; ok && i < n; i++) ok = vpair[i] || isvel[i];
-		free(isvel);
-		if (!ok) {
-			snprintf(err, errlen,
-			         "verlet needs every state variable in a position/velocity pair (x' = v, where v' does not "
-			         "depend on v); this model's are not");
-			csf_ode_free(o);
-			return NULL;
-		}
-		o->vpair = vpair;
-		return o;
+	if (m->setup(o, h0, hmax, vpair, err, errlen)) {
+		csf_ode_free(o);
+		return NULL;
 	}
-	/* error control as driver_alloc_y_new (a_y = 1, a_dydt = 0), with the absolute
-	   tolerance of each component scaled as o->scale is now (control_type) */
-	o->drv = gsl_odeiv2_driver_alloc_y_new(&o->sys, *m->type, h0 < hmax ? h0 : hmax, tol, tol);
+	return o;
+}
+
+/* verlet: every component a position with a velocity, or that velocity */
+static int verlet_setup(csf_ode *o, double h0, double hmax, const uint32_t *vpair, char *err, size_t errlen)
+{
+	(void)h0, (void)hmax;
+	size_t n = o->n;
+	unsigned char *isvel = calloc(n ? n : 1, 1);
+	int ok = isvel != NULL;
+	for (size_t i = 0; ok && i < n; i++)
+		if (vpair[i]) ok = !isvel[vpair[i] - 1]++ && !vpair[vpair[i] - 1];
+	for (size_t i = 0; ok && i < n; i++) ok = vpair[i] || isvel[i];
+	free(isvel);
+	if (!ok) {
+		snprintf(err, errlen,
+		         "verlet needs every state variable in a position/velocity pair (x' = v, where v' does not "
+		         "depend on v); this model's are not");
+		return -1;
+	}
+	o->vpair = vpair;
+	return 0;
+}
+
+/* GSL's driver, with the error control as driver_alloc_y_new (a_y = 1, a_dydt = 0), the absolute
+   tolerance of each component scaled as o->scale is now (control_type) */
+static int gsl_setup(csf_ode *o, double h0, double hmax, const uint32_t *vpair, char *err, size_t errlen)
+{
+	(void)vpair;
+	double tol = o->tol;
+	o->drv = gsl_odeiv2_driver_alloc_y_new(&o->sys, *o->m->type, h0 < hmax ? h0 : hmax, tol, tol);
 	if (o->drv) {
 		gsl_odeiv2_control_free(o->drv->c);
 		o->drv->c = gsl_odeiv2_control_alloc(&control_type);
@@ -315,11 +397,11 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 	    gsl_odeiv2_control_set_driver(o->drv->c, o->drv) != GSL_SUCCESS ||
 	    gsl_odeiv2_driver_set_hmax(o->drv, hmax) != GSL_SUCCESS) {
 		snprintf(err, errlen, "cannot set up the integrator");
-		csf_ode_free(o);
-		return NULL;
+		return -1;
 	}
-	if (m->dense) csf_erk_set_scale(o->drv->s, o->scale); /* dop853's error norm weighs components as the control does */
-	return o;
+	/* the error norm of a method with a continuous extension (dop853's) weighs components as the control does */
+	if (o->m->dense) o->m->dense->set_scale(o->drv->s, o->scale);
+	return 0;
 }
 
 static int work(csf_ode *o)
@@ -373,8 +455,34 @@ static int rk4_step(csf_ode *o, double t, double h, double *y)
 	return 0;
 }
 
+static int verlet_fixed(csf_ode *o, double t, double h, double *y, char *err, size_t errlen)
+{
+	(void)err, (void)errlen;
+	return verlet_step(o, t, h, y) ? CSF_ODE_STOPPED : CSF_ODE_OK;
+}
+
+static int rk4_fixed(csf_ode *o, double t, double h, double *y, char *err, size_t errlen)
+{
+	(void)err, (void)errlen;
+	return rk4_step(o, t, h, y) ? CSF_ODE_STOPPED : CSF_ODE_OK;
+}
+
+/* GSL's step, its error estimate unused */
+static int gsl_fixed(csf_ode *o, double t, double h, double *y, char *err, size_t errlen)
+{
+	int st = gsl_odeiv2_step_apply(o->drv->s, t, h, y, o->k, NULL, NULL, &o->sys);
+	if (st == GSL_SUCCESS) return CSF_ODE_OK;
+	if (st == TOO_LONG) return CSF_ODE_STOPPED;
+	snprintf(err, errlen, "%s", gsl_strerror(st));
+	return CSF_ODE_FAILED;
+}
+
 int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y, char *err, size_t errlen)
 {
+	if (!o->m->step) {
+		snprintf(err, errlen, "%s takes no fixed steps", o->m->name);
+		return CSF_ODE_FAILED;
+	}
 	if (work(o)) {
 		snprintf(err, errlen, "out of memory");
 		return CSF_ODE_FAILED;
@@ -386,23 +494,10 @@ again:
 	if (steps < 1) steps = 1;
 	for (double i = 0; i < steps; i++) {
 		double ta = t0 + span * (i / steps), tb = i + 1 == steps ? t1 : t0 + span * ((i + 1) / steps);
-		int bad;
-		if (!o->m->type) {
-			bad = verlet_step(o, ta, tb - ta, y);
-		} else if (*o->m->type == gsl_odeiv2_step_rk4) {
-			bad = rk4_step(o, ta, tb - ta, y);
-		} else {
-			int st = gsl_odeiv2_step_apply(o->drv->s, ta, tb - ta, y, o->k, NULL, NULL, &o->sys);
-			if (st != GSL_SUCCESS && st != TOO_LONG) {
-				snprintf(err, errlen, "%s", gsl_strerror(st));
-				*t = ta;
-				return CSF_ODE_FAILED;
-			}
-			bad = st == TOO_LONG;
-		}
-		if (bad) {
+		int st = o->m->step(o, ta, tb - ta, y, err, errlen);
+		if (st != CSF_ODE_OK) {
 			*t = ta;
-			return CSF_ODE_STOPPED;
+			return st;
 		}
 		o->fixed_steps++;
 		*t = tb;
@@ -439,25 +534,22 @@ int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *
 	return CSF_ODE_FAILED;
 }
 
-int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out)
+static int verlet_substep(csf_ode *o, double t, double h, double *out)
 {
-	size_t n = o->n;
-	memcpy(out, y, n * sizeof *y);
-	if (work(o)) return 1;
-	if (!o->m->type) {
-		o->acc_ok = 0;
-		int bad = verlet_step(o, t, h, out);
-		o->acc_ok = 0;
-		return bad;
-	}
-	if (*o->m->type == gsl_odeiv2_step_rk4) return rk4_step(o, t, h, out);
+	o->acc_ok = 0;
+	int bad = verlet_step(o, t, h, out);
+	o->acc_ok = 0;
+	return bad;
+}
+
+static int rk4_substep(csf_ode *o, double t, double h, double *out) { return rk4_step(o, t, h, out); }
+
+/* a second GSL stepper, of the method's one-step stand-in (struct method's sub) */
+static int gsl_substep(csf_ode *o, double t, double h, double *out)
+{
 	if (!o->sub) {
-		/* a multistep method cannot start from anywhere: a one-step method of high order
-		   takes its place (implicit where the method is, for stiff problems) */
-		const gsl_odeiv2_step_type *T = !o->m->multistep ? *o->m->type
-		                                : o->m->jacobian ? gsl_odeiv2_step_rk4imp : gsl_odeiv2_step_rk8pd;
-		o->sub = gsl_odeiv2_step_alloc(T, n);
-		o->yerr = malloc((n ? n : 1) * sizeof *o->yerr);
+		o->sub = gsl_odeiv2_step_alloc(*o->m->sub, o->n);
+		o->yerr = malloc((o->n ? o->n : 1) * sizeof *o->yerr);
 		if (!o->sub || !o->yerr) return 1;
 		gsl_odeiv2_step_set_driver(o->sub, o->drv); /* the implicit methods read its tolerance */
 	}
@@ -465,7 +557,14 @@ int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out
 	return gsl_odeiv2_step_apply(o->sub, t, h, out, o->yerr, NULL, NULL, &o->sys) != GSL_SUCCESS;
 }
 
-int csf_ode_dense(const csf_ode *o) { return o->m->dense; }
+int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out)
+{
+	memcpy(out, y, o->n * sizeof *y);
+	if (work(o)) return 1;
+	return o->m->substep(o, t, h, out);
+}
+
+int csf_ode_dense(const csf_ode *o) { return o->m->dense != NULL; }
 
 /* The root mean square of v_i / (tol (scale_i + |y_i|)): the error control's measure. */
 static double wrms(const csf_ode *o, const double *v, const double *y)
@@ -503,7 +602,9 @@ int csf_ode_first_step(csf_ode *o, double t, const double *y)
 	return 0;
 }
 
-int csf_ode_dense_eval(csf_ode *o, double tc, double *out)
+int csf_ode_dense_eval(csf_ode *o, double tc, double *out) { return o->m->dense->eval(o, tc, out); }
+
+static int erk_dense_eval(csf_ode *o, double tc, double *out)
 {
 	double t0, h;
 	gsl_odeiv2_step *s = o->drv->s;
@@ -546,9 +647,13 @@ int csf_ode_fixed_only(const csf_ode *o) { return !o->m->type; }
 double csf_ode_fixed_step(const csf_ode *o, double by, double step)
 {
 	if (step > 0) return step < by ? step : by;
-	if (o->m->type) return by;
-	/* verlet has no error estimate: its global error goes as h^2, so the step comes
-	   from the tolerance, h = by sqrt(tol / 1e-4) (by / 1000 at the default 1e-10) */
+	return o->m->fixed_h ? o->m->fixed_h(o, by) : by;
+}
+
+/* verlet has no error estimate: its global error goes as h^2, so the step comes
+   from the tolerance, h = by sqrt(tol / 1e-4) (by / 1000 at the default 1e-10) */
+static double verlet_h(const csf_ode *o, double by)
+{
 	double f = sqrt(o->tol / 1e-4);
 	return f < 1 ? by * f : by;
 }
@@ -583,14 +688,17 @@ static int shift_rhs(double t, const double y[], double dydt[], void *params)
  * of a table that might not match it (GSL's rk2 takes the third-order
  * solution; its rk4, two half steps). 0, or -1 when memory runs out.
  */
-static int stability_poly(csf_ode *o, int fixed)
+static int rk4_poly(csf_ode *o)
 {
 	memset(o->stab, 0, sizeof o->stab);
-	if (fixed && *o->m->type == gsl_odeiv2_step_rk4) {
-		for (int j = 0, f = 1; j <= 4; j++, f *= j ? j : 1) o->stab[j] = 1.0 / f;
-		o->nstab = 5;
-		return 0;
-	}
+	for (int j = 0, f = 1; j <= 4; j++, f *= j ? j : 1) o->stab[j] = 1.0 / f;
+	o->nstab = 5;
+	return 0;
+}
+
+static int measured_poly(csf_ode *o)
+{
+	memset(o->stab, 0, sizeof o->stab);
 	gsl_odeiv2_system sys = { shift_rhs, NULL, NSTAB, NULL };
 	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(*o->m->type, NSTAB);
 	double yerr[NSTAB];
@@ -610,12 +718,15 @@ static int stability_poly(csf_ode *o, int fixed)
  * advances x'' = mu x (mu = lambda^2, eigenvalues +-lambda) by a factor
  * r with r^2 - (2 + z^2) r + 1 = 0, against e^|Re z|.
  */
-static double excess(const csf_ode *o, double complex z)
+static double verlet_excess(const csf_ode *o, double complex z)
 {
-	if (!o->m->type) {
-		double complex b = 2 + z * z, d = csqrt(b * b - 4);
-		return log(fmax(cabs((b + d) / 2), cabs((b - d) / 2))) - fabs(creal(z));
-	}
+	(void)o;
+	double complex b = 2 + z * z, d = csqrt(b * b - 4);
+	return log(fmax(cabs((b + d) / 2), cabs((b - d) / 2))) - fabs(creal(z));
+}
+
+static double poly_excess(const csf_ode *o, double complex z)
+{
 	if (cimag(z) == 0) { /* the real axis (stiff decays) in real arithmetic: the same value, 4 times sooner */
 		double x = creal(z), r = 0;
 		for (int j = o->nstab - 1; j >= 0; j--) r = r * x + o->stab[j];
@@ -629,11 +740,12 @@ static double excess(const csf_ode *o, double complex z)
 double csf_ode_stable_step(csf_ode *o, int fixed, double re, double im, double span)
 {
 	double mag = hypot(re, im);
-	if (o->m->jacobian) return INFINITY;
-	if (o->m->multistep) return NAN;
+	const struct stability *sb = o->m->stab;
+	if (!sb->excess) return sb->every;
 	if (!(mag > 0) || !(span > 0)) return INFINITY;
-	if (o->m->type && (!o->nstab || o->stab_fixed != fixed)) {
-		if (stability_poly(o, fixed)) return NAN;
+	int (*poly)(csf_ode *) = fixed ? sb->poly_fixed : sb->poly;
+	if (poly && (!o->nstab || o->stab_fixed != fixed)) {
+		if (poly(o)) return NAN;
 		o->stab_fixed = fixed;
 		o->last_s = 0;
 	}
@@ -647,7 +759,7 @@ double csf_ode_stable_step(csf_ode *o, int fixed, double re, double im, double s
 	double allow = log(1.01) / (mag * span);
 	if (o->last_s > 0 && cabs(u - o->last_u) <= 1e-9 && fabs(allow - o->last_allow) <= 0.1 * allow)
 		return o->last_s / mag; /* the same direction as last time (a scene that keeps its spectrum) */
-#define UNSTABLE(s) (excess(o, (s) * u) > allow * (s) + 1e-12)
+#define UNSTABLE(s) (sb->excess(o, (s) * u) > allow * (s) + 1e-12)
 	const double ds = 0.02, smax = 40; /* the regions of explicit methods end before 10 */
 	double lo = 0;
 	while (lo < smax && !UNSTABLE(lo + ds)) lo += ds;
