@@ -26,25 +26,45 @@ static const struct dense erk_dense = { csf_erk_set_scale, erk_dense_eval };
 #define STEP(T) &gsl_odeiv2_step_##T
 static const struct method methods[] = {
 	/* Dormand-Prince 8(5,3) with dense output (dop853.c) */
-	{ "dop853", &csf_step_dop853, ode_gsl_setup, ode_gsl_fixed, ode_gsl_substep, &csf_step_dop853, NULL, &erk_dense, &ode_stab_measured, 0, 1e-12 },
+	{ .name = "dop853", .type = &csf_step_dop853, .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = &csf_step_dop853, .dense = &erk_dense, .stab = &ode_stab_measured,
+	  .tol = 1e-12 },
 	/* Dormand-Prince 5(4), its free extension (dopri5.c) */
-	{ "dopri5", &csf_step_dopri5, ode_gsl_setup, ode_gsl_fixed, ode_gsl_substep, &csf_step_dopri5, NULL, &erk_dense, &ode_stab_measured, 0, CSF_DEFAULT_TOL },
-	{ "rk8pd", STEP(rk8pd), ode_gsl_setup, ode_gsl_fixed, ode_gsl_substep, STEP(rk8pd), NULL, NULL, &ode_stab_measured, 0, CSF_DEFAULT_TOL },
-	{ "rk2", STEP(rk2), ode_gsl_setup, ode_gsl_fixed, ode_gsl_substep, STEP(rk2), NULL, NULL, &ode_stab_measured, 0, CSF_DEFAULT_TOL },
+	{ .name = "dopri5", .type = &csf_step_dopri5, .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = &csf_step_dopri5, .dense = &erk_dense, .stab = &ode_stab_measured,
+	  .tol = CSF_DEFAULT_TOL },
+	{ .name = "rk8pd", .type = STEP(rk8pd), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(rk8pd), .stab = &ode_stab_measured, .tol = CSF_DEFAULT_TOL },
+	{ .name = "rk2", .type = STEP(rk2), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(rk2), .stab = &ode_stab_measured, .tol = CSF_DEFAULT_TOL },
 	/* fixed steps: the classical four-stage method, written here */
-	{ "rk4", STEP(rk4), ode_gsl_setup, ode_rk4_fixed, ode_rk4_substep, NULL, NULL, NULL, &ode_stab_rk4, 0, CSF_DEFAULT_TOL },
-	{ "rkf45", STEP(rkf45), ode_gsl_setup, ode_gsl_fixed, ode_gsl_substep, STEP(rkf45), NULL, NULL, &ode_stab_measured, 0, CSF_DEFAULT_TOL },
-	{ "rkck", STEP(rkck), ode_gsl_setup, ode_gsl_fixed, ode_gsl_substep, STEP(rkck), NULL, NULL, &ode_stab_measured, 0, CSF_DEFAULT_TOL },
-	{ "rk1imp", STEP(rk1imp), ode_gsl_setup, ode_gsl_fixed, ode_gsl_substep, STEP(rk1imp), NULL, NULL, &ode_stab_implicit, 1, CSF_DEFAULT_TOL },
-	{ "rk2imp", STEP(rk2imp), ode_gsl_setup, ode_gsl_fixed, ode_gsl_substep, STEP(rk2imp), NULL, NULL, &ode_stab_implicit, 1, CSF_DEFAULT_TOL },
-	{ "rk4imp", STEP(rk4imp), ode_gsl_setup, ode_gsl_fixed, ode_gsl_substep, STEP(rk4imp), NULL, NULL, &ode_stab_implicit, 1, CSF_DEFAULT_TOL },
-	{ "bsimp", STEP(bsimp), ode_gsl_setup, ode_gsl_fixed, ode_gsl_substep, STEP(bsimp), NULL, NULL, &ode_stab_implicit, 1, CSF_DEFAULT_TOL },
+	{ .name = "rk4", .type = STEP(rk4), .setup = ode_gsl_setup, .step = ode_rk4_fixed,
+	  .substep = ode_rk4_substep, .stab = &ode_stab_rk4, .tol = CSF_DEFAULT_TOL },
+	{ .name = "rkf45", .type = STEP(rkf45), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(rkf45), .stab = &ode_stab_measured, .tol = CSF_DEFAULT_TOL },
+	{ .name = "rkck", .type = STEP(rkck), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(rkck), .stab = &ode_stab_measured, .tol = CSF_DEFAULT_TOL },
+	{ .name = "rk1imp", .type = STEP(rk1imp), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(rk1imp), .stab = &ode_stab_implicit, .jacobian = 1,
+	  .tol = CSF_DEFAULT_TOL },
+	{ .name = "rk2imp", .type = STEP(rk2imp), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(rk2imp), .stab = &ode_stab_implicit, .jacobian = 1,
+	  .tol = CSF_DEFAULT_TOL },
+	{ .name = "rk4imp", .type = STEP(rk4imp), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(rk4imp), .stab = &ode_stab_implicit, .jacobian = 1,
+	  .tol = CSF_DEFAULT_TOL },
+	{ .name = "bsimp", .type = STEP(bsimp), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(bsimp), .stab = &ode_stab_implicit, .jacobian = 1,
+	  .tol = CSF_DEFAULT_TOL },
 	/* multistep: no fixed steps; a one-step method of high order takes the substeps (implicit where the
 	   method is, for stiff problems), since they cannot start from anywhere */
-	{ "msadams", STEP(msadams), ode_gsl_setup, NULL, ode_gsl_substep, STEP(rk8pd), NULL, NULL, &ode_stab_unknown, 0, CSF_DEFAULT_TOL },
-	{ "msbdf", STEP(msbdf), ode_gsl_setup, NULL, ode_gsl_substep, STEP(rk4imp), NULL, NULL, &ode_stab_implicit, 1, CSF_DEFAULT_TOL },
+	{ .name = "msadams", .type = STEP(msadams), .setup = ode_gsl_setup, .substep = ode_gsl_substep,
+	  .sub = STEP(rk8pd), .stab = &ode_stab_unknown, .tol = CSF_DEFAULT_TOL },
+	{ .name = "msbdf", .type = STEP(msbdf), .setup = ode_gsl_setup, .substep = ode_gsl_substep,
+	  .sub = STEP(rk4imp), .stab = &ode_stab_implicit, .jacobian = 1, .tol = CSF_DEFAULT_TOL },
 	/* velocity Verlet, written here: symplectic, fixed steps */
-	{ "verlet", NULL, ode_verlet_setup, ode_verlet_fixed, ode_verlet_substep, NULL, ode_verlet_h, NULL, &ode_stab_verlet, 0, CSF_DEFAULT_TOL },
+	{ .name = "verlet", .setup = ode_verlet_setup, .step = ode_verlet_fixed, .substep = ode_verlet_substep,
+	  .fixed_h = ode_verlet_h, .stab = &ode_stab_verlet, .tol = CSF_DEFAULT_TOL },
 };
 #undef STEP
 
@@ -74,6 +94,7 @@ int csf_method_dense(const char *method)
 	const struct method *m = method ? find_method(method) : &methods[0];
 	return m && m->dense;
 }
+
 static int gsl_rhs(double t, const double y[], double dydt[], void *params)
 {
 	csf_ode *o = params;
