@@ -1,51 +1,72 @@
 /*
- * ode.c - GSL odeiv2 behind a small checked API.
+ * ode.c - GSL odeiv2 behind a small checked API: the method table and
+ * what dispatches through it.
  *
- * This is the only file of the runtime that includes GSL. GSL's error
- * handler is switched off; every status is checked and turned into a CSF
- * error. The method table is the one list of steppers CSF offers.
+ * Only the files of runtime/ode/ include GSL. GSL's error handler is
+ * switched off; every status is checked and turned into a CSF error. The
+ * method table is the one list of steppers CSF offers; what differs from
+ * one method to the next is in its entries (struct method, ode_int.h), the
+ * fixed steppers in fixed.c, the error control in control.c, the
+ * stability regions in stable.c.
  */
-#include <complex.h>
-#include <float.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <math.h>
 #include <string.h>
-
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_odeiv2.h>
 
 #include "csf.h"
 #include "dop853.h"
 #include "dopri5.h"
 #include "erk.h"
-#include "ode.h"
+#include "ode_int.h"
 
+static int erk_dense_eval(csf_ode *o, double tc, double *out);
+static const struct dense erk_dense = { csf_erk_set_scale, erk_dense_eval };
 
-static const struct method {
-	const char *name;
-	const gsl_odeiv2_step_type *const *type;
-	int jacobian;  /* the stepper uses the Jacobian */
-	int multistep; /* cannot take fixed steps */
-	int dense;     /* has a continuous extension: steps past the output times (csf_ode_dense_eval) */
-	double tol;    /* the default local error bound (the work-precision benchmark: the cheapest that keeps
-	                  every problem with an exact answer within 1e-6) */
-} methods[] = {
-	{ "dop853", &csf_step_dop853, 0, 0, 1, 1e-12 }, /* Dormand-Prince 8(5,3) with dense output (dop853.c) */
-	{ "dopri5", &csf_step_dopri5, 0, 0, 1, CSF_DEFAULT_TOL }, /* Dormand-Prince 5(4), its free extension (dopri5.c) */
-	{ "rk8pd", &gsl_odeiv2_step_rk8pd, 0, 0, 0, CSF_DEFAULT_TOL },
-	{ "rk2", &gsl_odeiv2_step_rk2, 0, 0, 0, CSF_DEFAULT_TOL },
-	{ "rk4", &gsl_odeiv2_step_rk4, 0, 0, 0, CSF_DEFAULT_TOL },
-	{ "rkf45", &gsl_odeiv2_step_rkf45, 0, 0, 0, CSF_DEFAULT_TOL },
-	{ "rkck", &gsl_odeiv2_step_rkck, 0, 0, 0, CSF_DEFAULT_TOL },
-	{ "rk1imp", &gsl_odeiv2_step_rk1imp, 1, 0, 0, CSF_DEFAULT_TOL },
-	{ "rk2imp", &gsl_odeiv2_step_rk2imp, 1, 0, 0, CSF_DEFAULT_TOL },
-	{ "rk4imp", &gsl_odeiv2_step_rk4imp, 1, 0, 0, CSF_DEFAULT_TOL },
-	{ "bsimp", &gsl_odeiv2_step_bsimp, 1, 0, 0, CSF_DEFAULT_TOL },
-	{ "msadams", &gsl_odeiv2_step_msadams, 0, 1, 0, CSF_DEFAULT_TOL },
-	{ "msbdf", &gsl_odeiv2_step_msbdf, 1, 1, 0, CSF_DEFAULT_TOL },
-	{ "verlet", NULL, 0, 0, 0, CSF_DEFAULT_TOL }, /* velocity Verlet, written here: symplectic, fixed steps */
+#define STEP(T) &gsl_odeiv2_step_##T
+static const struct method methods[] = {
+	/* Dormand-Prince 8(5,3) with dense output (dop853.c) */
+	{ .name = "dop853", .type = &csf_step_dop853, .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = &csf_step_dop853, .dense = &erk_dense, .stab = &ode_stab_measured,
+	  .tol = 1e-12 },
+	/* Dormand-Prince 5(4), its free extension (dopri5.c) */
+	{ .name = "dopri5", .type = &csf_step_dopri5, .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = &csf_step_dopri5, .dense = &erk_dense, .stab = &ode_stab_measured,
+	  .tol = CSF_DEFAULT_TOL },
+	{ .name = "rk8pd", .type = STEP(rk8pd), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(rk8pd), .stab = &ode_stab_measured, .tol = CSF_DEFAULT_TOL },
+	{ .name = "rk2", .type = STEP(rk2), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(rk2), .stab = &ode_stab_measured, .tol = CSF_DEFAULT_TOL },
+	/* fixed steps: the classical four-stage method, written here */
+	{ .name = "rk4", .type = STEP(rk4), .setup = ode_gsl_setup, .step = ode_rk4_fixed,
+	  .substep = ode_rk4_substep, .stab = &ode_stab_rk4, .tol = CSF_DEFAULT_TOL },
+	{ .name = "rkf45", .type = STEP(rkf45), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(rkf45), .stab = &ode_stab_measured, .tol = CSF_DEFAULT_TOL },
+	{ .name = "rkck", .type = STEP(rkck), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(rkck), .stab = &ode_stab_measured, .tol = CSF_DEFAULT_TOL },
+	{ .name = "rk1imp", .type = STEP(rk1imp), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(rk1imp), .stab = &ode_stab_implicit, .jacobian = 1,
+	  .tol = CSF_DEFAULT_TOL },
+	{ .name = "rk2imp", .type = STEP(rk2imp), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(rk2imp), .stab = &ode_stab_implicit, .jacobian = 1,
+	  .tol = CSF_DEFAULT_TOL },
+	{ .name = "rk4imp", .type = STEP(rk4imp), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(rk4imp), .stab = &ode_stab_implicit, .jacobian = 1,
+	  .tol = CSF_DEFAULT_TOL },
+	{ .name = "bsimp", .type = STEP(bsimp), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
+	  .substep = ode_gsl_substep, .sub = STEP(bsimp), .stab = &ode_stab_implicit, .jacobian = 1,
+	  .tol = CSF_DEFAULT_TOL },
+	/* multistep: no fixed steps; a one-step method of high order takes the substeps (implicit where the
+	   method is, for stiff problems), since they cannot start from anywhere */
+	{ .name = "msadams", .type = STEP(msadams), .setup = ode_gsl_setup, .substep = ode_gsl_substep,
+	  .sub = STEP(rk8pd), .stab = &ode_stab_unknown, .tol = CSF_DEFAULT_TOL },
+	{ .name = "msbdf", .type = STEP(msbdf), .setup = ode_gsl_setup, .substep = ode_gsl_substep,
+	  .sub = STEP(rk4imp), .stab = &ode_stab_implicit, .jacobian = 1, .tol = CSF_DEFAULT_TOL },
+	/* velocity Verlet, written here: symplectic, fixed steps */
+	{ .name = "verlet", .setup = ode_verlet_setup, .step = ode_verlet_fixed, .substep = ode_verlet_substep,
+	  .fixed_h = ode_verlet_h, .stab = &ode_stab_verlet, .tol = CSF_DEFAULT_TOL },
 };
+#undef STEP
 
 const char *csf_method_name(size_t i) { return i < sizeof methods / sizeof methods[0] ? methods[i].name : NULL; }
 
@@ -74,53 +95,6 @@ int csf_method_dense(const char *method)
 	return m && m->dense;
 }
 
-/* The most coefficients of a stability polynomial: more than the most stages (rk8pd's 13) plus one. */
-enum { NSTAB = 16 };
-
-struct csf_ode {
-	gsl_odeiv2_system sys;
-	gsl_odeiv2_driver *drv;
-	const struct method *m;
-	size_t n;
-	double tol;
-	double *k;                 /* fixed steps: 5 work vectors of n */
-	gsl_odeiv2_step *sub;      /* events: a second stepper of the same method, for substeps */
-	double *yerr;
-	unsigned long fixed_steps;
-	unsigned long past_steps, past_rejected; /* GSL's counts before the last restart */
-	const double *scale;       /* each component's absolute tolerance, in units of tol (o->live) */
-	const double *base;        /* the program's scale: one unit, or less (csf_ode_new's scale) */
-	double *live;              /* the scale now: as the component has grown, within base (owned) */
-	unsigned char *fixed_atol; /* the scene's atol or --atol holds this component's scale fixed (owned) */
-	int live_set;              /* live has been set from a state (live_start) */
-	const uint32_t *vpair;     /* verlet: 1 + velocity index of each position component */
-	double *acc;               /* verlet: the derivative at the current point */
-	double acc_t;
-	int acc_ok;
-	csf_rhs_fn f;
-	csf_jac_fn jac;
-	void *ctx;
-	csf_watch_fn watch;        /* called after every step (csf_ode_watch) */
-	void *watch_ctx;
-	double hcap;               /* fixed steps: at most this long from now on (csf_ode_cap_step; 0: none) */
-	double stab[NSTAB];        /* the stability polynomial's coefficients (stability_poly) */
-	int nstab, stab_fixed;     /* how many (0: not yet computed), and for fixed steps or not */
-	double complex last_u;     /* the last csf_ode_stable_step: its direction, allowance and answer */
-	double last_allow, last_s;
-};
-
-/*
- * A state or derivative that is not finite (the model's f failed). Inside a
- * trial step it means the step was too long: GSL's evolve retries a step
- * shorter (halved) for any failure of the stepper but GSL_EBADFUNC and
- * GSL_EFAULT, and every stepper passes this code on, restoring its state
- * (the multistep methods' failure handlers). It comes out of evolve only
- * when it persists as the step shrinks to nothing, or at the step's start:
- * an accepted state whose derivative is not finite. GSL's odeiv2 never
- * returns GSL_ERANGE itself.
- */
-enum { TOO_LONG = GSL_ERANGE };
-
 static int gsl_rhs(double t, const double y[], double dydt[], void *params)
 {
 	csf_ode *o = params;
@@ -135,112 +109,6 @@ static int gsl_jac(double t, const double y[], double *dfdy, double dfdt[], void
 	return o->jac(t, y, dfdy, dfdt, o->ctx) ? TOO_LONG : GSL_SUCCESS;
 }
 
-/*
- * The error control. GSL's standard control, as its manual states it: each
- * component may err by D_i = tol (scale_i + |y_i|); the step shrinks when the
- * largest E_i / D_i is over 1.1, to S (E/D)^(-1/q) of itself (S = 0.9, q the
- * method's order, at most 5 times shorter), and grows when it is under 0.5, by
- * S (E/D)^(-1/(q+1)) (at least 1, at most 4.9 times). Unlike GSL's scaled
- * control, which copies its scales once, it reads scale_i where csf_ode keeps
- * it, so the scale can follow the component as it grows (live_scale).
- */
-typedef struct control {
-	double eps_abs, eps_rel, a_y, a_dydt;
-	const double *scale;
-} control;
-
-static void *control_alloc(void) { return calloc(1, sizeof(control)); }
-
-static int control_init(void *state, double eps_abs, double eps_rel, double a_y, double a_dydt)
-{
-	control *c = state;
-	if (eps_abs < 0 || eps_rel < 0 || a_y < 0 || a_dydt < 0) return GSL_EINVAL;
-	c->eps_abs = eps_abs, c->eps_rel = eps_rel, c->a_y = a_y, c->a_dydt = a_dydt;
-	return GSL_SUCCESS;
-}
-
-static double control_level(const control *c, double y, double dydt, double h, size_t i)
-{
-	return c->eps_rel * (c->a_y * fabs(y) + c->a_dydt * fabs(h * dydt)) + c->eps_abs * c->scale[i];
-}
-
-static int control_hadjust(void *state, size_t dim, unsigned int ord, const double y[], const double yerr[],
-                           const double yp[], double *h)
-{
-	const control *c = state;
-	const double S = 0.9, h_old = *h;
-	double rmax = DBL_MIN;
-	for (size_t i = 0; i < dim; i++) {
-		double r = fabs(yerr[i]) / fabs(control_level(c, y[i], yp ? yp[i] : 0, h_old, i));
-		if (r > rmax) rmax = r;
-	}
-	if (rmax > 1.1) {
-		double r = S / pow(rmax, 1.0 / ord);
-		*h = (r < 0.2 ? 0.2 : r) * h_old;
-		return GSL_ODEIV_HADJ_DEC;
-	}
-	if (rmax < 0.5) {
-		double r = S / pow(rmax, 1.0 / (ord + 1.0));
-		*h = (r > 4.9 ? 4.9 : r < 1.0 ? 1.0 : r) * h_old;
-		return GSL_ODEIV_HADJ_INC;
-	}
-	return GSL_ODEIV_HADJ_NIL;
-}
-
-static int control_errlevel(void *state, const double y, const double dydt, const double h, const size_t i,
-                            double *errlev)
-{
-	*errlev = control_level(state, y, dydt, h, i);
-	return *errlev > 0 ? GSL_SUCCESS : GSL_ESANITY;
-}
-
-static int control_set_driver(void *state, const gsl_odeiv2_driver *d)
-{
-	(void)state, (void)d;
-	return GSL_SUCCESS;
-}
-
-static const gsl_odeiv2_control_type control_type = { "csf", control_alloc, control_init, control_hadjust,
-	                                                control_errlevel, control_set_driver, free };
-
-/*
- * The scale of a component's absolute error follows its size. It starts at
- * the component's initial size and grows with the largest size the component
- * reaches, but stays within [LIVE_FLOOR, 1] times the program's scale (one
- * unit of the component, or less when the property starts smaller in every
- * object: gen.c). So a concentration that starts at 0 and never exceeds
- * 3.6e-5 mol/L is held to the tolerance relative to 3.6e-5, not to 1 mol/L
- * (where it would be free to go negative: Robertson's kinetics), while a
- * component that stays at rounding-error size, such as a normal mode's node,
- * is held absolutely, at LIVE_FLOOR of its unit. A component the scene gives
- * an atol (or --atol) keeps that.
- */
-#define LIVE_FLOOR 1e-6
-
-static void live_grow(csf_ode *o, const double *y)
-{
-	for (size_t i = 0; i < o->n; i++) {
-		if (o->fixed_atol[i]) continue;
-		double a = fabs(y[i]);
-		if (a > o->live[i]) o->live[i] = a < o->base[i] ? a : o->base[i];
-	}
-}
-
-/* The scales at their floor, before any state has been seen. */
-static void live_init(csf_ode *o)
-{
-	o->live_set = 1;
-	for (size_t i = 0; i < o->n; i++)
-		if (!o->fixed_atol[i]) o->live[i] = LIVE_FLOOR * o->base[i];
-}
-
-static void live_start(csf_ode *o, const double *y)
-{
-	if (o->live_set) return;
-	live_init(o);
-	live_grow(o, y);
-}
-
 csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double hmax, double tol, double atol,
                      const double *atol_each, const double *scale, const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err,
                      size_t errlen)
@@ -251,7 +119,7 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 		snprintf(err, errlen, "unknown method '%s'", method);
 		return NULL;
 	}
-	if (fixed && m->multistep) {
+	if (fixed && !m->step) {
 		snprintf(err, errlen, "--fixed needs a one-step method, not the multistep %s", m->name);
 		return NULL;
 	}
@@ -286,39 +154,10 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 	o->f = f;
 	o->jac = jac;
 	o->ctx = ctx;
-	if (!m->type) { /* verlet: every component a position with a velocity, or that velocity */
-		unsigned char *isvel = calloc(n ? n : 1, 1);
-		int ok = isvel != NULL;
-		for (size_t i = 0; ok && i < n; i++)
-			if (vpair[i]) ok = !isvel[vpair[i] - 1]++ && !vpair[vpair[i] - 1];
-		for (size_t i = 0; ok && i < n; i++) ok = vpair[i] || isvel[i];
-		free(isvel);
-		if (!ok) {
-			snprintf(err, errlen,
-			         "verlet needs every state variable in a position/velocity pair (x' = v, where v' does not "
-			         "depend on v); this model's are not");
-			csf_ode_free(o);
-			return NULL;
-		}
-		o->vpair = vpair;
-		return o;
-	}
-	/* error control as driver_alloc_y_new (a_y = 1, a_dydt = 0), with the absolute
-	   tolerance of each component scaled as o->scale is now (control_type) */
-	o->drv = gsl_odeiv2_driver_alloc_y_new(&o->sys, *m->type, h0 < hmax ? h0 : hmax, tol, tol);
-	if (o->drv) {
-		gsl_odeiv2_control_free(o->drv->c);
-		o->drv->c = gsl_odeiv2_control_alloc(&control_type);
-		if (o->drv->c) ((control *)o->drv->c->state)->scale = o->scale;
-	}
-	if (!o->drv || !o->drv->c || gsl_odeiv2_control_init(o->drv->c, tol, tol, 1.0, 0.0) != GSL_SUCCESS ||
-	    gsl_odeiv2_control_set_driver(o->drv->c, o->drv) != GSL_SUCCESS ||
-	    gsl_odeiv2_driver_set_hmax(o->drv, hmax) != GSL_SUCCESS) {
-		snprintf(err, errlen, "cannot set up the integrator");
+	if (m->setup(o, h0, hmax, vpair, err, errlen)) {
 		csf_ode_free(o);
 		return NULL;
 	}
-	if (m->dense) csf_erk_set_scale(o->drv->s, o->scale); /* dop853's error norm weighs components as the control does */
 	return o;
 }
 
@@ -330,51 +169,12 @@ static int work(csf_ode *o)
 	return 0;
 }
 
-/* One velocity Verlet step: x += h v + h^2/2 a(x); v += h/2 (a(x) + a(x')); one evaluation. */
-static int verlet_step(csf_ode *o, double t, double h, double *y)
-{
-	size_t n = o->n;
-	double *a1 = o->k;
-	if (!o->acc_ok || o->acc_t != t) {
-		if (o->f(t, y, o->acc, o->ctx)) return 1;
-		o->acc_t = t;
-	}
-	for (size_t i = 0; i < n; i++)
-		if (o->vpair[i]) {
-			size_t v = o->vpair[i] - 1;
-			y[i] += h * y[v] + h * h / 2 * o->acc[v];
-		}
-	o->acc_ok = 0;
-	if (o->f(t + h, y, a1, o->ctx)) return 1;
-	for (size_t i = 0; i < n; i++)
-		if (o->vpair[i]) {
-			size_t v = o->vpair[i] - 1;
-			y[v] += h / 2 * (o->acc[v] + a1[v]);
-		}
-	memcpy(o->acc, a1, n * sizeof *a1);
-	o->acc_t = t + h;
-	o->acc_ok = 1;
-	return 0;
-}
-
-/* One classical Runge-Kutta step of size h (four evaluations). */
-static int rk4_step(csf_ode *o, double t, double h, double *y)
-{
-	size_t n = o->n;
-	double *k1 = o->k, *k2 = k1 + n, *k3 = k2 + n, *k4 = k3 + n, *yt = k4 + n;
-	if (o->f(t, y, k1, o->ctx)) return 1;
-	for (size_t i = 0; i < n; i++) yt[i] = y[i] + h / 2 * k1[i];
-	if (o->f(t + h / 2, yt, k2, o->ctx)) return 1;
-	for (size_t i = 0; i < n; i++) yt[i] = y[i] + h / 2 * k2[i];
-	if (o->f(t + h / 2, yt, k3, o->ctx)) return 1;
-	for (size_t i = 0; i < n; i++) yt[i] = y[i] + h * k3[i];
-	if (o->f(t + h, yt, k4, o->ctx)) return 1;
-	for (size_t i = 0; i < n; i++) y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-	return 0;
-}
-
 int csf_ode_advance_fixed(csf_ode *o, double *t, double t1, double h, double *y, char *err, size_t errlen)
 {
+	if (!o->m->step) {
+		snprintf(err, errlen, "%s takes no fixed steps", o->m->name);
+		return CSF_ODE_FAILED;
+	}
 	if (work(o)) {
 		snprintf(err, errlen, "out of memory");
 		return CSF_ODE_FAILED;
@@ -386,23 +186,10 @@ again:
 	if (steps < 1) steps = 1;
 	for (double i = 0; i < steps; i++) {
 		double ta = t0 + span * (i / steps), tb = i + 1 == steps ? t1 : t0 + span * ((i + 1) / steps);
-		int bad;
-		if (!o->m->type) {
-			bad = verlet_step(o, ta, tb - ta, y);
-		} else if (*o->m->type == gsl_odeiv2_step_rk4) {
-			bad = rk4_step(o, ta, tb - ta, y);
-		} else {
-			int st = gsl_odeiv2_step_apply(o->drv->s, ta, tb - ta, y, o->k, NULL, NULL, &o->sys);
-			if (st != GSL_SUCCESS && st != TOO_LONG) {
-				snprintf(err, errlen, "%s", gsl_strerror(st));
-				*t = ta;
-				return CSF_ODE_FAILED;
-			}
-			bad = st == TOO_LONG;
-		}
-		if (bad) {
+		int st = o->m->step(o, ta, tb - ta, y, err, errlen);
+		if (st != CSF_ODE_OK) {
 			*t = ta;
-			return CSF_ODE_STOPPED;
+			return st;
 		}
 		o->fixed_steps++;
 		*t = tb;
@@ -430,9 +217,9 @@ int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *
 	double left = t1 - *t;
 	if (d->h <= left && left <= d->h * (1 + 1e-4)) d->h = nextafter(left, INFINITY);
 	double ta = *t;
-	live_start(o, y);
+	ode_live_start(o, y);
 	int st = gsl_odeiv2_evolve_apply(d->e, d->c, d->s, &o->sys, t, t1, &d->h, y);
-	if (st == GSL_SUCCESS) live_grow(o, y);
+	if (st == GSL_SUCCESS) ode_live_grow(o, y);
 	if (st == GSL_SUCCESS) return o->watch && o->watch(o->watch_ctx, *t, y, *t - ta) ? CSF_ODE_HALTED : CSF_ODE_OK;
 	if (st == TOO_LONG) return CSF_ODE_STOPPED;
 	snprintf(err, errlen, "%s", gsl_strerror(st));
@@ -441,31 +228,12 @@ int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *
 
 int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out)
 {
-	size_t n = o->n;
-	memcpy(out, y, n * sizeof *y);
+	memcpy(out, y, o->n * sizeof *y);
 	if (work(o)) return 1;
-	if (!o->m->type) {
-		o->acc_ok = 0;
-		int bad = verlet_step(o, t, h, out);
-		o->acc_ok = 0;
-		return bad;
-	}
-	if (*o->m->type == gsl_odeiv2_step_rk4) return rk4_step(o, t, h, out);
-	if (!o->sub) {
-		/* a multistep method cannot start from anywhere: a one-step method of high order
-		   takes its place (implicit where the method is, for stiff problems) */
-		const gsl_odeiv2_step_type *T = !o->m->multistep ? *o->m->type
-		                                : o->m->jacobian ? gsl_odeiv2_step_rk4imp : gsl_odeiv2_step_rk8pd;
-		o->sub = gsl_odeiv2_step_alloc(T, n);
-		o->yerr = malloc((n ? n : 1) * sizeof *o->yerr);
-		if (!o->sub || !o->yerr) return 1;
-		gsl_odeiv2_step_set_driver(o->sub, o->drv); /* the implicit methods read its tolerance */
-	}
-	gsl_odeiv2_step_reset(o->sub);
-	return gsl_odeiv2_step_apply(o->sub, t, h, out, o->yerr, NULL, NULL, &o->sys) != GSL_SUCCESS;
+	return o->m->substep(o, t, h, out);
 }
 
-int csf_ode_dense(const csf_ode *o) { return o->m->dense; }
+int csf_ode_dense(const csf_ode *o) { return o->m->dense != NULL; }
 
 /* The root mean square of v_i / (tol (scale_i + |y_i|)): the error control's measure. */
 static double wrms(const csf_ode *o, const double *v, const double *y)
@@ -483,7 +251,7 @@ int csf_ode_first_step(csf_ode *o, double t, const double *y)
 	size_t n = o->n;
 	gsl_odeiv2_driver *d = o->drv;
 	if (!d || work(o)) return 0;
-	live_start(o, y);
+	ode_live_start(o, y);
 	double *f0 = o->k, *y1 = f0 + n, *f1 = y1 + n;
 	if (o->f(t, y, f0, o->ctx)) return 1;
 	double d0 = wrms(o, y, y), d1 = wrms(o, f0, y);
@@ -503,7 +271,9 @@ int csf_ode_first_step(csf_ode *o, double t, const double *y)
 	return 0;
 }
 
-int csf_ode_dense_eval(csf_ode *o, double tc, double *out)
+int csf_ode_dense_eval(csf_ode *o, double tc, double *out) { return o->m->dense->eval(o, tc, out); }
+
+static int erk_dense_eval(csf_ode *o, double tc, double *out)
 {
 	double t0, h;
 	gsl_odeiv2_step *s = o->drv->s;
@@ -528,7 +298,7 @@ void csf_ode_restart(csf_ode *o)
 void csf_ode_take_scale(csf_ode *o, const csf_ode *from)
 {
 	if (!from->live_set || o->n != from->n) return;
-	if (!o->live_set) live_init(o);
+	if (!o->live_set) ode_live_init(o);
 	for (size_t i = 0; i < o->n; i++)
 		if (!o->fixed_atol[i] && from->live[i] > o->live[i]) o->live[i] = from->live[i];
 }
@@ -546,11 +316,7 @@ int csf_ode_fixed_only(const csf_ode *o) { return !o->m->type; }
 double csf_ode_fixed_step(const csf_ode *o, double by, double step)
 {
 	if (step > 0) return step < by ? step : by;
-	if (o->m->type) return by;
-	/* verlet has no error estimate: its global error goes as h^2, so the step comes
-	   from the tolerance, h = by sqrt(tol / 1e-4) (by / 1000 at the default 1e-10) */
-	double f = sqrt(o->tol / 1e-4);
-	return f < 1 ? by * f : by;
+	return o->m->fixed_h ? o->m->fixed_h(o, by) : by;
 }
 
 const char *csf_ode_method(const csf_ode *o) { return o->m->name; }
@@ -564,107 +330,6 @@ void csf_ode_watch(csf_ode *o, csf_watch_fn fn, void *ctx)
 }
 
 void csf_ode_cap_step(csf_ode *o, double h) { o->hcap = h; }
-
-/* y' = N y with N the shift, N e_j = e_(j+1), for stability_poly. */
-static int shift_rhs(double t, const double y[], double dydt[], void *params)
-{
-	(void)t, (void)params;
-	dydt[0] = 0;
-	for (int j = 1; j < NSTAB; j++) dydt[j] = y[j - 1];
-	return GSL_SUCCESS;
-}
-
-/*
- * The method's stability polynomial R(z) = sum c_j z^j, the factor one
- * step multiplies y by on y' = lambda y, z = h lambda, in o->stab: for
- * the classical rk4 of fixed steps 1/j!, for a GSL stepper measured by
- * one step of h = 1 on y' = N y (N the shift) from e_0, which ends at
- * R(N) e_0 = (c_0, c_1, ...): the polynomial of the code that runs, not
- * of a table that might not match it (GSL's rk2 takes the third-order
- * solution; its rk4, two half steps). 0, or -1 when memory runs out.
- */
-static int stability_poly(csf_ode *o, int fixed)
-{
-	memset(o->stab, 0, sizeof o->stab);
-	if (fixed && *o->m->type == gsl_odeiv2_step_rk4) {
-		for (int j = 0, f = 1; j <= 4; j++, f *= j ? j : 1) o->stab[j] = 1.0 / f;
-		o->nstab = 5;
-		return 0;
-	}
-	gsl_odeiv2_system sys = { shift_rhs, NULL, NSTAB, NULL };
-	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(*o->m->type, NSTAB);
-	double yerr[NSTAB];
-	if (!s) return -1;
-	o->stab[0] = 1;
-	int st = gsl_odeiv2_step_apply(s, 0, 1, o->stab, yerr, NULL, NULL, &sys);
-	gsl_odeiv2_step_free(s);
-	if (st != GSL_SUCCESS) return -1;
-	o->nstab = NSTAB;
-	return 0;
-}
-
-/*
- * How much faster than the exact solution one step grows the mode of
- * eigenvalue lambda, z = h lambda, as a logarithm: log |R(z)| against
- * the growth e^max(0, Re z) of a mode that grows by itself. verlet
- * advances x'' = mu x (mu = lambda^2, eigenvalues +-lambda) by a factor
- * r with r^2 - (2 + z^2) r + 1 = 0, against e^|Re z|.
- */
-static double excess(const csf_ode *o, double complex z)
-{
-	if (!o->m->type) {
-		double complex b = 2 + z * z, d = csqrt(b * b - 4);
-		return log(fmax(cabs((b + d) / 2), cabs((b - d) / 2))) - fabs(creal(z));
-	}
-	if (cimag(z) == 0) { /* the real axis (stiff decays) in real arithmetic: the same value, 4 times sooner */
-		double x = creal(z), r = 0;
-		for (int j = o->nstab - 1; j >= 0; j--) r = r * x + o->stab[j];
-		return log(fabs(r)) - fmax(0, x);
-	}
-	double complex r = 0;
-	for (int j = o->nstab - 1; j >= 0; j--) r = r * z + o->stab[j];
-	return log(cabs(r)) - fmax(0, creal(z));
-}
-
-double csf_ode_stable_step(csf_ode *o, int fixed, double re, double im, double span)
-{
-	double mag = hypot(re, im);
-	if (o->m->jacobian) return INFINITY;
-	if (o->m->multistep) return NAN;
-	if (!(mag > 0) || !(span > 0)) return INFINITY;
-	if (o->m->type && (!o->nstab || o->stab_fixed != fixed)) {
-		if (stability_poly(o, fixed)) return NAN;
-		o->stab_fixed = fixed;
-		o->last_s = 0;
-	}
-	/* R has real coefficients: |R(conj z)| = |R(z)|; set as the two doubles a complex is (C11
-	   6.2.5), not with CMPLX, which not every C library defines */
-	double complex u;
-	((double *)&u)[0] = re / mag, ((double *)&u)[1] = fabs(im) / mag;
-	/* s = h |lambda| is stable while the mode grows by at most 1 % more than it should over the
-	   span/h steps of the run: a method that is weakly unstable near the axis (rk8pd's factor on
-	   the imaginary axis at s = 0.5 is 1 + 2.5e-11) is held to what that costs the run */
-	double allow = log(1.01) / (mag * span);
-	if (o->last_s > 0 && cabs(u - o->last_u) <= 1e-9 && fabs(allow - o->last_allow) <= 0.1 * allow)
-		return o->last_s / mag; /* the same direction as last time (a scene that keeps its spectrum) */
-#define UNSTABLE(s) (excess(o, (s) * u) > allow * (s) + 1e-12)
-	const double ds = 0.02, smax = 40; /* the regions of explicit methods end before 10 */
-	double lo = 0;
-	while (lo < smax && !UNSTABLE(lo + ds)) lo += ds;
-	if (lo >= smax) {
-		lo = INFINITY;
-	} else {
-		double hi = lo + ds;
-		for (int i = 0; i < 60 && hi - lo > 1e-12 * hi; i++) {
-			double mid = (lo + hi) / 2;
-			if (UNSTABLE(mid)) hi = mid;
-			else lo = mid;
-		}
-	}
-	o->last_u = u, o->last_allow = allow, o->last_s = lo;
-#undef UNSTABLE
-	return lo / mag;
-}
 
 void csf_ode_free(csf_ode *o)
 {
