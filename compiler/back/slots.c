@@ -16,11 +16,7 @@ void *grow(void *p, uint32_t *cap, uint32_t need, size_t elem)
 	if (need <= *cap) return p;
 	uint32_t c = *cap ? *cap : 64;
 	while (c < need) c *= 2;
-	void *q = realloc(p, (size_t)c * elem);
-	if (!q) {
-		fprintf(stderr, "csfc: out of memory\n");
-		exit(2);
-	}
+	void *q = xrealloc(p, (size_t)c * elem); /* out of memory: xoom, the compiler's one exit for it */
 	*cap = c;
 	return q;
 }
@@ -30,7 +26,7 @@ uint32_t alloc_mem(Gen *G, uint32_t n, const double *init)
 	if ((uint64_t)G->nmem + n >= SCRATCH / 2) { /* the Jacobian's tangents double it */
 		error_plain("the scene needs more than %u memory slots (%u MiB of values): too big to compile", SCRATCH / 2,
 		            SCRATCH / 2 / 131072);
-		exit(1);
+		longjmp(*G->fail, 1); /* back to gen_program, which frees what it holds and returns 1 */
 	}
 	G->mem = grow(G->mem, &G->capmem, G->nmem + n, sizeof(double));
 	for (uint32_t i = 0; i < n; i++) G->mem[G->nmem + i] = init ? init[i] : 0.0;
