@@ -109,10 +109,16 @@ static int write_stdout(const unsigned char *buf, size_t len)
 	return fwrite(buf, 1, len, stdout) != len || fflush(stdout) != 0 ? -1 : 0;
 }
 
-static int run(int argc, char **argv)
+/* csfc's command line. */
+typedef struct cli {
+	const char *in, *out;
+	int explain, dump, emit;
+} cli;
+
+/* Reads the options into c (and opts); -1 to go on, else csfc's exit status. */
+static int parse_args(int argc, char **argv, cli *c)
 {
-	const char *in = NULL, *out = NULL, *v;
-	int explain = 0, dump = 0, emit = 0;
+	const char *v;
 	for (int i = 1; i < argc; i++) {
 		const char *a = argv[i];
 		if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -122,7 +128,7 @@ static int run(int argc, char **argv)
 			printf("csfc %s\n", CSF_VERSION_STRING);
 			return 0;
 		} else if (csf_opt_value(argc, argv, &i, "-o", &v)) {
-			out = v;
+			c->out = v;
 		} else if (!strcmp(a, "-Werror")) {
 			diag_werror = 1;
 		} else if (!strcmp(a, "-w")) {
@@ -151,30 +157,37 @@ static int run(int argc, char **argv)
 				return 2;
 			}
 		} else if (!strcmp(a, "--explain")) {
-			explain = 1;
+			c->explain = 1;
 		} else if (!strcmp(a, "--dump-bytecode")) {
-			dump = 1;
+			c->dump = 1;
 		} else if (!strcmp(a, "--emit-c")) {
-			emit = 1;
+			c->emit = 1;
 		} else if (a[0] == '-' && a[1]) {
 			fprintf(stderr, "csfc: unknown or incomplete option '%s'\n%s", a, usage);
 			return 2;
-		} else if (in) {
+		} else if (c->in) {
 			fprintf(stderr, "csfc: more than one input file\n%s", usage);
 			return 2;
 		} else {
-			in = a;
+			c->in = a;
 		}
 	}
-	if (!in) {
+	if (!c->in) {
 		fputs(usage, stderr);
 		return 2;
 	}
-	if (!strcmp(in, "-") && !out && !explain && !dump) {
+	if (!strcmp(c->in, "-") && !c->out && !c->explain && !c->dump) {
 		fprintf(stderr, "csfc: the model comes from standard input: name the output with -o FILE (-o - for "
 		                "standard output)\n");
 		return 2;
 	}
+	return -1;
+}
+
+/* Reads, resolves and generates the model in c->in into p, with --explain's text; 0 or an exit status. */
+static int compile(const cli *c, csf_prog *p)
+{
+	const char *in = c->in;
 	opts.stdlib = find_stdlib();
 	if (src_load(in) < 0) {
 		if (errno == EFBIG) {
@@ -190,38 +203,36 @@ static int run(int argc, char **argv)
 	if (diag_errors) return 1;
 	Model *M = sema_run(stmts);
 	if (diag_errors) return 1;
-	csf_prog p;
-	if (gen_program(M, &p)) {
-		csf_prog_free(&p);
+	if (gen_program(M, p)) {
+		csf_prog_free(p);
 		return 1;
 	}
 	lint_model(M);
 	if (diag_errors) { /* -Werror */
-		csf_prog_free(&p);
+		csf_prog_free(p);
 		return 1;
 	}
-	if (explain) {
+	if (c->explain) {
 		explain_model(M, stdout);
-		csf_params_list(&p, stdout);
+		csf_params_list(p, stdout);
 	}
 	char err[256];
-	if (csf_verify(&p, err, sizeof err)) {
+	if (csf_verify(p, err, sizeof err)) {
 		fprintf(stderr, "csfc: internal error: generated code does not verify: %s\n", err);
-		csf_prog_free(&p);
+		csf_prog_free(p);
 		return 2;
 	}
-	if (dump) csf_disassemble(&p, stdout);
-	unsigned char *buf;
-	size_t len;
-	if (csf_encode(&p, &buf, &len)) {
-		fprintf(stderr, "csfc: out of memory\n");
-		csf_prog_free(&p);
-		return 2;
-	}
+	return 0;
+}
+
+/* Writes the bytecode buf (len bytes) of p where c says: a .csfb, or with --emit-c a C source or an executable. */
+static int write_output(const cli *c, const csf_prog *p, const unsigned char *buf, size_t len)
+{
 	int st = 0;
+	const char *in = c->in, *out = c->out;
 	size_t n = strlen(in);
 	char *stem = n > 4 && !strcmp(in + n - 4, ".csf") ? xstrndup(in, n - 4) : xstrdup(in);
-	if (emit) {
+	if (c->emit) {
 		if (!out) out = stem;
 		size_t on = strlen(out);
 		int source_only = on > 2 && !strcmp(out + on - 2, ".c");
@@ -231,7 +242,7 @@ static int run(int argc, char **argv)
 			fprintf(stderr, "csfc: cannot write %s: %s\n", cpath, strerror(errno));
 			st = 2;
 		} else {
-			emit_c(&p, buf, len, in, f);
+			emit_c(p, buf, len, in, f);
 			if (ferror(f) | fclose(f)) {
 				fprintf(stderr, "csfc: cannot write %s\n", cpath);
 				st = 2;
@@ -247,6 +258,25 @@ static int run(int argc, char **argv)
 			st = 2;
 		}
 	}
+	return st;
+}
+
+static int run(int argc, char **argv)
+{
+	cli c = { 0 };
+	csf_prog p;
+	int st = parse_args(argc, argv, &c);
+	if (st >= 0) return st;
+	if ((st = compile(&c, &p))) return st;
+	if (c.dump) csf_disassemble(&p, stdout);
+	unsigned char *buf;
+	size_t len;
+	if (csf_encode(&p, &buf, &len)) {
+		fprintf(stderr, "csfc: out of memory\n");
+		csf_prog_free(&p);
+		return 2;
+	}
+	st = write_output(&c, &p, buf, len);
 	csf_prog_free(&p);
 	free(buf);
 	return st;
