@@ -22,7 +22,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 
-#include "csf.h"
+#include "csf_int.h"
 
 static const char *ref_name = "ref";
 

@@ -16,7 +16,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "csf.h"
+#include "csf_int.h"
 
 /* ---- memory ---- */
 void *xalloc(size_t n);                 /* zeroed; never returns NULL (xoom on OOM) */

@@ -13,7 +13,7 @@
 #include "ast.h"
 #include "sema.h"
 #include "gen.h"
-#include "csf.h"
+#include "csf_int.h"
 #include "emit_c.h"
 #include "explain.h"
 

@@ -17,7 +17,7 @@
 #include "csfc.h"
 #include "lint.h"
 #include "ast.h"
-#include "csf.h"
+#include "csf_int.h"
 
 /* The arena: zeroed chunks of CHUNK bytes, handed out by bumping a pointer;
  * a large request gets a block of its own. */

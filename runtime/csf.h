@@ -1,29 +1,44 @@
 /*
- * csf.h - the public interface of libcsfrt, the CSF runtime.
+ * csf.h - the public interface of libcsfrt, the CSF runtime: what a
+ * program that csfc --emit-c generated, and a program that embeds CSF,
+ * may use. Everything else of the runtime is internal (csf_int.h).
  *
- * A compiled model is a csf_prog: an initial memory image, two code
- * sections (RHS computes the state derivatives, OUT computes what the watch
- * list and the assertions need, then checks the assertions), and the tables
- * that name memory slots and source positions for output and diagnostics.
- * The bytecode file format that carries it is described in bytecode.h and in
- * csf(5).
+ * A compiled model is a csf_prog, opaque here: an initial memory image, the
+ * code sections, and the tables that name memory slots and source
+ * positions for output and diagnostics. csf_load reads one from the bytes
+ * of a .csfb file (csf(5)) and verifies it; a program that fails the
+ * verifier is never returned, so every function below may trust it.
  *
- * A model is executed by csf_run(), the integrator driver, which calls back
- * into an execution function: csf_vm_exec() interprets the code sections;
- * a generated executable passes its own compiled function instead. Both see
- * the same program tables and the same driver, so they produce the same
- * bytes on stdout and stderr.
+ * A model is run by csf_run (or csf_run_sink), which integrates it and
+ * calls back into an execution function for its code sections:
+ * csf_vm_exec interprets them; a generated executable passes its own
+ * compiled function instead. Both see the same program and the same
+ * driver, so they write the same bytes on stdout and stderr. csf_main is
+ * the whole command line of csfvm and of a generated executable.
+ *
+ * Promises: no function here exits the process or writes outside the
+ * FILEs it is given; each returns an exit status (0 done, 1 the model
+ * failed: an assertion, a non-finite value, an integrator that gave up;
+ * 2 bad options, out of memory or an output error) or says how it fails.
+ * The library has no global state but the signal flag csf_main installs.
  */
 #ifndef CSF_H
 #define CSF_H
 
+#include <stddef.h>
 #include <stdint.h>
-#include <signal.h>
 #include <stdio.h>
 
 #include "csf_ops.h"
 
 #define CSF_VERSION_STRING "0.1.0"
+
+/* A loaded, verified program (csf_load; the runtime's own layout: csf_int.h). */
+typedef struct csf_prog csf_prog;
+/* The run's state the code reaches (csf_exec_fn). */
+typedef struct csf_exec_ctx csf_exec_ctx;
+/* Initial values set over a program's (-D, a sweep's variant: csf_opts.init). */
+typedef struct csf_overlay csf_overlay;
 
 /*
  * Code sections: RHS computes the state derivatives; OUT what the watch list
@@ -32,245 +47,6 @@
  * no state).
  */
 enum { CSF_SEC_RHS = 0, CSF_SEC_OUT = 1, CSF_SEC_JAC = 2, CSF_NSEC = 3 };
-
-/* Opcodes, from opcodes.def. */
-enum csf_opcode {
-#define OP(name, n, a, b, c, d, syn) CSF_OP_##name,
-#define CTRL OP
-#include "opcodes.def"
-#undef CTRL
-#undef OP
-	CSF_NOPCODES
-};
-
-/* Operand kinds of opcodes.def. */
-enum csf_operand_kind { CSF_K___ = 0, CSF_K_DS, CSF_K_DV, CSF_K_S, CSF_K_V, CSF_K_J, CSF_K_AS, CSF_K_N, CSF_K_L, CSF_K_C,
-                        CSF_K_B };
-
-/*
- * Loops. LOOP L, n, end runs its body (up to the matching NEXT) n times with
- * the index of level L going 0, 1, ..., n - 1; loops nest, level 1
- * outermost, at most CSF_LOOP_MAX deep. A slot or assertion operand word w
- * is relative: its top bits name a register, whose value is added to the
- * rest of the word (csf_operand). Register 0 is 0; register 2L - 1 is the
- * index of loop level L, register 2L three times it (the stride of a vector
- * in an array of vectors); register 7 is invalid. So an array of one scalar
- * per object of a shape is read as base + index, one of vectors as
- * base + 3 index.
- */
-#define CSF_LOOP_MAX 3
-#define CSF_REG_SHIFT 29
-#define CSF_SLOT_MASK ((1u << CSF_REG_SHIFT) - 1u)
-#define CSF_NREGS 7
-/* The register of operand word w, and w with register r. */
-static inline uint32_t csf_reg(uint32_t w) { return w >> CSF_REG_SHIFT; }
-static inline uint32_t csf_rel(uint32_t slot, uint32_t r) { return slot | r << CSF_REG_SHIFT; }
-/* The slot (or assertion index) word w names, given the registers. */
-static inline uint32_t csf_operand(uint32_t w, const uint32_t *reg) { return (w & CSF_SLOT_MASK) + reg[w >> CSF_REG_SHIFT]; }
-
-
-typedef struct csf_opinfo {
-	const char *name;     /* "ADD" */
-	const char *synopsis; /* "R[A] := R[B] + R[C]" */
-	uint8_t nops;         /* number of operands */
-	uint8_t kind[4];      /* enum csf_operand_kind, CSF_K___ past nops */
-} csf_opinfo;
-
-/* Indexed by enum csf_opcode. */
-extern const csf_opinfo csf_opinfo_table[CSF_NOPCODES];
-
-/* One output column: header text and the memory slot printed. */
-typedef struct csf_col { uint32_t name, slot; } csf_col;
-/* A source statement: file (index into files), line, its text. */
-typedef struct csf_src { uint32_t file, line, text; } csf_src;
-/*
- * An object property in memory: its object (index into objects), name, slot,
- * width (1 or 3), and its class as a parameter (index into pclasses): what
- * -D NAME=VALUE needs to set its initial value, or why it cannot.
- */
-typedef struct csf_prop { uint32_t object, name, slot, width, cls; } csf_prop;
-/* A global constant in memory (predefined or declared): name, slot, width, class (pclasses). */
-typedef struct csf_global { uint32_t name, slot, width, cls; } csf_global;
-/*
- * A parameter class: the dimension of a value (exponents of length, mass,
- * time, current: CSF_NDIM; known 0: a bare number whose dimension nothing fixed, so only a
- * bare number may replace it), its unit in the model's unit system
- * ("m/s"; "" when dimensionless), and why (when not "") -D cannot set it:
- * its value was folded at compile time into another value, it is computed
- * by a rule, or it chose which contacts exist.
- */
-/* The dimensions: exponents of length, mass, time and electric current, in this order. */
-#define CSF_NDIM 4
-typedef struct csf_pclass { uint32_t unit, why, known; double dim[CSF_NDIM]; } csf_pclass;
-/* A value a code section computes, in the order it computes them. */
-typedef struct csf_target { uint32_t slot, width, src, name, object; } csf_target;
-/* An assertion: its statement and the object it was checked for. */
-typedef struct csf_assert { uint32_t src, object; } csf_assert;
-/* Line table entry: instructions from pc on belong to statement src. */
-typedef struct csf_line { uint32_t pc, src; } csf_line;
-
-/*
- * An event of a conditional rule: a comparison in its condition, compiled as
- * value = lhs - rhs (or rhs - lhs) and EVGT/EVGE. kind 0: true when value > 0;
- * 1: when value >= 0. The runtime keeps the side in slot mode (0 or 1; -1
- * before the first evaluation) and switches it only at the located crossing.
- */
-typedef struct csf_event { uint32_t kind, value, mode, src; } csf_event;
-/* kind | CSF_EVENT_TERMINAL: a 'stop when' condition, which ends the run at its crossing */
-#define CSF_EVENT_TERMINAL 2u
-
-/*
- * The contact routine's tables (mechanics/rules, rules 1 to 4; runtime/contact/).
- * There is no list of pairs: the program lists the bodies that can touch,
- * and the routine finds the pairs near or in contact at run time.
- *
- * A contact body is a mass point (plane 0) with the slots of its pos, v,
- * a, m, radius, cr, mu_s, mu_k, FN and Ff (pos in the state), or a plane
- * (plane 1) with its point in POS, its edge in V, its normal in R and its
- * cr, mu_s and mu_k (the fields it lacks hold the slot of t); object is
- * its object; varies is 1 when its radius (a plane: point, normal or
- * edge) is computed or integrated, so that the routine cannot tell from
- * positions alone how near it is: it is then a candidate with every body
- * of its rules at all times.
- */
-enum csf_contact_field {
-	CSF_CF_POS, CSF_CF_V, CSF_CF_A, CSF_CF_M, CSF_CF_R, CSF_CF_CR, CSF_CF_MUS, CSF_CF_MUK, CSF_CF_FN, CSF_CF_FF,
-	CSF_CF_N
-};
-typedef struct csf_cbody { uint32_t plane, object, varies, s[CSF_CF_N]; } csf_cbody;
-/*
- * A contact rule (one contact() statement): its $0 bodies, mass points,
- * are cmembers[first0 .. first0 + n0), its $1 bodies, mass points or
- * planes, cmembers[first1 .. first1 + n1) (indices into cbodies). every 1
- * (a rule without `for`): the pairs are every $0 with every $1 of another
- * object, two mass points once (the $0 defined first), and not two points
- * (both of radius 0: they never touch); every 0 (a rule with `for`): the
- * k-th $0 with the k-th $1 (n0 = n1). The pairs are ordered by rule, then
- * by their $0's place in its list, then their $1's.
- */
-typedef struct csf_crule { uint32_t src, every, first0, n0, first1, n1; } csf_crule;
-/* The run-time state of the contact routine: the candidate pairs and their modes (runtime/contact/broad.c). */
-typedef struct csf_contacts csf_contacts;
-
-/*
- * A program. Strings are offsets into strs (every one NUL-terminated).
- * Memory: slot tslot holds t; slots [ystart, ystart+ny) the state vector;
- * [dstart, dstart+ny) its derivative, written by the RHS section.
- */
-typedef struct csf_prog {
-	char *strs;
-	uint32_t nstrs;
-	double *mem0;
-	uint32_t nmem;
-	uint32_t tslot, ystart, dstart, ny;
-	uint32_t jtan;  /* JAC: the tangent of slot s is slot s + jtan (0: no Jacobian) */
-	uint32_t *vpair; /* per state component: 1 + its velocity's index if it is a position (Verlet), else 0 */
-	double *yscale; /* per state component: the absolute tolerance's scale (the unit system's
-	                   measure of one SI unit of that component), so accuracy is unit-independent */
-	double *yatol;  /* per state component: the absolute tolerance the scene sets (`atol A` on the
-	                   property's line), in the model's units; 0: none (--atol, else tol * yscale) */
-	double till, by;
-	uint32_t ncols, nfiles, nsrcs, nasserts, nobjects, nprops, nevents;
-	csf_col *cols;
-	csf_event *events;
-	uint32_t ncbodies, ncmembers, ncrules; /* the contact routine's tables (no rules: no contacts) */
-	csf_cbody *cbodies;
-	uint32_t *cmembers;
-	csf_crule *crules;
-	uint32_t *objects; /* object names, in definition order */
-	csf_prop *props;
-	double ubase[CSF_NDIM]; /* the model's unit system: its units of length, mass, time, current in SI */
-	uint32_t nglobals, npclasses;
-	csf_global *globals; /* the globals -D can name */
-	csf_pclass *pclasses;
-	uint32_t *files;
-	csf_src *srcs;
-	csf_assert *asserts;
-	uint32_t ntargets[CSF_NSEC], ncode[CSF_NSEC], nlines[CSF_NSEC];
-	csf_target *targets[CSF_NSEC];
-	uint32_t *code[CSF_NSEC];
-	csf_line *lines[CSF_NSEC];
-} csf_prog;
-
-/* String at offset off of p's string table. */
-static inline const char *csf_str(const csf_prog *p, uint32_t off) { return p->strs + off; }
-
-/*
- * Serialises p into a malloc'd buffer (*out, *len); the caller frees it.
- * Returns 0, or -1 when memory runs out.
- */
-int csf_encode(const csf_prog *p, unsigned char **out, size_t *len);
-
-/*
- * Parses and verifies a bytecode image. On success fills *p (free with
- * csf_prog_free) and returns 0. On any defect returns -1 and writes a
- * one-line reason into err (never crashes, never allocates more than the
- * image justifies).
- */
-int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, size_t errlen);
-
-/* Writes a reason (printf format) into err[errlen] and returns -1: the loader's, verifier's and -D's failures. */
-int csf_fail(char *err, size_t errlen, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-
-/* Verifies a program's tables and code (csf_decode calls it). 0 or -1 + reason. */
-int csf_verify(const csf_prog *p, char *err, size_t errlen);
-
-/*
- * Parameters (param.c): a value named NAME (a global) or OBJECT.PROP,
- * found in p's tables; its slot, width and class.
- */
-typedef struct csf_pref { uint32_t slot, width; const csf_pclass *cls; } csf_pref;
-
-/*
- * Finds the parameter name (a global or OBJECT.PROP, either followed by
- * .x, .y or .z for one component of a vector). Returns 0 and fills *r, or
- * -1 with a one-line reason in err ("unknown name", "ball has no property
- * x that the run uses", with "did you mean 'NAME'?" for a near miss).
- */
-int csf_param_find(const csf_prog *p, const char *name, csf_pref *r, char *err, size_t errlen);
-
-/*
- * Reads a value for parameter r (named name) from text, as the source writes one: a
- * number or a vector (x, y, z), each optionally followed by a unit, and a
- * unit after the whole (`3 m/s`, `(3, 0, 4) m/s`, `90 deg`, `2000 g/s^2`;
- * a bare number is in the model's units). Checks its kind (scalar or
- * vector) and dimension, converts it to the model's units into v[0..width).
- * Returns 0, or -1 with a one-line reason in err naming the expected unit.
- */
-int csf_param_value(const csf_prog *p, const char *name, const csf_pref *r, const char *text, double v[3], char *err,
-                    size_t errlen);
-
-/*
- * A parameter overlay: initial values that replace the program's, set by
- * -D and by each variant of a sweep, so that the program stays as it was
- * loaded. csf_run applies them in order (a later value of a slot wins) to
- * the run's memory after copying p->mem0 into it (csf_opts.init).
- */
-typedef struct csf_setting { uint32_t slot; double value; } csf_setting;
-typedef struct csf_overlay { csf_setting *v; size_t n, cap; } csf_overlay;
-/* Appends slot := value. Returns 0, or -1 when memory runs out. */
-int csf_overlay_add(csf_overlay *ov, uint32_t slot, double value);
-/* Writes ov's values (NULL: none) into m, a memory of the program's nmem slots. */
-void csf_overlay_apply(const csf_overlay *ov, double *m);
-/* Frees ov's values; ov is then empty. */
-void csf_overlay_free(csf_overlay *ov);
-
-/*
- * -D NAME=VALUE: sets the initial value of a global or an object's
- * property in the overlay ov (p is not changed). Returns 0, or -1 with the
- * reason in err ("-D NAME=VALUE: ..."): an unknown name, a value that
- * cannot be overridden (and why), a wrong kind or dimension.
- */
-int csf_param_set(const csf_prog *p, csf_overlay *ov, const char *assign, char *err, size_t errlen);
-
-/* Lists every parameter of p with its initial value and unit, or why -D cannot set it (csfc --explain). */
-void csf_params_list(const csf_prog *p, FILE *f);
-
-/* Frees everything a decoded or compiler-built program owns. */
-void csf_prog_free(csf_prog *p);
-
-/* Writes a human-readable listing of p's code to f. */
-void csf_disassemble(const csf_prog *p, FILE *f);
 
 /*
  * Runs code section sec of p on memory m, with the state read from y and
@@ -289,16 +65,6 @@ void csf_disassemble(const csf_prog *p, FILE *f);
 typedef struct csf_exec_ctx csf_exec_ctx;
 typedef int (*csf_exec_fn)(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, const double *y, double *dydt);
 
-/*
- * The run-time state an execution function passes on, which the program
- * (const, as loaded) does not hold: the contact routine's candidate pairs
- * and modes, for the CONTACT instruction (csf_run owns them; NULL: no
- * contacts, and CONTACT does nothing).
- */
-struct csf_exec_ctx {
-	csf_contacts *contacts;
-};
-
 /* The interpreter: a csf_exec_fn for verified programs (it copies y into m and the derivatives out). */
 int csf_vm_exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, const double *y, double *dydt);
 
@@ -311,89 +77,15 @@ int csf_vm_exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, co
  */
 void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m);
 
-/* Evaluates the RHS section on m (the current state): for csf_contact_settle. */
-typedef int (*csf_eval_fn)(void *ctx);
-
 /*
- * Makes every contact's mode consistent at the current instant, changing
- * the velocities (and positions, by rounding-size amounts) in m: impacts
- * (restitution), the contacts that come to rest, lift-off, stick and slip,
- * as the guards of the current modes call for, over the candidates cs
- * (NULL: none; chosen at this instant: csf_contacts_find with one state).
- * zeno: the time below which a train of bounces counts as at rest; tol:
- * the integrator's relative tolerance (the accuracy of the positions it
- * computes). Returns 0; -1 if eval failed; CSF_SETTLE_ENDLESS if the
- * impacts did not come to an end within csf_contact_passes(n) of them (n
- * candidate pairs); CSF_SETTLE_IMPULSES if the impulses of one could not be
- * solved (masses in a cluster that differ by more than about 1e10).
+ * The program in the len bytes of a .csfb file (buf), decoded and verified,
+ * in memory of its own (buf may be freed); NULL with the reason in err when
+ * the bytes are not a valid program or memory runs out. csf_unload frees it.
  */
-enum { CSF_SETTLE_ENDLESS = 1, CSF_SETTLE_IMPULSES = 2, CSF_SETTLE_FORCES = 3 /* csf_contacts_unsolved */ };
-int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, double tol, csf_eval_fn eval,
-                       void *ctx);
-uint64_t csf_contact_passes(uint32_t n);
-
-/*
- * The contact routine's state during a run (csf_run keeps it, and passes it to the code in csf_exec_ctx):
- * the candidate pairs, those that can touch soon enough to matter, in the
- * order of the pairs (csf_crule), each with its mode and work values.
- * NULL when memory runs out.
- */
-csf_contacts *csf_contacts_new(const csf_prog *p);
-void csf_contacts_free(csf_contacts *c);
-/*
- * The first mass point of p's contact rules whose mass in m is not a positive number with a finite
- * inverse (an impact divides by it), or -1. A body of mass -1 kg or 1e-320 kg makes every impact
- * and every contact force meaningless: csf_run refuses the run.
- */
-long csf_contacts_bad_mass(const csf_prog *p, const double *m);
-/* The number of candidate pairs (two guards each, after the events'). */
-uint32_t csf_contacts_count(const csf_contacts *c);
-/* Whether the contact forces of some evaluation could not be solved (masses that differ by more than about 1e10). */
-int csf_contacts_unsolved(const csf_contacts *c);
-/* The guards of candidate pairs as the last csf_contact_apply left them, into g[0 .. 2 count). */
-void csf_contacts_guards(const csf_contacts *c, double *g);
-/* The source statement of candidate k (its rule). */
-uint32_t csf_contacts_src(const csf_contacts *c, uint32_t k);
-/* The objects (indices into objects) of candidate k's two bodies. */
-void csf_contacts_objects(const csf_contacts *c, uint32_t k, uint32_t *oi, uint32_t *oj);
-/*
- * Chooses the next candidates from the ns states ys[0..ns) (state vectors,
- * in time order: the instants at which the guards will be looked at): the
- * pairs in contact or hopping, and every pair whose gap is (nearly) closed
- * at one of them. m holds the radii and the planes (and is otherwise left
- * alone). Returns how many there will be, or -1 when memory runs out; then
- * csf_contacts_commit switches to them.
- */
-long csf_contacts_find(csf_contacts *c, const double *m, const double *const *ys, int ns);
-/*
- * Switches to the candidates csf_contacts_find chose. For q < ng, g[q]
- * holds the guards (two per candidate) of the old candidates, and becomes
- * those of the new ones (room for 2 count values): a kept pair's are
- * moved, a new pair's (apart: its gap) computed from the positions of
- * state gy[q] and m's radii and planes, as csf_contact_apply would.
- */
-void csf_contacts_commit(csf_contacts *c, const double *m, double *const *g, const double *const *gy, int ng);
+csf_prog *csf_load(const unsigned char *buf, size_t len, char *err, size_t errlen);
+void csf_unload(csf_prog *p);
 
 enum { CSF_PROGRESS_AUTO = 0, CSF_PROGRESS_ON = 1, CSF_PROGRESS_OFF = 2 };
-
-/*
- * The signal (SIGINT, SIGTERM) that asked the run to end, 0 if none:
- * csf_main's handlers set it; csf_run ends after the current row, with
- * the --stats line, and returns 128 + the signal's number.
- */
-extern volatile sig_atomic_t csf_signal;
-
-/*
- * Installs the handlers of csfvm and of generated programs: SIGINT and
- * SIGTERM set csf_signal and arm a watchdog that, if the process still runs
- * half a second later, flushes the rows written to out and exits with
- * 128 + the signal (a message on stderr naming prog). Every write to out
- * stands between csf_out_begin() and csf_out_end(), so that the watchdog
- * never flushes half a row.
- */
-void csf_signals_install(FILE *out, const char *prog);
-void csf_out_begin(void);
-void csf_out_end(void);
 
 /* Run-time options, parsed identically by csfvm and generated executables. */
 typedef struct csf_opts {
@@ -447,35 +139,6 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 void csf_opts_free(csf_opts *o);
 
 /*
- * A sweep (sweep.c): the variants of a scene, the Cartesian product of the
- * --sweep-file rows and the --sweep axes, in that order, the last varying fastest. Each
- * variant's result is one message (csf_sweep_run) that the writer takes
- * in variant order (csf_sweep_take); where it was made does not matter.
- */
-typedef struct csf_sweep csf_sweep;
-/* The number of variants. */
-size_t csf_sweep_count(const csf_sweep *s);
-/* Runs variant i; returns its result message (malloc'd, *len bytes; NULL when memory ran out). */
-unsigned char *csf_sweep_run(csf_sweep *s, size_t i, size_t *len);
-/* Writes the result of variant i, which must be the next in order; 0, or -1 after an error (reported). */
-int csf_sweep_take(csf_sweep *s, size_t i, const unsigned char *msg, size_t len);
-/*
- * Runs the variants of s elsewhere (csfvm-mpi sets it: sweep_mpi.c):
- * returns 0 when it did, 1 when it did not (one MPI rank: the sweep forks
- * its -j workers instead), -1 after an error. NULL in csfvm.
- */
-extern int (*csf_sweep_distribute)(csf_sweep *s);
-/*
- * csfvm --sweep / --sweep-file: runs the variants of p (each with o->init, -D's
- * values, and then its own in an overlay of its own; p is not changed) with -j worker processes and writes one CSV to out
- * (or one file per run under o->out_dir), a failing variant's diagnostics
- * to err with its run number. Returns the exit status: 0, 1 when a variant
- * failed (its rows up to the failure are written), 2 on bad options or an
- * output error.
- */
-int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char *prog, FILE *out, FILE *err);
-
-/*
  * Simulates p: integrates the state from t = 0 to till, evaluating OUT at
  * t_k = k*by and writing one CSV row each to out (diagnostics to err).
  * Fills o->run_steps, run_rhs and run_seconds.
@@ -509,66 +172,7 @@ int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, co
  */
 int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len, csf_exec_fn exec);
 
-/*
- * csfvm --compare-methods: runs p with a range of methods and tolerances,
- * compares each run's output with the most accurate run's, and prints a
- * table (method, tolerance, seconds, steps, evaluations, largest
- * difference) to out. Every run starts from p's initial memory with init
- * (-D's values; NULL: none) over it. Returns an exit status.
- */
-int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, const csf_overlay *init, FILE *out, FILE *err);
-
-/*
- * Reads all of path (- : standard input) into a malloc'd buffer (the caller frees it) with one
- * spare byte after the *len bytes read. Returns NULL with errno set on failure. (file.c)
- */
-unsigned char *csf_read_file(const char *path, size_t *len);
-
-/*
- * The unit table (units.c), defined once for the compiler and the runtime:
- * name, factor to SI, exponents of length, mass, time and current, whether
- * the SI prefixes (csf_unit_find) apply to the name, and the factor's
- * source. A unit that takes prefixes has the factor 10^decade exactly
- * (1, or 1e-3 for the gram). Ends with a NULL name.
- */
-typedef struct csf_unit {
-	const char *name;
-	double factor;
-	signed char dim[CSF_NDIM];
-	unsigned char prefixes;
-	signed char decade;
-	const char *source;
-} csf_unit;
-extern const csf_unit csf_unit_table[];
-/*
- * The unit named by the len bytes at name: a name of the table, or an SI
- * prefix (f p n u m c k M G T) and a name that takes prefixes (`kV`, `uC`,
- * `ns`), whose factor is the power of ten as the literal 1eN reads.
- * Returns 1 and fills *u (name and source NULL for a prefixed name), or 0.
- */
-int csf_unit_find(const char *name, size_t len, csf_unit *u);
-/* Does a unit expression start at s: a unit name, '(' and one, or `1/` (`1/s`, as CSF prints one)? */
-int csf_unit_starts(const char *s);
-/*
- * Parses a unit expression at s (`m/s^2`, `kg*m/(s^2)`, `g/cm^3`, `1/s`):
- * its factor and dimension into *u, *end past it. Returns 0, or -1 with
- * *why set to the reason.
- */
-int csf_unit_parse(const char *s, const char **end, csf_unit *u, const char **why);
-/* Converts si, a value of dimension d in SI, to the unit system whose units are base (in SI). */
-double csf_units_to_system(double si, const double d[CSF_NDIM], const double base[CSF_NDIM]);
-
-/*
- * The candidate nearest to name (of 3 letters or more), within 2 edits, or
- * the symbol it begins with ("velocity": "v"); NULL if none. For the
- * suggestions "did you mean 'NAME'?" of csfc and of -D.
- */
-const char *csf_suggest_name(const char *name, const char *const *cands, int n);
-
 /* Formats x so that it reads back to the same double (shortest of %.15g..%.17g). */
 void csf_fmt_double(char buf[32], double x);
-
-/* Name of the i-th available ODE method (the default is 0), NULL past the last. */
-const char *csf_method_name(size_t i);
 
 #endif

@@ -11,7 +11,7 @@
  */
 #include <string.h>
 
-#include "csf.h"
+#include "csf_int.h"
 #include "insn.h"
 
 /* The value of a read operand of kind K: a scalar or vector slot (through the registers), an immediate. */

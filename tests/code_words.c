@@ -9,7 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "csf.h"
+#include "csf_int.h"
 
 int main(int argc, char **argv)
 {

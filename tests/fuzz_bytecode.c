@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "csf.h"
+#include "csf_int.h"
 #include "bytecode.h"
 
 typedef struct exec_ctx { const csf_prog *p; double *m; csf_exec_ctx x; } exec_ctx;

@@ -6,7 +6,7 @@
 
 #include <stdio.h>
 
-#include "csf.h"
+#include "csf_int.h"
 
 /* Writes the C translation of p, whose encoded bytecode is image[0..len), to f. */
 void emit_c(const csf_prog *p, const unsigned char *image, size_t len, const char *model, FILE *f);

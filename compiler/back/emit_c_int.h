@@ -8,7 +8,7 @@
 
 #include <stdint.h>
 
-#include "csf.h"
+#include "csf_int.h"
 #include "insn.h"
 
 enum { C_MEM, C_STATE, C_DERIV, C_CONST, C_LOCAL, C_VLOCAL };

@@ -25,7 +25,7 @@
 
 #include "csfc.h"
 #include "sema.h"
-#include "csf.h"
+#include "csf_int.h"
 #include "gen.h"
 #include "gen_int.h"
 #include "liveness.h"

@@ -4,7 +4,7 @@
 #ifndef CSF_GEN_H
 #define CSF_GEN_H
 
-#include "csf.h"
+#include "csf_int.h"
 #include "sema.h"
 
 /* Fills p (malloc'd tables, free with csf_prog_free) from a resolved model. Returns 0, or 1

@@ -10,7 +10,7 @@
 
 #include "csfc.h"
 #include "sema.h"
-#include "csf.h"
+#include "csf_int.h"
 #include "insn.h"
 
 /* Scratch operands carry this bit until scratch is placed; memory stays below it. */

@@ -5,7 +5,7 @@
 #include "csfc.h"
 #include "sema.h"
 #include "explain.h"
-#include "csf.h"
+#include "csf_int.h"
 
 /*
  * For --explain: which bodies the contact rules of statement s apply to.

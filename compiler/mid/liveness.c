@@ -7,7 +7,7 @@
  */
 #include "csfc.h"
 #include "sema.h"
-#include "csf.h"
+#include "csf_int.h"
 #include "liveness.h"
 
 Vec *live_forces(const Model *M)

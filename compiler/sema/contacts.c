@@ -8,7 +8,7 @@
 #include "csfc.h"
 #include "sema.h"
 #include "sema_int.h"
-#include "csf.h"
+#include "csf_int.h"
 
 /* Is the rule's call the contact routine, with properties for arguments? Reports if not. */
 int check_call(Stmt *s)

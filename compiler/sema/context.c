@@ -11,7 +11,7 @@
 #include "csfc.h"
 #include "sema.h"
 #include "sema_int.h"
-#include "csf.h"
+#include "csf_int.h"
 #include "parse.h"
 
 static const char *const predefined_names[] = { "t", "RF", NULL };

@@ -30,7 +30,7 @@
 
 #include "csfc.h"
 #include "sema.h"
-#include "csf.h"
+#include "csf_int.h"
 
 /* ---- unit systems ---- */
 

@@ -4,7 +4,7 @@
  */
 #include "csfc.h"
 #include "sema.h"
-#include "csf.h"
+#include "csf_int.h"
 
 /* Operand k of an instruction being folded: a scalar, a vector, an immediate. */
 #define FOLD_S(k) in[k][0]

@@ -8,7 +8,7 @@
 #include "csfc.h"
 #include "sema.h"
 #include "sema_int.h"
-#include "csf.h"
+#include "csf_int.h"
 
 static int max_dollar(Expr *x)
 {

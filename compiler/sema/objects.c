@@ -11,7 +11,7 @@
 #include "csfc.h"
 #include "sema.h"
 #include "sema_int.h"
-#include "csf.h"
+#include "csf_int.h"
 
 int check_name(const char *n, Loc l, const char *what)
 {

@@ -34,7 +34,7 @@
 #include "csfc.h"
 #include "sema.h"
 #include "sema_int.h"
-#include "csf.h"
+#include "csf_int.h"
 
 /* The state of the pass: one resolution at a time (sema_reset). */
 Sema sema;

@@ -6,7 +6,7 @@
 
 #include "csfc.h"
 #include "ast.h"
-#include "csf.h"
+#include "csf_int.h"
 
 typedef struct Object Object;
 typedef struct Inst Inst;

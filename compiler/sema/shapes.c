@@ -7,7 +7,7 @@
 #include "csfc.h"
 #include "sema.h"
 #include "sema_int.h"
-#include "csf.h"
+#include "csf_int.h"
 
 /* Marks in named (a Map) the objects expression x names (NAME.PROP). Returns 1. */
 static int mark_named(Expr *x, void *named)

@@ -5,7 +5,7 @@
 #include "csfc.h"
 #include "sema.h"
 #include "sema_int.h"
-#include "csf.h"
+#include "csf_int.h"
 
 /* e = a*x + b, where x is the target; a is a scalar (NULL: 0), b of e's type (NULL: 0). */
 typedef struct Lin { RExpr *a, *b; int ok; } Lin;

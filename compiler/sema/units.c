@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "csfc.h"
-#include "csf.h"
+#include "csf_int.h"
 
 int unit_lookup(const char *name, Unit *u)
 {

@@ -5,7 +5,7 @@
 #include "csfc.h"
 #include "sema.h"
 #include "sema_int.h"
-#include "csf.h"
+#include "csf_int.h"
 
 /* Calls f on both sides of each equation of steps q and on the condition of each block, at every
  * depth. Returns 0 as soon as f does, else 1. */

@@ -6,7 +6,7 @@
 #include "csfc.h"
 #include "sema.h"
 #include "sema_int.h"
-#include "csf.h"
+#include "csf_int.h"
 
 static void add_col(Var *v, const char *label, int member)
 {

@@ -71,7 +71,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "csf.h"
+#include "csf_int.h"
 
 enum { APART, SLIDING, STICKING, HOPPING }; /* the modes of a pair */
 

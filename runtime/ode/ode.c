@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "csf.h"
+#include "csf_int.h"
 #include "dop853.h"
 #include "dopri5.h"
 #include "erk.h"

@@ -17,7 +17,7 @@
 #include <math.h>
 #include <stdarg.h>
 
-#include "csf.h"
+#include "csf_int.h"
 #include "bytecode.h"
 #include "insn.h"
 

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "csf.h"
+#include "csf_int.h"
 
 unsigned char *csf_read_file(const char *path, size_t *len)
 {

@@ -12,7 +12,7 @@
 
 #include <stdint.h>
 
-#include "csf.h"
+#include "csf_int.h"
 
 /*
  * The words of the instruction headed by opcode op (< CSF_NOPCODES): the

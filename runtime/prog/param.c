@@ -23,7 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "csf.h"
+#include "csf_int.h"
 
 /* ---- names: the suggestions of csfc's errors and of -D ---- */
 

@@ -20,7 +20,7 @@
 
 #include <gsl/gsl_const_mksa.h>
 
-#include "csf.h"
+#include "csf_int.h"
 
 /* Dimensions: length, mass, time, current (CSF_NDIM) */
 #define LEN { 1, 0, 0, 0 }

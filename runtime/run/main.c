@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "csf.h"
+#include "csf_int.h"
 
 /* --method and --tol, as csfvm and a generated program both explain them */
 #define METHOD_TOL_HELP \

@@ -12,7 +12,7 @@
 #include <stdio.h>
 #include <time.h>
 
-#include "csf.h"
+#include "csf_int.h"
 #include "ode.h"
 #include "spectrum.h"
 

@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "csf.h"
+#include "csf_int.h"
 #include "ode.h"
 
 enum { BUDGET = 100 };

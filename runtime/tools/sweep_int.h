@@ -7,7 +7,7 @@
 
 #include <stdio.h>
 
-#include "csf.h"
+#include "csf_int.h"
 
 enum { SUM_FINAL, SUM_MAX, SUM_MIN, SUM_MEAN, SUM_RMS };
 

@@ -22,7 +22,7 @@
 
 #include <mpi.h>
 
-#include "csf.h"
+#include "csf_int.h"
 
 /* Appends variant i's result message, after its length (8 bytes), to the buffer *b of *len bytes (room *cap). */
 static int append(csf_sweep *s, size_t i, unsigned char **b, size_t *len, size_t *cap)

@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "csf.h"
+#include "csf_int.h"
 #include "bytecode.h"
 
 #define FUZZ_ROWS 50

@@ -23,7 +23,7 @@
 #include "explain.h"
 #include "gen.h"
 #include "emit_c.h"
-#include "csf.h"
+#include "csf_int.h"
 
 #ifndef CSF_FUZZ_STDLIB
 #define CSF_FUZZ_STDLIB "stdlib"

@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "csf.h"
+#include "csf_int.h"
 
 #define REPLAY_CPU 5.0
 

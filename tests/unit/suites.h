@@ -11,7 +11,7 @@
 #include "csfc.h"
 #include "ast.h"
 #include "sema.h"
-#include "csf.h"
+#include "csf_int.h"
 
 Suite *units_suite(void);
 Suite *lex_suite(void);

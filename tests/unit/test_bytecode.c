@@ -34,6 +34,29 @@ START_TEST(test_roundtrip)
 }
 END_TEST
 
+/* csf_load (csf.h): the embedders' loader gives a program that runs as the decoded one does, and
+   refuses a truncated file with the reason and no program. */
+START_TEST(test_load)
+{
+	csf_prog p;
+	ck_assert_int_eq(compile_string(model, &p, NULL), 0);
+	unsigned char *buf;
+	size_t len;
+	ck_assert_int_eq(csf_encode(&p, &buf, &len), 0);
+	char err[256] = "";
+	csf_prog *q = csf_load(buf, len, err, sizeof err);
+	ck_assert_msg(q != NULL, "%s", err);
+	ck_assert_uint_eq(q->nmem, p.nmem);
+	ck_assert(memcmp(q->mem0, p.mem0, p.nmem * sizeof(double)) == 0);
+	ck_assert_ptr_null(csf_load(buf, len - 1, err, sizeof err));
+	ck_assert_msg(strstr(err, "does not match file size") != NULL, "%s", err);
+	csf_unload(q);
+	csf_unload(NULL);
+	free(buf);
+	csf_prog_free(&p);
+}
+END_TEST
+
 /* The format's checksum is the standard CRC-32: its check value, and lengths around the
    eight-byte steps against the byte-at-a-time definition. */
 START_TEST(test_crc32)
@@ -623,6 +646,7 @@ Suite *bytecode_suite(void)
 	Suite *s = suite_create("bytecode");
 	TCase *tc = tcase_create("format");
 	tcase_add_test(tc, test_roundtrip);
+	tcase_add_test(tc, test_load);
 	tcase_add_test(tc, test_crc32);
 	tcase_add_test(tc, test_header_checks);
 	tcase_add_test(tc, test_verifier);
