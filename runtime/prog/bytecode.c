@@ -14,17 +14,12 @@
  */
 #include <stdlib.h>
 #include <string.h>
-#include <math.h>
 #include <stdarg.h>
 
 #include "csf_int.h"
 #include "bytecode.h"
+#include "fields.h"
 #include "insn.h"
-
-_Static_assert(sizeof(csf_src) == 12 && sizeof(csf_col) == 8 && sizeof(csf_assert) == 8 && sizeof(csf_prop) == 20 &&
-               sizeof(csf_global) == 16 &&
-               sizeof(csf_target) == 20 && sizeof(csf_line) == 8 && sizeof(csf_cbody) == 4 * (3 + CSF_CF_N) &&
-               sizeof(csf_crule) == 24, "tables are arrays of u32");
 
 const csf_opinfo csf_opinfo_table[CSF_NOPCODES] = {
 #define OP(name, n, a, b, c, d, syn) \
@@ -101,9 +96,39 @@ static void put_f64(wbuf *w, double d)
 	put_u32(w, (uint32_t)(u >> 32));
 }
 
-static void put_u32s(wbuf *w, const uint32_t *v, size_t n)
+/* Field f of p: its elements (in memory) and their count. */
+static const unsigned char *field_elems(const csf_prog *p, const csf_field *f, uint32_t *n)
 {
-	for (size_t i = 0; i < n; i++) put_u32(w, v[i]);
+	const unsigned char *at = (const unsigned char *)p + f->at, *e = at;
+	*n = (uint32_t)f->count;
+	if (f->how == CSF_FC_INLINE) return at;
+	memcpy(&e, at, sizeof e);
+	if (f->how == CSF_FC_NY) *n = p->ny;
+	else memcpy(n, (const unsigned char *)p + f->count, sizeof *n);
+	return e;
+}
+
+/* Writes field f: its count (if in the file), then each element's u32 words and doubles (strings: bytes). */
+static void put_field(wbuf *w, const csf_prog *p, const csf_field *f)
+{
+	uint32_t n, v;
+	double d;
+	const unsigned char *e = field_elems(p, f, &n);
+	if (f->how == CSF_FC_PREFIX) put_u32(w, n);
+	if (!f->words && !f->dbls) {
+		if (n) put(w, e, n);
+		return;
+	}
+	for (uint32_t i = 0; i < n; i++, e += f->size) {
+		for (unsigned k = 0; k < f->words; k++) {
+			memcpy(&v, e + 4 * k, 4);
+			put_u32(w, v);
+		}
+		for (unsigned k = 0; k < f->dbls; k++) {
+			memcpy(&d, e + f->dbl_at + 8 * k, 8);
+			put_f64(w, d);
+		}
+	}
 }
 
 int csf_encode(const csf_prog *p, unsigned char **out, size_t *len)
@@ -116,59 +141,7 @@ int csf_encode(const csf_prog *p, unsigned char **out, size_t *len)
 	put_u32(&w, 0); /* payload size, patched below */
 	put_u32(&w, 0); /* crc, patched below */
 
-	put_u32(&w, p->nstrs);
-	put(&w, p->strs, p->nstrs);
-	put_u32(&w, p->nmem);
-	for (uint32_t i = 0; i < p->nmem; i++) put_f64(&w, p->mem0[i]);
-	put_u32(&w, p->tslot);
-	put_u32(&w, p->ystart);
-	put_u32(&w, p->dstart);
-	put_u32(&w, p->ny);
-	put_u32(&w, p->jtan);
-	for (uint32_t i = 0; i < p->ny; i++) put_f64(&w, p->yscale[i]);
-	for (uint32_t i = 0; i < p->ny; i++) put_f64(&w, p->yatol[i]);
-	put_u32s(&w, p->vpair, p->ny);
-	put_f64(&w, p->till);
-	put_f64(&w, p->by);
-	put_u32(&w, p->nfiles);
-	put_u32s(&w, p->files, p->nfiles);
-	put_u32(&w, p->nsrcs);
-	put_u32s(&w, (const uint32_t *)p->srcs, 3 * (size_t)p->nsrcs);
-	put_u32(&w, p->ncols);
-	put_u32s(&w, (const uint32_t *)p->cols, 2 * (size_t)p->ncols);
-	put_u32(&w, p->nasserts);
-	put_u32s(&w, (const uint32_t *)p->asserts, 2 * (size_t)p->nasserts);
-	put_u32(&w, p->nobjects);
-	put_u32s(&w, p->objects, p->nobjects);
-	put_u32(&w, p->nprops);
-	put_u32s(&w, (const uint32_t *)p->props, 5 * (size_t)p->nprops);
-	for (int i = 0; i < CSF_NDIM; i++) put_f64(&w, p->ubase[i]);
-	put_u32(&w, p->nglobals);
-	put_u32s(&w, (const uint32_t *)p->globals, 4 * (size_t)p->nglobals);
-	put_u32(&w, p->npclasses);
-	for (uint32_t i = 0; i < p->npclasses; i++) {
-		const csf_pclass *c = &p->pclasses[i];
-		put_u32(&w, c->unit);
-		put_u32(&w, c->why);
-		put_u32(&w, c->known);
-		for (int k = 0; k < CSF_NDIM; k++) put_f64(&w, c->dim[k]);
-	}
-	put_u32(&w, p->nevents);
-	put_u32s(&w, (const uint32_t *)p->events, 4 * (size_t)p->nevents);
-	put_u32(&w, p->ncbodies);
-	put_u32s(&w, (const uint32_t *)p->cbodies, (3 + CSF_CF_N) * (size_t)p->ncbodies);
-	put_u32(&w, p->ncmembers);
-	put_u32s(&w, p->cmembers, p->ncmembers);
-	put_u32(&w, p->ncrules);
-	put_u32s(&w, (const uint32_t *)p->crules, 6 * (size_t)p->ncrules);
-	for (int s = 0; s < CSF_NSEC; s++) {
-		put_u32(&w, p->ntargets[s]);
-		put_u32s(&w, (const uint32_t *)p->targets[s], 5 * (size_t)p->ntargets[s]);
-		put_u32(&w, p->ncode[s]);
-		put_u32s(&w, p->code[s], p->ncode[s]);
-		put_u32(&w, p->nlines[s]);
-		put_u32s(&w, (const uint32_t *)p->lines[s], 2 * (size_t)p->nlines[s]);
-	}
+	for (size_t k = 0; k < csf_nfields; k++) put_field(&w, p, &csf_fields[k]);
 	if (w.oom || w.len - CSFB_HEADER_SIZE > 0xFFFFFFFFu) {
 		free(w.p);
 		return -1;
@@ -211,24 +184,43 @@ static int get_f64(rbuf *r, double *d)
 	return 0;
 }
 
-/* Reads a count of elements of size elem bytes and allocates the array. */
-static int get_array(rbuf *r, uint32_t *n, void **arr, size_t elem)
+/*
+ * Reads field f into p: its count (checked against the bytes left before
+ * anything is allocated), the array, its elements.
+ */
+static int get_field(rbuf *r, csf_prog *p, const csf_field *f)
 {
-	if (get_u32(r, n)) return -1;
-	if ((size_t)*n > r->left / elem) return -1;
-	*arr = malloc(*n ? (size_t)*n * elem : 1);
-	if (!*arr) return -1;
-	if (elem == 1) {
-		memcpy(*arr, r->p, *n);
-		r->p += *n;
-		r->left -= *n;
+	unsigned char *at = (unsigned char *)p + f->at, *e = at;
+	uint32_t n = (uint32_t)f->count, v = 0;
+	double d = 0;
+	size_t fsize = f->words || f->dbls ? 4u * f->words + 8u * f->dbls : 1; /* an element's bytes in the file */
+	if (f->how == CSF_FC_PREFIX) {
+		if (get_u32(r, &n)) return -1;
+		memcpy((unsigned char *)p + f->count, &n, sizeof n);
+	} else if (f->how == CSF_FC_NY) {
+		n = p->ny;
+	}
+	if ((size_t)n > r->left / fsize) return -1;
+	if (f->how != CSF_FC_INLINE) {
+		if (!(e = malloc(n ? (size_t)n * f->size : 1))) return -1;
+		memcpy(at, &e, sizeof e);
+	}
+	if (fsize == 1) {
+		memcpy(e, r->p, n);
+		r->p += n;
+		r->left -= n;
 		return 0;
 	}
-	if (elem == 8) {
-		for (uint32_t i = 0; i < *n; i++) get_f64(r, (double *)*arr + i);
-		return 0;
+	for (uint32_t i = 0; i < n; i++, e += f->size) {
+		for (unsigned k = 0; k < f->words; k++) {
+			get_u32(r, &v);
+			memcpy(e + 4 * k, &v, 4);
+		}
+		for (unsigned k = 0; k < f->dbls; k++) {
+			get_f64(r, &d);
+			memcpy(e + f->dbl_at + 8 * k, &d, 8);
+		}
 	}
-	for (size_t i = 0; i < (size_t)*n * (elem / 4); i++) get_u32(r, (uint32_t *)*arr + i);
 	return 0;
 }
 
@@ -264,59 +256,7 @@ int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, siz
 
 	rbuf r = { buf + CSFB_HEADER_SIZE, len - CSFB_HEADER_SIZE, "" };
 	int bad = 0;
-	void *a;
-#define ARR(n, field, elem) (bad = bad || get_array(&r, &(n), &a, (elem)), (field) = bad ? (field) : a)
-	ARR(p->nstrs, p->strs, 1);
-	ARR(p->nmem, p->mem0, 8);
-	bad = bad || get_u32(&r, &p->tslot) || get_u32(&r, &p->ystart) || get_u32(&r, &p->dstart) || get_u32(&r, &p->ny) ||
-	      get_u32(&r, &p->jtan);
-	if (!bad && (size_t)p->ny > r.left / 8) bad = 1;
-	if (!bad) {
-		p->yscale = malloc(p->ny ? p->ny * sizeof(double) : 1);
-		bad = !p->yscale;
-		for (uint32_t i = 0; !bad && i < p->ny; i++) get_f64(&r, &p->yscale[i]);
-	}
-	if (!bad && (size_t)p->ny > r.left / 8) bad = 1;
-	if (!bad) {
-		p->yatol = malloc(p->ny ? p->ny * sizeof(double) : 1);
-		bad = !p->yatol;
-		for (uint32_t i = 0; !bad && i < p->ny; i++) get_f64(&r, &p->yatol[i]);
-	}
-	if (!bad && (size_t)p->ny > r.left / 4) bad = 1;
-	if (!bad) {
-		p->vpair = malloc(p->ny ? p->ny * sizeof(uint32_t) : 1);
-		bad = !p->vpair;
-		for (uint32_t i = 0; !bad && i < p->ny; i++) get_u32(&r, &p->vpair[i]);
-	}
-	bad = bad || get_f64(&r, &p->till) || get_f64(&r, &p->by);
-	ARR(p->nfiles, p->files, 4);
-	ARR(p->nsrcs, p->srcs, sizeof(csf_src));
-	ARR(p->ncols, p->cols, sizeof(csf_col));
-	ARR(p->nasserts, p->asserts, sizeof(csf_assert));
-	ARR(p->nobjects, p->objects, 4);
-	ARR(p->nprops, p->props, sizeof(csf_prop));
-	for (int i = 0; i < CSF_NDIM; i++) bad = bad || get_f64(&r, &p->ubase[i]);
-	ARR(p->nglobals, p->globals, sizeof(csf_global));
-	/* a class is 3 u32 and CSF_NDIM doubles in the file */
-	bad = bad || get_u32(&r, &p->npclasses) || (size_t)p->npclasses > r.left / (12 + 8 * CSF_NDIM) ||
-	      !(p->pclasses = malloc(p->npclasses ? p->npclasses * sizeof *p->pclasses : 1));
-	for (uint32_t i = 0; !bad && i < p->npclasses; i++) {
-		csf_pclass *c = &p->pclasses[i];
-		get_u32(&r, &c->unit);
-		get_u32(&r, &c->why);
-		get_u32(&r, &c->known);
-		for (int k = 0; k < CSF_NDIM; k++) get_f64(&r, &c->dim[k]);
-	}
-	ARR(p->nevents, p->events, sizeof(csf_event));
-	ARR(p->ncbodies, p->cbodies, sizeof(csf_cbody));
-	ARR(p->ncmembers, p->cmembers, 4);
-	ARR(p->ncrules, p->crules, sizeof(csf_crule));
-	for (int s = 0; s < CSF_NSEC; s++) {
-		ARR(p->ntargets[s], p->targets[s], sizeof(csf_target));
-		ARR(p->ncode[s], p->code[s], 4);
-		ARR(p->nlines[s], p->lines[s], sizeof(csf_line));
-	}
-#undef ARR
+	for (size_t k = 0; k < csf_nfields && !bad; k++) bad = get_field(&r, p, &csf_fields[k]);
 	if (bad) {
 		csf_prog_free(p);
 		return csf_fail(err, errlen, "truncated or malformed payload");
@@ -330,11 +270,6 @@ int csf_decode(const unsigned char *buf, size_t len, csf_prog *p, char *err, siz
 		return -1;
 	}
 	return 0;
-}
-
-static int slot_ok(const csf_prog *p, uint32_t s, uint32_t width)
-{
-	return s < p->nmem && width <= p->nmem - s;
 }
 
 /*
@@ -513,156 +448,33 @@ static int check_code(const csf_prog *p, int s, char *err, size_t errlen)
 	return r;
 }
 
-/*
- * The contact tables: every slot in memory (a mass point's position in the
- * state, where the broad phase reads it from state vectors), every body and
- * list in range, a rule's $0 mass points, a `for` rule's two lists as long
- * and its pairs of two objects, and no body twice in a list.
- */
-static int verify_contacts(const csf_prog *p, char *err, size_t errlen)
+/* The code field of section sec (fields.c): check_code. */
+int csf_verify_code(const csf_prog *p, int sec, char *err, size_t errlen)
 {
-	for (uint32_t i = 0; i < p->ncbodies; i++) {
-		const csf_cbody *b = &p->cbodies[i];
-		static const unsigned char width[CSF_CF_N] = { 3, 3, 3, 1, 1, 1, 1, 1, 3, 3 };
-		int ok = b->plane <= 1 && b->varies <= 1 && b->object < p->nobjects;
-		for (int f = 0; ok && f < CSF_CF_N; f++) {
-			uint32_t w = width[f];
-			if (b->plane && f == CSF_CF_R) w = 3; /* a plane's normal */
-			if (b->plane && (f == CSF_CF_A || f == CSF_CF_M || f == CSF_CF_FN || f == CSF_CF_FF)) continue;
-			ok = slot_ok(p, b->s[f], w);
-		}
-		if (ok && !b->plane)
-			ok = b->s[CSF_CF_POS] >= p->ystart && (uint64_t)b->s[CSF_CF_POS] + 3 <= (uint64_t)p->ystart + p->ny;
-		if (!ok) return csf_fail(err, errlen, "contact body %lu out of range", (unsigned long)i);
-	}
-	for (uint32_t i = 0; i < p->ncmembers; i++)
-		if (p->cmembers[i] >= p->ncbodies) return csf_fail(err, errlen, "contact list entry %lu out of range", (unsigned long)i);
-	uint64_t *seen = calloc((size_t)p->ncbodies + 1, sizeof *seen); /* the last list each body was in, + 1 */
-	if (!seen) return csf_fail(err, errlen, "out of memory");
-	int bad = 0;
-	uint32_t i = 0;
-	for (; i < p->ncrules && !bad; i++) {
-		const csf_crule *r = &p->crules[i];
-		bad = r->src >= p->nsrcs || r->every > 1 || (uint64_t)r->first0 + r->n0 > p->ncmembers ||
-		      (uint64_t)r->first1 + r->n1 > p->ncmembers || (!r->every && r->n0 != r->n1);
-		for (uint32_t role = 0; role < 2 && !bad; role++)
-			for (uint32_t k = 0; k < (role ? r->n1 : r->n0) && !bad; k++) {
-				uint32_t b = p->cmembers[(role ? r->first1 : r->first0) + k];
-				uint64_t list = 2 * (uint64_t)i + role + 1;
-				bad = (role == 0 && p->cbodies[b].plane) || seen[b] == list;
-				seen[b] = list;
-				if (!r->every && role == 1)
-					bad = bad || p->cbodies[b].object == p->cbodies[p->cmembers[r->first0 + k]].object;
-			}
-	}
-	free(seen);
-	if (bad) return csf_fail(err, errlen, "contact rule %lu out of range", (unsigned long)(i - 1));
-	return 0;
+	return check_code(p, sec, err, errlen);
 }
 
+/* Checks every field of the table (fields.c) in file order: each element, then the whole field. */
 int csf_verify(const csf_prog *p, char *err, size_t errlen)
 {
-	if (p->nstrs == 0 || p->strs[p->nstrs - 1] != '\0') return csf_fail(err, errlen, "string table is not NUL-terminated");
-#define STR_OK(off) ((off) < p->nstrs)
-	if (!slot_ok(p, p->tslot, 1)) return csf_fail(err, errlen, "time slot %lu out of range", (unsigned long)p->tslot);
-	if (!slot_ok(p, p->ystart, p->ny) || !slot_ok(p, p->dstart, p->ny))
-		return csf_fail(err, errlen, "state layout out of range");
-	if (p->ny && p->ystart < p->dstart + p->ny && p->dstart < p->ystart + p->ny)
-		return csf_fail(err, errlen, "state and derivative regions overlap");
-	if (p->jtan) {
-		uint64_t jt = p->jtan, n = p->nmem;
-		if (p->tslot + jt >= n || p->ystart + jt + p->ny > n || p->dstart + jt + p->ny > n)
-			return csf_fail(err, errlen, "tangent layout out of range");
+	for (size_t k = 0; k < csf_nfields; k++) {
+		const csf_field *f = &csf_fields[k];
+		uint32_t n;
+		const unsigned char *e = field_elems(p, f, &n);
+		for (uint32_t i = 0; f->ok && i < n; i++, e += f->size)
+			if (!f->ok(p, f->sec, e, i)) return csf_fail(err, errlen, f->bad, (unsigned long)i, (int)f->sec);
+		if (f->check && f->check(p, f->sec, err, errlen)) return -1;
 	}
-	for (uint32_t i = 0; i < p->ny; i++)
-		if (p->vpair[i] > p->ny || p->vpair[i] == i + 1)
-			return csf_fail(err, errlen, "position/velocity pair %lu out of range", (unsigned long)i);
-	for (uint32_t i = 0; i < p->ny; i++)
-		if (!(p->yscale[i] > 0) || !isfinite(p->yscale[i]))
-			return csf_fail(err, errlen, "tolerance scale %lu is not a positive number", (unsigned long)i);
-	for (uint32_t i = 0; i < p->ny; i++)
-		if (!(p->yatol[i] >= 0) || !isfinite(p->yatol[i]))
-			return csf_fail(err, errlen, "absolute tolerance %lu is not a number >= 0", (unsigned long)i);
-	if (!(p->by > 0) || !isfinite(p->by) || !(p->till >= 0) || !isfinite(p->till))
-		return csf_fail(err, errlen, "invalid run range (till %g, by %g)", p->till, p->by);
-	if (p->till / p->by > 4e15) return csf_fail(err, errlen, "too many output steps");
-	for (uint32_t i = 0; i < p->nfiles; i++)
-		if (!STR_OK(p->files[i])) return csf_fail(err, errlen, "file name %lu out of range", (unsigned long)i);
-	for (uint32_t i = 0; i < p->nsrcs; i++)
-		if (p->srcs[i].file >= p->nfiles || !STR_OK(p->srcs[i].text))
-			return csf_fail(err, errlen, "source entry %lu out of range", (unsigned long)i);
-	for (uint32_t i = 0; i < p->ncols; i++)
-		if (!STR_OK(p->cols[i].name) || !slot_ok(p, p->cols[i].slot, 1))
-			return csf_fail(err, errlen, "output column %lu out of range", (unsigned long)i);
-	for (uint32_t i = 0; i < p->nasserts; i++)
-		if (p->asserts[i].src >= p->nsrcs || !STR_OK(p->asserts[i].object))
-			return csf_fail(err, errlen, "assertion %lu out of range", (unsigned long)i);
-	for (uint32_t i = 0; i < p->nobjects; i++)
-		if (!STR_OK(p->objects[i])) return csf_fail(err, errlen, "object %lu out of range", (unsigned long)i);
-	for (uint32_t i = 0; i < p->nprops; i++) {
-		const csf_prop *q = &p->props[i];
-		if (q->object >= p->nobjects || !STR_OK(q->name) || (q->width != 1 && q->width != 3) ||
-		    !slot_ok(p, q->slot, q->width) || q->cls >= p->npclasses)
-			return csf_fail(err, errlen, "property %lu out of range", (unsigned long)i);
-	}
-	for (int k = 0; k < CSF_NDIM; k++)
-		if (!(p->ubase[k] > 0) || !isfinite(p->ubase[k])) return csf_fail(err, errlen, "unit system out of range");
-	for (uint32_t i = 0; i < p->npclasses; i++) {
-		const csf_pclass *c = &p->pclasses[i];
-		int ok = STR_OK(c->unit) && STR_OK(c->why) && c->known <= 1;
-		for (int k = 0; k < CSF_NDIM; k++) ok = ok && isfinite(c->dim[k]) && fabs(c->dim[k]) <= 64;
-		if (!ok) return csf_fail(err, errlen, "parameter class %lu out of range", (unsigned long)i);
-	}
-	for (uint32_t i = 0; i < p->nglobals; i++) {
-		const csf_global *g = &p->globals[i];
-		if (!STR_OK(g->name) || (g->width != 1 && g->width != 3) || !slot_ok(p, g->slot, g->width) || g->cls >= p->npclasses)
-			return csf_fail(err, errlen, "global %lu out of range", (unsigned long)i);
-	}
-	for (uint32_t i = 0; i < p->nevents; i++) {
-		const csf_event *e = &p->events[i];
-		if (e->kind > (1 | CSF_EVENT_TERMINAL) || !slot_ok(p, e->value, 1) || !slot_ok(p, e->mode, 1) || e->src >= p->nsrcs)
-			return csf_fail(err, errlen, "event %lu out of range", (unsigned long)i);
-	}
-	if (verify_contacts(p, err, errlen)) return -1;
-	for (int s = 0; s < CSF_NSEC; s++) {
-		for (uint32_t i = 0; i < p->ntargets[s]; i++) {
-			const csf_target *t = &p->targets[s][i];
-			if ((t->width != 1 && t->width != 3) || !slot_ok(p, t->slot, t->width) || t->src >= p->nsrcs ||
-			    !STR_OK(t->name) || !STR_OK(t->object))
-				return csf_fail(err, errlen, "target %lu of section %d out of range", (unsigned long)i, s);
-		}
-		if (check_code(p, s, err, errlen)) return -1;
-		for (uint32_t i = 0; i < p->nlines[s]; i++)
-			if (p->lines[s][i].pc > p->ncode[s] || p->lines[s][i].src >= p->nsrcs)
-				return csf_fail(err, errlen, "line table entry %lu of section %d out of range", (unsigned long)i, s);
-	}
-#undef STR_OK
 	return 0;
 }
 
 void csf_prog_free(csf_prog *p)
 {
-	free(p->strs);
-	free(p->mem0);
-	free(p->yscale);
-	free(p->yatol);
-	free(p->vpair);
-	free(p->files);
-	free(p->srcs);
-	free(p->cols);
-	free(p->asserts);
-	free(p->objects);
-	free(p->props);
-	free(p->globals);
-	free(p->pclasses);
-	free(p->events);
-	free(p->cbodies);
-	free(p->cmembers);
-	free(p->crules);
-	for (int s = 0; s < CSF_NSEC; s++) {
-		free(p->targets[s]);
-		free(p->code[s]);
-		free(p->lines[s]);
+	for (size_t k = 0; k < csf_nfields; k++) {
+		void *e;
+		if (csf_fields[k].how == CSF_FC_INLINE) continue;
+		memcpy(&e, (unsigned char *)p + csf_fields[k].at, sizeof e);
+		free(e);
 	}
 	memset(p, 0, sizeof *p);
 }
