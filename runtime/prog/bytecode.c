@@ -4,12 +4,14 @@
  * The format is described in bytecode.h. Decoding reads through a bounded
  * cursor: every read checks the bytes left, every array count is checked
  * against the bytes left before it is allocated, so a truncated or hostile
- * file costs at most its own size in memory. After decoding, csf_verify
- * checks every cross-reference (string offsets, memory slots, sources) and
- * every instruction (opcode in range, operands in bounds for every value of
- * the loop registers they use, jumps forward to an instruction boundary
- * inside the section and inside the same loop body, loops properly nested
- * and matched, POWI's exponent within CSF_POWI_MAX). A verified program
+ * file costs at most its own size in memory. The encoder, the decoder,
+ * csf_prog_free and csf_verify walk one table of the payload's fields
+ * (fields.c). After decoding, csf_verify checks every cross-reference
+ * (string offsets, memory slots, sources) and every instruction (opcode
+ * in range, operands in bounds for every value of the loop registers they
+ * use, jumps forward to an instruction boundary inside the section and
+ * inside the same loop body, loops properly nested and matched, POWI's
+ * exponent within CSF_POWI_MAX). A verified program
  * cannot make the VM read or write outside its memory or loop forever.
  */
 #include <stdlib.h>

@@ -1,10 +1,12 @@
 #!/bin/sh
-# tests/docs/check.sh CSFC CSFVM DIR - the README's example is the program's:
+# tests/docs/check.sh CSFC CSFVM DIR - the README's example is the program's, and csf(5) the format's:
 #  - the scene shown under "An example" is examples/projectile.csf without its
 #    comment lines;
 #  - the output shown after "$ csfvm projectile.csfb" is what csfvm prints:
 #    the lines shown before "..." are the first lines of the output, the line
 #    after it the last, byte for byte.
+#  - csf(5) lists the bytecode payload's fields as the table csf_fields in
+#    runtime/prog/fields.c does (the one source): the same names, in the same order.
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3
 pass=0 fail=0
@@ -26,5 +28,18 @@ else
 	if [ "$head_n" -gt 2 ] && cmp -s "$T/shown.csv" "$T/real.csv"; then ok
 	else bad "README's example output is not what csfvm prints: $(diff "$T/shown.csv" "$T/real.csv" | head -n 3 | tr '\n' ' ')"; fi
 fi
+# the payload's fields: the table's names, a code section's three after "sections"
+F=runtime/prog/fields.c
+{
+	sed -n '/^const csf_field csf_fields\[\] = {/,/^};/p' "$F" |
+		sed -n 's/.*\.name = "\([a-z]*\)".*/\1/p; s/^[[:blank:]][A-Z0-9_]*("\([a-z]*\)".*/\1/p; s/^[[:blank:]]SECTION(.*/sections/p' | uniq
+	sed -n '/^#define SECTION(/,/[^\\]$/p' "$F" | sed -n 's/.*SEC_U32S("\([a-z]*\)".*/\1/p'
+} >"$T/table"
+# csf(5): the name after each .TP of the payload's list, and the three of its "sections" entry
+awk '/^\.SS Bytecode/ { on = 1 } on && /^An instruction is/ { exit } !on { next }
+	/^\.TP/ { tp = 1; next } /^\.B [a-z]+$/ && (tp || sec) { print $2; if ($2 == "sections") sec = 1 } { tp = 0 }' \
+	man/csf.5 | sed -n '/^strings$/,$p' >"$T/man"
+if [ "$(wc -l <"$T/table")" -gt 20 ] && cmp -s "$T/table" "$T/man"; then ok
+else bad "csf(5) does not list the bytecode fields of $F in order: $(diff "$T/table" "$T/man" | head -n 4 | tr '\n' ' ')"; fi
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
