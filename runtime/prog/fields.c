@@ -115,7 +115,7 @@ ELEM(positive_ok)
 	return *e > 0 && isfinite(*e);
 }
 
-ELEM(yatol_ok)
+ELEM(nonnegative_ok)
 {
 	const double *e = e_;
 	UNUSED;
@@ -244,7 +244,7 @@ ELEM(line_ok)
 #define PER_Y(nm, ptr, T, ok_, bad_)                                                                              \
 	{ .name = nm, .how = CSF_FC_NY, .sec = -1, .words = sizeof(T) == 4, .dbls = sizeof(T) == 8,                \
 	  .at = offsetof(csf_prog, ptr), .size = sizeof(T), .ok = ok_, .bad = bad_ }
-/* Section s's three fields (arrays ptr[s] of nptr[s]). */
+/* A field of code section s (the array ptr[s] of n[s] elements); SECTION(s): the section's three. */
 #define SEC_U32S(nm, ptr, n, T, s, ok_, bad_, check_)                                                              \
 	{ .name = nm, .how = CSF_FC_PREFIX, .sec = s, .words = sizeof(T) / 4,                                      \
 	  .at = offsetof(csf_prog, ptr) + (s) * sizeof(T *), .count = offsetof(csf_prog, n) + (s) * sizeof(uint32_t), \
@@ -264,7 +264,7 @@ const csf_field csf_fields[] = {
 	{ .name = "layout", .how = CSF_FC_INLINE, .sec = -1, .words = 5, .at = offsetof(csf_prog, tslot), .count = 1,
 	  .size = 5 * sizeof(uint32_t), .check = check_layout },
 	PER_Y("yscale", yscale, double, positive_ok, "tolerance scale %lu is not a positive number"),
-	PER_Y("yatol", yatol, double, yatol_ok, "absolute tolerance %lu is not a number >= 0"),
+	PER_Y("yatol", yatol, double, nonnegative_ok, "absolute tolerance %lu is not a number >= 0"),
 	PER_Y("vpair", vpair, uint32_t, vpair_ok, "position/velocity pair %lu out of range"),
 	/* special: double till, by in csf_prog */
 	{ .name = "run", .how = CSF_FC_INLINE, .sec = -1, .dbls = 2, .at = offsetof(csf_prog, till), .count = 1,

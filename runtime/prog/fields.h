@@ -29,7 +29,7 @@ enum csf_field_count {
 typedef struct csf_field {
 	const char *name;    /* as csf(5) names it */
 	unsigned char how;   /* enum csf_field_count */
-	signed char sec;     /* a code section's field: the section (CSF_SEC_*); -1 */
+	signed char sec;     /* a code section's field: the section (CSF_SEC_*); else -1 */
 	unsigned char words, dbls;
 	size_t at;           /* offsetof(csf_prog, the pointer to the elements), or (INLINE) of the elements */
 	size_t count;        /* PREFIX: offsetof(csf_prog, the uint32_t count); INLINE: the count */
