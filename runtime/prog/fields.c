@@ -14,7 +14,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "csf.h"
+#include "csf_int.h"
 #include "fields.h"
 
 _Static_assert(sizeof(csf_src) == 12 && sizeof(csf_col) == 8 && sizeof(csf_assert) == 8 && sizeof(csf_prop) == 20 &&

@@ -9,7 +9,7 @@
 
 #include <stddef.h>
 
-#include "csf.h"
+#include "csf_int.h"
 
 /* Where a field's element count is. */
 enum csf_field_count {
