@@ -45,6 +45,9 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
                      const double *atol_each, const double *scale, const uint32_t *vpair, csf_rhs_fn f, csf_jac_fn jac, void *ctx, char *err,
                      size_t errlen);
 
+/* Has the named method a row of its own in --compare-methods' table (compare.c)? */
+int csf_method_compared(const char *method);
+
 /* Can the named method run a model with contacts (a method with a step of its own: not verlet)? */
 int csf_method_contacts(const char *method);
 
