@@ -1,5 +1,5 @@
 /*
- * file.c - reading a whole file: csfvm's bytecode (run/main.c), a
+ * file.c - reading a whole file: csfvm's bytecode (tools/main.c), a
  * --sweep-file (tools/sweep.c), csfc's source (compiler/util.c). A neutral
  * place, so that no two of them depend on one another for it.
  */
