@@ -91,7 +91,7 @@ static const gsl_odeiv2_control_type control_type = { "csf", control_alloc, cont
  */
 #define LIVE_FLOOR 1e-6
 
-void ode_live_grow(csf_ode *o, const double *y)
+void csf_ode_live_grow(csf_ode *o, const double *y)
 {
 	for (size_t i = 0; i < o->n; i++) {
 		if (o->fixed_atol[i]) continue;
@@ -101,23 +101,23 @@ void ode_live_grow(csf_ode *o, const double *y)
 }
 
 /* The scales at their floor, before any state has been seen. */
-void ode_live_init(csf_ode *o)
+void csf_ode_live_init(csf_ode *o)
 {
 	o->live_set = 1;
 	for (size_t i = 0; i < o->n; i++)
 		if (!o->fixed_atol[i]) o->live[i] = LIVE_FLOOR * o->base[i];
 }
 
-void ode_live_start(csf_ode *o, const double *y)
+void csf_ode_live_start(csf_ode *o, const double *y)
 {
 	if (o->live_set) return;
-	ode_live_init(o);
-	ode_live_grow(o, y);
+	csf_ode_live_init(o);
+	csf_ode_live_grow(o, y);
 }
 
 /* GSL's driver, with the error control as driver_alloc_y_new (a_y = 1, a_dydt = 0), the absolute
    tolerance of each component scaled as o->scale is now (control_type) */
-int ode_gsl_setup(csf_ode *o, double h0, double hmax, const uint32_t *vpair, char *err, size_t errlen)
+int csf_ode_gsl_setup(csf_ode *o, double h0, double hmax, const uint32_t *vpair, char *err, size_t errlen)
 {
 	(void)vpair;
 	double tol = o->tol;

@@ -11,7 +11,7 @@
 #include "ode_int.h"
 
 /* verlet: every component a position with a velocity, or that velocity */
-int ode_verlet_setup(csf_ode *o, double h0, double hmax, const uint32_t *vpair, char *err, size_t errlen)
+int csf_ode_verlet_setup(csf_ode *o, double h0, double hmax, const uint32_t *vpair, char *err, size_t errlen)
 {
 	(void)h0, (void)hmax;
 	size_t n = o->n;
@@ -74,20 +74,20 @@ static int rk4_step(csf_ode *o, double t, double h, double *y)
 	return 0;
 }
 
-int ode_verlet_fixed(csf_ode *o, double t, double h, double *y, char *err, size_t errlen)
+int csf_ode_verlet_fixed(csf_ode *o, double t, double h, double *y, char *err, size_t errlen)
 {
 	(void)err, (void)errlen;
 	return verlet_step(o, t, h, y) ? CSF_ODE_STOPPED : CSF_ODE_OK;
 }
 
-int ode_rk4_fixed(csf_ode *o, double t, double h, double *y, char *err, size_t errlen)
+int csf_ode_rk4_fixed(csf_ode *o, double t, double h, double *y, char *err, size_t errlen)
 {
 	(void)err, (void)errlen;
 	return rk4_step(o, t, h, y) ? CSF_ODE_STOPPED : CSF_ODE_OK;
 }
 
 /* GSL's step, its error estimate unused */
-int ode_gsl_fixed(csf_ode *o, double t, double h, double *y, char *err, size_t errlen)
+int csf_ode_gsl_fixed(csf_ode *o, double t, double h, double *y, char *err, size_t errlen)
 {
 	int st = gsl_odeiv2_step_apply(o->drv->s, t, h, y, o->k, NULL, NULL, &o->sys);
 	if (st == GSL_SUCCESS) return CSF_ODE_OK;
@@ -96,7 +96,7 @@ int ode_gsl_fixed(csf_ode *o, double t, double h, double *y, char *err, size_t e
 	return CSF_ODE_FAILED;
 }
 
-int ode_verlet_substep(csf_ode *o, double t, double h, double *out)
+int csf_ode_verlet_substep(csf_ode *o, double t, double h, double *out)
 {
 	o->acc_ok = 0;
 	int bad = verlet_step(o, t, h, out);
@@ -104,10 +104,10 @@ int ode_verlet_substep(csf_ode *o, double t, double h, double *out)
 	return bad;
 }
 
-int ode_rk4_substep(csf_ode *o, double t, double h, double *out) { return rk4_step(o, t, h, out); }
+int csf_ode_rk4_substep(csf_ode *o, double t, double h, double *out) { return rk4_step(o, t, h, out); }
 
 /* a second GSL stepper, of the method's one-step stand-in (struct method's sub) */
-int ode_gsl_substep(csf_ode *o, double t, double h, double *out)
+int csf_ode_gsl_substep(csf_ode *o, double t, double h, double *out)
 {
 	if (!o->sub) {
 		o->sub = gsl_odeiv2_step_alloc(*o->m->sub, o->n);
@@ -121,7 +121,7 @@ int ode_gsl_substep(csf_ode *o, double t, double h, double *out)
 
 /* verlet has no error estimate: its global error goes as h^2, so the step comes
    from the tolerance, h = by sqrt(tol / 1e-4) (by / 1000 at the default 1e-10) */
-double ode_verlet_h(const csf_ode *o, double by)
+double csf_ode_verlet_h(const csf_ode *o, double by)
 {
 	double f = sqrt(o->tol / 1e-4);
 	return f < 1 ? by * f : by;

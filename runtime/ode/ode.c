@@ -26,45 +26,45 @@ static const struct dense erk_dense = { csf_erk_set_scale, erk_dense_eval };
 #define STEP(T) &gsl_odeiv2_step_##T
 static const struct method methods[] = {
 	/* Dormand-Prince 8(5,3) with dense output (dop853.c) */
-	{ .name = "dop853", .type = &csf_step_dop853, .setup = ode_gsl_setup, .step = ode_gsl_fixed,
-	  .substep = ode_gsl_substep, .sub = &csf_step_dop853, .dense = &erk_dense, .stab = &ode_stab_measured,
+	{ .name = "dop853", .type = &csf_step_dop853, .setup = csf_ode_gsl_setup, .step = csf_ode_gsl_fixed,
+	  .substep = csf_ode_gsl_substep, .sub = &csf_step_dop853, .dense = &erk_dense, .stab = &csf_ode_stab_measured,
 	  .tol = 1e-12 },
 	/* Dormand-Prince 5(4), its free extension (dopri5.c) */
-	{ .name = "dopri5", .type = &csf_step_dopri5, .setup = ode_gsl_setup, .step = ode_gsl_fixed,
-	  .substep = ode_gsl_substep, .sub = &csf_step_dopri5, .dense = &erk_dense, .stab = &ode_stab_measured,
+	{ .name = "dopri5", .type = &csf_step_dopri5, .setup = csf_ode_gsl_setup, .step = csf_ode_gsl_fixed,
+	  .substep = csf_ode_gsl_substep, .sub = &csf_step_dopri5, .dense = &erk_dense, .stab = &csf_ode_stab_measured,
 	  .tol = CSF_DEFAULT_TOL },
-	{ .name = "rk8pd", .type = STEP(rk8pd), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
-	  .substep = ode_gsl_substep, .sub = STEP(rk8pd), .stab = &ode_stab_measured, .tol = CSF_DEFAULT_TOL },
-	{ .name = "rk2", .type = STEP(rk2), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
-	  .substep = ode_gsl_substep, .sub = STEP(rk2), .stab = &ode_stab_measured, .tol = CSF_DEFAULT_TOL },
+	{ .name = "rk8pd", .type = STEP(rk8pd), .setup = csf_ode_gsl_setup, .step = csf_ode_gsl_fixed,
+	  .substep = csf_ode_gsl_substep, .sub = STEP(rk8pd), .stab = &csf_ode_stab_measured, .tol = CSF_DEFAULT_TOL },
+	{ .name = "rk2", .type = STEP(rk2), .setup = csf_ode_gsl_setup, .step = csf_ode_gsl_fixed,
+	  .substep = csf_ode_gsl_substep, .sub = STEP(rk2), .stab = &csf_ode_stab_measured, .tol = CSF_DEFAULT_TOL },
 	/* fixed steps: the classical four-stage method, written here */
-	{ .name = "rk4", .type = STEP(rk4), .setup = ode_gsl_setup, .step = ode_rk4_fixed,
-	  .substep = ode_rk4_substep, .stab = &ode_stab_rk4, .tol = CSF_DEFAULT_TOL },
-	{ .name = "rkf45", .type = STEP(rkf45), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
-	  .substep = ode_gsl_substep, .sub = STEP(rkf45), .stab = &ode_stab_measured, .tol = CSF_DEFAULT_TOL },
-	{ .name = "rkck", .type = STEP(rkck), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
-	  .substep = ode_gsl_substep, .sub = STEP(rkck), .stab = &ode_stab_measured, .tol = CSF_DEFAULT_TOL },
-	{ .name = "rk1imp", .type = STEP(rk1imp), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
-	  .substep = ode_gsl_substep, .sub = STEP(rk1imp), .stab = &ode_stab_implicit, .jacobian = 1,
+	{ .name = "rk4", .type = STEP(rk4), .setup = csf_ode_gsl_setup, .step = csf_ode_rk4_fixed,
+	  .substep = csf_ode_rk4_substep, .stab = &csf_ode_stab_rk4, .tol = CSF_DEFAULT_TOL },
+	{ .name = "rkf45", .type = STEP(rkf45), .setup = csf_ode_gsl_setup, .step = csf_ode_gsl_fixed,
+	  .substep = csf_ode_gsl_substep, .sub = STEP(rkf45), .stab = &csf_ode_stab_measured, .tol = CSF_DEFAULT_TOL },
+	{ .name = "rkck", .type = STEP(rkck), .setup = csf_ode_gsl_setup, .step = csf_ode_gsl_fixed,
+	  .substep = csf_ode_gsl_substep, .sub = STEP(rkck), .stab = &csf_ode_stab_measured, .tol = CSF_DEFAULT_TOL },
+	{ .name = "rk1imp", .type = STEP(rk1imp), .setup = csf_ode_gsl_setup, .step = csf_ode_gsl_fixed,
+	  .substep = csf_ode_gsl_substep, .sub = STEP(rk1imp), .stab = &csf_ode_stab_implicit, .jacobian = 1,
 	  .skip_compare = 1, .tol = CSF_DEFAULT_TOL },
-	{ .name = "rk2imp", .type = STEP(rk2imp), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
-	  .substep = ode_gsl_substep, .sub = STEP(rk2imp), .stab = &ode_stab_implicit, .jacobian = 1,
+	{ .name = "rk2imp", .type = STEP(rk2imp), .setup = csf_ode_gsl_setup, .step = csf_ode_gsl_fixed,
+	  .substep = csf_ode_gsl_substep, .sub = STEP(rk2imp), .stab = &csf_ode_stab_implicit, .jacobian = 1,
 	  .skip_compare = 1, .tol = CSF_DEFAULT_TOL },
-	{ .name = "rk4imp", .type = STEP(rk4imp), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
-	  .substep = ode_gsl_substep, .sub = STEP(rk4imp), .stab = &ode_stab_implicit, .jacobian = 1,
+	{ .name = "rk4imp", .type = STEP(rk4imp), .setup = csf_ode_gsl_setup, .step = csf_ode_gsl_fixed,
+	  .substep = csf_ode_gsl_substep, .sub = STEP(rk4imp), .stab = &csf_ode_stab_implicit, .jacobian = 1,
 	  .tol = CSF_DEFAULT_TOL },
-	{ .name = "bsimp", .type = STEP(bsimp), .setup = ode_gsl_setup, .step = ode_gsl_fixed,
-	  .substep = ode_gsl_substep, .sub = STEP(bsimp), .stab = &ode_stab_implicit, .jacobian = 1,
+	{ .name = "bsimp", .type = STEP(bsimp), .setup = csf_ode_gsl_setup, .step = csf_ode_gsl_fixed,
+	  .substep = csf_ode_gsl_substep, .sub = STEP(bsimp), .stab = &csf_ode_stab_implicit, .jacobian = 1,
 	  .tol = CSF_DEFAULT_TOL },
 	/* multistep: no fixed steps; a one-step method of high order takes the substeps (implicit where the
 	   method is, for stiff problems), since they cannot start from anywhere */
-	{ .name = "msadams", .type = STEP(msadams), .setup = ode_gsl_setup, .substep = ode_gsl_substep,
-	  .sub = STEP(rk8pd), .stab = &ode_stab_unknown, .tol = CSF_DEFAULT_TOL },
-	{ .name = "msbdf", .type = STEP(msbdf), .setup = ode_gsl_setup, .substep = ode_gsl_substep,
-	  .sub = STEP(rk4imp), .stab = &ode_stab_implicit, .jacobian = 1, .tol = CSF_DEFAULT_TOL },
+	{ .name = "msadams", .type = STEP(msadams), .setup = csf_ode_gsl_setup, .substep = csf_ode_gsl_substep,
+	  .sub = STEP(rk8pd), .stab = &csf_ode_stab_unknown, .tol = CSF_DEFAULT_TOL },
+	{ .name = "msbdf", .type = STEP(msbdf), .setup = csf_ode_gsl_setup, .substep = csf_ode_gsl_substep,
+	  .sub = STEP(rk4imp), .stab = &csf_ode_stab_implicit, .jacobian = 1, .tol = CSF_DEFAULT_TOL },
 	/* velocity Verlet, written here: symplectic, fixed steps */
-	{ .name = "verlet", .skip_compare = 1, .setup = ode_verlet_setup, .step = ode_verlet_fixed, .substep = ode_verlet_substep,
-	  .fixed_h = ode_verlet_h, .stab = &ode_stab_verlet, .tol = CSF_DEFAULT_TOL },
+	{ .name = "verlet", .skip_compare = 1, .setup = csf_ode_verlet_setup, .step = csf_ode_verlet_fixed, .substep = csf_ode_verlet_substep,
+	  .fixed_h = csf_ode_verlet_h, .stab = &csf_ode_stab_verlet, .tol = CSF_DEFAULT_TOL },
 };
 #undef STEP
 
@@ -223,9 +223,9 @@ int csf_ode_step(csf_ode *o, double *t, double t1, int fixed, double h, double *
 	double left = t1 - *t;
 	if (d->h <= left && left <= d->h * (1 + 1e-4)) d->h = nextafter(left, INFINITY);
 	double ta = *t;
-	ode_live_start(o, y);
+	csf_ode_live_start(o, y);
 	int st = gsl_odeiv2_evolve_apply(d->e, d->c, d->s, &o->sys, t, t1, &d->h, y);
-	if (st == GSL_SUCCESS) ode_live_grow(o, y);
+	if (st == GSL_SUCCESS) csf_ode_live_grow(o, y);
 	if (st == GSL_SUCCESS) return o->watch && o->watch(o->watch_ctx, *t, y, *t - ta) ? CSF_ODE_HALTED : CSF_ODE_OK;
 	if (st == TOO_LONG) return CSF_ODE_STOPPED;
 	snprintf(err, errlen, "%s", gsl_strerror(st));
@@ -257,7 +257,7 @@ int csf_ode_first_step(csf_ode *o, double t, const double *y)
 	size_t n = o->n;
 	gsl_odeiv2_driver *d = o->drv;
 	if (!d || work(o)) return 0;
-	ode_live_start(o, y);
+	csf_ode_live_start(o, y);
 	double *f0 = o->k, *y1 = f0 + n, *f1 = y1 + n;
 	if (o->f(t, y, f0, o->ctx)) return 1;
 	double d0 = wrms(o, y, y), d1 = wrms(o, f0, y);
@@ -304,7 +304,7 @@ void csf_ode_restart(csf_ode *o)
 void csf_ode_take_scale(csf_ode *o, const csf_ode *from)
 {
 	if (!from->live_set || o->n != from->n) return;
-	if (!o->live_set) ode_live_init(o);
+	if (!o->live_set) csf_ode_live_init(o);
 	for (size_t i = 0; i < o->n; i++)
 		if (!o->fixed_atol[i] && from->live[i] > o->live[i]) o->live[i] = from->live[i];
 }

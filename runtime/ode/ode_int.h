@@ -110,20 +110,20 @@ struct csf_ode {
 enum { TOO_LONG = GSL_ERANGE };
 
 /* fixed.c: the fixed steppers, the steppers of csf_ode_substep, verlet's setup and step size */
-int ode_verlet_setup(csf_ode *o, double h0, double hmax, const uint32_t *vpair, char *err, size_t errlen);
-fixed_fn ode_gsl_fixed, ode_rk4_fixed, ode_verlet_fixed;
-int ode_gsl_substep(csf_ode *o, double t, double h, double *out);
-int ode_rk4_substep(csf_ode *o, double t, double h, double *out);
-int ode_verlet_substep(csf_ode *o, double t, double h, double *out);
-double ode_verlet_h(const csf_ode *o, double by);
+int csf_ode_verlet_setup(csf_ode *o, double h0, double hmax, const uint32_t *vpair, char *err, size_t errlen);
+fixed_fn csf_ode_gsl_fixed, csf_ode_rk4_fixed, csf_ode_verlet_fixed;
+int csf_ode_gsl_substep(csf_ode *o, double t, double h, double *out);
+int csf_ode_rk4_substep(csf_ode *o, double t, double h, double *out);
+int csf_ode_verlet_substep(csf_ode *o, double t, double h, double *out);
+double csf_ode_verlet_h(const csf_ode *o, double by);
 
 /* control.c: GSL's driver with CSF's error control; the live scale */
-int ode_gsl_setup(csf_ode *o, double h0, double hmax, const uint32_t *vpair, char *err, size_t errlen);
-void ode_live_init(csf_ode *o);
-void ode_live_start(csf_ode *o, const double *y);
-void ode_live_grow(csf_ode *o, const double *y);
+int csf_ode_gsl_setup(csf_ode *o, double h0, double hmax, const uint32_t *vpair, char *err, size_t errlen);
+void csf_ode_live_init(csf_ode *o);
+void csf_ode_live_start(csf_ode *o, const double *y);
+void csf_ode_live_grow(csf_ode *o, const double *y);
 
 /* stable.c: how each kind of method finds its stable steps (struct stability) */
-extern const struct stability ode_stab_measured, ode_stab_rk4, ode_stab_verlet, ode_stab_implicit, ode_stab_unknown;
+extern const struct stability csf_ode_stab_measured, csf_ode_stab_rk4, csf_ode_stab_verlet, csf_ode_stab_implicit, csf_ode_stab_unknown;
 
 #endif

@@ -77,11 +77,11 @@ static double poly_excess(const csf_ode *o, double complex z)
 }
 
 const struct stability
-	ode_stab_measured = { measured_poly, measured_poly, poly_excess, 0 }, /* explicit Runge-Kutta: the code's polynomial */
-	ode_stab_rk4 = { measured_poly, rk4_poly, poly_excess, 0 },           /* fixed steps: the classical rk4's */
-	ode_stab_verlet = { NULL, NULL, verlet_excess, 0 },                   /* on x'' = lambda^2 x */
-	ode_stab_implicit = { NULL, NULL, NULL, INFINITY },                   /* no step is unstable */
-	ode_stab_unknown = { NULL, NULL, NULL, NAN };                         /* msadams, whose order varies */
+	csf_ode_stab_measured = { measured_poly, measured_poly, poly_excess, 0 }, /* explicit Runge-Kutta: the code's polynomial */
+	csf_ode_stab_rk4 = { measured_poly, rk4_poly, poly_excess, 0 },           /* fixed steps: the classical rk4's */
+	csf_ode_stab_verlet = { NULL, NULL, verlet_excess, 0 },                   /* on x'' = lambda^2 x */
+	csf_ode_stab_implicit = { NULL, NULL, NULL, INFINITY },                   /* no step is unstable */
+	csf_ode_stab_unknown = { NULL, NULL, NULL, NAN };                         /* msadams, whose order varies */
 
 double csf_ode_stable_step(csf_ode *o, int fixed, double re, double im, double span)
 {

@@ -10,7 +10,7 @@
 #include "run_int.h"
 
 /* After the modes were set at t from scratch: a 'stop when' condition already true ends the run there. */
-void stop_now(run *r, double t)
+void csf_run_stop_now(run *r, double t)
 {
 	const csf_prog *p = r->p;
 	for (uint32_t i = 0; i < p->nevents && !r->stopped; i++)
@@ -24,7 +24,7 @@ void stop_now(run *r, double t)
  * ADV_TERMINAL, with its time in r->stop_t. 0, or CSF_ODE_STOPPED when a
  * derivative is not finite.
  */
-int take_event(run *r, csf_ode *ode, double t, double *y)
+int csf_run_take_event(run *r, csf_ode *ode, double t, double *y)
 {
 	r->nevents++;
 	r->pending = 0;
@@ -34,9 +34,9 @@ int take_event(run *r, csf_ode *ode, double t, double *y)
 		return ADV_TERMINAL;
 	}
 	if (r->g) r->g->due = 1; /* the scene may have changed: with fixed steps, look after the next one */
-	if (update_modes(r, t, y)) return CSF_ODE_STOPPED;
+	if (csf_run_update_modes(r, t, y)) return CSF_ODE_STOPPED;
 	csf_ode_restart(ode);
-	if (guards_at(r, t, y, r->ga)) return CSF_ODE_STOPPED;
+	if (csf_run_guards_at(r, t, y, r->ga)) return CSF_ODE_STOPPED;
 	memcpy(r->fa, r->fs, r->p->ny * sizeof *r->fa);
 	return 0;
 }
@@ -45,7 +45,7 @@ int take_event(run *r, csf_ode *ode, double t, double *y)
 static int over_budget(const run *r) { return r->max_rhs && r->nrhs > r->max_rhs; }
 
 /* Advances (*t, y) to t1 by adaptive steps, at most MAX_WORK of them. */
-int advance_plain(run *r, csf_ode *ode, double *t, double t1, double *y, char *msg, size_t msglen)
+int csf_run_advance_plain(run *r, csf_ode *ode, double *t, double t1, double *y, char *msg, size_t msglen)
 {
 	for (unsigned long work = 0; *t < t1; work++) {
 		double ta = *t;
@@ -75,14 +75,14 @@ static int chatter(unsigned long *same, double ta, double te, char *msg, size_t 
  * r->ga and r->fa hold the guards and derivative at (*t, y), unless an event
  * located at the last output time is pending: it happens first.
  */
-int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed, double h, double *y, char *msg,
+int csf_run_advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed, double h, double *y, char *msg,
                           size_t msglen)
 {
 	const csf_prog *p = r->p;
 	size_t n = p->ny;
 	unsigned long same = 0, work = 0;
 	int st;
-	if (r->pending && (st = take_event(r, ode, *t, y))) return st;
+	if (r->pending && (st = csf_run_take_event(r, ode, *t, y))) return st;
 	while (*t < t1) {
 		double ta = *t, best;
 		long which;
@@ -92,19 +92,19 @@ int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed, double
 		st = csf_ode_step(ode, t, t1, fixed, h, y, msg, msglen);
 		if (st != CSF_ODE_OK) return st;
 		r->last_h = *t - ta;
-		if ((st = step_events(r, ode, ta, *t, y, &best, &which, msg, msglen))) return st;
+		if ((st = csf_run_step_events(r, ode, ta, *t, y, &best, &which, msg, msglen))) return st;
 		if (which < 0) {
 			same = 0;
 			continue;
 		}
 		memcpy(y, r->ye, n * sizeof *y);
 		*t = best;
-		if (t1 - best <= location_tol(p)) { /* at an output time: its row shows the state before the event */
+		if (t1 - best <= csf_run_location_tol(p)) { /* at an output time: its row shows the state before the event */
 			*t = t1;
 			r->pending = 1;
 			return CSF_ODE_OK;
 		}
-		if ((st = take_event(r, ode, best, y))) return st;
+		if ((st = csf_run_take_event(r, ode, best, y))) return st;
 		if ((st = chatter(&same, ta, best, msg, msglen))) return st;
 	}
 	return CSF_ODE_OK;
@@ -150,7 +150,7 @@ static int switch_method(run *r)
  * r->ga and r->fa hold the guards and derivative at (r->ti, r->yi) unless
  * an event is pending there.
  */
-int advance_dense(run *r, double tk, double *y, char *msg, size_t msglen)
+int csf_run_advance_dense(run *r, double tk, double *y, char *msg, size_t msglen)
 {
 	csf_ode *ode = r->ode;
 	const csf_prog *p = r->p;
@@ -163,7 +163,7 @@ int advance_dense(run *r, double tk, double *y, char *msg, size_t msglen)
 		if (++work > MAX_WORK) return ADV_TOO_MUCH;
 		if (over_budget(r)) return ADV_BUDGET;
 		int st;
-		if (r->pending && (st = take_event(r, ode, r->ti, r->yi))) {
+		if (r->pending && (st = csf_run_take_event(r, ode, r->ti, r->yi))) {
 			if (st == ADV_TERMINAL) memcpy(y, r->yi, n * sizeof *y);
 			return st;
 		}
@@ -176,14 +176,14 @@ int advance_dense(run *r, double tk, double *y, char *msg, size_t msglen)
 		if (st != CSF_ODE_OK) return st;
 		r->last_h = r->ti - ta;
 		if (!events) continue;
-		if ((st = step_events(r, ode, ta, r->ti, r->yi, &te, &which, msg, msglen))) return st;
+		if ((st = csf_run_step_events(r, ode, ta, r->ti, r->yi, &te, &which, msg, msglen))) return st;
 		if (which < 0) {
 			same = 0;
 			continue;
 		}
 		double row = ceil(te / p->by) * p->by; /* the first output time at or after the event */
 		if (row < te) row += p->by;
-		if (row - te <= location_tol(p) && row <= r->ti) te = row;
+		if (row - te <= csf_run_location_tol(p) && row <= r->ti) te = row;
 		r->ti = te;
 		memcpy(r->yi, r->ye, n * sizeof *y);
 		r->pending = 1;

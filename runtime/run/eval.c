@@ -9,7 +9,7 @@
 
 #include "run_int.h"
 
-int rhs(double t, const double *y, double *dydt, void *ctx)
+int csf_run_rhs(double t, const double *y, double *dydt, void *ctx)
 {
 	run *r = ctx;
 	const csf_prog *p = r->p;
@@ -47,9 +47,9 @@ static int jac_differences(run *r, double t, const double *y, double *dfdy, doub
 		double h = c * csf_max(fabs(x), j < n ? p->yscale[j] : p->by);
 		double xp = x + h, xm = x - h; /* divided by the steps actually taken */
 		if (j < n) yd[j] = xp;
-		if (rhs(j < n ? t : xp, yd, fp, r)) return 1;
+		if (csf_run_rhs(j < n ? t : xp, yd, fp, r)) return 1;
 		if (j < n) yd[j] = xm;
-		if (rhs(j < n ? t : xm, yd, fm, r)) return 1;
+		if (csf_run_rhs(j < n ? t : xm, yd, fm, r)) return 1;
 		if (j < n) yd[j] = y[j];
 		for (uint32_t i = 0; i < n; i++) {
 			double d = (fp[i] - fm[i]) / (xp - xm);
@@ -64,7 +64,7 @@ static int jac_differences(run *r, double t, const double *y, double *dfdy, doub
  * The exact Jacobian: JAC run once per state component with that
  * component's tangent set to 1 (a column), then once with t's (dfdt).
  */
-int jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx)
+int csf_run_jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx)
 {
 	run *r = ctx;
 	const csf_prog *p = r->p;

@@ -36,19 +36,19 @@ static void read_guards(run *r, double *g)
 }
 
 /* Guards g at (t, y), and the derivative in r->fs. 0, or 1 if a derivative is not finite. */
-int guards_at(run *r, double t, const double *y, double *g)
+int csf_run_guards_at(run *r, double t, const double *y, double *g)
 {
-	if (rhs(t, y, r->fs, r)) return 1;
+	if (csf_run_rhs(t, y, r->fs, r)) return 1;
 	read_guards(r, g);
 	return 0;
 }
 
 /* Sets each comparison's side from its value at the state in r->m (after an RHS evaluation). */
-void free_modes(run *r, double t, const double *y)
+void csf_run_free_modes(run *r, double t, const double *y)
 {
 	const csf_prog *p = r->p;
 	for (uint32_t i = 0; i < p->nevents; i++) r->m[p->events[i].mode] = -1;
-	(void)rhs(t, y, r->fs, r);
+	(void)csf_run_rhs(t, y, r->fs, r);
 	for (uint32_t i = 0; i < p->nevents; i++) {
 		const csf_event *e = &p->events[i];
 		double v = r->m[e->value];
@@ -64,11 +64,11 @@ static int settle_eval(void *ctx)
 	settle_ctx *s = ctx;
 	const csf_prog *p = s->r->p;
 	memcpy(s->y, s->r->m + p->ystart, p->ny * sizeof *s->y);
-	return rhs(s->t, s->y, s->r->fs, s->r);
+	return csf_run_rhs(s->t, s->y, s->r->fs, s->r);
 }
 
 /* Room for ng guards in each guard vector (keeping their values). 0, or -1 when memory runs out. */
-int room_for_guards(run *r, size_t ng)
+int csf_run_room_for_guards(run *r, size_t ng)
 {
 	if (ng <= r->capg) return 0;
 	size_t cap = r->capg ? r->capg : 16;
@@ -96,7 +96,7 @@ static int choose_contacts(run *r, const double *const *ys, int ns, double **g[]
 {
 	const csf_prog *p = r->p;
 	long k = csf_contacts_find(r->cs, r->m, ys, ns);
-	if (k < 0 || room_for_guards(r, p->nevents + 2 * (size_t)k)) {
+	if (k < 0 || csf_run_room_for_guards(r, p->nevents + 2 * (size_t)k)) {
 		r->nomem = 1;
 		return -1;
 	}
@@ -110,10 +110,10 @@ static int choose_contacts(run *r, const double *const *ys, int ns, double **g[]
 }
 
 /* Brings every mode up to date at (t, y): at the start, and after an event. */
-int update_modes(run *r, double t, double *y)
+int csf_run_update_modes(run *r, double t, double *y)
 {
 	const csf_prog *p = r->p;
-	free_modes(r, t, y);
+	csf_run_free_modes(r, t, y);
 	if (r->cs) {
 		const double *ys[1] = { y };
 		if (choose_contacts(r, ys, 1, NULL, NULL, 0)) return 1;
@@ -124,13 +124,13 @@ int update_modes(run *r, double t, double *y)
 		if (!st && csf_contacts_unsolved(r->cs)) r->unsettled = CSF_SETTLE_FORCES, r->unsettled_t = t, st = 1;
 		if (st) return 1;
 		memcpy(y, r->m + p->ystart, p->ny * sizeof *y);
-		free_modes(r, t, y);
+		csf_run_free_modes(r, t, y);
 	}
 	return r->fail;
 }
 
 /* How closely events are located in time: 1e-13 s, finer for scenes on tiny time scales. */
-double location_tol(const csf_prog *p) { return csf_min(1e-13, 1e-10 * p->by); }
+double csf_run_location_tol(const csf_prog *p) { return csf_min(1e-13, 1e-10 * p->by); }
 
 /*
  * The cubic Hermite interpolant of the step from (ta, r->ya), derivative
@@ -150,7 +150,7 @@ static void hermite(const run *r, double dt, const double *yb, double s, double 
  * interpolant of the values and derivatives (r->fa, r->fb) at its ends.
  * 0, or 1 if an evaluation failed.
  */
-int interp(run *r, csf_ode *ode, double ta, double tb, const double *yb, double s, double *out)
+int csf_run_interp(run *r, csf_ode *ode, double ta, double tb, const double *yb, double s, double *out)
 {
 	if (r->dense) return csf_ode_dense_eval(ode, ta + s * (tb - ta), out);
 	hermite(r, tb - ta, yb, s, out);
@@ -171,14 +171,14 @@ static int substep_guards(run *r, csf_ode *ode, double ta, double tb, const doub
                           size_t msglen)
 {
 	if (tc - ta < 1e-6 * (tb - ta)) {
-		if (interp(r, ode, ta, tb, yb, (tc - ta) / (tb - ta), r->ys)) return CSF_ODE_STOPPED;
+		if (csf_run_interp(r, ode, ta, tb, yb, (tc - ta) / (tb - ta), r->ys)) return CSF_ODE_STOPPED;
 	} else if (csf_ode_substep(ode, ta, r->ya, tc - ta, r->ys)) {
 		if (r->fail) return CSF_ODE_STOPPED;
 		snprintf(msg, msglen, "the %s step from t=%.17g to locate an event at t=%.17g failed", csf_ode_method(ode),
 		         ta, tc);
 		return CSF_ODE_FAILED;
 	}
-	return guards_at(r, tc, r->ys, r->gs) ? CSF_ODE_STOPPED : CSF_ODE_OK;
+	return csf_run_guards_at(r, tc, r->ys, r->gs) ? CSF_ODE_STOPPED : CSF_ODE_OK;
 }
 
 /*
@@ -191,7 +191,7 @@ static int guard_at(run *r, csf_ode *ode, int dense, double ta, double tb, const
 {
 	if (!dense) return substep_guards(r, ode, ta, tb, yb, tc, msg, msglen);
 	if (csf_ode_dense_eval(ode, tc, r->ys)) return CSF_ODE_STOPPED;
-	return guards_at(r, tc, r->ys, r->gs) ? CSF_ODE_STOPPED : CSF_ODE_OK;
+	return csf_run_guards_at(r, tc, r->ys, r->gs) ? CSF_ODE_STOPPED : CSF_ODE_OK;
 }
 
 /*
@@ -246,7 +246,7 @@ static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
 static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const double *yb, double lo, double glo,
                   double hi, double ghi, double *tk, double *tl, char *msg, size_t msglen)
 {
-	const double tol = location_tol(r->p);
+	const double tol = csf_run_location_tol(r->p);
 	int st;
 	if (r->dense) {
 		double l = lo, gl = glo, u = hi, gu = ghi;
@@ -282,7 +282,7 @@ static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const 
  * -1 when there is none (r->ga and r->fa then move on to tb); *te is its
  * time, r->ye the state there, r->last and r->last_src name it.
  */
-int step_events(run *r, csf_ode *ode, double ta, double tb, const double *y, double *te, long *which, char *msg,
+int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double *y, double *te, long *which, char *msg,
                        size_t msglen)
 {
 	const csf_prog *p = r->p;
@@ -293,14 +293,14 @@ int step_events(run *r, csf_ode *ode, double ta, double tb, const double *y, dou
 		r->unsettled = CSF_SETTLE_FORCES, r->unsettled_t = ta;
 		return CSF_ODE_STOPPED;
 	}
-	if (guards_at(r, tb, y, r->gb)) return CSF_ODE_STOPPED;
+	if (csf_run_guards_at(r, tb, y, r->gb)) return CSF_ODE_STOPPED;
 	memcpy(r->fb, r->fs, n * sizeof *y);
 	double lo = ta, hi = tb, dt = tb - ta;
 	if (r->cs) {
 		/* the candidate contacts of this step: every pair that can touch at the instants
 		   its guards are looked at (the start, 3 interpolated points, the end) */
 		for (int j = 1; j < 4; j++)
-			if (interp(r, ode, ta, tb, y, j / 4.0, r->yh + (size_t)(j - 1) * n)) return CSF_ODE_STOPPED;
+			if (csf_run_interp(r, ode, ta, tb, y, j / 4.0, r->yh + (size_t)(j - 1) * n)) return CSF_ODE_STOPPED;
 		const double *ys[5] = { r->ya, r->yh, r->yh + n, r->yh + 2 * n, y }, *gy[2] = { r->ya, y };
 		double **g[2] = { &r->ga, &r->gb };
 		if (choose_contacts(r, ys, 5, g, gy, 2)) return CSF_ODE_STOPPED;
@@ -313,11 +313,11 @@ int step_events(run *r, csf_ode *ode, double ta, double tb, const double *y, dou
 		if (j < 4) {
 			const double *yj = r->yh + (size_t)(j - 1) * n; /* with contacts, computed above */
 			if (!r->cs) {
-				if (interp(r, ode, ta, tb, y, j / 4.0, r->ys)) return CSF_ODE_STOPPED;
+				if (csf_run_interp(r, ode, ta, tb, y, j / 4.0, r->ys)) return CSF_ODE_STOPPED;
 				yj = r->ys;
 			}
 			hi = ta + j / 4.0 * dt;
-			if (guards_at(r, hi, yj, r->gh)) return CSF_ODE_STOPPED;
+			if (csf_run_guards_at(r, hi, yj, r->gh)) return CSF_ODE_STOPPED;
 		} else {
 			hi = tb;
 			memcpy(r->gh, r->gb, ng * sizeof *r->gh);
@@ -335,7 +335,7 @@ int step_events(run *r, csf_ode *ode, double ta, double tb, const double *y, dou
 	for (size_t k = 0; found && k < ng; k++) {
 		if (!(r->ga[k] >= 0 && r->gh[k] < 0)) continue;
 		if (*which >= 0 && !known) {
-			if (guards_at(r, best, r->ye, r->gt)) return CSF_ODE_STOPPED;
+			if (csf_run_guards_at(r, best, r->ye, r->gt)) return CSF_ODE_STOPPED;
 			if ((st = substep_guards(r, ode, ta, tb, y, bl, msg, msglen))) return st;
 			memcpy(r->gl, r->gs, ng * sizeof *r->gl);
 			known = 1;

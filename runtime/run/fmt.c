@@ -26,14 +26,14 @@ void csf_fmt_double(char buf[32], double x)
 }
 
 /* x rounded down to one significant digit: a step to suggest. */
-double round_down(double x)
+double csf_run_round_down(double x)
 {
 	double e = pow(10, floor(log10(x))), d = floor(x / e * (1 + 1e-12));
 	return d * e;
 }
 
 /* A ratio or a count as a person writes it: 350, 1e6, 2.5e6. */
-void fmt_ratio(char buf[32], double x)
+void csf_run_fmt_ratio(char buf[32], double x)
 {
 	if (x < 1e4) {
 		snprintf(buf, 32, "%.0f", x);

@@ -49,7 +49,7 @@ static int jvp(void *ctx, const double *v, double *jv)
 	for (uint32_t i = 0; i < n; i++) size += (g->y[i] / p->yscale[i]) * (g->y[i] / p->yscale[i]);
 	double e = sqrt(DBL_EPSILON) * (1 + sqrt(size));
 	for (uint32_t i = 0; i < n; i++) g->yd[i] = g->y[i] + e * v[i] * p->yscale[i];
-	if (rhs(g->t, g->yd, g->fd, r)) return 1;
+	if (csf_run_rhs(g->t, g->yd, g->fd, r)) return 1;
 	for (uint32_t i = 0; i < n; i++) jv[i] = (g->fd[i] - g->f0[i]) / (e * p->yscale[i]);
 	return 0;
 }
@@ -63,7 +63,7 @@ static double guard_evals(const run *r) { return (double)r->nrhs + 2.0 * (double
  * limits no step, but a slower oscillation beside it does: the most
  * negative eigenvalue of J^2 gives it.
  */
-double stable_step(run *r, csf_ode *ode, const csf_eigs *e)
+double csf_run_stable_step(run *r, csf_ode *ode, const csf_eigs *e)
 {
 	guard *g = r->g;
 	double h = INFINITY;
@@ -79,7 +79,7 @@ double stable_step(run *r, csf_ode *ode, const csf_eigs *e)
 }
 
 /* How the dominant eigenvalues lie: on the imaginary axis, the real axis, or neither. */
-const char *eig_kind(const csf_eigs *e)
+const char *csf_run_eig_kind(const csf_eigs *e)
 {
 	int re = 1, im = 1;
 	for (int i = 0; i < e->n; i++) {
@@ -125,7 +125,7 @@ static void refuse_step(run *r, csf_ode *ode, double t, double h, double hc, dou
 {
 	guard *g = r->g;
 	const csf_prog *p = r->p;
-	progress_off(r);
+	csf_run_progress_off(r);
 	char hb[32], tb[32], why[96] = "", tolb[64] = "";
 	snprintf(hb, sizeof hb, "%.3g", hc);
 	csf_fmt_double(tb, t);
@@ -134,14 +134,14 @@ static void refuse_step(run *r, csf_ode *ode, double t, double h, double hc, dou
 	if (g->auto_step && h == 0) {
 		double tau = e->rho > 0 ? fmin(p->by, 1 / e->rho) : p->by;
 		snprintf(why, sizeof why, " (verlet's step for --tol %g)", g->vfrac * g->vfrac * 1e-4);
-		snprintf(tolb, sizeof tolb, ", --tol %g", round_down(0.81e-4 * (hs / tau) * (hs / tau)));
+		snprintf(tolb, sizeof tolb, ", --tol %g", csf_run_round_down(0.81e-4 * (hs / tau) * (hs / tau)));
 	}
 	fprintf(g->err,
 	        "error: %s%s%sstep %s s%s is %s the stability limit of %s for this scene (fastest time scale "
 	        "%.3g s; largest stable step %.3g s): use --step %g%s or an adaptive method\n",
 	        h > 0 ? "at t=" : "", h > 0 ? tb : "", h > 0 ? ", " : "", hb, why, hc < hs ? "at" : "beyond",
 	        csf_ode_method(ode), 1 / e->rho,
-	        hs, round_down(0.9 * hs), tolb);
+	        hs, csf_run_round_down(0.9 * hs), tolb);
 }
 
 /* Warning: an explicit method's steps of h held by its stability at t, for the eigenvalues e. */
@@ -152,12 +152,12 @@ static void warn_stiff(run *r, csf_ode *ode, double t, double h, const csf_eigs 
 	csf_fmt_double(tb, t);
 	if (g->have_ratio && g->ratio > 0) {
 		char x[32];
-		fmt_ratio(x, g->ratio);
+		csf_run_fmt_ratio(x, g->ratio);
 		snprintf(rb, sizeof rb, ", stiffness ratio %s%s", g->ratio_exact ? "" : "about ", x);
 	}
 	char more[32];
-	fmt_ratio(more, (r->tend - t) / h);
-	progress_off(r);
+	csf_run_fmt_ratio(more, (r->tend - t) / h);
+	csf_run_progress_off(r);
 	fprintf(g->err,
 	        "warning: at t=%s, after %lu steps, the problem looks stiff: the explicit method %s is held to steps "
 	        "of %.3g s by its stability (fastest time scale %.3g s%s) and needs some %s more; an implicit method "
@@ -171,7 +171,7 @@ static void warn_stiff(run *r, csf_ode *ode, double t, double h, const csf_eigs 
  * estimate cannot be made (a derivative not finite nearby) is passed
  * over: the integration reports what is wrong there.
  */
-int guard_check(run *r, csf_ode *ode, double t, const double *y, double h)
+int csf_run_guard_check(run *r, csf_ode *ode, double t, const double *y, double h)
 {
 	guard *g = r->g;
 	const csf_prog *p = r->p;
@@ -186,7 +186,7 @@ int guard_check(run *r, csf_ode *ode, double t, const double *y, double h)
 	g->t = t;
 	memcpy(g->y, y, p->ny * sizeof *y);
 	csf_eigs e;
-	if ((!g->exact && rhs(t, y, g->f0, r)) || csf_spectrum_dominant(g->sp, jvp, r, maxprod, &e)) {
+	if ((!g->exact && csf_run_rhs(t, y, g->f0, r)) || csf_spectrum_dominant(g->sp, jvp, r, maxprod, &e)) {
 		r->fail = 0;
 		goto out;
 	}
@@ -203,12 +203,12 @@ int guard_check(run *r, csf_ode *ode, double t, const double *y, double h)
 		/* implicit: back to dop853 when its own step is within dop853's stable step (not when h rho
 		   is 40 or more, past the region of every explicit method, without the search for it) */
 		double hn = csf_ode_next_step(ode);
-		au->soft = hn * e.rho < 40 && hn < stable_step(r, au->m[0], &e) ? au->soft + 1 : 0;
+		au->soft = hn * e.rho < 40 && hn < csf_run_stable_step(r, au->m[0], &e) ? au->soft + 1 : 0;
 		r->fail = 0;
 		if (au->soft >= 2) au->want = 1;
 		goto out;
 	}
-	double hs = stable_step(r, au ? au->m[0] : ode, &e); /* auto: dop853's */
+	double hs = csf_run_stable_step(r, au ? au->m[0] : ode, &e); /* auto: dop853's */
 	r->fail = 0;
 	if (g->fixed) {
 		double hc = g->h; /* the step to judge */
@@ -256,20 +256,20 @@ out:; /* a label before a declaration: C11 needs a statement */
 		g->next_step = g->steps + (unsigned long)fmax(1, floor(every));
 	}
 	clock_gettime(CLOCK_MONOTONIC, &c1);
-	g->seconds += seconds(c0, c1);
+	g->seconds += csf_run_seconds(c0, c1);
 	return halt;
 }
 
 /* After every step (csf_watch_fn): a signal halts the run; the progress line; a look when one is due. */
-int step_watch(void *ctx, double t, const double *y, double h)
+int csf_run_step_watch(void *ctx, double t, const double *y, double h)
 {
 	watch_ctx *w = ctx;
 	w->r->fail = 0; /* an evaluation that failed was in a trial step, tried again shorter */
 	if (csf_signal) return 1;
-	if (w->r->prog) progress(w->r, t);
+	if (w->r->prog) csf_run_progress(w->r, t);
 	guard *g = w->r->g;
 	if (!g) return 0;
 	g->steps++;
 	if (g->fixed ? g->steps < g->next_step && !g->due : guard_evals(w->r) < g->next) return 0;
-	return guard_check(w->r, w->ode, t, y, h);
+	return csf_run_guard_check(w->r, w->ode, t, y, h);
 }

@@ -8,7 +8,7 @@
 
 #include "run_int.h"
 
-int write_row(const csf_prog *p, const double *m, double t, FILE *out)
+int csf_run_write_row(const csf_prog *p, const double *m, double t, FILE *out)
 {
 	char b[32];
 	csf_out_begin();
@@ -29,7 +29,7 @@ int write_row(const csf_prog *p, const double *m, double t, FILE *out)
  * status 2, but for a reader that went away (EPIPE: `csfvm ... | head`),
  * which ends the run quietly as it ends cat, with the status of SIGPIPE.
  */
-int finish(FILE *out, FILE *err, int status, int werr)
+int csf_run_finish(FILE *out, FILE *err, int status, int werr)
 {
 	csf_out_begin();
 	int bad = out ? fflush(out) != 0 || ferror(out) : werr != 0; /* (no out: rows to a sink alone) */
@@ -45,7 +45,7 @@ int finish(FILE *out, FILE *err, int status, int werr)
 
 
 /* The CSV header: t and the columns' names. */
-void write_header(const csf_prog *p, FILE *out)
+void csf_run_write_header(const csf_prog *p, FILE *out)
 {
 	csf_out_begin();
 	fputs("t", out);

@@ -7,7 +7,7 @@
 #include "run_int.h"
 
 /* Seconds from a to b. */
-double seconds(struct timespec a, struct timespec b)
+double csf_run_seconds(struct timespec a, struct timespec b)
 {
 	return (double)(b.tv_sec - a.tv_sec) + 1e-9 * (double)(b.tv_nsec - a.tv_nsec);
 }
@@ -17,13 +17,13 @@ double seconds(struct timespec a, struct timespec b)
  * (P %), R rows/s, ETA E s", redrawn in place at most 10 times a second,
  * the first time after 0.1 s (a short run shows none).
  */
-void progress(run *r, double t)
+void csf_run_progress(run *r, double t)
 {
 	struct timespec now;
 	clock_gettime(CLOCK_MONOTONIC, &now);
-	if (seconds(r->drawn, now) < 0.1) return;
+	if (csf_run_seconds(r->drawn, now) < 0.1) return;
 	r->drawn = now;
-	double el = seconds(r->start, now);
+	double el = csf_run_seconds(r->start, now);
 	double frac = r->tend > 0 ? fmin(1, t / r->tend) : 1;
 	char eta[48] = "";
 	if (frac > 0 && frac < 1) snprintf(eta, sizeof eta, ", ETA %.0f s", el * (1 - frac) / frac);
@@ -34,7 +34,7 @@ void progress(run *r, double t)
 }
 
 /* Erases the progress line, before a message or at the end. */
-void progress_off(run *r)
+void csf_run_progress_off(run *r)
 {
 	if (!r->shown) return;
 	fputs("\r\033[K", r->err);

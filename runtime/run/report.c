@@ -21,7 +21,7 @@ static long first_nonfinite(const csf_prog *p, int sec, const double *m)
 static void report_nonfinite_value(const csf_prog *p, int sec, const double *m, double t, const char *what, FILE *err);
 
 /* Reports a non-finite value; with fixed steps, adds that the step is the likely cause. */
-void report_nonfinite(const csf_prog *p, int sec, const double *m, double t, const char *what, int fixed,
+void csf_run_report_nonfinite(const csf_prog *p, int sec, const double *m, double t, const char *what, int fixed,
                              FILE *err)
 {
 	report_nonfinite_value(p, sec, m, t, what, err);
@@ -59,14 +59,14 @@ static void report_nonfinite_value(const csf_prog *p, int sec, const double *m, 
 }
 
 /* "file:line: " of statement src, the rule whose guard had the last event (a comparison, or a contact's). */
-void report_event_src(const csf_prog *p, uint32_t src, FILE *err)
+void csf_run_report_event_src(const csf_prog *p, uint32_t src, FILE *err)
 {
 	const csf_src *sr = &p->srcs[src];
 	fprintf(err, "%s:%lu: ", csf_str(p, p->files[sr->file]), (unsigned long)sr->line);
 }
 
 /* The impacts at r->unsettled_t did not come to an end or could not be solved (csf_contact_settle): why, and what to do. */
-void report_unsettled(const run *r, FILE *err)
+void csf_run_report_unsettled(const run *r, FILE *err)
 {
 	char tb[32];
 	csf_fmt_double(tb, r->unsettled_t);
@@ -129,7 +129,7 @@ static void report_too_much(const run *r, const stop *s, const char *tb, FILE *e
 	else
 		snprintf(why, sizeof why, "the steps are held by the error control, not by stability: the "
 		                          "solution may be singular there");
-	if (r->nevents) report_event_src(r->p, r->last_src, err);
+	if (r->nevents) csf_run_report_event_src(r->p, r->last_src, err);
 	fprintf(err,
 	        "error: at t=%s, %d steps%s since the row at t=%s, the last of %s s: the run cannot get "
 	        "on (%s)\n",
@@ -153,7 +153,7 @@ static void report_chatter(const run *r, const stop *s, const char *tb, FILE *er
 		        tb, csf_str(p, p->objects[oi]), csf_str(p, p->objects[oj]), s->msg);
 		return;
 	}
-	report_event_src(p, r->last_src, err);
+	csf_run_report_event_src(p, r->last_src, err);
 	fprintf(err,
 	        "error: at t=%s the conditions switch back and forth without time advancing (%s): "
 	        "the model has no solution past this point (a sliding mode; make the switching "
@@ -165,11 +165,11 @@ static void report_chatter(const run *r, const stop *s, const char *tb, FILE *er
  * Why the run ended: its message on err (after the progress line is
  * erased), and its exit status. fixed: --fixed, for a non-finite value's note.
  */
-int report_stop(run *r, const stop *s, int fixed, FILE *err)
+int csf_run_report_stop(run *r, const stop *s, int fixed, FILE *err)
 {
 	const csf_prog *p = r->p;
 	char tb[32];
-	progress_off(r);
+	csf_run_progress_off(r);
 	csf_fmt_double(tb, s->t);
 	switch (s->kind) {
 	case STOP_END:
@@ -193,13 +193,13 @@ int report_stop(run *r, const stop *s, int fixed, FILE *err)
 		return 1;
 	}
 	case STOP_UNSETTLED:
-		report_unsettled(r, err);
+		csf_run_report_unsettled(r, err);
 		return 1;
 	case STOP_NONFINITE:
-		report_nonfinite(p, CSF_SEC_RHS, r->m, s->t, "a state derivative", fixed, err);
+		csf_run_report_nonfinite(p, CSF_SEC_RHS, r->m, s->t, "a state derivative", fixed, err);
 		return 1;
 	case STOP_NONFINITE_ROW:
-		report_nonfinite(p, CSF_SEC_OUT, r->m, s->t, "a watched or state value", fixed, err);
+		csf_run_report_nonfinite(p, CSF_SEC_OUT, r->m, s->t, "a watched or state value", fixed, err);
 		return 1;
 	case STOP_ASSERT: {
 		const csf_src *src = &p->srcs[p->asserts[s->which].src];

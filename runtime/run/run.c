@@ -72,7 +72,7 @@ static stop run_alloc(session *S)
 			r->yh = r->jw + 3 * n;
 		}
 	}
-	if (S->events) room_for_guards(r, r->ng ? r->ng : 1);
+	if (S->events) csf_run_room_for_guards(r, r->ng ? r->ng : 1);
 	if (p->ncrules) {
 		r->cs = csf_contacts_new(p);
 		r->x.contacts = r->cs; /* the CONTACT instruction's state */
@@ -108,12 +108,12 @@ static stop run_method(session *S, csf_opts *o)
 	int unbounded = !o->fixed && csf_method_dense(S->method) && !S->events;
 	double hmax = unbounded ? (r->tend > p->by ? r->tend : p->by) : p->by;
 	if (o->hmax > 0 && o->hmax < hmax) hmax = o->hmax;
-	S->ode = csf_ode_new(S->method, o->fixed, p->ny, p->by, hmax, o->tol, o->atol, p->yatol, p->yscale, p->vpair, rhs,
-	                     p->jtan ? jac : NULL, r, S->msg, sizeof S->msg);
+	S->ode = csf_ode_new(S->method, o->fixed, p->ny, p->by, hmax, o->tol, o->atol, p->yatol, p->yscale, p->vpair, csf_run_rhs,
+	                     p->jtan ? csf_run_jac : NULL, r, S->msg, sizeof S->msg);
 	if (S->ode && S->autom_on) { /* the implicit method ends its steps on the rows: at most by */
 		S->au.m[0] = S->ode;
 		S->au.m[1] = csf_ode_new(AUTO_STIFF, 0, p->ny, p->by, o->hmax > 0 && o->hmax < p->by ? o->hmax : p->by,
-		                         o->tol, o->atol, p->yatol, p->yscale, p->vpair, rhs, jac, r, S->msg, sizeof S->msg);
+		                         o->tol, o->atol, p->yatol, p->yscale, p->vpair, csf_run_rhs, csf_run_jac, r, S->msg, sizeof S->msg);
 		r->au = &S->au;
 		if (!S->au.m[1]) {
 			csf_ode_free(S->ode);
@@ -161,10 +161,10 @@ static stop run_guard(session *S, csf_opts *o)
 	}
 	if (ode) {
 		S->wc.ode = ode;
-		csf_ode_watch(ode, step_watch, &S->wc);
+		csf_ode_watch(ode, csf_run_step_watch, &S->wc);
 		if (r->au) {
 			S->wc_stiff.ode = S->au.m[1];
-			csf_ode_watch(S->au.m[1], step_watch, &S->wc_stiff);
+			csf_ode_watch(S->au.m[1], csf_run_step_watch, &S->wc_stiff);
 		}
 	}
 	/* a train of bounces that would end within zeno is at rest; the integrator's accuracy (runtime/contact/) */
@@ -181,7 +181,7 @@ static stop run_modes(session *S)
 	double *y = S->y;
 	/* the masses first, as the rules make them: the impulses and forces of contacts divide
 	   by them (a derivative that is not finite is reported by update_modes below) */
-	long b = r->cs && !rhs(0, y, r->fs, r) ? csf_contacts_bad_mass(p, r->m) : -1;
+	long b = r->cs && !csf_run_rhs(0, y, r->fs, r) ? csf_contacts_bad_mass(p, r->m) : -1;
 	r->fail = 0;
 	if (b >= 0) {
 		stop s = stop_kind_only(STOP_BAD_MASS);
@@ -189,13 +189,13 @@ static stop run_modes(session *S)
 		return s;
 	}
 	/* the modes at t = 0: each comparison's side, contacts at rest or colliding */
-	if (update_modes(r, 0, y) || (p->ny && guards_at(r, 0, y, r->ga))) {
+	if (csf_run_update_modes(r, 0, y) || (p->ny && csf_run_guards_at(r, 0, y, r->ga))) {
 		if (r->unsettled) return stop_kind_only(STOP_UNSETTLED);
 		if (r->nomem) return stop_kind_only(STOP_NOMEM);
 		return stop_at(STOP_NONFINITE, 0);
 	}
 	memcpy(r->fa, r->fs, p->ny * sizeof *r->fa);
-	stop_now(r, 0); /* a 'stop when' condition true at the start: the row at t = 0 is the last */
+	csf_run_stop_now(r, 0); /* a 'stop when' condition true at the start: the row at t = 0 is the last */
 	return stop_kind_only(STOP_END);
 }
 
@@ -226,7 +226,7 @@ static stop run_start(session *S)
 	if (r->g && !gd->fixed) /* the first look when the run has spent LOOK_EVERY times what one may cost */
 		gd->next = LOOK_EVERY * 2.0 * (p->ny < 12 ? p->ny + 1 : 12);
 	if (r->g && gd->fixed) { /* the first look, before any step */
-		if (guard_check(r, ode, 0, y, 0)) return stop_kind_only(STOP_HALTED);
+		if (csf_run_guard_check(r, ode, 0, y, 0)) return stop_kind_only(STOP_HALTED);
 		if (gd->auto_step) S->fixed_h = gd->h;
 	}
 	return stop_kind_only(STOP_END);
@@ -255,7 +255,7 @@ static stop advance_stop(session *S, int st, double t, double tk)
 		s.t_row = tk - r->p->by;
 		s.events = S->events;
 		/* stiff only when measured so: the step at the stability limit of the guard's last look */
-		s.hs = r->g && S->gd.checks && !S->fixed && !S->au.cur ? stable_step(r, S->ode, &S->gd.last) : INFINITY;
+		s.hs = r->g && S->gd.checks && !S->fixed && !S->au.cur ? csf_run_stable_step(r, S->ode, &S->gd.last) : INFINITY;
 		break;
 	case ADV_BUDGET:
 		s.kind = STOP_BUDGET;
@@ -283,10 +283,10 @@ static stop run_advance(session *S, double *t, double *tk, int *last)
 	run *r = &S->r;
 	csf_ode *ode = S->ode;
 	double trow = *t; /* the last row's time */
-	int st = r->own      ? advance_dense(r, *tk, S->y, S->msg, sizeof S->msg)
-	         : S->events ? advance_events(r, ode, t, *tk, S->fixed, S->fixed_h, S->y, S->msg, sizeof S->msg)
+	int st = r->own      ? csf_run_advance_dense(r, *tk, S->y, S->msg, sizeof S->msg)
+	         : S->events ? csf_run_advance_events(r, ode, t, *tk, S->fixed, S->fixed_h, S->y, S->msg, sizeof S->msg)
 	         : S->fixed  ? csf_ode_advance_fixed(ode, t, *tk, S->fixed_h, S->y, S->msg, sizeof S->msg)
-	                     : advance_plain(r, ode, t, *tk, S->y, S->msg, sizeof S->msg);
+	                     : csf_run_advance_plain(r, ode, t, *tk, S->y, S->msg, sizeof S->msg);
 	if (st == CSF_ODE_HALTED && csf_signal) {
 		*last = 1;
 		return stop_kind_only(STOP_SIGNAL);
@@ -301,7 +301,7 @@ static stop run_advance(session *S, double *t, double *tk, int *last)
 		st = CSF_ODE_OK;
 	}
 	if (st == CSF_ODE_OK) return stop_kind_only(STOP_END);
-	progress_off(r);
+	csf_run_progress_off(r);
 	return advance_stop(S, st, *t, *tk);
 }
 
@@ -309,7 +309,7 @@ static stop run_advance(session *S, double *t, double *tk, int *last)
 static int emit_row(session *S, double tk)
 {
 	const csf_prog *p = S->r.p;
-	if (S->out && write_row(p, S->r.m, tk, S->out)) return -1;
+	if (S->out && csf_run_write_row(p, S->r.m, tk, S->out)) return -1;
 	if (!S->sink) return 0;
 	S->v[0] = tk;
 	for (uint32_t i = 0; i < p->ncols; i++) S->v[i + 1] = S->r.m[p->cols[i].slot];
@@ -322,8 +322,8 @@ static stop run_row(session *S, double tk, int *last)
 	run *r = &S->r;
 	const csf_prog *p = r->p;
 	if (S->events && !S->ode) { /* no state: the conditions depend on t alone, and are looked at on the rows */
-		free_modes(r, tk, S->y);
-		stop_now(r, tk);
+		csf_run_free_modes(r, tk, S->y);
+		csf_run_stop_now(r, tk);
 	}
 	r->m[p->tslot] = tk;
 	memcpy(r->m + p->ystart, S->y, p->ny * sizeof(double));
@@ -337,7 +337,7 @@ static stop run_row(session *S, double tk, int *last)
 	for (uint32_t i = 0; i < p->ny; i++) bad |= !isfinite(r->m[p->ystart + i]);
 	for (uint32_t i = 0; i < p->ncols; i++) bad |= !isfinite(r->m[p->cols[i].slot]);
 	if (bad) {
-		progress_off(r);
+		csf_run_progress_off(r);
 		csf_vm_exec(p, &r->x, CSF_SEC_OUT, r->m, r->m + p->ystart, r->m + p->dstart); /* every value, for the report */
 		return stop_at(STOP_NONFINITE_ROW, tk);
 	}
@@ -361,7 +361,7 @@ static stop run_rows(session *S)
 	for (double k = 0; k <= S->kmax; k++) {
 		double tk = k * p->by;
 		if (csf_signal) return stop_kind_only(STOP_SIGNAL); /* after the last whole row */
-		if (r->prog) progress(r, t);
+		if (r->prog) csf_run_progress(r, t);
 		if (S->ode && tk > t) {
 			stop s = run_advance(S, &t, &tk, &last);
 			if (s.kind != STOP_END || last) return s;
@@ -408,7 +408,7 @@ static void stats_guard(const session *S, FILE *err)
 	char rb[64] = "", hb[160] = "";
 	if (gd->have_ratio && gd->ratio > 0) {
 		char x[32];
-		fmt_ratio(x, gd->ratio);
+		csf_run_fmt_ratio(x, gd->ratio);
 		snprintf(rb, sizeof rb, ", stiffness ratio %s%s", gd->ratio_exact ? "" : "about ", x);
 	}
 	if (S->fixed && gd->hrho > 0)
@@ -420,7 +420,7 @@ static void stats_guard(const session *S, FILE *err)
 	fprintf(err,
 	        "stats: stability: rho %.3g 1/s (fastest time scale %.3g s, dominant eigenvalues %s)%s%s; %lu looks, "
 	        "%lu Jacobian-vector products, %.6f s\n",
-	        gd->rho_max, gd->rho_max > 0 ? 1 / gd->rho_max : INFINITY, eig_kind(&gd->at_max), rb, hb, gd->checks,
+	        gd->rho_max, gd->rho_max > 0 ? 1 / gd->rho_max : INFINITY, csf_run_eig_kind(&gd->at_max), rb, hb, gd->checks,
 	        csf_spectrum_products(gd->sp), gd->seconds);
 }
 
@@ -440,7 +440,7 @@ static void run_stats(const session *S, csf_opts *o, FILE *err)
 	}
 	o->run_steps = steps;
 	o->run_rhs = r->nrhs;
-	o->run_seconds = seconds(S->t0, t1);
+	o->run_seconds = csf_run_seconds(S->t0, t1);
 	if (o->stats) stats_run(S, o, steps, rejected, err);
 	if (o->stats && S->au.n) stats_auto(S, err);
 	if (o->stats && r->g && S->gd.checks) stats_guard(S, err);
@@ -497,15 +497,15 @@ int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, co
 	stop s = run_alloc(&S);
 	if (s.kind == STOP_END) s = run_method(&S, o);
 	if (s.kind == STOP_END) {
-		if (out) write_header(p, out);
+		if (out) csf_run_write_header(p, out);
 		s = run_guard(&S, o);
 	}
 	if (s.kind == STOP_END) s = run_start(&S);
 	if (s.kind == STOP_END) s = run_rows(&S);
-	int status = report_stop(&S.r, &s, o->fixed, err);
+	int status = csf_run_report_stop(&S.r, &s, o->fixed, err);
 	run_stats(&S, o, err);
 	run_free(&S);
-	return finish(out, err, status, S.werr);
+	return csf_run_finish(out, err, status, S.werr);
 }
 
 int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *err)

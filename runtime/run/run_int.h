@@ -181,51 +181,51 @@ typedef struct guard {
 typedef struct watch_ctx { run *r; csf_ode *ode; } watch_ctx;
 
 /* progress.c */
-double seconds(struct timespec a, struct timespec b);
-void progress(run *r, double t);
-void progress_off(run *r);
+double csf_run_seconds(struct timespec a, struct timespec b);
+void csf_run_progress(run *r, double t);
+void csf_run_progress_off(run *r);
 
 /* fmt.c */
-double round_down(double x);
-void fmt_ratio(char buf[32], double x);
+double csf_run_round_down(double x);
+void csf_run_fmt_ratio(char buf[32], double x);
 
 /* eval.c */
-int rhs(double t, const double *y, double *dydt, void *ctx);
-int jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx);
+int csf_run_rhs(double t, const double *y, double *dydt, void *ctx);
+int csf_run_jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx);
 
 /* report.c */
-void report_nonfinite(const csf_prog *p, int sec, const double *m, double t, const char *what, int fixed, FILE *err);
-void report_event_src(const csf_prog *p, uint32_t src, FILE *err);
-void report_unsettled(const run *r, FILE *err);
-int report_stop(run *r, const stop *s, int fixed, FILE *err);
+void csf_run_report_nonfinite(const csf_prog *p, int sec, const double *m, double t, const char *what, int fixed, FILE *err);
+void csf_run_report_event_src(const csf_prog *p, uint32_t src, FILE *err);
+void csf_run_report_unsettled(const run *r, FILE *err);
+int csf_run_report_stop(run *r, const stop *s, int fixed, FILE *err);
 
 /* output.c */
-int write_row(const csf_prog *p, const double *m, double t, FILE *out);
-int finish(FILE *out, FILE *err, int status, int werr);
-void write_header(const csf_prog *p, FILE *out);
+int csf_run_write_row(const csf_prog *p, const double *m, double t, FILE *out);
+int csf_run_finish(FILE *out, FILE *err, int status, int werr);
+void csf_run_write_header(const csf_prog *p, FILE *out);
 
 /* events.c */
-int guards_at(run *r, double t, const double *y, double *g);
-void free_modes(run *r, double t, const double *y);
-int room_for_guards(run *r, size_t ng);
-int update_modes(run *r, double t, double *y);
-double location_tol(const csf_prog *p);
-int interp(run *r, csf_ode *ode, double ta, double tb, const double *yb, double s, double *out);
-int step_events(run *r, csf_ode *ode, double ta, double tb, const double *y, double *te, long *which, char *msg,
+int csf_run_guards_at(run *r, double t, const double *y, double *g);
+void csf_run_free_modes(run *r, double t, const double *y);
+int csf_run_room_for_guards(run *r, size_t ng);
+int csf_run_update_modes(run *r, double t, double *y);
+double csf_run_location_tol(const csf_prog *p);
+int csf_run_interp(run *r, csf_ode *ode, double ta, double tb, const double *yb, double s, double *out);
+int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double *y, double *te, long *which, char *msg,
                 size_t msglen);
 
 /* guard.c */
-double stable_step(run *r, csf_ode *ode, const csf_eigs *e);
-const char *eig_kind(const csf_eigs *e);
-int guard_check(run *r, csf_ode *ode, double t, const double *y, double h);
-int step_watch(void *ctx, double t, const double *y, double h);
+double csf_run_stable_step(run *r, csf_ode *ode, const csf_eigs *e);
+const char *csf_run_eig_kind(const csf_eigs *e);
+int csf_run_guard_check(run *r, csf_ode *ode, double t, const double *y, double h);
+int csf_run_step_watch(void *ctx, double t, const double *y, double h);
 
 /* advance.c */
-void stop_now(run *r, double t);
-int take_event(run *r, csf_ode *ode, double t, double *y);
-int advance_plain(run *r, csf_ode *ode, double *t, double t1, double *y, char *msg, size_t msglen);
-int advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed, double h, double *y, char *msg,
+void csf_run_stop_now(run *r, double t);
+int csf_run_take_event(run *r, csf_ode *ode, double t, double *y);
+int csf_run_advance_plain(run *r, csf_ode *ode, double *t, double t1, double *y, char *msg, size_t msglen);
+int csf_run_advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed, double h, double *y, char *msg,
                    size_t msglen);
-int advance_dense(run *r, double tk, double *y, char *msg, size_t msglen);
+int csf_run_advance_dense(run *r, double tk, double *y, char *msg, size_t msglen);
 
 #endif

@@ -40,7 +40,7 @@
 int (*csf_sweep_distribute)(csf_sweep *s);
 
 
-int sweep_err(csf_sweep *S, const char *fmt, ...)
+int csf_sweep_err(csf_sweep *S, const char *fmt, ...)
 {
 	va_list ap;
 	va_start(ap, fmt);
@@ -74,21 +74,21 @@ static int add_param(csf_sweep *S, const char *name, const char *what)
 	char why[400];
 	csf_pref r;
 	for (int k = 0; k < S->npar; k++)
-		if (strcmp(S->par[k].name, name) == 0) return sweep_err(S, "%s: %s is swept twice", what, name);
-	if (csf_param_find(S->p, name, &r, why, sizeof why)) return sweep_err(S, "%s: %s", what, why);
+		if (strcmp(S->par[k].name, name) == 0) return csf_sweep_err(S, "%s: %s is swept twice", what, name);
+	if (csf_param_find(S->p, name, &r, why, sizeof why)) return csf_sweep_err(S, "%s: %s", what, why);
 	if (*csf_str(S->p, r.cls->why))
-		return sweep_err(S, "%s: %s cannot be overridden: %s", what, name, csf_str(S->p, r.cls->why));
+		return csf_sweep_err(S, "%s: %s cannot be overridden: %s", what, name, csf_str(S->p, r.cls->why));
 	if (r.width != 1)
-		return sweep_err(S, "%s: %s is a vector; a sweep varies a scalar (a global the vector is computed from)", what, name);
+		return csf_sweep_err(S, "%s: %s is a vector; a sweep varies a scalar (a global the vector is computed from)", what, name);
 	sparam *q = realloc(S->par, (size_t)(S->npar + 1) * sizeof *q);
-	if (!q) return sweep_err(S, "out of memory");
+	if (!q) return csf_sweep_err(S, "out of memory");
 	S->par = q;
 	const char *unit = csf_str(S->p, r.cls->unit);
 	size_t hn = strlen(name) + strlen(unit) + 4;
 	char *head = malloc(hn);
 	if (head) snprintf(head, hn, *unit ? "%s [%s]" : "%s", name, unit);
 	S->par[S->npar] = (sparam){ xstrndup0(name, strlen(name)), head, r };
-	if (!S->par[S->npar].name || !head) return sweep_err(S, "out of memory");
+	if (!S->par[S->npar].name || !head) return csf_sweep_err(S, "out of memory");
 	return S->npar++;
 }
 
@@ -106,7 +106,7 @@ static axis *add_axis(csf_sweep *S, int first, int n, size_t count)
 static int parse_grid(csf_sweep *S, const char *spec)
 {
 	const char *eq = strchr(spec, '='), *c1 = eq ? strchr(eq + 1, ':') : NULL, *c2 = c1 ? strchr(c1 + 1, ':') : NULL;
-	if (!c2) return sweep_err(S, "--sweep '%s': expected NAME=FROM:TO:COUNT [UNIT]", spec);
+	if (!c2) return csf_sweep_err(S, "--sweep '%s': expected NAME=FROM:TO:COUNT [UNIT]", spec);
 	char *name = xstrndup0(spec, (size_t)(eq - spec)), *from = xstrndup0(eq + 1, (size_t)(c1 - eq - 1)),
 	     *to = xstrndup0(c1 + 1, (size_t)(c2 - c1 - 1));
 	int st = -1;
@@ -115,7 +115,7 @@ static int parse_grid(csf_sweep *S, const char *spec)
 	errno = 0;
 	long count = strtol(c2 + 1, &end, 10);
 	if (end == c2 + 1 || errno || count < 1 || count > 100000000) {
-		sweep_err(S, "--sweep '%s': COUNT must be a whole number from 1 to 1e8", spec);
+		csf_sweep_err(S, "--sweep '%s': COUNT must be a whole number from 1 to 1e8", spec);
 		goto done;
 	}
 	int k = add_param(S, trim(name), "--sweep");
@@ -130,10 +130,10 @@ static int parse_grid(csf_sweep *S, const char *spec)
 		snprintf(tt, tn, "%s %s", to, unit);
 		if (csf_param_value(S->p, S->par[k].name, &S->par[k].ref, ft, a, why, sizeof why) ||
 		    csf_param_value(S->p, S->par[k].name, &S->par[k].ref, tt, b, why, sizeof why)) {
-			sweep_err(S, "--sweep '%s': %s", spec, why);
+			csf_sweep_err(S, "--sweep '%s': %s", spec, why);
 		} else {
 			axis *ax = add_axis(S, k, 1, (size_t)count);
-			if (!ax) sweep_err(S, "out of memory");
+			if (!ax) csf_sweep_err(S, "out of memory");
 			for (long i = 0; ax && i < count; i++)
 				ax->vals[i] = i == count - 1 && count > 1 ? b[0] : a[0] + (b[0] - a[0]) * ((double)i / (double)(count - 1 ? count - 1 : 1));
 			st = ax ? 0 : -1;
@@ -202,7 +202,7 @@ static int parse_file(csf_sweep *S, const char *path)
 {
 	size_t len;
 	char *text = (char *)csf_read_file(path, &len);
-	if (!text) return sweep_err(S, "--sweep-file: cannot read %s: %s", path, strerror(errno));
+	if (!text) return csf_sweep_err(S, "--sweep-file: cannot read %s: %s", path, strerror(errno));
 	text[len] = '\0';
 	int st = -1, first = S->npar, n = 0;
 	enum { MAXF = 256 };
@@ -227,13 +227,13 @@ static int parse_file(csf_sweep *S, const char *path)
 				if (pass) continue;
 				if (nf > MAXF) {
 					free(copy);
-					sweep_err(S, "--sweep-file %s: more than %d columns", path, MAXF);
+					csf_sweep_err(S, "--sweep-file %s: more than %d columns", path, MAXF);
 					goto out;
 				}
 				for (int k = 0; k < nf; k++) {
 					char *name = header_cell(f[k], &units[k]);
 					if (!name) {
-						sweep_err(S, "--sweep-file %s: header '%s': expected NAME or NAME [UNIT]", path, f[k]);
+						csf_sweep_err(S, "--sweep-file %s: header '%s': expected NAME or NAME [UNIT]", path, f[k]);
 						free(copy);
 						goto out;
 					}
@@ -247,7 +247,7 @@ static int parse_file(csf_sweep *S, const char *path)
 			}
 			if (nf != n) {
 				if (!pass) free(copy);
-				sweep_err(S, "--sweep-file %s:%d: %d values, the header names %d", path, lineno, nf, n);
+				csf_sweep_err(S, "--sweep-file %s:%d: %d values, the header names %d", path, lineno, nf, n);
 				goto out;
 			}
 			if (pass)
@@ -257,7 +257,7 @@ static int parse_file(csf_sweep *S, const char *path)
 					double v[3];
 					const char *cell = cell_value(S, q, units[k], f[k], buf, sizeof buf);
 					if (csf_param_value(S->p, q->name, &q->ref, cell, v, why, sizeof why)) {
-						sweep_err(S, "--sweep-file %s:%d: %s", path, lineno, why);
+						csf_sweep_err(S, "--sweep-file %s:%d: %s", path, lineno, why);
 						goto out;
 					}
 					ax->vals[row * (size_t)n + (size_t)k] = v[0];
@@ -268,12 +268,12 @@ static int parse_file(csf_sweep *S, const char *path)
 			free(copy);
 			rows = row;
 			if (n == 0 || rows == 0) {
-				sweep_err(S, "--sweep-file %s: no header or no rows", path);
+				csf_sweep_err(S, "--sweep-file %s: no header or no rows", path);
 				goto out;
 			}
 			ax = add_axis(S, first, n, rows);
 			if (!ax) {
-				sweep_err(S, "out of memory");
+				csf_sweep_err(S, "out of memory");
 				goto out;
 			}
 		}
@@ -286,12 +286,12 @@ out:
 }
 
 /* The header cell of column c of a run's output: "t", or the column's name with its unit. */
-const char *sweep_col_head(const csf_prog *p, uint32_t c) { return c == 0 ? "t" : csf_str(p, p->cols[c - 1].name); }
+const char *csf_sweep_col_head(const csf_prog *p, uint32_t c) { return c == 0 ? "t" : csf_str(p, p->cols[c - 1].name); }
 
 /* The length of column k's header without its unit. */
-size_t sweep_head_len(const csf_prog *p, uint32_t k)
+size_t csf_sweep_head_len(const csf_prog *p, uint32_t k)
 {
-	const char *h = sweep_col_head(p, k), *u = strstr(h, " [");
+	const char *h = csf_sweep_col_head(p, k), *u = strstr(h, " [");
 	return u ? (size_t)(u - h) : strlen(h);
 }
 
@@ -306,24 +306,24 @@ static uint32_t find_column(csf_sweep *S, const char *c)
 	size_t n = strlen(c);
 	uint32_t found = UINT32_MAX, nsuffix = 0, ends = UINT32_MAX;
 	for (uint32_t k = 0; k <= p->ncols; k++) {
-		const char *h = sweep_col_head(p, k);
-		size_t hn = sweep_head_len(p, k);
+		const char *h = csf_sweep_col_head(p, k);
+		size_t hn = csf_sweep_head_len(p, k);
 		if (hn == n && strncmp(h, c, n) == 0) return k;
 		if (hn > n && h[hn - n - 1] == '.' && strncmp(h + hn - n, c, n) == 0) {
 			if (!nsuffix++) ends = k;
 			else if (nsuffix == 2)
-				sweep_err(S, "--sweep-summary: '%s' names several columns ('%.*s', '%.*s'...): name one as in the header",
-				     c, (int)sweep_head_len(p, ends), sweep_col_head(p, ends), (int)hn, h);
+				csf_sweep_err(S, "--sweep-summary: '%s' names several columns ('%.*s', '%.*s'...): name one as in the header",
+				     c, (int)csf_sweep_head_len(p, ends), csf_sweep_col_head(p, ends), (int)hn, h);
 		}
 	}
 	if (nsuffix == 1) return ends;
 	if (nsuffix > 1) return found;
 	const char **names = malloc((p->ncols + 1) * sizeof *names);
 	char **cut = calloc(p->ncols + 1, sizeof *cut);
-	for (uint32_t k = 0; names && cut && k <= p->ncols; k++) names[k] = cut[k] = xstrndup0(sweep_col_head(p, k), sweep_head_len(p, k));
+	for (uint32_t k = 0; names && cut && k <= p->ncols; k++) names[k] = cut[k] = xstrndup0(csf_sweep_col_head(p, k), csf_sweep_head_len(p, k));
 	const char *near = names && cut ? csf_suggest_name(c, names, (int)p->ncols + 1) : NULL;
-	if (near) sweep_err(S, "--sweep-summary: '%s' is not a watched column; did you mean '%s'?", c, near);
-	else sweep_err(S, "--sweep-summary: '%s' is not a watched column (the header of a run names them)", c);
+	if (near) csf_sweep_err(S, "--sweep-summary: '%s' is not a watched column; did you mean '%s'?", c, near);
+	else csf_sweep_err(S, "--sweep-summary: '%s' is not a watched column (the header of a run names them)", c);
 	for (uint32_t k = 0; cut && k <= p->ncols; k++) free(cut[k]);
 	free(cut);
 	free(names);
@@ -340,17 +340,17 @@ static int window_time(csf_sweep *S, const char *spec, const char **s, double *t
 	errno = 0;
 	*t = strtod(*s, &end);
 	if (end == *s || errno == ERANGE || !isfinite(*t))
-		return sweep_err(S, "--sweep-summary '%s': expected a time after 'from' or 'to' ('from 50 s')", spec);
+		return csf_sweep_err(S, "--sweep-summary '%s': expected a time after 'from' or 'to' ('from 50 s')", spec);
 	*s = end;
 	while (**s == ' ') ++*s;
 	if (!isalpha((unsigned char)**s)) return 0;
 	csf_unit u;
 	const char *why, *uend;
 	if (csf_unit_parse(*s, &uend, &u, &why))
-		return sweep_err(S, "--sweep-summary '%s': the time's unit: %s", spec, why);
+		return csf_sweep_err(S, "--sweep-summary '%s': the time's unit: %s", spec, why);
 	for (size_t k = 0; k < sizeof u.dim; k++)
 		if (u.dim[k] != (k == 2))
-			return sweep_err(S, "--sweep-summary '%s': '%.*s' is not a unit of time", spec, (int)(uend - *s), *s);
+			return csf_sweep_err(S, "--sweep-summary '%s': '%.*s' is not a unit of time", spec, (int)(uend - *s), *s);
 	const double d[CSF_NDIM] = { 0, 0, 1, 0 };
 	*t *= csf_units_to_system(u.factor, d, S->p->ubase);
 	*s = uend;
@@ -370,11 +370,11 @@ static int parse_summary(csf_sweep *S, const char *spec)
 		for (int k = 0; open && k < NFN; k++)
 			if ((size_t)(open - s) == strlen(fn[k]) && memcmp(s, fn[k], (size_t)(open - s)) == 0) func = k;
 		if (func < 0 || !close)
-			return sweep_err(S, "--sweep-summary '%s': expected final(COLUMN), max(COLUMN), min(COLUMN), mean(COLUMN) "
+			return csf_sweep_err(S, "--sweep-summary '%s': expected final(COLUMN), max(COLUMN), min(COLUMN), mean(COLUMN) "
 			            "or rms(COLUMN), each optionally followed by 'from TIME' and 'to TIME', separated by commas",
 			            spec);
 		char *col = xstrndup0(open + 1, (size_t)(close - open - 1));
-		if (!col) return sweep_err(S, "out of memory");
+		if (!col) return csf_sweep_err(S, "out of memory");
 		char *c = trim(col);
 		uint32_t found = find_column(S, c);
 		if (found == UINT32_MAX) {
@@ -398,28 +398,28 @@ static int parse_summary(csf_sweep *S, const char *spec)
 		while (wend > wstart && wend[-1] == ' ') wend--;
 		int st = 0;
 		if (*w && *w != ',')
-			st = sweep_err(S, "--sweep-summary '%s': unexpected '%s' after %s(%s): expected 'from TIME', 'to TIME' or a comma",
+			st = csf_sweep_err(S, "--sweep-summary '%s': unexpected '%s' after %s(%s): expected 'from TIME', 'to TIME' or a comma",
 			          spec, w, fn[func], c);
-		else if (!(from <= to)) st = sweep_err(S, "--sweep-summary '%s': the window ends before it starts", spec);
+		else if (!(from <= to)) st = csf_sweep_err(S, "--sweep-summary '%s': the window ends before it starts", spec);
 		else if (from > S->p->till)
-			st = sweep_err(S, "--sweep-summary '%s': the window starts after the run ends (t = %g)", spec, S->p->till);
+			st = csf_sweep_err(S, "--sweep-summary '%s': the window starts after the run ends (t = %g)", spec, S->p->till);
 		if (st) return free(col), st;
 		sumcol *q = realloc(S->sum, (size_t)(S->nsum + 1) * sizeof *q);
-		if (!q) return free(col), sweep_err(S, "out of memory");
+		if (!q) return free(col), csf_sweep_err(S, "out of memory");
 		S->sum = q;
-		const char *h = sweep_col_head(S->p, found), *unit = strstr(h, " [");
+		const char *h = csf_sweep_col_head(S->p, found), *unit = strstr(h, " [");
 		size_t wn = (size_t)(wend - wstart);
-		size_t cn = sweep_head_len(S->p, found), hn = strlen(fn[func]) + cn + wn + (unit ? strlen(unit) : 0) + 4;
+		size_t cn = csf_sweep_head_len(S->p, found), hn = strlen(fn[func]) + cn + wn + (unit ? strlen(unit) : 0) + 4;
 		char *head = malloc(hn);
 		if (head)
 			snprintf(head, hn, "%s(%.*s)%s%.*s%s", fn[func], (int)cn, h, wn ? " " : "", (int)wn, wstart, unit ? unit : "");
 		S->sum[S->nsum++] = (sumcol){ func, found, from, to, head };
 		free(col);
-		if (!head) return sweep_err(S, "out of memory");
+		if (!head) return csf_sweep_err(S, "out of memory");
 		s = w;
 		if (*s == ',') s++;
 	}
-	return S->nsum ? 0 : sweep_err(S, "--sweep-summary: no column named");
+	return S->nsum ? 0 : csf_sweep_err(S, "--sweep-summary: no column named");
 }
 
 static void sweep_free(csf_sweep *S)
@@ -442,13 +442,13 @@ int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const
 		if (parse_grid(&S, o->sweeps[k])) goto out;
 	if (o->summary && parse_summary(&S, o->summary)) goto out;
 	if (S.nax > 64) {
-		sweep_err(&S, "more than 64 sweeps");
+		csf_sweep_err(&S, "more than 64 sweeps");
 		goto out;
 	}
 	S.nvar = 1;
 	for (int a = 0; a < S.nax; a++) {
 		if (S.nvar > (size_t)1e12 / S.ax[a].count) {
-			sweep_err(&S, "more than 1e12 variants");
+			csf_sweep_err(&S, "more than 1e12 variants");
 			goto out;
 		}
 		S.nvar *= S.ax[a].count;
@@ -462,13 +462,13 @@ int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const
 			if (csf_overlay_add(&S.init, 0, 0)) goto nomem; /* room for the variant's values */
 	if (S.out_dir) {
 		if (mkdir(S.out_dir, 0777) && errno != EEXIST) {
-			sweep_err(&S, "--out-dir: cannot create %s: %s", S.out_dir, strerror(errno));
+			csf_sweep_err(&S, "--out-dir: cannot create %s: %s", S.out_dir, strerror(errno));
 			goto out;
 		}
 		char path[4096];
 		snprintf(path, sizeof path, "%s/index.csv", S.out_dir);
 		if (!(S.index = fopen(path, "w"))) {
-			sweep_err(&S, "--out-dir: cannot write %s: %s", path, strerror(errno));
+			csf_sweep_err(&S, "--out-dir: cannot write %s: %s", path, strerror(errno));
 			goto out;
 		}
 		fputs("run,file,status", S.index);
@@ -480,7 +480,7 @@ int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const
 	if ((size_t)jobs > S.nvar) jobs = (long)S.nvar;
 	S.status = 0;
 	int r = csf_sweep_distribute ? csf_sweep_distribute(&S) : 1;
-	if (r > 0) r = jobs > 1 ? sweep_run_forked(&S, (int)jobs) : sweep_run_serial(&S);
+	if (r > 0) r = jobs > 1 ? csf_sweep_run_forked(&S, (int)jobs) : csf_sweep_run_serial(&S);
 	if (r < 0 && S.status < 2) S.status = 2;
 	if (fflush(out) || ferror(out)) S.status = errno == EPIPE ? 128 + SIGPIPE : 2;
 	if (S.index && fclose(S.index)) S.status = 2;
@@ -488,7 +488,7 @@ int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const
 	st = csf_signal ? 128 + csf_signal : S.status;
 	goto out;
 nomem:
-	sweep_err(&S, "out of memory");
+	csf_sweep_err(&S, "out of memory");
 out:
 	if (S.index) fclose(S.index);
 	sweep_free(&S);

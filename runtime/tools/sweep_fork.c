@@ -40,7 +40,7 @@ static int read_all(int fd, void *buf, size_t n)
 
 
 /* Runs every variant here, in order. */
-int sweep_run_serial(csf_sweep *S)
+int csf_sweep_run_serial(csf_sweep *S)
 {
 	for (size_t i = 0; i < S->nvar && !csf_signal; i++) {
 		size_t len = 0;
@@ -91,7 +91,7 @@ static int send_task(csf_sweep *S, worker *w, size_t *next, size_t batch)
  * that arrive before their turn wait in got[] until the writer reaches
  * them.
  */
-int sweep_run_forked(csf_sweep *S, int nw)
+int csf_sweep_run_forked(csf_sweep *S, int nw)
 {
 	worker *w = calloc((size_t)nw, sizeof *w);
 	unsigned char **got = calloc(S->nvar, sizeof *got);
@@ -99,7 +99,7 @@ int sweep_run_forked(csf_sweep *S, int nw)
 	struct pollfd *pf = calloc((size_t)nw, sizeof *pf);
 	if (!w || !got || !glen || !pf) {
 		free(w), free(got), free(glen), free(pf);
-		return sweep_err(S, "out of memory");
+		return csf_sweep_err(S, "out of memory");
 	}
 	fflush(NULL);
 	int started = 0, bad = 0;
@@ -123,7 +123,7 @@ int sweep_run_forked(csf_sweep *S, int nw)
 		close(t[0]), close(r[1]);
 		w[started] = (worker){ pid, t[1], r[0], 0 };
 	}
-	if (started == 0) bad = sweep_err(S, "cannot start worker processes: %s", strerror(errno));
+	if (started == 0) bad = csf_sweep_err(S, "cannot start worker processes: %s", strerror(errno));
 	size_t next = 0, written = 0, batch = S->nvar / ((size_t)(started ? started : 1) * 32);
 	batch = batch < 1 ? 1 : batch > 64 ? 64 : batch;
 	for (int k = 0; k < started && !bad; k++)
@@ -143,20 +143,20 @@ int sweep_run_forked(csf_sweep *S, int nw)
 			if (!ready) continue;
 			unsigned char l[8];
 			if (read_all(w[k].res, l, 8)) {
-				bad = sweep_err(S, "a worker process ended unexpectedly");
+				bad = csf_sweep_err(S, "a worker process ended unexpectedly");
 				break;
 			}
 			size_t len = get64(l);
 			unsigned char *m = len >= MSG_HEAD ? malloc(len) : NULL;
 			if (m && read_all(w[k].res, m, len)) {
 				free(m);
-				bad = sweep_err(S, "a worker process ended unexpectedly");
+				bad = csf_sweep_err(S, "a worker process ended unexpectedly");
 				break;
 			}
 			size_t i = m ? get64(m) : SIZE_MAX;
 			if (i >= S->nvar || got[i]) {
 				free(m);
-				bad = sweep_err(S, "a worker process sent a bad result");
+				bad = csf_sweep_err(S, "a worker process sent a bad result");
 				break;
 			}
 			got[i] = m;

@@ -50,12 +50,12 @@ static inline uint64_t get64(const unsigned char *b)
 }
 
 /* sweep.c: an error about the sweep's options, on S->err; -1 */
-int sweep_err(csf_sweep *S, const char *fmt, ...);
+int csf_sweep_err(csf_sweep *S, const char *fmt, ...);
 /* sweep.c: the name of column c of p's output (0: t), and the length of its header with the unit */
-const char *sweep_col_head(const csf_prog *p, uint32_t c);
-size_t sweep_head_len(const csf_prog *p, uint32_t k);
+const char *csf_sweep_col_head(const csf_prog *p, uint32_t c);
+size_t csf_sweep_head_len(const csf_prog *p, uint32_t k);
 /* sweep_fork.c: every variant here, in order; or in nw worker processes (-j) */
-int sweep_run_serial(csf_sweep *S);
-int sweep_run_forked(csf_sweep *S, int nw);
+int csf_sweep_run_serial(csf_sweep *S);
+int csf_sweep_run_forked(csf_sweep *S, int nw);
 
 #endif
