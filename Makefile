@@ -30,6 +30,7 @@ VIEW_PACKAGES = libjs-three libjs-dygraphs
 CHROMIUM_PACKAGES = chromium
 PEER_PACKAGES = python3-scipy
 CVODE_PACKAGES = libsundials-dev
+BOX2D_PACKAGES = libbox2d-dev g++
 # only for csfvm-mpi (make MPI=1) and its test (skipped without them)
 MPI_PACKAGES = libopenmpi-dev openmpi-bin
 MPI ?=
@@ -200,6 +201,9 @@ deps-peers:
 deps-cvode:
 	@$(call deb_install,deps-cvode,$(CVODE_PACKAGES))
 
+deps-box2d:
+	@$(call deb_install,deps-box2d,$(BOX2D_PACKAGES))
+
 # only for csfvm-mpi (make MPI=1) and its test
 deps-mpi:
 	@$(call deb_install,deps-mpi,$(MPI_PACKAGES))
@@ -265,4 +269,4 @@ bench-peers: all deps-peers
 clean:
 	rm -rf build build-san build-fuzz
 
-.PHONY: all deps deps-mpi deps-peers deps-cvode deps-view deps-chromium deps-fuzz demo test test-progs check fuzz fuzz-targets install uninstall bench bench-peers clean
+.PHONY: all deps deps-mpi deps-peers deps-cvode deps-box2d deps-view deps-chromium deps-fuzz demo test test-progs check fuzz fuzz-targets install uninstall bench bench-peers clean
