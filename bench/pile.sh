@@ -71,8 +71,8 @@ awk -F, -v till=$TILL 'NR > 1 { rows++; n[rows] = $1; line = sprintf("| %d | %.3
 		print "|---|---|---|---|---|---|---|---|"
 		for (i = 1; i <= rows; i++) print l[i]
 		print ""
-		printf "Box2D reached %s s at every N, with overlaps up to %g m at the end (its linear slop is 0.005 m) and %s. csfvm reached %s s with exit 0 at N = %s, and did not at N = %s.%s\n", \
-			till, b2o, b2v == 0 ? "every ball at rest (asleep)" : sprintf("speeds up to %g m/s", b2v), till, ok == "" ? "none" : ok, bad == "" ? "none" : bad, \
+		printf "Box2D reached %s s at every N, with overlaps up to %g m at the end (its linear slop is 0.005 m) and %s. csfvm %s.%s\n", \
+			till, b2o, b2v == 0 ? "every ball at rest (asleep)" : sprintf("speeds up to %g m/s", b2v), bad == "" ? "reached " till " s with exit 0 at every N" : (ok == "" ? "did not reach " till " s with exit 0 at any N" : "reached " till " s with exit 0 at N = " ok " and did not at N = " bad), \
 			hint ? " Every ball has the same mass, so the hint of the error message (light bodies between heavy ones) does not fit these piles." : ""
 	}' "$CSV" > "$OUT/pile.txt"
 cat "$OUT/pile.txt"
