@@ -24,38 +24,13 @@ TMP=$OUT/scratch.tmp CSV=$OUT/stiff.csv
 mkdir -p "$TMP" # and $OUT
 echo "problem,method,exit,steps,rhs,jac,seconds,error" > "$CSV"
 
-ref() {
-	case $1 in
-	vdp) echo "1.706167732170483 -8.928097010247975e-4" ;;
-	robertson) echo "2.083340149701255e-8 8.333360770334713e-14 0.9999999791665050" ;;
-	oregonator) echo "1.000814870318523 1228.178521549917 132.0554942846706" ;;
-	hires) echo "0.7371312573325668e-3 0.1442485726316185e-3 0.5888729740967575e-4 0.1175651343283149e-2" \
-		"0.2386356198831331e-2 0.6238968252742796e-2 0.2849998395185769e-2 0.2850001604814231e-2" ;;
-	esac
-}
+. ./stiff_lib.sh
 
 for p in vdp robertson oregonator hires; do
 	"$BUILD/csfc" "stiff/$p.csf" -o "$TMP/$p.csfb"
 	for m in default bsimp msbdf; do
-		best=
-		for r in $(seq "$REPS"); do
-			st=0
-			if [ $m = default ]; then
-				timeout 600 "$BUILD/csfvm" --stats "$TMP/$p.csfb" >"$TMP/stiff.csv" 2>"$TMP/stiff.err" || st=$?
-			else
-				timeout 600 "$BUILD/csfvm" --stats --method $m "$TMP/$p.csfb" >"$TMP/stiff.csv" 2>"$TMP/stiff.err" || st=$?
-			fi
-			row=$(awk -F'[ ,;()]+' '/^stats: method/ { for (i = 1; i <= NF; i++) { if ($(i + 1) == "steps") s = $i
-				if ($(i + 1) == "right-hand") f = $i; if ($(i + 1) == "Jacobian") j = $i; if ($i ~ /^[0-9.]+$/) last = $i }
-				print s "," f "," j "," last }' "$TMP/stiff.err")
-			secs=${row##*,}
-			if [ -z "$best" ] || awk -v a="$secs" -v b="${best##*,}" 'BEGIN { exit !(a < b) }'; then best=$row; fi
-		done
-		err=$(tail -n 1 "$TMP/stiff.csv" | awk -F, -v ref="$(ref $p)" '
-			function abs(x) { return x < 0 ? -x : x }
-			{ n = split(ref, r, " "); for (i = 1; i <= n; i++) { d = abs($(i + 1) - r[i]); if (r[i] != 0 && d / abs(r[i]) < d) d = d / abs(r[i]); if (d > m) m = d }
-			  printf "%.3g", m }')
-		echo "$p,$m,$st,$best,$err" >> "$CSV"
+		if [ $m = default ]; then r=$(stiff_run $p "$TMP/$p.csfb"); else r=$(stiff_run $p "$TMP/$p.csfb" --method $m); fi
+		echo "$p,$m,$r" >> "$CSV"
 	done
 done
 

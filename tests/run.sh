@@ -45,6 +45,13 @@ LIMIT=${CSF_TEST_LIMIT:-300}
 # a job's results: one line "ok" or "bad" per check in $T/res (T, its scratch directory)
 ok() { echo ok >>"$T/res"; }
 bad() { echo bad >>"$T/res"; echo "FAIL: $*"; }
+# suite LABEL COMMAND...: a sub-suite that prints "FAIL: ..." lines and exits non-zero on a
+# failure; one result, its first three FAIL lines under LABEL (its output in $T/suite.out)
+suite() {
+	label=$1
+	shift
+	if "$@" >"$T/suite.out" 2>&1; then ok; else bad "$label: $(grep FAIL "$T/suite.out" | head -n 3)"; fi
+}
 
 # the units in the header of CSV $2 of a model compiled for system $1, kept for 4c
 header_units() { head -n 1 "$2" | tr ',' '\n' | sed -n "s/^.* \[\(.*\)\]\$/$1 \1/p" >>"$T/units"; }
@@ -322,7 +329,7 @@ t_hmax() {
 
 # 5b''. the README's example scene and output are the program's (tests/docs/check.sh)
 t_docs() {
-	if sh tests/docs/check.sh "$CSFC" "$CSFVM" "$T" >"$T/docs" 2>&1; then ok; else bad "docs: $(grep FAIL "$T/docs" | head -n 3)"; fi
+	suite "docs" sh tests/docs/check.sh "$CSFC" "$CSFVM" "$T"
 }
 
 # 5c. output errors are reported: a full disk (a closed pipe ends a run quietly: tests/unix/check.sh)
@@ -363,76 +370,76 @@ t_compare_methods() {
 # 5g. every method at every tolerance 1e-3 ... 1e-12 on a harmonic oscillator: each run
 #     finishes, and within a bound the tolerance implies of the exact solution
 t_methods_tol() {
-	if CSF_BUILD="$B" sh tests/methods_tol.sh >"$T/mt" 2>&1; then ok; else bad "methods and tolerances: $(grep FAIL "$T/mt" | head -n 3)"; fi
+	suite "methods and tolerances" env CSF_BUILD="$B" sh tests/methods_tol.sh
 }
 
 # 5g'. the stability guard: fixed steps past the limit refused, limits against the
 #      analytic ones, a pendulum halted when it turns unstable, stiffness warned early
 t_stability() {
-	if sh tests/stability/check.sh "$CSFC" "$CSFVM" "$T" >"$T/stab" 2>&1; then ok; else bad "stability: $(grep FAIL "$T/stab" | head -n 3)"; fi
+	suite "stability" sh tests/stability/check.sh "$CSFC" "$CSFVM" "$T"
 }
 
 # 5g''. Unix conventions: signals end a run after a whole row, a closed pipe quietly,
 #       - is standard input, --opt=value, the progress line (tests/unix/check.sh)
 t_unix() {
-	if sh tests/unix/check.sh "$CSFC" "$CSFVM" "$T" >"$T/unix" 2>&1; then ok; else bad "unix: $(grep FAIL "$T/unix" | head -n 3)"; fi
+	suite "unix" sh tests/unix/check.sh "$CSFC" "$CSFVM" "$T"
 }
 
 # 5g3. csfc's warnings (-Werror, -w), suggestions for misspelt names and units, no cascade
 #       after a bad indentation, - as standard input and output, watched components (tests/warn/check.sh)
 t_warn() {
-	if sh tests/warn/check.sh "$CSFC" "$CSFVM" "$T" >"$T/warn" 2>&1; then ok; else bad "warnings: $(grep FAIL "$T/warn" | head -n 3)"; fi
+	suite "warnings" sh tests/warn/check.sh "$CSFC" "$CSFVM" "$T"
 }
 
 # 5h. a ball dropped onto floors and inclines anywhere, at every output interval:
 #     every row against the exact motion (tests/contacts/drop.sh)
 t_contacts_drop() {
-	if sh tests/contacts/drop.sh "$CSFC" "$CSFVM" "$T" >"$T/drop" 2>&1; then ok; else bad "contacts: $(grep FAIL "$T/drop" | head -n 3)"; fi
+	suite "contacts" sh tests/contacts/drop.sh "$CSFC" "$CSFVM" "$T"
 }
 
 # 5j. 1000 projectiles, every row of every object against the closed form (tests/many/projectiles.sh)
 t_projectiles() {
-	if sh tests/many/projectiles.sh "$CSFC" "$CSFVM" "$T" >"$T/pj" 2>&1; then ok; else bad "1000 projectiles: $(grep FAIL "$T/pj" | head -n 3)"; fi
+	suite "1000 projectiles" sh tests/many/projectiles.sh "$CSFC" "$CSFVM" "$T"
 }
 
 # 5k. a ring of 200 masses and springs in a normal mode: every row of every mass (tests/many/ring.sh)
 t_ring() {
-	if sh tests/many/ring.sh "$CSFC" "$CSFVM" "$T" >"$T/ring" 2>&1; then ok; else bad "ring of masses: $(grep FAIL "$T/ring" | head -n 3)"; fi
+	suite "ring of masses" sh tests/many/ring.sh "$CSFC" "$CSFVM" "$T"
 }
 
 # 5l. the code grows with the scene's text, not its number of objects (tests/many/code_size.sh)
 t_code_size() {
-	if sh tests/many/code_size.sh "$CSFC" "$T" "$B/code-words" >"$T/cs" 2>&1; then ok; else bad "code size: $(grep FAIL "$T/cs" | head -n 3)"; fi
+	suite "code size" sh tests/many/code_size.sh "$CSFC" "$T" "$B/code-words"
 }
 
 # 5m. 100 elastic balls in a box of six planes: inside, energy conserved (tests/many/box.sh)
 t_box() {
-	if sh tests/many/box.sh "$CSFC" "$CSFVM" "$T" >"$T/box" 2>&1; then ok; else bad "100 balls in a box: $(grep FAIL "$T/box" | head -n 3)"; fi
+	suite "100 balls in a box" sh tests/many/box.sh "$CSFC" "$CSFVM" "$T"
 }
 
 # 5m'. 1000 balls sliding to a stop on a floor, a class of them at one instant: every ball's every row (tests/many/slide_stop.sh)
 t_slide_stop() {
-	if sh tests/many/slide_stop.sh "$CSFC" "$CSFVM" "$T" >"$T/slide" 2>&1; then ok; else bad "1000 sliding balls: $(grep FAIL "$T/slide" | head -n 3)"; fi
+	suite "1000 sliding balls" sh tests/many/slide_stop.sh "$CSFC" "$CSFVM" "$T"
 }
 
 # 5i. every contact scene under every method: each finishes, exact to 1e-6 (tests/contacts/methods.sh;
 #     contacts_methods SCENE, one job a scene)
 t_contacts_methods() {
-	if sh tests/contacts/methods.sh "$CSFC" "$CSFVM" "$T" "$1" >"$T/mm" 2>&1; then ok; else bad "contacts and methods, $1: $(grep FAIL "$T/mm" | head -n 3)"; fi
+	suite "contacts and methods, $1" sh tests/contacts/methods.sh "$CSFC" "$CSFVM" "$T" "$1"
 }
 
 # 5o. parameters and sweeps: -D with units against the closed form, the errors, a sweep of 100
 #     variants (-j 1 = -j 2 = each variant's -D run), --out-dir, --sweep-file, --sweep-summary,
 #     a generated program, mpirun -np 3 where Open MPI is installed (tests/sweep/check.sh)
 t_sweep() {
-	if timeout "$LIMIT" sh tests/sweep/check.sh "$CSFC" "$CSFVM" "$T" "$B" >"$T/sweep" 2>&1; then ok; else bad "sweeps: $(grep FAIL "$T/sweep" | head -n 3)"; fi
-	grep '^SKIP' "$T/sweep"
+	suite "sweeps" timeout "$LIMIT" sh tests/sweep/check.sh "$CSFC" "$CSFVM" "$T" "$B"
+	grep '^SKIP' "$T/suite.out"
 }
 
 # 5n. csfview: the page, the static plots, decimation; the page in headless Chromium (tests/view/check.sh)
 t_view() {
-	if sh tests/view/check.sh "$CSFC" "$CSFVM" "$CSFVIEW" "$T" >"$T/view" 2>&1; then ok; else bad "csfview: $(grep FAIL "$T/view" | head -n 3)"; fi
-	grep '^SKIP' "$T/view"
+	suite "csfview" sh tests/view/check.sh "$CSFC" "$CSFVM" "$CSFVIEW" "$T"
+	grep '^SKIP' "$T/suite.out"
 }
 
 # 5l'. a model too big to compile is an error before anything is read (a sparse file of 200 MiB)

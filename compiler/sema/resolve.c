@@ -80,6 +80,19 @@ static Loc read_loc(RExpr *lhs, RExpr *rhs, Var *u, Loc at)
 	return r ? r->loc : at;
 }
 
+/* The context that builds instance I's expressions, recording what they read into reads, rf and pending. */
+static Ctx inst_ctx(const Inst *I, Vec *reads, Vec *rf, Vec *pending)
+{
+	Ctx C = { 0 };
+	C.bind = I->bind;
+	C.nbind = I->nbind;
+	C.reads = reads;
+	C.rf = rf;
+	C.pending = pending;
+	C.key_nbind = I->st->has_for ? 1 : I->nbind;
+	return C;
+}
+
 /*
  * Resolves one equation of instance I: chooses the target among the
  * undetermined variables, solves for it, records the assignment. Returns
@@ -88,13 +101,7 @@ static Loc read_loc(RExpr *lhs, RExpr *rhs, Var *u, Loc at)
 static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 {
 	Vec reads = { 0 }, pending = { 0 }, rf = { 0 };
-	Ctx C = { 0 };
-	C.bind = I->bind;
-	C.nbind = I->nbind;
-	C.reads = &reads;
-	C.rf = &rf;
-	C.pending = &pending;
-	C.key_nbind = I->st->has_for ? 1 : I->nbind;
+	Ctx C = inst_ctx(I, &reads, &rf, &pending);
 	RExpr *lhs = build(&C, q->lhs), *rhs = build(&C, q->rhs);
 	if (C.failed) return NULL;
 	if (lhs->isbool || rhs->isbool) {
@@ -184,13 +191,7 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 static RExpr *build_cond(Inst *I, Expr *cond, const char *what)
 {
 	Vec reads = { 0 }, pending = { 0 }, rf = { 0 };
-	Ctx C = { 0 };
-	C.bind = I->bind;
-	C.nbind = I->nbind;
-	C.reads = &reads;
-	C.rf = &rf;
-	C.pending = &pending;
-	C.key_nbind = I->st->has_for ? 1 : I->nbind;
+	Ctx C = inst_ctx(I, &reads, &rf, &pending);
 	RExpr *r = build(&C, cond);
 	if (C.failed) return NULL;
 	if (!r->isbool) {
@@ -324,13 +325,7 @@ void resolve_deriv(Inst *I)
 {
 	Eqn *q = I->st->eqns;
 	Vec pending = { 0 }, rf = { 0 };
-	Ctx C = { 0 };
-	C.bind = I->bind;
-	C.nbind = I->nbind;
-	C.reads = &I->reads;
-	C.rf = &rf;
-	C.pending = &pending;
-	C.key_nbind = I->st->has_for ? 1 : I->nbind;
+	Ctx C = inst_ctx(I, &I->reads, &rf, &pending);
 	RExpr *r = build(&C, q->rhs);
 	if (C.failed) return;
 	Var *v = I->targets.v[0];

@@ -106,9 +106,28 @@ static void say(FILE *out, const char *fmt, ...)
 	va_end(ap);
 }
 
-int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, const csf_overlay *init, FILE *out, FILE *err)
+/* The rows of method name at each tolerance: a run within budget evaluations compared with ref. */
+static void method_rows(const csf_prog *p, csf_exec_fn exec, const csf_overlay *init, const char *name, const rows *ref,
+                        unsigned long budget, FILE *out)
 {
 	static const double tols[] = { 1e-4, 1e-6, 1e-8, 1e-10, 1e-12 };
+	csf_opts o;
+	int st;
+	for (size_t k = 0; k < sizeof tols / sizeof tols[0]; k++) {
+		rows *run = capture(p, exec, init, name, tols[k], 0, budget, &o, &st);
+		char diff[32];
+		double d = run && st == 0 ? difference(run, ref) : -1;
+		if (st != 0 && o.run_rhs > budget) snprintf(diff, sizeof diff, "over budget");
+		else if (st != 0) snprintf(diff, sizeof diff, "failed (%d)", st);
+		else if (d < 0) snprintf(diff, sizeof diff, "mismatch");
+		else snprintf(diff, sizeof diff, "%.3g", d);
+		say(out, "%-8s %-7g %10.4f %10lu %12lu %14s\n", name, tols[k], o.run_seconds, o.run_steps, o.run_rhs, diff);
+		free_rows(run);
+	}
+}
+
+int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, const csf_overlay *init, FILE *out, FILE *err)
+{
 	csf_opts o;
 	int st;
 	rows *ref = capture(p, exec, init, "auto", 1e-13, 0, 0, &o, &st);
@@ -122,21 +141,9 @@ int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, const csf_overlay *
 	unsigned long budget = (unsigned long)(b > BUDGET_MIN ? b : BUDGET_MIN);
 	say(out, "%-8s %-7s %10s %10s %12s %14s\n", "method", "tol", "seconds", "steps", "rhs_evals", "difference");
 	/* auto, then the methods of the method table that have a row (csf_method_compared) */
-	for (size_t i = 0; i == 0 || csf_method_name(i - 1); i++) {
-		const char *name = i == 0 ? "auto" : csf_method_name(i - 1);
-		if (i > 0 && !csf_method_compared(name)) continue;
-		for (size_t k = 0; k < sizeof tols / sizeof tols[0]; k++) {
-			rows *run = capture(p, exec, init, name, tols[k], 0, budget, &o, &st);
-			char diff[32];
-			double d = run && st == 0 ? difference(run, ref) : -1;
-			if (st != 0 && o.run_rhs > budget) snprintf(diff, sizeof diff, "over budget");
-			else if (st != 0) snprintf(diff, sizeof diff, "failed (%d)", st);
-			else if (d < 0) snprintf(diff, sizeof diff, "mismatch");
-			else snprintf(diff, sizeof diff, "%.3g", d);
-			say(out, "%-8s %-7g %10.4f %10lu %12lu %14s\n", name, tols[k], o.run_seconds, o.run_steps, o.run_rhs, diff);
-			free_rows(run);
-		}
-	}
+	method_rows(p, exec, init, "auto", ref, budget, out);
+	for (size_t i = 0; csf_method_name(i); i++)
+		if (csf_method_compared(csf_method_name(i))) method_rows(p, exec, init, csf_method_name(i), ref, budget, out);
 	/* Verlet, where the scene has position/velocity pairs: its own step at the default tolerance
 	   (csfvm(1), verlet) */
 	if (p->ny > 0) {
