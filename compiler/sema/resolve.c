@@ -152,8 +152,11 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 		}
 	}
 	if (lhs->isvec != rhs->isvec) {
-		error_at(q->rhs->loc, "the two sides of \"%s\" differ: %s = %s", q->text, lhs->isvec ? "vector" : "scalar",
-		         rhs->isvec ? "vector" : "scalar");
+		/* a side that is a global alone: a name meant for a new value that is already taken (G, c, g) */
+		const RExpr *g = lhs->k == R_VAR && lhs->var->kind == V_GLOBAL ? lhs : rhs->k == R_VAR && rhs->var->kind == V_GLOBAL ? rhs : NULL;
+		error_at(q->rhs->loc, "the two sides of \"%s\" differ: %s = %s%s%s%s", q->text, lhs->isvec ? "vector" : "scalar",
+		         rhs->isvec ? "vector" : "scalar", g ? " ('" : "", g ? g->var->name : "",
+		         g ? "' is a global, not a new name: give the value a name of its own)" : "");
 		return NULL;
 	}
 	if (x->kind == V_TEMP && !map_get(&sema.temps, x->key)) register_temp(x);
