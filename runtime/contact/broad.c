@@ -85,6 +85,8 @@ csf_contacts *csf_contacts_new(const csf_prog *p)
 	c->cid = malloc(((size_t)p->ny + 1) * sizeof *c->cid);
 	c->K = malloc((size_t)DIRECT_MAX * DIRECT_MAX * sizeof *c->K);
 	c->G = malloc((size_t)DIRECT_MAX * DIRECT_MAX * sizeof *c->G);
+	c->K1 = malloc((size_t)DIRECT_MAX * DIRECT_MAX * sizeof *c->K1);
+	c->G1 = malloc((size_t)DIRECT_MAX * DIRECT_MAX * sizeof *c->G1);
 	c->lam = malloc(DIRECT_MAX * sizeof *c->lam);
 	c->v0 = malloc(DIRECT_MAX * sizeof *c->v0);
 	c->nv = malloc(3 * DIRECT_MAX * sizeof *c->nv);
@@ -95,7 +97,7 @@ csf_contacts *csf_contacts_new(const csf_prog *p)
 	c->B = malloc(9 * DIRECT_MAX * sizeof *c->B);
 	c->E = malloc(9 * DIRECT_MAX * sizeof *c->E);
 	c->dc = malloc(DIRECT_MAX * sizeof *c->dc);
-	if (!c->box || !c->mg || !c->pn || !c->mstart || !c->sap || !c->uf || !c->cid || !c->K || !c->G || !c->lam || !c->v0 || !c->nv || !c->act || !c->rhs || !c->x ||
+	if (!c->box || !c->mg || !c->pn || !c->mstart || !c->sap || !c->uf || !c->cid || !c->K || !c->G || !c->K1 || !c->G1 || !c->lam || !c->v0 || !c->nv || !c->act || !c->rhs || !c->x ||
 	    !c->at || !c->B || !c->E || !c->dc)
 		goto oom;
 	/* the memberships of mass points in rules without `for`, by body, each body's in rule order */
@@ -149,6 +151,11 @@ void csf_contacts_free(csf_contacts *c)
 	free(c->cstart);
 	free(c->direct);
 	free(c->K);
+	free(c->kb);
+	free(c->K1);
+	free(c->G1);
+	free(c->mark);
+	free(c->ls);
 	free(c->G);
 	free(c->lam);
 	free(c->v0);
@@ -417,11 +424,10 @@ void csf_contacts_commit(csf_contacts *c, const double *m, double *const *g, con
 				g[q][2 * k] = c->old[2 * o], g[q][2 * k + 1] = c->old[2 * o + 1];
 				continue;
 			}
-			/* a new pair is apart: its guard is its gap (over the plane), as csf_contact_apply computes it */
+			/* a new pair is apart: its guard is its gap, as csf_contact_apply computes it */
 			const cpair *cp = &c->next[k];
 			const double *pi = gy[q] + (I(cp, POS) - p->ystart), *pj = cp->plane ? NULL : gy[q] + (J(cp, POS) - p->ystart);
-			double n[3], curv, gap = csf_contact_geometry_at(cp, m, pi, pj, n, &curv);
-			g[q][2 * k] = csf_max(gap, -csf_contact_inside_at(cp, m, pi));
+			g[q][2 * k] = csf_contact_gap_guard(cp, m, pi, pj);
 			g[q][2 * k + 1] = 1;
 		}
 	}

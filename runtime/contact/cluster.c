@@ -5,6 +5,9 @@
  * partial pivoting, an LU factorisation in place). The force stage
  * (force.c) and the impacts (impulse.c) build the systems.
  */
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_linalg.h>
+
 #include "contact_int.h"
 
 /*
@@ -42,15 +45,15 @@ static uint32_t uf_root(uint32_t *uf, uint32_t x)
 	return x;
 }
 
-/* Sum over the common bodies of c and d of w_b s_cb s_db (above). */
+/* Sum over the common bodies of c and d of w_b s_cb s_db (above); with m NULL, w_b = 1. */
 double csf_contact_coupling(const csf_contacts *cs, const cpair *c, const cpair *d, const double *m)
 {
 	uint32_t ci = body_i(cs, c), cj = body_j(cs, c), di = body_i(cs, d), dj = body_j(cs, d);
-	double k = 0;
-	if (ci == di) k += inv_mass_i(c, m);
-	if (ci == dj) k -= inv_mass_i(c, m);
-	if (cj != UINT32_MAX && cj == di) k -= inv_mass_j(c, m);
-	if (cj != UINT32_MAX && cj == dj) k += inv_mass_j(c, m);
+	double k = 0, wi = m ? inv_mass_i(c, m) : 1, wj = m ? inv_mass_j(c, m) : 1;
+	if (ci == di) k += wi;
+	if (ci == dj) k -= wi;
+	if (cj != UINT32_MAX && cj == di) k -= wj;
+	if (cj != UINT32_MAX && cj == dj) k += wj;
 	return k;
 }
 
@@ -96,24 +99,63 @@ uint32_t csf_contact_clusters(csf_contacts *cs, int (*pick)(const cpair *, const
 }
 
 /*
- * Solves the system of cs->K (dim x dim, row-major) with right-hand side
- * cs->rhs into cs->x. Fails (-1) when it is singular: a pivot below 1e-10
- * of the largest coefficient. Past that the cluster's masses differ by more
- * than about 1e10, and the net force on its lightest body is the difference
- * of forces 1e10 times larger: rounding would take more than 1e-6 of it.
+ * The system of a statically indeterminate cluster is singular: a ball
+ * resting on two others that stick, or a row of balls jammed between two
+ * walls, is held by more contacts than it has directions to move in, and
+ * the forces are not determined by the motion (which is). Of the forces
+ * that hold it, the routine takes the least-norm solution: the smallest
+ * forces that keep every contact's acceleration (or velocity) zero. It is
+ * the least-squares solution of least norm, from GSL's complete orthogonal
+ * decomposition (rank revealed by the pivots of a QR with column pivoting,
+ * those below 1e-10 of the largest taken as zero), accepted when it solves
+ * the system to 1e-9 of its sizes: a singular system that has no solution
+ * (contacts that contradict each other) fails (-1).
  */
-int csf_contact_solve(csf_contacts *cs, uint32_t dim)
+static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, const double *b)
 {
-	double *K = cs->K, *b = cs->rhs, *x = cs->x, big = 0;
-	for (uint32_t k = 0; k < dim * dim; k++) big = csf_max(big, fabs(K[k]));
-	if (!(big > 0) || !isfinite(big)) return -1;
-	/* Gaussian elimination with partial pivoting, in place (the systems are small: GSL's
-	   LU costs more in its calls than in its arithmetic at these sizes) */
+	size_t need = (size_t)dim * dim + 6 * (size_t)dim;
+	if (need > cs->capls) {
+		double *ls = realloc(cs->ls, need * sizeof *ls);
+		if (!ls) return -1;
+		cs->ls = ls, cs->capls = need;
+	}
+	double *A = cs->ls, *w = A + (size_t)dim * dim, colmax = 0;
+	memcpy(A, K, (size_t)dim * dim * sizeof *A);
+	for (uint32_t j = 0; j < dim; j++) {
+		double c = 0;
+		for (uint32_t i = 0; i < dim; i++) c = hypot(c, K[i * dim + j]);
+		colmax = csf_max(colmax, c);
+	}
+	size_t perm[DIRECT_MAX], rank = 0;
+	gsl_matrix_view Av = gsl_matrix_view_array(A, dim, dim);
+	gsl_vector_view tq = gsl_vector_view_array(w, dim), tz = gsl_vector_view_array(w + dim, dim),
+	                work = gsl_vector_view_array(w + 2 * dim, dim), res = gsl_vector_view_array(w + 3 * dim, dim),
+	                bv = gsl_vector_view_array(w + 4 * dim, dim), xv = gsl_vector_view_array(cs->x, dim);
+	gsl_permutation pv = { dim, perm };
+	memcpy(w + 4 * dim, b, dim * sizeof *b);
+	gsl_set_error_handler_off();
+	if (gsl_linalg_COD_decomp_e(&Av.matrix, &tq.vector, &tz.vector, &pv, 1e-10 * colmax, &rank, &work.vector) ||
+	    gsl_linalg_COD_lssolve(&Av.matrix, &tq.vector, &tz.vector, &pv, rank, &bv.vector, &xv.vector, &res.vector))
+		return -1;
+	double rn = 0, bn = 0, xn = 0;
+	for (uint32_t i = 0; i < dim; i++) rn = hypot(rn, w[3 * dim + i]), bn = hypot(bn, b[i]), xn = hypot(xn, cs->x[i]);
+	for (uint32_t i = 0; i < dim; i++)
+		if (!isfinite(cs->x[i])) return -1;
+	return rn <= 1e-9 * csf_max(bn, colmax * xn) ? 0 : -1;
+}
+
+/*
+ * Gaussian elimination with partial pivoting of the dim x dim system K x = b,
+ * in place (the systems are small: GSL's LU costs more in its calls than in
+ * its arithmetic at these sizes). Fails (-1) at a pivot not above tiny.
+ */
+static int solve_lu(double *K, double *b, double *x, uint32_t dim, double tiny)
+{
 	for (uint32_t k = 0; k < dim; k++) {
 		uint32_t pr = k;
 		for (uint32_t i = k + 1; i < dim; i++)
 			if (fabs(K[i * dim + k]) > fabs(K[pr * dim + k])) pr = i;
-		if (!(fabs(K[pr * dim + k]) > 1e-10 * big)) return -1;
+		if (!(fabs(K[pr * dim + k]) > tiny)) return -1;
 		if (pr != k) {
 			for (uint32_t j = k; j < dim; j++) {
 				double t = K[k * dim + j];
@@ -136,4 +178,39 @@ int csf_contact_solve(csf_contacts *cs, uint32_t dim)
 		if (!isfinite(x[k])) return -1;
 	}
 	return 0;
+}
+
+/*
+ * Solves the system of cs->K (dim x dim, row-major) with right-hand side
+ * cs->rhs into cs->x, by Gaussian elimination with partial pivoting. A
+ * pivot below 1e-10 of the largest coefficient means one of two things,
+ * told apart by K1, the same system with every body's mass 1 (or NULL: the
+ * first). If K1 is singular too, the contacts are more than the bodies'
+ * motions can tell apart (a statically indeterminate cluster, whatever the
+ * masses): the least-norm solution above. If not, the masses differ by more
+ * than about 1e10, and the net force on the lightest body would be the
+ * difference of forces 1e10 times larger, of which rounding would take more
+ * than 1e-6: it fails (-1), as it does when the least-norm solution does not
+ * solve the system. K, rhs and K1 are destroyed.
+ */
+int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1)
+{
+	double *K = cs->K, *b = cs->rhs, big = 0, big1 = 0;
+	for (uint32_t k = 0; k < dim * dim; k++) big = csf_max(big, fabs(K[k]));
+	if (!(big > 0) || !isfinite(big)) return -1;
+	size_t keep = (size_t)dim * dim + dim;
+	if (keep > cs->capkb) {
+		double *kb = realloc(cs->kb, keep * sizeof *kb);
+		if (!kb) return -1;
+		cs->kb = kb, cs->capkb = keep;
+	}
+	memcpy(cs->kb, K, (size_t)dim * dim * sizeof *K);
+	memcpy(cs->kb + (size_t)dim * dim, b, dim * sizeof *b);
+	if (!solve_lu(K, b, cs->x, dim, 1e-10 * big)) return 0;
+	if (!K1) return -1;
+	for (uint32_t k = 0; k < dim * dim; k++) big1 = csf_max(big1, fabs(K1[k]));
+	double *b1 = cs->rhs; /* a right-hand side for K1's elimination, whose answer is not used */
+	for (uint32_t k = 0; k < dim; k++) b1[k] = 1;
+	if (!solve_lu(K1, b1, cs->x, dim, 1e-10 * big1)) return -1;
+	return solve_least_norm(cs, dim, cs->kb, cs->kb + (size_t)dim * dim);
 }

@@ -122,6 +122,11 @@ struct csf_contacts {
 	unsigned char *act;
 	double *B, *E;             /* per pair of a cluster: its force directions and equations (3 x 3 each) */
 	unsigned char *dc;        /* and its unknowns */
+	double *kb, *ls;           /* a copy of a system while it is solved, and the least-norm solve's work */
+	double *K1, *G1;           /* K and G with every mass 1 (DIRECT_MAX^2 each) */
+	size_t capkb, capls;
+	unsigned char *mark;       /* per candidate: the pairs csf_contact_choose chooses among, and its choice */
+	size_t capmark;
 	int unsolved; /* the sweeps left contact forces that do not hold (csf_contacts_unsolved) */
 };
 
@@ -173,11 +178,20 @@ double csf_contact_resolution(const cpair *c, const double *m);
 void csf_contact_tangential(const double x[3], const double n[3], double out[3]);
 void csf_contact_slip_velocity(const cpair *c, const double *m, const double n[3], double vt[3]);
 
-/* cluster.c: the coupling of two pairs, the clusters of the pairs pick() takes (in cs->cl,
-   cs->cstart; returns their number), and the direct solve of cs->K x = cs->rhs (-1: singular) */
+/* cluster.c: the coupling of two pairs (m NULL: every mass 1), the clusters of the pairs pick()
+   takes (in cs->cl, cs->cstart; returns their number), and the direct solve of cs->K x = cs->rhs,
+   K1 the system with every mass 1 (-1: not solved) */
 double csf_contact_coupling(const csf_contacts *cs, const cpair *c, const cpair *d, const double *m);
 uint32_t csf_contact_clusters(csf_contacts *cs, int (*pick)(const cpair *, const void *), const void *arg);
-int csf_contact_solve(csf_contacts *cs, uint32_t dim);
+int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1);
+
+/* force.c: the rounding of a pair's relative acceleration (curv its centripetal term); an apart
+   pair's guard at positions pi, pj (NULL: j's in m) */
+double csf_contact_accel_resolution(const cpair *c, const double *m, double curv);
+double csf_contact_gap_guard(const cpair *c, const double *m, const double *pi, const double *pj);
+/* force.c: which of the pairs marked in cs->mark are in contact (the modes' complementarity
+   problem): the marks become 0 apart, 1 in contact, 2 leaves contact, 3 joins (-1: not settled) */
+int csf_contact_choose(csf_contacts *cs, double *m);
 
 /* impulse.c: a change dv of a pair's relative velocity; the impact of pair hit, whose relative
    normal velocity vn becomes target (1: not solved); the velocities before an impact, into W_VR */

@@ -47,41 +47,64 @@ static int force_basis(const cpair *c, const double *m, const double n[3], doubl
 }
 
 /*
+ * The linear system of the contact forces of the pairs cl[0..np), each as
+ * if in contact in its mode (sign as in cluster_forces): pair a's unknowns
+ * from row at[a], dc[a] of them, its normal in nv; the matrix, dim x dim
+ * row-major, into K, with every mass 1 and the equations' directions for the
+ * forces' into K1 (csf_contact_solve), and the right-hand side into rhs (the
+ * accelerations in m are those of the other forces). Returns dim, or 0 past
+ * DIRECT_MAX.
+ */
+static uint32_t cluster_system(csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np, const double *sign,
+                               double *K, double *K1, double *rhs)
+{
+	double *n = cs->nv, *B = cs->B, *E = cs->E;
+	uint32_t dim = 0;
+	if (np > DIRECT_MAX) return 0;
+	for (uint32_t a = 0; a < np; a++) { /* each pair's normal, force directions and equations */
+		const cpair *c = &cs->pairs[cl[a]];
+		double curv, ar[3];
+		csf_contact_geometry(c, m, n + 3 * a, &curv);
+		cs->dc[a] = (unsigned char)force_basis(c, m, n + 3 * a, sign ? sign[a] : 1, B + 9 * a, E + 9 * a);
+		cs->at[a] = dim;
+		dim += cs->dc[a];
+		if (dim > DIRECT_MAX) return 0;
+		rel(c, m, I(c, A), J(c, A), ar);
+		for (int r = 0; r < cs->dc[a]; r++)
+			rhs[cs->at[a] + r] = -(dot3(E + 9 * a + 3 * r, ar) + curv * dot3(E + 9 * a + 3 * r, n + 3 * a));
+	}
+	memset(K, 0, (size_t)dim * dim * sizeof *K);
+	memset(K1, 0, (size_t)dim * dim * sizeof *K1);
+	for (uint32_t a = 0; a < np; a++)
+		for (uint32_t b = 0; b < np; b++) {
+			double w = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], m);
+			double w1 = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], NULL);
+			if (w == 0 && w1 == 0) continue;
+			for (int r = 0; r < cs->dc[a]; r++)
+				for (int q = 0; q < cs->dc[b]; q++) {
+					size_t at = (size_t)(cs->at[a] + r) * dim + cs->at[b] + q;
+					K[at] = w * dot3(E + 9 * a + 3 * r, B + 9 * b + 3 * q);
+					K1[at] = w1 * dot3(E + 9 * a + 3 * r, E + 9 * b + 3 * q);
+				}
+		}
+	return dim;
+}
+
+/*
  * The contact forces of cluster cl[0..np), solved directly (cluster.c); fails
  * (-1, nothing changed) when it has more than DIRECT_MAX unknowns or its
- * system is singular. The accelerations in m are those of the other forces.
+ * system is singular and has no solution. The accelerations in m are those
+ * of the other forces.
  */
 static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np)
 {
 	if (np > DIRECT_MAX) return -1;
 	double sign[DIRECT_MAX]; /* a sliding pair's friction is against its way for N > 0: |N| = sign N */
-	double *n = cs->nv, *B = cs->B, *E = cs->E;
+	double *n = cs->nv, *B = cs->B;
 	for (uint32_t a = 0; a < np; a++) sign[a] = 1;
 	for (int attempt = 0; attempt < 2; attempt++) {
-		uint32_t dim = 0;
-		for (uint32_t a = 0; a < np; a++) { /* each pair's normal, force directions and equations */
-			const cpair *c = &cs->pairs[cl[a]];
-			double curv, ar[3];
-			csf_contact_geometry(c, m, n + 3 * a, &curv);
-			cs->dc[a] = (unsigned char)force_basis(c, m, n + 3 * a, sign[a], B + 9 * a, E + 9 * a);
-			cs->at[a] = dim;
-			dim += cs->dc[a];
-			if (dim > DIRECT_MAX) return -1;
-			rel(c, m, I(c, A), J(c, A), ar);
-			for (int r = 0; r < cs->dc[a]; r++)
-				cs->rhs[cs->at[a] + r] = -(dot3(E + 9 * a + 3 * r, ar) + curv * dot3(E + 9 * a + 3 * r, n + 3 * a));
-		}
-		memset(cs->K, 0, (size_t)dim * dim * sizeof *cs->K);
-		for (uint32_t a = 0; a < np; a++)
-			for (uint32_t b = 0; b < np; b++) {
-				double w = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], m);
-				if (w == 0) continue;
-				for (int r = 0; r < cs->dc[a]; r++)
-					for (int q = 0; q < cs->dc[b]; q++)
-						cs->K[(size_t)(cs->at[a] + r) * dim + cs->at[b] + q] =
-							w * dot3(E + 9 * a + 3 * r, B + 9 * b + 3 * q);
-			}
-		if (csf_contact_solve(cs, dim)) return -1;
+		uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs);
+		if (!dim || csf_contact_solve(cs, dim, cs->K1)) return -1;
 		int flip = 0;
 		for (uint32_t a = 0; a < np; a++) {
 			const cpair *c = &cs->pairs[cl[a]];
@@ -104,6 +127,123 @@ static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 	return 0;
 }
 
+/* For csf_contact_clusters(): the pairs marked in the array arg. */
+static int picks_marked(const cpair *c, const void *arg)
+{
+	const csf_contacts *cs = *(const csf_contacts *const *)arg;
+	return cs->mark[c - cs->pairs] != 0;
+}
+
+/*
+ * Which of the pairs that could press (cl[0..np): those in contact, and
+ * those that touch at zero relative normal velocity) are in contact: a
+ * linear complementarity problem, solved for the whole cluster at once.
+ * Each pair either pushes (N >= 0) and keeps its relative normal
+ * acceleration zero, or takes no force and is left with a relative normal
+ * acceleration that does not close (>= 0); beyond rounding (res, the pair's
+ * csf_contact_accel_resolution, in force per unit of inverse mass). By
+ * active sets, starting from the pairs in contact: the pair that would pull
+ * most leaves, or else the apart pair that would close fastest joins, until
+ * neither happens (each solve as cluster_forces does, the friction of each
+ * as its mode says). m holds the accelerations of every force with the
+ * pairs' modes as they are. The result, in cs->act: 1 in contact. Returns 0,
+ * or -1 when the sets do not settle in 4 np + 8 changes or a system has no
+ * solution (the modes stay as they are).
+ */
+static int choose_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np)
+{
+	if (np > DIRECT_MAX) return -1;
+	double res[DIRECT_MAX];
+	for (uint32_t a = 0; a < np; a++) {
+		const cpair *c = &cs->pairs[cl[a]];
+		double n[3], curv;
+		csf_contact_geometry(c, m, n, &curv);
+		res[a] = csf_contact_accel_resolution(c, m, curv) / (inv_mass_i(c, m) + inv_mass_j(c, m));
+		cs->act[a] = (unsigned char)in_contact(c);
+	}
+	for (uint32_t a = 0; a < np; a++) { /* the accelerations without the forces of these pairs */
+		cpair *c = &cs->pairs[cl[a]];
+		double n[3], curv, fn[3], f[3];
+		if (!in_contact(c)) continue;
+		csf_contact_geometry(c, m, n, &curv);
+		for (int k = 0; k < 3; k++) fn[k] = -W(c, LAM) * n[k], f[k] = -WV(c, F)[k];
+		add_force(c, m, fn, I(c, FN), J(c, FN));
+		add_force(c, m, f, I(c, FF), J(c, FF));
+	}
+	uint32_t dim = cluster_system(cs, m, cl, np, NULL, cs->G, cs->G1, cs->v0);
+	if (!dim) return -1;
+	double *x = cs->lam; /* the unknowns of every pair, 0 for those apart */
+	for (uint32_t iter = 0; iter < 4 * np + 8; iter++) {
+		uint32_t sub = 0, rows[DIRECT_MAX];
+		for (uint32_t a = 0; a < np; a++)
+			for (int r = 0; cs->act[a] && r < cs->dc[a]; r++) rows[sub++] = cs->at[a] + (uint32_t)r;
+		for (uint32_t r = 0; r < sub; r++) {
+			cs->rhs[r] = cs->v0[rows[r]];
+			for (uint32_t k = 0; k < sub; k++) {
+				cs->K[r * sub + k] = cs->G[(size_t)rows[r] * dim + rows[k]];
+				cs->K1[r * sub + k] = cs->G1[(size_t)rows[r] * dim + rows[k]];
+			}
+		}
+		if (sub && csf_contact_solve(cs, sub, cs->K1)) return -1;
+		memset(x, 0, dim * sizeof *x);
+		for (uint32_t r = 0; r < sub; r++) x[rows[r]] = cs->x[r];
+		long out = -1, in = -1;
+		double worst = 0;
+		for (uint32_t a = 0; a < np; a++) { /* a pair that would pull: its normal force */
+			if (!cs->act[a]) continue;
+			double lam = 0, *na = cs->nv + 3 * a;
+			for (int q = 0; q < cs->dc[a]; q++) lam += dot3(cs->B + 9 * a + 3 * q, na) * x[cs->at[a] + q];
+			if (lam < -res[a] && lam / res[a] < worst) worst = lam / res[a], out = a;
+		}
+		if (out < 0)
+			for (uint32_t a = 0; a < np; a++) { /* an apart pair that would close: its normal acceleration */
+				if (cs->act[a]) continue;
+				double an = 0, *na = cs->nv + 3 * a;
+				for (int r = 0; r < cs->dc[a]; r++) {
+					uint32_t row = cs->at[a] + (uint32_t)r;
+					double acc = -cs->v0[row];
+					for (uint32_t k = 0; k < dim; k++) acc += cs->G[(size_t)row * dim + k] * x[k];
+					an += cs->dc[a] == 1 ? acc : acc * na[r];
+				}
+				/* in force per unit of inverse mass, as res */
+				const cpair *c = &cs->pairs[cl[a]];
+				an /= inv_mass_i(c, m) + inv_mass_j(c, m);
+				if (an < -res[a] && an / res[a] < worst) worst = an / res[a], in = a;
+			}
+		if (out >= 0) cs->act[out] = 0;
+		else if (in >= 0) cs->act[in] = 1;
+		else return 0;
+	}
+	return -1;
+}
+
+/*
+ * Chooses the pairs in contact among those marked in cs->mark (the pairs in
+ * contact, and those touching at rest), cluster by cluster (choose_cluster):
+ * those that leave are marked 2, those that join 3, the others 1 (in
+ * contact) or 0. m holds the accelerations of the forces of the modes as
+ * they are. Returns 0, or -1 when a cluster's sets do not settle.
+ */
+int csf_contact_choose(csf_contacts *cs, double *m)
+{
+	const csf_contacts *self = cs;
+	uint32_t nq = csf_contact_clusters(cs, picks_marked, &self);
+	int st = 0;
+	for (uint32_t q = 0; q < nq; q++) {
+		const uint32_t *cl = cs->cl + cs->cstart[q];
+		uint32_t np = cs->cstart[q + 1] - cs->cstart[q];
+		if (choose_cluster(cs, m, cl, np)) {
+			st = -1;
+			continue;
+		}
+		for (uint32_t a = 0; a < np; a++) {
+			int was = in_contact(&cs->pairs[cl[a]]);
+			cs->mark[cl[a]] = (unsigned char)(cs->act[a] ? (was ? 1 : 3) : (was ? 2 : 0));
+		}
+	}
+	return st;
+}
+
 /* The largest relative normal acceleration of a pair in contact that the sweeps solve. */
 static double residual(const csf_contacts *cs, const double *m)
 {
@@ -120,6 +260,35 @@ static double residual(const csf_contacts *cs, const double *m)
 }
 
 int csf_contacts_unsolved(const csf_contacts *c) { return c->unsolved; }
+
+/*
+ * An apart pair's guard at positions pi, pj: the gap, beyond the smallest
+ * gap those positions resolve (csf_contact_resolution), over the plane (not
+ * past its edge). Two bodies that touch and part slowly stay touching
+ * within rounding for a while; the gap's rounding is not an impact.
+ */
+double csf_contact_gap_guard(const cpair *c, const double *m, const double *pi, const double *pj)
+{
+	double n[3], curv, gap = csf_contact_geometry_at(c, m, pi, pj, n, &curv);
+	double scale = mag3(pi) + (pj ? mag3(pj) : mag3(m + J(c, POS))) + m[I(c, R)] + (c->plane ? 0 : m[J(c, R)]);
+	return csf_max(gap + 2 * DBL_EPSILON * scale, -csf_contact_inside_at(c, m, pi));
+}
+
+/*
+ * The size of the accelerations that meet in a pair: each body's, and the
+ * contact forces on it over its mass (a body at rest in a pile has a = 0
+ * from forces that are not), and the centripetal term curv. A relative
+ * acceleration within 1e-12 of it is zero: the rounding of the forces that
+ * cancel is far below that, and a pair that neither presses nor parts (two
+ * balls side by side on a floor) is not sent back and forth between
+ * touching and parting by the sign of its rounding.
+ */
+double csf_contact_accel_resolution(const cpair *c, const double *m, double curv)
+{
+	double s = mag3(m + I(c, A)) + (mag3(m + I(c, FN)) + mag3(m + I(c, FF))) * inv_mass_i(c, m) + fabs(curv);
+	if (!c->plane) s += mag3(m + J(c, A)) + (mag3(m + J(c, FN)) + mag3(m + J(c, FF))) * inv_mass_j(c, m);
+	return 1e-12 * s;
+}
 
 void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 {
@@ -188,7 +357,7 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 	for (uint32_t i = 0; i < cs->n; i++) {
 		cpair *c = &cs->pairs[i];
 		double n[3], curv;
-		double gap = csf_contact_geometry(c, m, n, &curv);
+		csf_contact_geometry(c, m, n, &curv);
 		double *g = WV(c, G0);
 		double in = csf_contact_inside(c, m);
 		if (W(c, MODE) == HOPPING) { /* the hop lands, or passes the plane's edge */
@@ -197,11 +366,14 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 			continue;
 		}
 		if (!in_contact(c)) { /* the gap closes over the plane (not past its edge) */
-			g[0] = csf_max(gap, -in);
+			g[0] = csf_contact_gap_guard(c, m, m + I(c, POS), c->plane ? NULL : m + J(c, POS));
 			g[1] = 1;
 			continue;
 		}
-		g[0] = csf_min(W(c, LAM), in); /* the normal force would pull, or the body left the edge */
+		/* the normal force would pull (beyond its rounding: csf_contact_accel_resolution), or the
+		   body left the edge */
+		double wn = inv_mass_i(c, m) + inv_mass_j(c, m);
+		g[0] = csf_min(W(c, LAM) + csf_contact_accel_resolution(c, m, curv) / wn, in);
 		if (!has_friction(c, m)) {
 			g[1] = 1;
 		} else if (W(c, MODE) == SLIDING) {

@@ -34,7 +34,8 @@ static int picks_impact(const cpair *c, const void *hit)
  * contact that closes fastest joins, or the one that would pull most leaves,
  * until neither happens. Fails (-1, nothing changed) for a cluster of more
  * than DIRECT_MAX pairs, a singular system or one that does not settle in
- * 4 np + 8 changes of the set; size is the scale of the velocities.
+ * 4 np + 8 changes of the set; size is the scale of the velocities (at
+ * least those of the cluster's bodies).
  */
 static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, double target, double size)
 {
@@ -51,13 +52,17 @@ static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, doubl
 		csf_contact_geometry(c, m, n + 3 * a, &curv);
 		rel(c, m, I(c, V), J(c, V), vr);
 		cs->v0[a] = dot3(vr, n + 3 * a);
+		/* the velocities' own size: a pair that closes within its rounding does not close */
+		size = csf_max(size, mag3(m + I(c, V)) + (c->plane ? 0 : mag3(m + J(c, V))));
 		cs->act[a] = a == ih;
 		cs->lam[a] = 0;
 	}
 	for (uint32_t a = 0; a < np; a++) /* G = the normals' coupling, once each normal is known */
 		for (uint32_t b = 0; b < np; b++) {
 			double w = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], m);
+			double w1 = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], NULL);
 			G[a * np + b] = w == 0 ? 0 : w * dot3(n + 3 * a, n + 3 * b);
+			cs->G1[a * np + b] = w1 == 0 ? 0 : w1 * dot3(n + 3 * a, n + 3 * b);
 		}
 	for (uint32_t iter = 0; iter < 4 * np + 8; iter++) {
 		uint32_t dim = 0;
@@ -68,8 +73,11 @@ static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, doubl
 			dim++;
 		}
 		for (uint32_t r = 0; r < dim; r++)
-			for (uint32_t k = 0; k < dim; k++) cs->K[r * dim + k] = G[cs->at[r] * np + cs->at[k]];
-		if (csf_contact_solve(cs, dim)) return -1;
+			for (uint32_t k = 0; k < dim; k++) {
+				cs->K[r * dim + k] = G[cs->at[r] * np + cs->at[k]];
+				cs->K1[r * dim + k] = cs->G1[cs->at[r] * np + cs->at[k]];
+			}
+		if (csf_contact_solve(cs, dim, cs->K1)) return -1;
 		for (uint32_t a = 0; a < np; a++) cs->lam[a] = 0;
 		for (uint32_t r = 0; r < dim; r++) cs->lam[cs->at[r]] = cs->x[r];
 		long out = -1, in = -1;

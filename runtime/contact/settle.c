@@ -33,6 +33,17 @@ static void enter_contact(cpair *c, double *m, const double n[3])
 	for (int k = 0; k < 3; k++) WV(c, DS)[k] = s > 0 ? vt[k] / s : 0;
 }
 
+/*
+ * The smallest relative speed the pair's velocities resolve: a few units in
+ * the last place of their magnitudes. A pair closing more slowly than that
+ * is not struck: an impulse that small does not change the velocities it is
+ * added to, and the pair would be struck again and again.
+ */
+static double speed_resolution(const cpair *c, const double *m)
+{
+	return 4 * DBL_EPSILON * (mag3(m + I(c, V)) + (c->plane ? 0 : mag3(m + J(c, V))));
+}
+
 /* Is the pair touching: the gap closed, up to the event's location error? */
 static int touching(const cpair *c, const double *m, double gap)
 {
@@ -164,9 +175,57 @@ enum { FLIES, HOPS, RESTS };
 
 static int departure(csf_contacts *cs, const double *m, const cpair *c, double v, double an, double zeno, double tol)
 {
+	double n[3], curv;
+	csf_contact_geometry(c, m, n, &curv);
+	/* at rest, neither pressed nor pulled apart beyond the rounding: in contact, with no force */
+	/* at rest: pressed together beyond the rounding, or apart (touching, with no force) */
+	if (v == 0) return an < -csf_contact_accel_resolution(c, m, curv) ? RESTS : FLIES;
 	if (at_rest(c, m, v, an, zeno)) return RESTS;
 	if (!hops(c, m, v, an, tol)) return FLIES;
 	return crowded(cs, m, c) ? RESTS : HOPS;
+}
+
+/*
+ * The pairs in contact chosen afresh (csf_contact_choose) among those in
+ * contact and those that touch at rest (a relative normal velocity within
+ * the rounding of zero): those that leave separate, those that join enter
+ * contact. Returns 1 if a mode changed, 0 if none did or the choice did not
+ * settle (the pairs' guards then act one at a time), -1 when memory runs
+ * out.
+ */
+static int choose(csf_contacts *cs, double *m)
+{
+	if (cs->n > cs->capmark) {
+		unsigned char *mk = realloc(cs->mark, cs->n);
+		if (!mk) return -1;
+		cs->mark = mk, cs->capmark = cs->n;
+	}
+	for (uint32_t i = 0; i < cs->n; i++) {
+		cpair *c = &cs->pairs[i];
+		double n[3], curv, vr[3];
+		cs->mark[i] = (unsigned char)in_contact(c);
+		if (cs->mark[i] || W(c, MODE) == HOPPING || !touching(c, m, csf_contact_geometry(c, m, n, &curv))) continue;
+		rel(c, m, I(c, V), J(c, V), vr);
+		cs->mark[i] = fabs(dot3(vr, n)) <= speed_resolution(c, m);
+	}
+	if (csf_contact_choose(cs, m)) return 0;
+	int changed = 0;
+	for (uint32_t i = 0; i < cs->n; i++) {
+		cpair *c = &cs->pairs[i];
+		if (cs->mark[i] == 2) separate(c, m), changed = 1;
+		if (cs->mark[i] == 3) {
+			double n[3], curv, vr[3];
+			double gap = csf_contact_geometry(c, m, n, &curv);
+			close_gap(c, m, n, gap);
+			rel(c, m, I(c, V), J(c, V), vr);
+			double vn = dot3(vr, n);
+			for (int k = 0; k < 3; k++) vr[k] = -vn * n[k];
+			csf_contact_add_impulse(c, m, vr);
+			enter_contact(c, m, n);
+			changed = 1;
+		}
+	}
+	return changed;
 }
 
 /* Hops from time t at normal speed v >= 0 (an < 0): it lands after 2 v/|an|. */
@@ -199,6 +258,7 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 	   not consistent, the events that follow at this instant say so: csfvm(1)) */
 	uint64_t hits = 0, others = 0;
 	for (;;) {
+		cs->unsolved = 0; /* of the modes of this pass (the driver stops a run on it) */
 		if (eval(ctx)) return -1;
 		/* the most violent impact first; each changes velocities, so look again */
 		long hit = -1;
@@ -221,10 +281,11 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 			rel(c, m, I(c, V), J(c, V), vr);
 			rel(c, m, I(c, A), J(c, A), ar);
 			double vn = dot3(vr, n), an = dot3(ar, n) + curv;
-			if (vn < 0) {
+			if (vn < -speed_resolution(c, m)) {
 				if (vn < worst) worst = vn, hit = (long)i;
 				continue;
 			}
+			vn = csf_max(vn, 0);
 			if (gap < 0) close_gap(c, m, n, gap), gap = 0; /* apart by rounding: arm its guard */
 			if (hit >= 0) continue;
 			int how = departure(cs, m, c, vn, an, zeno, tol);
@@ -258,6 +319,17 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 				if (share_body(c, &cs->pairs[i]) && W(&cs->pairs[i], MODE) == HOPPING)
 					W(&cs->pairs[i], MODE) = APART;
 			continue;
+		}
+		/* a normal force that would pull: the pairs in contact chosen afresh, all at once */
+		int pulls = cs->unsolved; /* or forces that do not hold */
+		for (uint32_t i = 0; i < cs->n; i++) pulls |= in_contact(&cs->pairs[i]) && W(&cs->pairs[i], G0) < 0;
+		if (pulls) {
+			int st = choose(cs, m);
+			if (st < 0) return -1;
+			if (st > 0) {
+				if (++others >= 100 + 10 * (uint64_t)cs->n) return 0;
+				continue;
+			}
 		}
 		/* a guard of a pair in contact that is negative: its transition (contact_int.h's header) */
 		for (uint32_t i = 0; i < cs->n; i++) {
