@@ -105,27 +105,33 @@ typedef struct csf_event { uint32_t kind, value, mode, src; } csf_event;
  * There is no list of pairs: the program lists the bodies that can touch,
  * and the routine finds the pairs near or in contact at run time.
  *
- * A contact body is a mass point (plane 0) with the slots of its pos, v,
- * a, m, radius, cr, mu_s, mu_k, FN and Ff (pos in the state), or a plane
- * (plane 1) with its point in POS, its edge in V, its normal in R and its
- * cr, mu_s and mu_k (the fields it lacks hold the slot of t); object is
- * its object; varies is 1 when its radius (a plane: point, normal or
- * edge) is computed or integrated, so that the routine cannot tell from
- * positions alone how near it is: it is then a candidate with every body
- * of its rules at all times.
+ * A contact body is of a kind, its field plane (nonzero: immovable, of
+ * infinite mass, without v, a, m, FN and Ff): a mass point (CSF_CB_POINT)
+ * with the slots of its pos, v, a, m, radius, cr, mu_s, mu_k, FN and Ff
+ * (pos in the state); a plane (CSF_CB_PLANE) with its point in POS, its
+ * edge in V, its normal in R and its cr, mu_s and mu_k; or an anchor
+ * (CSF_CB_ANCHOR), an immovable sphere, with its pos, radius, cr, mu_s
+ * and mu_k (pos not in the state). The fields a body lacks hold the slot
+ * of t. object is its object; varies is 1 when its radius (a plane:
+ * point, normal or edge; an anchor: pos or radius) is computed or
+ * integrated, so that the routine cannot tell from positions alone how
+ * near it is: it is then a candidate with every body of its rules at all
+ * times.
  */
 enum csf_contact_field {
 	CSF_CF_POS, CSF_CF_V, CSF_CF_A, CSF_CF_M, CSF_CF_R, CSF_CF_CR, CSF_CF_MUS, CSF_CF_MUK, CSF_CF_FN, CSF_CF_FF,
 	CSF_CF_N
 };
+enum csf_cbody_kind { CSF_CB_POINT, CSF_CB_PLANE, CSF_CB_ANCHOR };
 typedef struct csf_cbody { uint32_t plane, object, varies, s[CSF_CF_N]; } csf_cbody;
 /*
  * A contact rule (one contact() statement): its $0 bodies, mass points,
- * are cmembers[first0 .. first0 + n0), its $1 bodies, mass points or
- * planes, cmembers[first1 .. first1 + n1) (indices into cbodies). every 1
- * (a rule without `for`): the pairs are every $0 with every $1 of another
- * object, two mass points once (the $0 defined first), and not two points
- * (both of radius 0: they never touch); every 0 (a rule with `for`): the
+ * are cmembers[first0 .. first0 + n0), its $1 bodies, mass points,
+ * planes or anchors, cmembers[first1 .. first1 + n1) (indices into
+ * cbodies). every 1 (a rule without `for`): the pairs are every $0 with
+ * every $1 of another object, two mass points once (the $0 defined
+ * first), and not two points (a mass point or an anchor, both of radius
+ * 0: they never touch); every 0 (a rule with `for`): the
  * k-th $0 with the k-th $1 (n0 = n1). The pairs are ordered by rule, then
  * by their $0's place in its list, then their $1's.
  */

@@ -248,9 +248,9 @@ t_hostile_bytecode() {
 	if timeout "$LIMIT" "$B/fuzz-bytecode" "$T/h.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode: $(tail -n 3 "$T/fuzz")"; fi
 }
 
-# the same for a program with events and contacts (their tables, EVGT, CONTACT; a point and a sphere on a floor)
+# the same for a program with events and contacts (their tables, EVGT, CONTACT; a point and a sphere on a floor, and a peg)
 t_hostile_bytecode_contacts() {
-	printf 'using mechanics/mass_point\nobject b: mass_point\nobject b: pos = (0, 0, 0.1) m\nobject b: cr = 0.5\nobject s: mass_point\nobject s: radius = 0.1 m\nobject s: pos = (0, 0, 0.2) m\nobject f: plane\nusing mechanics/rules\nrule F: if t < 0.2 s:\n    W = g.mul(m)\nelse:\n    W = g.mul(-m)\ninc t till 0.4 s by 0.2 s watch pos\n' >"$T/hc.csf"
+	printf 'using mechanics/mass_point\nobject b: mass_point\nobject b: pos = (0, 0, 0.1) m\nobject b: cr = 0.5\nobject s: mass_point\nobject s: radius = 0.1 m\nobject s: pos = (0, 0, 0.2) m\nobject f: plane\nobject k: anchor\nobject k: radius = 0.05 m\nobject k: pos = (0.3, 0, 0.05) m\nusing mechanics/rules\nrule F: if t < 0.2 s:\n    W = g.mul(m)\nelse:\n    W = g.mul(-m)\ninc t till 0.4 s by 0.2 s watch pos\n' >"$T/hc.csf"
 	"$CSFC" -I stdlib "$T/hc.csf" -o "$T/hc.csfb" 2>"$T/err" || bad "hostile bytecode: the contact model does not compile: $(head -n 1 "$T/err")"
 	if timeout "$LIMIT" "$B/fuzz-bytecode" "$T/hc.csfb" >"$T/fuzz" 2>&1; then ok; else bad "hostile bytecode with contacts: $(tail -n 3 "$T/fuzz")"; fi
 }
@@ -579,7 +579,8 @@ done
 {
 	echo code_size
 	for m in examples/bouncing_ball examples/collision examples/incline examples/newtons_cradle examples/pushed_block \
-		examples/table_edge tests/e2e/stack_drop tests/e2e/liftoff; do
+		examples/table_edge examples/peg tests/e2e/stack_drop tests/e2e/liftoff tests/e2e/peg_drop tests/e2e/peg_glance \
+		tests/e2e/peg_slide_off; do
 		echo "contacts_methods $m"
 	done
 	echo methods_tol

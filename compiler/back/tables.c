@@ -59,13 +59,13 @@ void gen_contact_tables(Gen *G, Model *M, csf_prog *p)
 	for (uint32_t i = 0; i < p->ncbodies; i++) {
 		ContactBody *b = M->cbodies.v[i];
 		csf_cbody *pb = &p->cbodies[i];
-		pb->plane = (uint32_t)b->plane;
+		pb->plane = (uint32_t)b->kind;
 		pb->object = (uint32_t)b->o->index;
 		for (int f = 0; f < CSF_CF_N; f++) {
 			Var *v = b->f[f];
 			pb->s[f] = v ? var_slot(G, v) : p->tslot;
-			/* the radius, or a plane's geometry, computed or integrated: not known from positions */
-			if (v && (f == CSF_CF_R || (b->plane && (f == CSF_CF_POS || f == CSF_CF_V))) && (v->state || v->det))
+			/* the radius, or a plane's or an anchor's geometry, computed or integrated: not known from positions */
+			if (v && (f == CSF_CF_R || (b->kind && (f == CSF_CF_POS || f == CSF_CF_V))) && (v->state || v->det))
 				pb->varies = 1;
 		}
 	}

@@ -13,6 +13,8 @@
  */
 static int explain_contacts(Model *Mo, Stmt *s, FILE *f)
 {
+	static const char *const pair_of[] = { "two mass points", "a mass point and a plane", "a mass point and an anchor" };
+	static const char *const kind_of[] = { "", "plane", "anchor" };
 	int lines = 0;
 	for (int k = 0; k < Mo->contacts.n; k++) {
 		Contact *r = Mo->contacts.v[k];
@@ -21,29 +23,35 @@ static int explain_contacts(Model *Mo, Stmt *s, FILE *f)
 		if (!r->every) {
 			fprintf(f, "  for %s with %s: the contact routine (%s); computed in rhs and out\n",
 			        ((ContactBody *)r->b0.v[0])->o->name, ((ContactBody *)r->b1.v[0])->o->name,
-			        r->nplanes ? "a mass point and a plane" : "two mass points");
+			        pair_of[((ContactBody *)r->b1.v[0])->kind]);
 			continue;
 		}
-		/* the mass points ($0, and $1 that are not planes) and the planes, each once */
+		/* the mass points ($0, and $1 that are not planes or anchors), the planes and the anchors, each once */
 		char *seen = xalloc((size_t)Mo->cbodies.n + 1);
 		Vec names = { 0 };
-		int npts = 0;
+		int npts = 0, nk[3] = { 0, r->nplanes, r->nanchors };
 		for (int q = 0; q < 2; q++)
 			for (int j = 0; j < (q ? r->b1.n : r->b0.n); j++) {
 				ContactBody *b = (q ? r->b1.v : r->b0.v)[j];
-				if (b->plane || seen[b->index]) continue;
+				if (b->kind || seen[b->index]) continue;
 				seen[b->index] = 1, npts++;
 				vec_push(&names, b->o->name);
 			}
-		for (int j = 0; j < r->b1.n; j++)
-			if (((ContactBody *)r->b1.v[j])->plane) vec_push(&names, ((ContactBody *)r->b1.v[j])->o->name);
+		for (int kind = CSF_CB_PLANE; kind <= CSF_CB_ANCHOR; kind++)
+			for (int j = 0; j < r->b1.n; j++)
+				if (((ContactBody *)r->b1.v[j])->kind == kind) vec_push(&names, ((ContactBody *)r->b1.v[j])->o->name);
 		fprintf(f, "  for %d mass point%s", npts, npts == 1 ? "" : "s");
-		if (r->nplanes) fprintf(f, " and %d plane%s", r->nplanes, r->nplanes == 1 ? "" : "s");
+		for (int kind = CSF_CB_PLANE; kind <= CSF_CB_ANCHOR; kind++)
+			if (nk[kind]) fprintf(f, " and %d %s%s", nk[kind], kind_of[kind], nk[kind] == 1 ? "" : "s");
 		if (names.n <= 6)
 			for (int j = 0; j < names.n; j++) fprintf(f, "%s%s", j ? ", " : " (", (char *)names.v[j]);
-		fprintf(f, "%s: the contact routine (%s), on the pairs it finds near at run time%s; computed in rhs and out\n",
-		        names.n <= 6 ? ")" : "", r->nplanes == r->b1.n ? "a mass point and a plane" : r->nplanes ? "two mass points, a mass point and a plane" : "two mass points",
-		        r->nplanes == r->b1.n ? "" : " (two points never touch)");
+		/* which pairs: of two mass points, a mass point and a plane, a mass point and an anchor */
+		int has[3] = { npts > 1 && r->nplanes + r->nanchors < r->b1.n, r->nplanes > 0, r->nanchors > 0 }, nh = 0;
+		fprintf(f, "%s: the contact routine (", names.n <= 6 ? ")" : "");
+		for (int kind = 0; kind < 3; kind++)
+			if (has[kind]) fprintf(f, "%s%s", nh++ ? ", " : "", pair_of[kind]);
+		fprintf(f, "), on the pairs it finds near at run time%s; computed in rhs and out\n",
+		        has[0] || has[2] ? " (two points never touch)" : "");
 	}
 	return lines;
 }

@@ -56,7 +56,7 @@ int live_mark(Model *M, Vec *Finsts)
 	for (int i = 0; i < M->cbodies.n && M->contacts.n; i++) {
 		ContactBody *b = M->cbodies.v[i];
 		Var *a = sema_canon(b->f[CSF_CF_A]);
-		if (b->plane || !a || !a->det) continue;
+		if (b->kind || !a || !a->det) continue;
 		mark(Finsts, a->det, CSF_SEC_OUT);
 		map_put(&dets, xprintf("%p", (void *)a->det), a->det);
 	}

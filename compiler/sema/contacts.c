@@ -31,22 +31,41 @@ int check_call(Stmt *s)
 
 /*
  * contact(pos, radius, pos$1, radius$1) or contact(pos, radius, point$1,
- * normal$1): mass points, and a mass point and a plane, for the runtime's
- * contact routine, which reads the bodies' other properties by their
- * mechanics/mass_point names. The program lists the bodies of each rule
- * (Contact, ContactBody), not its pairs: the routine finds at run time the
- * pairs that come near. Two points (both of radius 0) never touch.
+ * normal$1): mass points, a mass point and an anchor, and a mass point and
+ * a plane, for the runtime's contact routine, which reads the bodies'
+ * other properties by their mechanics/mass_point names. The program lists
+ * the bodies of each rule (Contact, ContactBody), not its pairs: the
+ * routine finds at run time the pairs that come near. Two points (both of
+ * radius 0) never touch.
+ *
+ * The kind of a body (enum csf_cbody_kind) follows from its properties: a
+ * plane's second geometry property (normal) is a vector; an anchor has the
+ * sphere's (pos, radius) but no velocity, acceleration or mass (v, a, m):
+ * it is no $0, only a $1 that mass points meet.
  */
 
 static const char *const body_props[CSF_CF_N] = { NULL, "v", "a", "m", NULL, "cr", "mu_s", "mu_k", "FN", "Ff" };
 static const char *const plane_props[CSF_CF_N] = { NULL, "edge", NULL, NULL, NULL, "cr", "mu_s", "mu_k", NULL, NULL };
+static const char *const anchor_props[CSF_CF_N] = { NULL, NULL, NULL, NULL, NULL, "cr", "mu_s", "mu_k", NULL, NULL };
 
 /* A binding ($0, $1) of a contact rule, as it is checked: its objects and their properties. */
 typedef struct CPair {
 	Object *a, *b;
-	int plane;            /* b is a plane */
+	int kind;             /* of b (enum csf_cbody_kind) */
 	Var *f[2][CSF_CF_N];  /* of a and of b, in the order of enum csf_contact_field (csf.h) */
 } CPair;
+
+/* Is o, with geometry geo of contact(), an anchor: a sphere without v, a and m? */
+static int is_anchor(Object *o, Var **geo)
+{
+	return !geo[1]->isvec && !prop_of(o, "v") && !prop_of(o, "a") && !prop_of(o, "m");
+}
+
+/* The kind of body o, with geometry geo, as $1. */
+static int body_kind(Object *o, Var **geo)
+{
+	return geo[1]->isvec ? CSF_CB_PLANE : is_anchor(o, geo) ? CSF_CB_ANCHOR : CSF_CB_POINT;
+}
 
 /* Body k's (0: $0, 1: $1) geometry in rule s on object o: the properties that arguments 2k and
  * 2k + 1 of contact() name, into geo[0..1]. Returns 0 if o lacks one: not this geometry. */
@@ -57,12 +76,13 @@ static int contact_geo(Stmt *s, Object *o, int k, Var **geo)
 	return 1;
 }
 
-/* Fills body k's fields of c (its a, b and plane set) from geo and the properties the contact
+/* Fills body k's fields of c (its a, b and kind set) from geo and the properties the contact
  * routine reads. Returns 0 if one is missing or of the wrong type, reporting it at s if report. */
 static int contact_body(CPair *c, int k, Var **geo, Stmt *s, int report)
 {
 	Object *o = k ? c->b : c->a;
-	const char *const *names = k && c->plane ? plane_props : body_props;
+	int kind = k ? c->kind : CSF_CB_POINT;
+	const char *const *names = kind == CSF_CB_PLANE ? plane_props : kind == CSF_CB_ANCHOR ? anchor_props : body_props;
 	Var **f = c->f[k];
 	f[CSF_CF_POS] = geo[0];
 	f[CSF_CF_R] = geo[1];
@@ -81,10 +101,10 @@ static int contact_body(CPair *c, int k, Var **geo, Stmt *s, int report)
 	return 1;
 }
 
-/* Are the position and velocity of c's body k integrated? A plane's need not be. */
+/* Are the position and velocity of c's body k integrated? A plane's or an anchor's need not be. */
 static int contact_integrated(CPair *c, int k)
 {
-	return (k && c->plane) || (c->f[k][CSF_CF_POS]->state && c->f[k][CSF_CF_V]->state);
+	return (k && c->kind) || (c->f[k][CSF_CF_POS]->state && c->f[k][CSF_CF_V]->state);
 }
 
 /* Checks the binding (a, b) of contact rule s into c, reporting what is wrong. 0 if it is wrong. */
@@ -94,7 +114,7 @@ static int contact_binding(Stmt *s, Object *a, Object *b, CPair *c)
 	memset(c, 0, sizeof *c);
 	c->a = a, c->b = b;
 	if (!contact_geo(s, a, 0, geo) || !contact_geo(s, b, 1, geo + 2)) return 0;
-	c->plane = geo[3]->isvec;
+	c->kind = body_kind(b, geo + 2);
 	if (!contact_body(c, 0, geo, s, 1) || !contact_body(c, 1, geo + 2, s, 1)) return 0;
 	if (!contact_integrated(c, 0) || !contact_integrated(c, 1)) {
 		error_at(s->loc, "contact of %s and %s: positions and velocities must be integrated (pos' = v, v' = a)",
@@ -104,14 +124,14 @@ static int contact_binding(Stmt *s, Object *a, Object *b, CPair *c)
 	return 1;
 }
 
-/* The contact body of object o with properties f: one per object and geometry. */
-static ContactBody *contact_cbody(Object *o, int plane, Var **f)
+/* The contact body of object o of kind kind with properties f: one per object and geometry. */
+static ContactBody *contact_cbody(Object *o, int kind, Var **f)
 {
-	char *key = xprintf("%d %p %p %d", o->index, (void *)f[CSF_CF_POS], (void *)f[CSF_CF_R], plane);
+	char *key = xprintf("%d %p %p %d", o->index, (void *)f[CSF_CF_POS], (void *)f[CSF_CF_R], kind);
 	ContactBody *b = map_get(&sema.M->cbody_keys, key);
 	if (b) return b;
 	b = xalloc(sizeof *b);
-	b->o = o, b->plane = plane, b->index = sema.M->cbodies.n;
+	b->o = o, b->kind = kind, b->index = sema.M->cbodies.n;
 	memcpy(b->f, f, sizeof b->f);
 	vec_push(&sema.M->cbodies, b);
 	map_put(&sema.M->cbody_keys, key, b);
@@ -131,25 +151,29 @@ static void contact_radius_fixed(Var *r)
 	if (r && !r->isvec && r->init[0] == 0 && !r->fix) r->fix = FIX_CONTACT;
 }
 
-/* Rule s with `for`: the pair (bind[0], bind[1]), unless it is two points (they never touch). */
+/* Rule s with `for`: the pair (bind[0], bind[1]), unless it is two points (they never touch) or
+ * its $0 is an anchor (an anchor meets mass points only as $1). */
 void inst_contact(Stmt *s, Object **bind, int nbind)
 {
 	CPair c;
-	if (nbind < 2 || !contact_binding(s, bind[0], bind[1], &c)) return;
-	for (int k = 0; k < 2 && !c.plane; k++) contact_radius_fixed(c.f[k][CSF_CF_R]);
-	if (!c.plane && !(c.f[0][CSF_CF_R]->init[0] + c.f[1][CSF_CF_R]->init[0] > 0)) return;
+	Var *geo[2];
+	if (nbind < 2 || (contact_geo(s, bind[0], 0, geo) && is_anchor(bind[0], geo))) return;
+	if (!contact_binding(s, bind[0], bind[1], &c)) return;
+	for (int k = 0; k < 2 && c.kind != CSF_CB_PLANE; k++) contact_radius_fixed(c.f[k][CSF_CF_R]);
+	if (c.kind != CSF_CB_PLANE && !(c.f[0][CSF_CF_R]->init[0] + c.f[1][CSF_CF_R]->init[0] > 0)) return;
 	Contact *r = new_contact(s, 0);
-	vec_push(&r->b0, contact_cbody(c.a, 0, c.f[0]));
-	vec_push(&r->b1, contact_cbody(c.b, c.plane, c.f[1]));
-	r->nplanes = c.plane;
+	vec_push(&r->b0, contact_cbody(c.a, CSF_CB_POINT, c.f[0]));
+	vec_push(&r->b1, contact_cbody(c.b, c.kind, c.f[1]));
+	r->nplanes = c.kind == CSF_CB_PLANE;
+	r->nanchors = c.kind == CSF_CB_ANCHOR;
 	vec_push(&sema.M->contacts, r);
 }
 
 /* What the search for contact bodies knows of an object, as $0 (k = 0) and as $1 (k = 1). */
 typedef struct Body {
-	int geo[2];       /* has the geometry */
+	int geo[2];       /* has the geometry (an anchor has none as $0) */
 	int bad[2];       /* lacks a field the contact routine reads, or is not integrated: an error */
-	int plane;        /* as $1: a plane */
+	int kind;         /* as $1: enum csf_cbody_kind (nonzero: immovable, meets every $0 of another object) */
 	double r[2];      /* radius */
 	Var *f[2][CSF_CF_N];
 } Body;
@@ -161,15 +185,16 @@ static Body *contact_bodies(Stmt *s)
 	for (int i = 0; i < sema.M->objects.n; i++) {
 		for (int k = 0; k < 2; k++) {
 			Var *geo[2];
-			if (!contact_geo(s, sema.M->objects.v[i], k, geo)) continue;
+			Object *o = sema.M->objects.v[i];
+			if (!contact_geo(s, o, k, geo) || (!k && is_anchor(o, geo))) continue;
 			CPair c = { 0 };
-			c.a = c.b = sema.M->objects.v[i];
-			c.plane = k && geo[1]->isvec;
+			c.a = c.b = o;
+			c.kind = k ? body_kind(o, geo) : CSF_CB_POINT;
 			B[i].geo[k] = 1;
 			B[i].bad[k] = !contact_body(&c, k, geo, s, 0) || !contact_integrated(&c, k);
-			if (k) B[i].plane = c.plane;
+			if (k) B[i].kind = c.kind;
 			B[i].r[k] = geo[1]->init[0];
-			if (!B[i].plane || !k) contact_radius_fixed(geo[1]);
+			if (B[i].kind != CSF_CB_PLANE || !k) contact_radius_fixed(geo[1]);
 			memcpy(B[i].f[k], c.f[k], sizeof B[i].f[k]);
 		}
 	}
@@ -177,18 +202,18 @@ static Body *contact_bodies(Stmt *s)
 }
 
 /* The first binding (*ea, *eb) of n bodies B that is an error, in binding order: $0 in order,
- * each with its $1 in order (a plane before it, or any body or plane after it). (n, n) if none. */
+ * each with its $1 in order (a plane or an anchor before it, or any body after it). (n, n) if none. */
 static void first_bad_pair(Body *B, int n, int *ea, int *eb)
 {
-	/* next_*[i]: the first $1 from i on, any or bad; plane_*: the first plane */
+	/* next_*[i]: the first $1 from i on, any or bad; plane_*: the first plane or anchor */
 	int *next_any = xalloc((size_t)(n + 1) * sizeof *next_any), *next_bad = xalloc((size_t)(n + 1) * sizeof *next_bad);
 	int plane_any = n, plane_bad = n;
 	next_any[n] = next_bad[n] = n;
 	for (int i = n - 1; i >= 0; i--) {
 		next_any[i] = B[i].geo[1] ? i : next_any[i + 1];
 		next_bad[i] = B[i].geo[1] && B[i].bad[1] ? i : next_bad[i + 1];
-		if (B[i].geo[1] && B[i].plane) plane_any = i;
-		if (B[i].geo[1] && B[i].plane && B[i].bad[1]) plane_bad = i;
+		if (B[i].geo[1] && B[i].kind) plane_any = i;
+		if (B[i].geo[1] && B[i].kind && B[i].bad[1]) plane_bad = i;
 	}
 	*ea = *eb = n;
 	for (int a = 0; a < n; a++) {
@@ -207,7 +232,8 @@ static void first_bad_pair(Body *B, int n, int *ea, int *eb)
  * every object with its geometry as $1, in the order of definition; the
  * first binding that is an error is reported instead. Kept only if one of
  * its pairs can touch: a mass point and a plane (of another object), or
- * two mass points the sum of whose radii is positive.
+ * two mass points, or a mass point and an anchor, the sum of whose radii
+ * is positive.
  */
 void contact_pairs(Stmt *s)
 {
@@ -223,19 +249,24 @@ void contact_pairs(Stmt *s)
 	for (int i = 0; i < n; i++)
 		for (int k = 0; k < 2; k++) B[i].geo[k] = B[i].geo[k] && !B[i].bad[k];
 	int n0 = 0, touch = 0;
-	for (int i = 0; i < n; i++) n0 += B[i].geo[0];
-	double maxr0 = -HUGE_VAL; /* the largest radius of a $0 defined before */
+	double maxr0 = -HUGE_VAL, maxr0all = -HUGE_VAL; /* the largest radius of a $0 defined before, of any */
+	for (int i = 0; i < n; i++) {
+		n0 += B[i].geo[0];
+		if (B[i].geo[0] && B[i].r[0] > maxr0all) maxr0all = B[i].r[0];
+	}
 	for (int i = 0; i < n && !touch; i++) {
-		if (B[i].geo[1] && B[i].plane) touch = n0 > B[i].geo[0];
+		if (B[i].geo[1] && B[i].kind == CSF_CB_PLANE) touch = n0 > B[i].geo[0];
+		else if (B[i].geo[1] && B[i].kind == CSF_CB_ANCHOR) touch = maxr0all + B[i].r[1] > 0;
 		else if (B[i].geo[1] && maxr0 + B[i].r[1] > 0) touch = 1;
 		if (B[i].geo[0] && B[i].r[0] > maxr0) maxr0 = B[i].r[0];
 	}
 	if (!touch) return;
 	Contact *r = new_contact(s, 1);
 	for (int i = 0; i < n; i++) {
-		if (B[i].geo[0]) vec_push(&r->b0, contact_cbody(sema.M->objects.v[i], 0, B[i].f[0]));
-		if (B[i].geo[1]) vec_push(&r->b1, contact_cbody(sema.M->objects.v[i], B[i].plane, B[i].f[1]));
-		if (B[i].geo[1] && B[i].plane) r->nplanes++;
+		if (B[i].geo[0]) vec_push(&r->b0, contact_cbody(sema.M->objects.v[i], CSF_CB_POINT, B[i].f[0]));
+		if (B[i].geo[1]) vec_push(&r->b1, contact_cbody(sema.M->objects.v[i], B[i].kind, B[i].f[1]));
+		r->nplanes += B[i].geo[1] && B[i].kind == CSF_CB_PLANE;
+		r->nanchors += B[i].geo[1] && B[i].kind == CSF_CB_ANCHOR;
 	}
 	vec_push(&sema.M->contacts, r);
 }
@@ -251,7 +282,7 @@ void contact_accels(void)
 			for (int j = 0; j < L->n; j++) {
 				ContactBody *b = L->v[j];
 				Var *a = b->f[CSF_CF_A];
-				if (b->plane || !a || sema_canon(a)->det || done[b->index]) continue;
+				if (b->kind || !a || sema_canon(a)->det || done[b->index]) continue;
 				done[b->index] = 1;
 				Object *other = NULL; /* the first body it can meet, to name the pair */
 				for (int q = 0; q < O->n && !other; q++)

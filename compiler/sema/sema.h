@@ -132,10 +132,10 @@ struct Inst {
 	int acc;         /* gen.c: a $1 F rule's sums over $1, an array of vectors (slot, -1 before) */
 };
 
-/* A body of the contact routine: a mass point or a plane, with the properties the routine reads. */
+/* A body of the contact routine: a mass point, a plane or an anchor, with the properties the routine reads. */
 typedef struct ContactBody {
 	Object *o;
-	int plane;
+	int kind;         /* enum csf_cbody_kind: nonzero, immovable (a plane or an anchor) */
 	Var *f[CSF_CF_N]; /* in the order of enum csf_contact_field (csf.h); NULL: not read */
 	int index;        /* in Model.cbodies */
 } ContactBody;
@@ -148,8 +148,8 @@ typedef struct Contact {
 	Stmt *st;
 	int src;
 	int every;       /* 1: every pair of the lists; 0: a rule with `for`, its one pair */
-	Vec b0, b1;      /* of ContactBody*: the $0 mass points, the $1 mass points or planes */
-	int nplanes;     /* of b1 */
+	Vec b0, b1;      /* of ContactBody*: the $0 mass points, the $1 mass points, planes or anchors */
+	int nplanes, nanchors; /* of b1 */
 } Contact;
 
 typedef struct WatchCol { char *name; Var *var; int comp; int member; /* index in var's shape (temps) */ } WatchCol;

@@ -148,7 +148,8 @@ void inst_stop(Stmt *s, Object **bind, int nbind);
 /* Is the rule's call the contact routine, with properties for arguments? Reports if not. */
 int check_call(Stmt *s);
 
-/* Rule s with `for`: the pair (bind[0], bind[1]), unless it is two points (they never touch). */
+/* Rule s with `for`: the pair (bind[0], bind[1]), unless it is two points (they never touch) or its $0 is
+ * an anchor. */
 void inst_contact(Stmt *s, Object **bind, int nbind);
 
 /*
@@ -156,7 +157,8 @@ void inst_contact(Stmt *s, Object **bind, int nbind);
  * every object with its geometry as $1, in the order of definition; the
  * first binding that is an error is reported instead. Kept only if one of
  * its pairs can touch: a mass point and a plane (of another object), or
- * two mass points the sum of whose radii is positive.
+ * two mass points, or a mass point and an anchor, the sum of whose radii
+ * is positive.
  */
 void contact_pairs(Stmt *s);
 

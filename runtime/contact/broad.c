@@ -34,6 +34,9 @@
  * point) to any size, and the positions from 1e-20 to 1e20 m, while the
  * sweep needs no parameter at all. A plane is not a box: each mass point
  * is tested against each plane (its box's nearest corner), a few planes.
+ * An anchor is a box that does not move (its centre grown by its radius
+ * and the margin), swept with the mass points; only the pairs of a mass
+ * point ($0) and an anchor ($1) are kept, two anchors never touch.
  *
  * The margin is 1e-9 of the magnitudes of the positions and radius, far
  * above the rounding of any gap (1e-16 of them) and above the tolerance
@@ -100,14 +103,14 @@ csf_contacts *csf_contacts_new(const csf_prog *p)
 	if (!c->box || !c->mg || !c->pn || !c->mstart || !c->sap || !c->uf || !c->cid || !c->K || !c->G || !c->K1 || !c->G1 || !c->lam || !c->v0 || !c->nv || !c->act || !c->rhs || !c->x ||
 	    !c->at || !c->B || !c->E || !c->dc)
 		goto oom;
-	/* the memberships of mass points in rules without `for`, by body, each body's in rule order */
+	/* the memberships of mass points and anchors in rules without `for`, by body, each body's in rule order */
 	for (uint32_t r = 0; r < p->ncrules; r++) {
 		const csf_crule *cr = &p->crules[r];
 		if (!cr->every) continue;
 		for (int role = 0; role < 2; role++)
 			for (uint32_t k = 0; k < (role ? cr->n1 : cr->n0); k++) {
 				uint32_t b = p->cmembers[(role ? cr->first1 : cr->first0) + k];
-				if (!p->cbodies[b].plane) c->mstart[b + 2]++, nm++;
+				if (p->cbodies[b].plane != CSF_CB_PLANE) c->mstart[b + 2]++, nm++;
 			}
 	}
 	for (size_t b = 2; b < nb + 2; b++) c->mstart[b] += c->mstart[b - 1];
@@ -119,10 +122,10 @@ csf_contacts *csf_contacts_new(const csf_prog *p)
 		for (uint32_t role = 0; role < 2; role++)
 			for (uint32_t k = 0; k < (role ? cr->n1 : cr->n0); k++) {
 				uint32_t b = p->cmembers[(role ? cr->first1 : cr->first0) + k];
-				if (!p->cbodies[b].plane) c->mem[c->mstart[b + 1]++] = (memb){ r, role, k };
+				if (p->cbodies[b].plane != CSF_CB_PLANE) c->mem[c->mstart[b + 1]++] = (memb){ r, role, k };
 			}
 	}
-	/* the bodies of the sweep: mass points in rules without `for` that do not vary */
+	/* the bodies of the sweep: mass points and anchors in rules without `for` that do not vary */
 	for (uint32_t b = 0; b < nb; b++)
 		if (c->mstart[b + 1] > c->mstart[b] && !p->cbodies[b].varies) c->sap[c->nsap++] = b;
 	return c;
@@ -188,17 +191,18 @@ void csf_contacts_objects(const csf_contacts *c, uint32_t k, uint32_t *oi, uint3
 	*oj = p->cbodies[p->cmembers[cr->first1 + q->k1]].object;
 }
 
-/* Body b's box over the states (a mass point), grown by its radius and the margin; empty if not a number. */
+/* Body b's box over the states (a mass point; an anchor's at its place in m), grown by its radius and the
+   margin; empty if not a number. */
 static void body_box(csf_contacts *c, const double *m, uint32_t b, const double *const *ys, int ns)
 {
 	const csf_prog *p = c->p;
 	const csf_cbody *cb = &p->cbodies[b];
 	double *bx = c->box + 6 * (size_t)b, big = 0;
-	uint32_t pos = cb->s[CSF_CF_POS] - p->ystart;
-	int bad = 0;
+	int anchor = cb->plane == CSF_CB_ANCHOR, bad = 0;
+	uint32_t pos = cb->s[CSF_CF_POS] - (anchor ? 0 : p->ystart);
 	for (int a = 0; a < 3; a++) bx[a] = HUGE_VAL, bx[3 + a] = -HUGE_VAL;
-	for (int s = 0; s < ns; s++) {
-		const double *x = ys[s] + pos;
+	for (int s = 0; s < (anchor ? 1 : ns); s++) {
+		const double *x = (anchor ? m : ys[s]) + pos;
 		for (int a = 0; a < 3; a++) {
 			bad |= isnan(x[a]);
 			if (x[a] < bx[a]) bx[a] = x[a];
@@ -231,7 +235,7 @@ static int overlap(const double *a, const double *b)
 	return a[0] <= b[3] && b[0] <= a[3] && a[1] <= b[4] && b[1] <= a[4] && a[2] <= b[5] && b[2] <= a[5];
 }
 
-/* Can mass points u and v touch within the states (their boxes)? Two points never do. */
+/* Can mass point u and mass point or anchor v touch within the states (their boxes)? Two points never do. */
 static int near_bodies(const csf_contacts *c, const double *m, uint32_t u, uint32_t v)
 {
 	const csf_cbody *bu = &c->p->cbodies[u], *bv = &c->p->cbodies[v];
@@ -251,18 +255,19 @@ static int near_plane(const csf_contacts *c, const double *m, uint32_t u, uint32
 	return d <= MARGIN * n[3];
 }
 
-/* The pairs of mass points u and v, whose boxes overlap: in every rule without `for` that has one as $0
-   and the other, defined after it, as $1. */
+/* The pairs of bodies u and v, whose boxes overlap: in every rule without `for` that has one as $0 and
+   the other as $1, of another object: an anchor, or a mass point defined after it. */
 static int sweep_pair(csf_contacts *c, uint32_t u, uint32_t v)
 {
 	const csf_prog *p = c->p;
 	uint32_t ou = p->cbodies[u].object, ov = p->cbodies[v].object;
+	int au = p->cbodies[u].plane == CSF_CB_ANCHOR, av = p->cbodies[v].plane == CSF_CB_ANCHOR;
 	for (uint32_t i = c->mstart[u]; i < c->mstart[u + 1]; i++)
 		for (uint32_t j = c->mstart[v]; j < c->mstart[v + 1]; j++) {
 			const memb *a = &c->mem[i], *b = &c->mem[j];
 			if (a->rule != b->rule || a->role == b->role) continue;
-			if (a->role == 0 && ou < ov && push_key(c, a->rule, a->place, b->place)) return -1;
-			if (b->role == 0 && ov < ou && push_key(c, b->rule, b->place, a->place)) return -1;
+			if (a->role == 0 && (av ? ou != ov : ou < ov) && push_key(c, a->rule, a->place, b->place)) return -1;
+			if (b->role == 0 && (au ? ov != ou : ov < ou) && push_key(c, b->rule, b->place, a->place)) return -1;
 		}
 	return 0;
 }
@@ -344,7 +349,7 @@ long csf_contacts_find(csf_contacts *c, const double *m, const double *const *ys
 		if (c->pairs[k].w[W_MODE] != APART && push_key(c, c->pairs[k].rule, c->pairs[k].k0, c->pairs[k].k1))
 			return -1;
 	for (uint32_t b = 0; b < p->ncbodies; b++) {
-		if (p->cbodies[b].plane) plane_normal(c, m, b);
+		if (p->cbodies[b].plane == CSF_CB_PLANE) plane_normal(c, m, b);
 		else body_box(c, m, b, ys, ns);
 	}
 	for (uint32_t r = 0; r < p->ncrules; r++) {
@@ -353,7 +358,8 @@ long csf_contacts_find(csf_contacts *c, const double *m, const double *const *ys
 		if (!cr->every) { /* `for`: its one pair */
 			for (uint32_t k = 0; k < cr->n0; k++) {
 				uint32_t i = L0[k], j = L1[k];
-				if ((p->cbodies[j].plane ? near_plane(c, m, i, j) : near_bodies(c, m, i, j)) && push_key(c, r, k, k))
+				if ((p->cbodies[j].plane == CSF_CB_PLANE ? near_plane(c, m, i, j) : near_bodies(c, m, i, j)) &&
+				    push_key(c, r, k, k))
 					return -1;
 			}
 			continue;
@@ -361,20 +367,22 @@ long csf_contacts_find(csf_contacts *c, const double *m, const double *const *ys
 		for (uint32_t k1 = 0; k1 < cr->n1; k1++) { /* every $0 with each plane, and with a $1 that varies */
 			uint32_t j = L1[k1];
 			const csf_cbody *bj = &p->cbodies[j];
-			if (!bj->plane && !bj->varies) continue;
+			if (bj->plane != CSF_CB_PLANE && !bj->varies) continue;
 			for (uint32_t k0 = 0; k0 < cr->n0; k0++) {
 				uint32_t i = L0[k0];
 				const csf_cbody *bi = &p->cbodies[i];
-				if (bj->plane ? bi->object != bj->object && near_plane(c, m, i, j) : bi->object < bj->object)
+				if (bj->plane ? bi->object != bj->object && (bj->plane == CSF_CB_ANCHOR || near_plane(c, m, i, j))
+				              : bi->object < bj->object)
 					if (push_key(c, r, k0, k1)) return -1;
 			}
 		}
-		for (uint32_t k0 = 0; k0 < cr->n0; k0++) { /* a $0 that varies, with every mass point */
+		for (uint32_t k0 = 0; k0 < cr->n0; k0++) { /* a $0 that varies, with every mass point and anchor */
 			const csf_cbody *bi = &p->cbodies[L0[k0]];
 			if (!bi->varies) continue;
 			for (uint32_t k1 = 0; k1 < cr->n1; k1++) {
 				const csf_cbody *bj = &p->cbodies[L1[k1]];
-				if (!bj->plane && bi->object < bj->object && push_key(c, r, k0, k1)) return -1;
+				int pair = bj->plane == CSF_CB_ANCHOR ? bi->object != bj->object : !bj->plane && bi->object < bj->object;
+				if (pair && push_key(c, r, k0, k1)) return -1;
 			}
 		}
 	}
@@ -403,7 +411,8 @@ long csf_contacts_find(csf_contacts *c, const double *m, const double *const *ys
 			const csf_cbody *bj = &p->cbodies[p->cmembers[cr->first1 + key->k1]];
 			memset(q, 0, sizeof *q);
 			q->rule = key->rule, q->k0 = key->k0, q->k1 = key->k1;
-			q->plane = bj->plane;
+			q->plane = bj->plane != CSF_CB_POINT;
+			q->anchor = bj->plane == CSF_CB_ANCHOR;
 			q->si = bi->s, q->sj = bj->s;
 			c->from[n] = -1;
 		}
@@ -424,7 +433,8 @@ void csf_contacts_commit(csf_contacts *c, const double *m, double *const *g, con
 				g[q][2 * k] = c->old[2 * o], g[q][2 * k + 1] = c->old[2 * o + 1];
 				continue;
 			}
-			/* a new pair is apart: its guard is its gap, as csf_contact_apply computes it */
+			/* a new pair is apart: its guard is its gap, as csf_contact_apply computes it (an anchor's
+			   position is in m) */
 			const cpair *cp = &c->next[k];
 			const double *pi = gy[q] + (I(cp, POS) - p->ystart), *pj = cp->plane ? NULL : gy[q] + (J(cp, POS) - p->ystart);
 			g[q][2 * k] = csf_contact_gap_guard(cp, m, pi, pj);

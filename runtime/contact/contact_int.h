@@ -5,8 +5,9 @@
  * file calls in another. Private: csf.h declares the routine's entry points.
  *
  * The contact routine: mechanics/rules 1 to 4: normal force, collision,
- * static and dynamic friction between a mass point and another mass point
- * or a plane.
+ * static and dynamic friction between a mass point and another mass point,
+ * a plane or an anchor (an immovable sphere, a peg: the geometry of two
+ * spheres, the infinite mass of a plane; its centre does not move).
  *
  * A pair is apart (mode 0), hopping (3), or in contact, sliding (1) or
  * sticking (2). The mode changes only at events, which the driver locates
@@ -14,7 +15,7 @@
  *
  *   apart:    guard 0 is the gap; when it closes the bodies collide (an
  *             impulse along the normal with restitution min(cr_i, cr_j); a
- *             plane has infinite mass; the pairs in contact do not close,
+ *             plane or an anchor has infinite mass; the pairs in contact do not close,
  *             and those whose velocity it changed take their mode afresh:
  *             apart, sliding or sticking), or come to rest in contact when
  *             the train of bounces that would follow ends within the Zeno
@@ -48,11 +49,13 @@
  * order of the pairs, so that what it computes is what it would compute
  * for every pair of the scene: an apart pair that is not a candidate has
  * a positive gap at every instant its guard would be looked at, and does
- * nothing. Two points (radius 0) never touch.
+ * nothing. Two points (radius 0: mass points, or a mass point and an
+ * anchor) never touch.
  *
  * The files, runtime/contact/, in the order of the work:
  *
- *   geometry.c  a pair's normal, gap, edge and length scale; its slip
+ *   geometry.c  a pair's normal, gap (sphere and sphere or anchor, or
+ *               plane), edge and length scale; its slip
  *   cluster.c   the clusters: the pairs in contact that share bodies, and
  *               the direct (LU) solve of their linear systems
  *   force.c     the force stage (csf_contact_apply): contact forces and
@@ -80,12 +83,13 @@ enum { APART, SLIDING, STICKING, HOPPING }; /* the modes of a pair */
    that is not a candidate is apart. */
 enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_N = 14 };
 
-/* A candidate pair: body i (a mass point, $0) and body j (a mass point or a plane, $1). */
+/* A candidate pair: body i (a mass point, $0) and body j (a mass point, a plane or an anchor, $1). */
 typedef struct cpair {
 	uint32_t rule, k0, k1;   /* its place in the order of pairs: its rule, $0's and $1's place in its lists */
-	uint32_t plane;          /* j is a plane */
+	uint32_t plane;          /* j is immovable, of infinite mass, no velocity: a plane or an anchor */
 	const uint32_t *si, *sj; /* the property slots of i and j (csf_cbody) */
 	double w[W_N];
+	uint32_t anchor;         /* j is an anchor: a sphere (plane is 1 too) */
 } cpair;
 
 /* A pair's key, for sorting: rule, k0, k1. */

@@ -270,7 +270,7 @@ int csf_contacts_unsolved(const csf_contacts *c) { return c->unsolved; }
 double csf_contact_gap_guard(const cpair *c, const double *m, const double *pi, const double *pj)
 {
 	double n[3], curv, gap = csf_contact_geometry_at(c, m, pi, pj, n, &curv);
-	double scale = mag3(pi) + (pj ? mag3(pj) : mag3(m + J(c, POS))) + m[I(c, R)] + (c->plane ? 0 : m[J(c, R)]);
+	double scale = mag3(pi) + (pj ? mag3(pj) : mag3(m + J(c, POS))) + m[I(c, R)] + (c->plane && !c->anchor ? 0 : m[J(c, R)]);
 	return csf_max(gap + 2 * DBL_EPSILON * scale, -csf_contact_inside_at(c, m, pi));
 }
 

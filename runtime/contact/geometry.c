@@ -1,6 +1,7 @@
 /*
  * geometry.c - a pair's geometry: its normal, gap and the gap's
- * centripetal term, a plane's edge, the pair's length scale and the
+ * centripetal term (two spheres, a sphere and an anchor, or a sphere and a
+ * plane), a plane's edge, the pair's length scale and the
  * smallest gap its positions resolve, and the relative tangential velocity;
  * and the check that every mass point's mass is positive (csf_contacts_bad_mass).
  */
@@ -20,7 +21,9 @@ long csf_contacts_bad_mass(const csf_prog *p, const double *m)
  * The pair's unit normal n (from j towards i), its gap (returned) and the
  * centripetal term of the gap's second derivative (spheres moving round
  * each other): gap'' = (a_i - a_j) . n + curv. The positions of i and j
- * (a mass point) are at pi and pj, the rest in m. Two points (radius 0)
+ * (a mass point) are at pi and pj, the rest in m; an anchor's position is
+ * in m (pj unused), and its velocity and acceleration are zero, so that
+ * curv is that of i going round a fixed centre. Two points (radius 0)
  * never touch: their gap is infinite; two spheres at one place have no
  * normal (n = 0), their gap is minus the sum of their radii.
  */
@@ -28,7 +31,8 @@ double csf_contact_geometry_at(const cpair *c, const double *m, const double *pi
                                double *curv)
 {
 	*curv = 0;
-	if (c->plane) {
+	if (c->anchor) pj = m + J(c, POS);
+	else if (c->plane) {
 		const double *q = m + J(c, POS), *nn = m + J(c, R);
 		double k = mag3(nn), d[3];
 		for (int i = 0; i < 3; i++) n[i] = nn[i] / k, d[i] = pi[i] - q[i];
@@ -60,7 +64,7 @@ double csf_contact_geometry(const cpair *c, const double *m, double n[3], double
  */
 double csf_contact_inside_at(const cpair *c, const double *m, const double *pi)
 {
-	if (!c->plane) return HUGE_VAL;
+	if (!c->plane || c->anchor) return HUGE_VAL;
 	const double *e = m + J(c, V), *q = m + J(c, POS);
 	double len = mag3(e);
 	if (!(len > 0)) return HUGE_VAL;
@@ -73,7 +77,7 @@ double csf_contact_inside(const cpair *c, const double *m) { return csf_contact_
 /* The pair's length scale: the magnitudes its gap is computed from. */
 double csf_contact_scale(const cpair *c, const double *m)
 {
-	return mag3(m + I(c, POS)) + mag3(m + J(c, POS)) + m[I(c, R)] + (c->plane ? 0 : m[J(c, R)]);
+	return mag3(m + I(c, POS)) + mag3(m + J(c, POS)) + m[I(c, R)] + (c->plane && !c->anchor ? 0 : m[J(c, R)]);
 }
 
 /*

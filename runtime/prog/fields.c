@@ -191,20 +191,21 @@ ELEM(event_ok)
 }
 
 /*
- * A contact body: every slot in memory (a mass point's position in the
- * state, where the broad phase reads it from state vectors), its object in
- * range.
+ * A contact body: a kind it can be, every slot it has in memory (a mass
+ * point's position in the state, where the broad phase reads it from state
+ * vectors), its object in range.
  */
 ELEM(cbody_ok)
 {
 	const csf_cbody *b = e_;
 	UNUSED;
 	static const unsigned char width[CSF_CF_N] = { 3, 3, 3, 1, 1, 1, 1, 1, 3, 3 };
-	int ok = b->plane <= 1 && b->varies <= 1 && b->object < p->nobjects;
+	int ok = b->plane <= CSF_CB_ANCHOR && b->varies <= 1 && b->object < p->nobjects;
 	for (int f = 0; ok && f < CSF_CF_N; f++) {
 		uint32_t w = width[f];
-		if (b->plane && f == CSF_CF_R) w = 3; /* a plane's normal */
+		if (b->plane == CSF_CB_PLANE && f == CSF_CF_R) w = 3; /* a plane's normal */
 		if (b->plane && (f == CSF_CF_A || f == CSF_CF_M || f == CSF_CF_FN || f == CSF_CF_FF)) continue;
+		if (b->plane == CSF_CB_ANCHOR && f == CSF_CF_V) continue; /* no velocity: a plane's edge */
 		ok = slot_ok(p, b->s[f], w);
 	}
 	if (ok && !b->plane)

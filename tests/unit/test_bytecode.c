@@ -299,13 +299,14 @@ START_TEST(test_contact_tables_verified)
 		{ &cb->s[CSF_CF_M], p.nmem, "contact body" },
 		{ &cb->s[CSF_CF_POS], p.dstart, "contact body" },   /* a position not in the state */
 		{ &cb->s[CSF_CF_POS], p.ystart + p.ny - 2, "contact body" },
-		{ &cb->plane, 2, "contact body" },
+		{ &cb->plane, CSF_CB_ANCHOR + 1, "contact body" }, /* no such kind */
 		{ &cb->varies, 2, "contact body" },
 		{ &cb->object, p.nobjects, "contact body" },
 		{ &cr->s[CSF_CF_R], p.nmem - 2, "contact body" },   /* a plane's normal is a vector */
 		{ &cr->s[CSF_CF_POS], p.nmem, "contact body" },
 		{ &p.cmembers[0], p.ncbodies, "contact list entry" },
 		{ &p.cmembers[ru->first0], r, "contact rule" },     /* a plane as $0 */
+		{ &cb->plane, CSF_CB_ANCHOR, "contact rule" },     /* an anchor as $0 */
 		{ &ru->src, p.nsrcs, "contact rule" },
 		{ &ru->every, 2, "contact rule" },
 		{ &ru->first1, p.ncmembers, "contact rule" },
