@@ -66,7 +66,9 @@ pile() { # N CR MU METHOD
 	st=$?
 	if [ $st -ne 0 ]; then
 		fail=$((fail + 1))
-		echo "FAIL: $label: csfvm exit $st after $(($(wc -l <"$f.csv") - 1)) rows: $(grep -v '^warning' "$f.err" | head -n 1 | cut -c1-200)"
+		msg=$(grep -v '^warning' "$f.err" | head -n 1 | cut -c1-200)
+		case $st in 124 | 137) msg="did not finish in 120 s" ;; esac
+		echo "FAIL: $label: csfvm exit $st after $(($(wc -l <"$f.csv") - 1)) rows: $msg"
 		return
 	fi
 	xw=$(awk -v n="$n" 'BEGIN { w = int(sqrt(n)); if (w * w < n) w++; printf "%.15g", w * 0.12 + 0.1 }')
