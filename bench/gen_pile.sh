@@ -1,5 +1,5 @@
 #!/bin/sh
-# gen_pile.sh N CR MU TILL BY OUT.csf - writes a CSF scene of a pile of N
+# gen_pile.sh N CR MU TILL BY OUT.csf [WATCH] - writes a CSF scene of a pile of N
 # equal balls (1 kg, radius 0.05 m) dropped in a 2-D box under gravity:
 # they start on a lattice 0.12 m apart, W = ceil(sqrt(N)) balls a row along
 # x (the first at x = 0.11 m), rows going up in z (the first at z = 0.1 m
@@ -9,10 +9,11 @@
 # two wall planes at x = 0 and x = W*0.12 + 0.1 m. Every body has
 # restitution CR and, when MU is not 0, friction mu_s = MU, mu_k = 0.8*MU.
 # Gravity: rule F: W = g.mul(m). Runs to TILL s, output every BY s,
-# watching pos. bench/box2d_pile.cpp builds the same scene in Box2D.
+# watching WATCH, a watch list (default: pos; tests/piles/piles.sh gives
+# "pos, v, FN, Ff"). bench/box2d_pile.cpp builds the same scene in Box2D.
 set -eu
-[ $# -eq 6 ] || { echo "usage: gen_pile.sh N CR MU TILL BY OUT.csf" >&2; exit 2; }
-awk -v n="$1" -v cr="$2" -v mu="$3" -v till="$4" -v by="$5" '
+[ $# -eq 6 ] || [ $# -eq 7 ] || { echo "usage: gen_pile.sh N CR MU TILL BY OUT.csf [WATCH]" >&2; exit 2; }
+awk -v n="$1" -v cr="$2" -v mu="$3" -v till="$4" -v by="$5" -v watch="${7:-pos}" '
 function rnd() { seed = (seed * 16807) % 2147483647; return seed / 2147483647 }
 function props(o) {
 	printf "object %s: cr = %s\n", o, cr
@@ -38,5 +39,5 @@ BEGIN {
 	props("wall1")
 	print "using mechanics/rules"
 	print "rule F: W = g.mul(m)"
-	printf "inc t till %s s by %s s watch pos\n", till, by
+	printf "inc t till %s s by %s s watch %s\n", till, by, watch
 }' > "$6"

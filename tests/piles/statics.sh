@@ -1,0 +1,162 @@
+#!/bin/sh
+# tests/piles/statics.sh CSFC CSFVM DIR - balls at rest in exact contact,
+# whose forces are known in closed form; each scene runs 1 s (rows every
+# 0.01 s, watching pos, v, a, FN and Ff) and statics.awk checks every row:
+# nothing moves (v and a 0, pos as placed, to 1e-9) and the forces are the
+# exact ones to 1e-9 m g. Balls: 1 kg, radius r = 0.05 m; W = m g.
+#
+# FN of a ball is the sum of the normal forces of all its contacts, Ff of
+# their friction forces, so at rest FN + Ff = (0, 0, W) for every ball
+# whatever the contacts share; the single contact forces are not columns,
+# and the checks below say what the columns determine.
+#
+#  box: two balls on the floor touching each other and both walls (the box
+#    4 r = 0.2 m wide), a third on both, frictionless. The top ball's two
+#    contacts push along the lines of centres, 60 deg from horizontal, each
+#    W/sqrt(3) (2 F sin 60 = W); each gives its bottom ball W/(2 sqrt 3)
+#    outwards and W/2 down, so the floor pushes each bottom ball 1.5 W and its
+#    wall W/(2 sqrt 3) + P, with P >= 0 the push between the bottom balls,
+#    which nothing determines (wall-ball-ball-wall is a chain between two
+#    parallel planes; P = 0 in the least-norm sense). Each ball's FN is the
+#    sum: (0, 0, W) for all three, whatever P is; Ff = 0.
+#  groove: a ball in a V of two planes at +-30 deg from horizontal, touching
+#    both, frictionless: each plane pushes W/(2 cos 30) = W/sqrt(3) along its
+#    normal; the ball's FN = (0, 0, W), Ff = 0.
+#  pyramid: three balls on the floor touching in an equilateral triangle
+#    (centres R = 2 r/sqrt(3) from its centre, at angles 90, 210, 330 deg),
+#    a fourth on them (centre 2 r sqrt(2/3) above theirs); the floor rough
+#    (mu_s 0.5, mu_k 0.4), the balls frictionless (a pair's coefficient is
+#    the larger of the two: the ball-ball pairs have none). The lines of
+#    centres make alpha with the vertical, cos alpha = sqrt(2/3), tan alpha =
+#    1/sqrt(2); the top ball's three pushes are W/(3 cos alpha), each giving
+#    its bottom ball W/3 down and H = W tan(alpha)/3 = W/(3 sqrt 2)
+#    outwards (along u, the unit vector from the triangle's centre). A
+#    bottom ball: floor N = W + W/3 = 4/3 W up, floor friction inwards,
+#    bottom-bottom pushes P >= 0 (not determined: the floor's friction can
+#    hold any prestress up to mu_s N), which add sqrt(3) P outwards. So
+#    determined: top FN = (0, 0, W), Ff = 0; bottom FN_z = W, FN across u
+#    0, FN along u = H + sqrt(3) P >= H, FN + Ff = (0, 0, W), and friction
+#    within the cone |Ff| <= mu_s (FN_z + W/3). In the least-norm sense
+#    (P = 0, checked apart as "pyramid, least-norm"): FN along u = H and
+#    Ff = -H u exactly.
+#
+# Every process has a time limit (TERM, then KILL 10 s later, as in piles.sh).
+#
+# Prints one line per failure and, last, "N passed, N failed".
+CSFC=$1 CSFVM=$2 T=$3
+HERE=$(dirname "$0")
+pass=0 fail=0
+HEAD='using mechanics/mass_point'
+TAIL='using mechanics/rules
+rule F: W = g.mul(m)
+inc t till 1 s by 0.01 s watch pos, v, a, FN, Ff'
+# ball NAME X Y Z: a 1 kg ball of radius 0.05 m at (X, Y, Z) m (CSF expressions)
+ball() {
+	printf 'object %s: mass_point\nobject %s: m = 1 kg\nobject %s: radius = 0.05 m\nobject %s: pos = (%s, %s, %s) m\n' "$1" "$1" "$1" "$1" "$2" "$3" "$4"
+}
+# at_rest NAME X Y Z: checks that ball NAME stays at (X, Y, Z) (numbers)
+at_rest() {
+	printf 'pos of %s;eq;%.17g;1;1 %s.pos.x\npos of %s;eq;%.17g;1;1 %s.pos.y\npos of %s;eq;%.17g;1;1 %s.pos.z\n' "$1" "$2" "$1" "$1" "$3" "$1" "$1" "$4" "$1"
+}
+# forces NAME FNX FNY FNZ FFX FFY FFZ: checks of ball NAME's FN and Ff (numbers, N)
+forces() {
+	awk -v b="$1" -v s="$2 $3 $4 $5 $6 $7" 'BEGIN {
+		split(s, f, " "); split("x y z", ax, " ")
+		for (k = 1; k <= 3; k++) printf "%s.FN.%s;eq;%.17g;9.80665;1 %s.FN.%s\n", b, ax[k], f[k], b, ax[k]
+		for (k = 1; k <= 3; k++) printf "%s.Ff.%s;eq;%.17g;9.80665;1 %s.Ff.%s\n", b, ax[k], f[k + 3], b, ax[k]
+	}'
+}
+# run SCENE CHECKNAME...: compiles and runs $T/SCENE.csf, then checks it with
+# each $T/CHECKNAME.expect
+run() {
+	s=$1
+	shift
+	if ! timeout -k 10 60 "$CSFC" "$T/$s.csf" -o "$T/$s.csfb" 2>"$T/$s.err"; then
+		for k in "$@"; do fail=$((fail + 1)); echo "FAIL: $k: csfc: $(head -n 1 "$T/$s.err")"; done
+		return
+	fi
+	timeout -k 10 120 "$CSFVM" "$T/$s.csfb" >"$T/$s.csv" 2>"$T/$s.err"
+	st=$?
+	if [ $st -ne 0 ]; then
+		for k in "$@"; do
+			fail=$((fail + 1))
+			echo "FAIL: $k: csfvm exit $st after $(($(wc -l <"$T/$s.csv") - 1)) rows: $(grep -v '^warning' "$T/$s.err" | head -n 1 | cut -c1-200)"
+		done
+		return
+	fi
+	for k in "$@"; do
+		if timeout -k 10 60 awk -v name="$k" -v rows=101 -f "$HERE/statics.awk" "$T/$k.expect" "$T/$s.csv" >"$T/$k.chk" 2>&1; then
+			pass=$((pass + 1)); [ -n "${VERBOSE:-}" ] && cat "$T/$k.chk"
+		else
+			fail=$((fail + 1)); echo "FAIL: $(head -n 1 "$T/$k.chk")"
+		fi
+	done
+}
+W=9.80665
+
+# box
+{
+	echo "$HEAD"
+	ball b0 0.05 0 0.05
+	ball b1 0.15 0 0.05
+	ball b2 0.1 0 '0.05 + 0.1 * sin(60 deg)'
+	printf 'object floor: plane\nobject wall0: plane\nobject wall0: normal = (1, 0, 0)\n'
+	printf 'object wall1: plane\nobject wall1: point = (0.2, 0, 0) m\nobject wall1: normal = (-1, 0, 0)\n'
+	echo "$TAIL"
+} >"$T/box.csf"
+{
+	at_rest b0 0.05 0 0.05
+	at_rest b1 0.15 0 0.05
+	at_rest b2 0.1 0 "$(awk 'BEGIN { printf "%.17g", 0.05 + 0.1 * sin(atan2(0, -1) / 3) }')"
+	for b in b0 b1 b2; do forces $b 0 0 $W 0 0 0; done
+} >"$T/box.expect"
+run box box
+
+# groove
+{
+	echo "$HEAD"
+	ball b0 0 0 '0.05 / cos(30 deg)'
+	printf 'object left: plane\nobject left: normal = (sin(30 deg), 0, cos(30 deg))\n'
+	printf 'object right: plane\nobject right: normal = (-sin(30 deg), 0, cos(30 deg))\n'
+	echo "$TAIL"
+} >"$T/groove.csf"
+{
+	at_rest b0 0 0 "$(awk 'BEGIN { printf "%.17g", 0.05 / cos(atan2(0, -1) / 6) }')"
+	forces b0 0 0 $W 0 0 0
+} >"$T/groove.expect"
+run groove groove
+
+# pyramid
+{
+	echo "$HEAD"
+	ball b0 0 '0.1 / sqrt(3)' 0.05
+	ball b1 '-0.1 / sqrt(3) * cos(30 deg)' '-0.1 / sqrt(3) * sin(30 deg)' 0.05
+	ball b2 '0.1 / sqrt(3) * cos(30 deg)' '-0.1 / sqrt(3) * sin(30 deg)' 0.05
+	ball top 0 0 '0.05 + 0.1 * sqrt(2 / 3)'
+	printf 'object floor: plane\nobject floor: mu_s = 0.5\nobject floor: mu_k = 0.4\n'
+	echo "$TAIL"
+} >"$T/pyramid.csf"
+LN="$T/pyramid, least-norm.expect" awk -v W=$W 'BEGIN {
+	pi = atan2(0, -1); R = 0.1 / sqrt(3); H = W / (3 * sqrt(2)); mus = 0.5
+	split("b0 b1 b2", b, " "); th[1] = pi / 2; th[2] = 7 * pi / 6; th[3] = 11 * pi / 6
+	for (i = 1; i <= 3; i++) {
+		ux = cos(th[i]); uy = sin(th[i])
+		printf "pos of %s;eq;%.17g;1;1 %s.pos.x\npos of %s;eq;%.17g;1;1 %s.pos.y\npos of %s;eq;0.05;1;1 %s.pos.z\n", b[i], R * ux, b[i], b[i], R * uy, b[i], b[i], b[i]
+		printf "%s.FN.z;eq;%.17g;%.17g;1 %s.FN.z\n", b[i], W, W, b[i]
+		printf "%s.FN across u;eq;0;%.17g;%.17g %s.FN.x %.17g %s.FN.y\n", b[i], W, -uy, b[i], ux, b[i]
+		printf "%s.FN along u (H + sqrt(3) P, P >= 0);ge;%.17g;%.17g;%.17g %s.FN.x %.17g %s.FN.y\n", b[i], H, W, ux, b[i], uy, b[i]
+		printf "%s.FN.x + Ff.x;eq;0;%.17g;1 %s.FN.x 1 %s.Ff.x\n", b[i], W, b[i], b[i]
+		printf "%s.FN.y + Ff.y;eq;0;%.17g;1 %s.FN.y 1 %s.Ff.y\n", b[i], W, b[i], b[i]
+		printf "%s.FN.z + Ff.z;eq;%.17g;%.17g;1 %s.FN.z 1 %s.Ff.z\n", b[i], W, W, b[i], b[i]
+		# |Ff| = -u.Ff once Ff is along u; the floor normal is FN_z + W/3
+		printf "%s |Ff| - mu_s (FN.z + W/3);le;%.17g;%.17g;%.17g %s.Ff.x %.17g %s.Ff.y %.17g %s.FN.z\n", b[i], mus * W / 3, W, -ux, b[i], -uy, b[i], -mus, b[i]
+		printf "%s.FN along u;eq;%.17g;%.17g;%.17g %s.FN.x %.17g %s.FN.y\n", b[i], H, W, ux, b[i], uy, b[i] > ENVIRON["LN"]
+		printf "%s.Ff along u;eq;%.17g;%.17g;%.17g %s.Ff.x %.17g %s.Ff.y\n", b[i], -H, W, ux, b[i], uy, b[i] > ENVIRON["LN"]
+	}
+	printf "pos of top;eq;0;1;1 top.pos.x\npos of top;eq;0;1;1 top.pos.y\npos of top;eq;%.17g;1;1 top.pos.z\n", 0.05 + 0.1 * sqrt(2 / 3)
+}' >"$T/pyramid.expect"
+forces top 0 0 $W 0 0 0 >>"$T/pyramid.expect"
+run pyramid pyramid "pyramid, least-norm"
+
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]
