@@ -430,10 +430,17 @@ t_contacts_methods() {
 
 # 5j. piles of balls (issue 28; tests/piles/): no overlap, no energy gained, at rest in
 #     equilibrium (piles N, one job a size), and balls at rest with closed-form forces
-#     (piles_statics). Only with CSF_TEST_PILES=1 until the contact solver is rewritten
-#     (also make check-piles); to make them part of every run, drop that condition in the list.
+#     (piles_statics, always). The cases that settle today always (piles_now); the whole grid
+#     (piles N) only with CSF_TEST_PILES=1 (also make check-piles) until it passes.
 t_piles() {
 	suite "piles of $1 balls" env PILE_N="$1" sh tests/piles/piles.sh "$CSFC" "$CSFVM" "$T"
+}
+# the piles that the solver settles today (the whole grid, with CSF_TEST_PILES=1, does not
+# pass yet: issue 28's closing note says which cases fail and why)
+t_piles_now() {
+	suite "piles that settle" sh tests/piles/piles.sh "$CSFC" "$CSFVM" "$T" "3 0 0 default" "3 0.5 0 default" \
+		"3 0.5 0.3 default" "3 1 0 default" "3 0.9 0.3 default" "16 0.5 0.3 default" "16 0 0.3 default" \
+		"3 0.5 0.3 rkf45" "16 0.5 0.3 msbdf"
 }
 t_piles_statics() {
 	suite "balls at rest" sh tests/piles/statics.sh "$CSFC" "$CSFVM" "$T"
@@ -594,9 +601,10 @@ done
 		tests/e2e/peg_slide_off; do
 		echo "contacts_methods $m"
 	done
+	echo piles_statics
+	echo piles_now
 	if [ -n "${CSF_TEST_PILES:-}" ]; then
 		for n in 64 16 3; do echo "piles $n"; done
-		echo piles_statics
 	fi
 	echo methods_tol
 	echo sweep
