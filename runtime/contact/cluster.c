@@ -57,6 +57,19 @@ double csf_contact_coupling(const csf_contacts *cs, const cpair *c, const cpair 
 	return k;
 }
 
+/* The ratio of the largest mass of the bodies of pairs cl[0..np) to the smallest. */
+double csf_contact_mass_ratio(const csf_contacts *cs, const uint32_t *cl, uint32_t np, const double *m)
+{
+	double lo = HUGE_VAL, hi = 0;
+	for (uint32_t a = 0; a < np; a++) {
+		const cpair *c = &cs->pairs[cl[a]];
+		double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m);
+		lo = csf_min(lo, wi), hi = csf_max(hi, wi);
+		if (!c->plane) lo = csf_min(lo, wj), hi = csf_max(hi, wj);
+	}
+	return hi > 0 ? hi / lo : 1;
+}
+
 /*
  * Sorts the candidates k for which pick(k) holds into clusters: cl lists
  * them cluster by cluster, each in the order of pairs, the clusters in the
@@ -111,7 +124,7 @@ uint32_t csf_contact_clusters(csf_contacts *cs, int (*pick)(const cpair *, const
  * the system to 1e-9 of its sizes: a singular system that has no solution
  * (contacts that contradict each other) fails (-1).
  */
-static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, const double *b)
+static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, const double *b, int check)
 {
 	size_t need = (size_t)dim * dim + 6 * (size_t)dim;
 	if (need > cs->capls) {
@@ -141,7 +154,13 @@ static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, con
 	for (uint32_t i = 0; i < dim; i++) rn = hypot(rn, w[3 * dim + i]), bn = hypot(bn, b[i]), xn = hypot(xn, cs->x[i]);
 	for (uint32_t i = 0; i < dim; i++)
 		if (!isfinite(cs->x[i])) return -1;
-	return rn <= 1e-9 * csf_max(bn, colmax * xn) ? 0 : -1;
+	return !check || rn <= 1e-9 * csf_max(bn, colmax * xn) ? 0 : -1;
+}
+
+/* After csf_contact_solve failed: the least-squares solution of least norm of its system into cs->x. */
+int csf_contact_least_squares(csf_contacts *cs, uint32_t dim)
+{
+	return solve_least_norm(cs, dim, cs->kb, cs->kb + (size_t)dim * dim, 0);
 }
 
 /*
@@ -190,10 +209,16 @@ static int solve_lu(double *K, double *b, double *x, uint32_t dim, double tiny)
  * masses): the least-norm solution above. If not, the masses differ by more
  * than about 1e10, and the net force on the lightest body would be the
  * difference of forces 1e10 times larger, of which rounding would take more
- * than 1e-6: it fails (-1), as it does when the least-norm solution does not
- * solve the system. K, rhs and K1 are destroyed.
+ * than 1e-6: it fails (-1). wratio is the ratio of the largest inverse mass
+ * of the cluster's bodies to the smallest: the masses differ when it is
+ * 1e6 or more. A system singular with masses that do not differ so, whose
+ * least-norm solution (if any) does not solve it, is nearly singular
+ * (contacts all but redundant, or sliding friction that all but cancels a
+ * normal force): its elimination, pivots down to 1e-14 of the largest
+ * coefficient, gives its forces, large as they may be. K, rhs and K1 are
+ * destroyed.
  */
-int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1)
+int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio)
 {
 	double *K = cs->K, *b = cs->rhs, big = 0, big1 = 0;
 	for (uint32_t k = 0; k < dim * dim; k++) big = csf_max(big, fabs(K[k]));
@@ -211,6 +236,12 @@ int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1)
 	for (uint32_t k = 0; k < dim * dim; k++) big1 = csf_max(big1, fabs(K1[k]));
 	double *b1 = cs->rhs; /* a right-hand side for K1's elimination, whose answer is not used */
 	for (uint32_t k = 0; k < dim; k++) b1[k] = 1;
-	if (!solve_lu(K1, b1, cs->x, dim, 1e-10 * big1)) return -1;
-	return solve_least_norm(cs, dim, cs->kb, cs->kb + (size_t)dim * dim);
+	int redundant = solve_lu(K1, b1, cs->x, dim, 1e-10 * big1) != 0;
+	if (redundant && !solve_least_norm(cs, dim, cs->kb, cs->kb + (size_t)dim * dim, 1)) return 0;
+	if (!redundant && !(wratio < 1e6)) return -1; /* the masses differ too much */
+	/* nearly redundant contacts, whose forces are large (a row of balls all but jammed), or
+	   sliding friction that all but cancels a normal force: the elimination's own answer */
+	memcpy(K, cs->kb, (size_t)dim * dim * sizeof *K);
+	memcpy(b, cs->kb + (size_t)dim * dim, dim * sizeof *b);
+	return solve_lu(K, b, cs->x, dim, 1e-14 * big);
 }

@@ -131,6 +131,7 @@ struct csf_contacts {
 	size_t capkb, capls;
 	unsigned char *mark;       /* per candidate: the pairs csf_contact_choose chooses among, and its choice */
 	size_t capmark;
+	int group;                 /* an impact's impulses are shared by the pairs marked (impulse.c) */
 	int unsolved; /* the sweeps left contact forces that do not hold (csf_contacts_unsolved) */
 };
 
@@ -184,10 +185,12 @@ void csf_contact_slip_velocity(const cpair *c, const double *m, const double n[3
 
 /* cluster.c: the coupling of two pairs (m NULL: every mass 1), the clusters of the pairs pick()
    takes (in cs->cl, cs->cstart; returns their number), and the direct solve of cs->K x = cs->rhs,
-   K1 the system with every mass 1 (-1: not solved) */
+   K1 the system with every mass 1, wratio the masses' ratio (-1: not solved) */
 double csf_contact_coupling(const csf_contacts *cs, const cpair *c, const cpair *d, const double *m);
 uint32_t csf_contact_clusters(csf_contacts *cs, int (*pick)(const cpair *, const void *), const void *arg);
-int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1);
+int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio);
+double csf_contact_mass_ratio(const csf_contacts *cs, const uint32_t *cl, uint32_t np, const double *m);
+int csf_contact_least_squares(csf_contacts *cs, uint32_t dim);
 
 /* force.c: the rounding of a pair's relative acceleration (curv its centripetal term); an apart
    pair's guard at positions pi, pj (NULL: j's in m) */

@@ -90,6 +90,43 @@ static uint32_t cluster_system(csf_contacts *cs, const double *m, const uint32_t
 	return dim;
 }
 
+static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, const double *res, uint32_t *dimp);
+static void force_resolutions(const csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np, double *res);
+
+/*
+ * The contact forces of cluster cl[0..np) whose pairs cannot all stay in
+ * contact (their system has no solution; not masses that differ too much):
+ * those of the pairs that press (lcp_cluster); a pair that does not has no
+ * force, and its normal force's place (W_LAM, its guard) holds minus its
+ * relative normal acceleration (per unit of inverse mass), so that its
+ * guard says it parts and the event that follows separates it. 0, or -1.
+ */
+static int cluster_parts(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np)
+{
+	double res[DIRECT_MAX];
+	uint32_t dim;
+	force_resolutions(cs, m, cl, np, res);
+	for (uint32_t a = 0; a < np; a++) cs->act[a] = 1;
+	if (lcp_cluster(cs, m, cl, np, res, &dim)) return -1;
+	for (uint32_t a = 0; a < np; a++) {
+		cpair *c = &cs->pairs[cl[a]];
+		double F[3] = { 0, 0, 0 }, *na = cs->nv + 3 * a, fn[3], *f = WV(c, F), an = 0;
+		for (int q = 0; q < cs->dc[a]; q++) {
+			uint32_t row = cs->at[a] + (uint32_t)q;
+			double acc = -cs->v0[row];
+			for (uint32_t k = 0; k < dim; k++) acc += cs->G[(size_t)row * dim + k] * cs->lam[k];
+			an += cs->dc[a] == 1 ? acc : acc * na[q];
+			for (int k = 0; k < 3; k++) F[k] += cs->B[9 * a + 3 * q + k] * cs->lam[row];
+		}
+		double lam = cs->act[a] ? dot3(F, na) : -an / (inv_mass_i(c, m) + inv_mass_j(c, m));
+		for (int k = 0; k < 3; k++) fn[k] = cs->act[a] ? lam * na[k] : 0, f[k] = cs->act[a] && has_friction(c, m) ? F[k] - fn[k] : 0;
+		W(c, LAM) = lam;
+		add_force(c, m, fn, I(c, FN), J(c, FN));
+		add_force(c, m, f, I(c, FF), J(c, FF));
+	}
+	return 0;
+}
+
 /*
  * The contact forces of cluster cl[0..np), solved directly (cluster.c); fails
  * (-1, nothing changed) when it has more than DIRECT_MAX unknowns or its
@@ -104,7 +141,8 @@ static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 	for (uint32_t a = 0; a < np; a++) sign[a] = 1;
 	for (int attempt = 0; attempt < 2; attempt++) {
 		uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs);
-		if (!dim || csf_contact_solve(cs, dim, cs->K1)) return -1;
+		if (!dim) return -1;
+		if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m))) return cluster_parts(cs, m, cl, np);
 		int flip = 0;
 		for (uint32_t a = 0; a < np; a++) {
 			const cpair *c = &cs->pairs[cl[a]];
@@ -135,44 +173,29 @@ static int picks_marked(const cpair *c, const void *arg)
 }
 
 /*
- * Which of the pairs that could press (cl[0..np): those in contact, and
- * those that touch at zero relative normal velocity) are in contact: a
- * linear complementarity problem, solved for the whole cluster at once.
- * Each pair either pushes (N >= 0) and keeps its relative normal
- * acceleration zero, or takes no force and is left with a relative normal
- * acceleration that does not close (>= 0); beyond rounding (res, the pair's
- * csf_contact_accel_resolution, in force per unit of inverse mass). By
- * active sets, starting from the pairs in contact: the pair that would pull
- * most leaves, or else the apart pair that would close fastest joins, until
- * neither happens (each solve as cluster_forces does, the friction of each
- * as its mode says). m holds the accelerations of every force with the
- * pairs' modes as they are. The result, in cs->act: 1 in contact. Returns 0,
- * or -1 when the sets do not settle in 4 np + 8 changes or a system has no
- * solution (the modes stay as they are).
+ * The pairs of cluster cl[0..np) that press, and their forces: a linear
+ * complementarity problem. Each pair either pushes (N >= 0) and keeps its
+ * relative normal acceleration zero, or takes no force and is left with a
+ * relative normal acceleration that does not close (>= 0); beyond rounding
+ * (res, per pair: csf_contact_accel_resolution, in force per unit of
+ * inverse mass). By active sets, from the pairs marked in cs->act: the pair
+ * that would pull most leaves, or else the apart pair that would close
+ * fastest joins, until neither happens; where a set's forces cannot keep
+ * all of its accelerations zero (contacts all but redundant that the motion
+ * pulls apart: a ball sliding past another between two walls), the pair
+ * that the least-squares forces leave parting fastest leaves. Each solve as
+ * cluster_forces does, the friction of each pair as its mode says. The
+ * accelerations in m are those of the other forces. Returns 0 with the
+ * set in cs->act, every pair's unknowns in cs->lam (0 for those apart) and
+ * the system in cs->G, cs->v0; -1 when the sets do not settle in 4 np + 8
+ * changes.
  */
-static int choose_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np)
+static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, const double *res, uint32_t *dimp)
 {
-	if (np > DIRECT_MAX) return -1;
-	double res[DIRECT_MAX];
-	for (uint32_t a = 0; a < np; a++) {
-		const cpair *c = &cs->pairs[cl[a]];
-		double n[3], curv;
-		csf_contact_geometry(c, m, n, &curv);
-		res[a] = csf_contact_accel_resolution(c, m, curv) / (inv_mass_i(c, m) + inv_mass_j(c, m));
-		cs->act[a] = (unsigned char)in_contact(c);
-	}
-	for (uint32_t a = 0; a < np; a++) { /* the accelerations without the forces of these pairs */
-		cpair *c = &cs->pairs[cl[a]];
-		double n[3], curv, fn[3], f[3];
-		if (!in_contact(c)) continue;
-		csf_contact_geometry(c, m, n, &curv);
-		for (int k = 0; k < 3; k++) fn[k] = -W(c, LAM) * n[k], f[k] = -WV(c, F)[k];
-		add_force(c, m, fn, I(c, FN), J(c, FN));
-		add_force(c, m, f, I(c, FF), J(c, FF));
-	}
 	uint32_t dim = cluster_system(cs, m, cl, np, NULL, cs->G, cs->G1, cs->v0);
 	if (!dim) return -1;
-	double *x = cs->lam; /* the unknowns of every pair, 0 for those apart */
+	*dimp = dim;
+	double *x = cs->lam, wratio = csf_contact_mass_ratio(cs, cl, np, m);
 	for (uint32_t iter = 0; iter < 4 * np + 8; iter++) {
 		uint32_t sub = 0, rows[DIRECT_MAX];
 		for (uint32_t a = 0; a < np; a++)
@@ -184,37 +207,73 @@ static int choose_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 				cs->K1[r * sub + k] = cs->G1[(size_t)rows[r] * dim + rows[k]];
 			}
 		}
-		if (sub && csf_contact_solve(cs, sub, cs->K1)) return -1;
+		int solved = !sub || !csf_contact_solve(cs, sub, cs->K1, wratio);
+		if (!solved && (!(wratio < 1e6) || csf_contact_least_squares(cs, sub))) return -1;
 		memset(x, 0, dim * sizeof *x);
 		for (uint32_t r = 0; r < sub; r++) x[rows[r]] = cs->x[r];
 		long out = -1, in = -1;
 		double worst = 0;
-		for (uint32_t a = 0; a < np; a++) { /* a pair that would pull: its normal force */
-			if (!cs->act[a]) continue;
-			double lam = 0, *na = cs->nv + 3 * a;
-			for (int q = 0; q < cs->dc[a]; q++) lam += dot3(cs->B + 9 * a + 3 * q, na) * x[cs->at[a] + q];
-			if (lam < -res[a] && lam / res[a] < worst) worst = lam / res[a], out = a;
-		}
-		if (out < 0)
-			for (uint32_t a = 0; a < np; a++) { /* an apart pair that would close: its normal acceleration */
-				if (cs->act[a]) continue;
-				double an = 0, *na = cs->nv + 3 * a;
-				for (int r = 0; r < cs->dc[a]; r++) {
-					uint32_t row = cs->at[a] + (uint32_t)r;
-					double acc = -cs->v0[row];
-					for (uint32_t k = 0; k < dim; k++) acc += cs->G[(size_t)row * dim + k] * x[k];
-					an += cs->dc[a] == 1 ? acc : acc * na[r];
-				}
-				/* in force per unit of inverse mass, as res */
-				const cpair *c = &cs->pairs[cl[a]];
-				an /= inv_mass_i(c, m) + inv_mass_j(c, m);
-				if (an < -res[a] && an / res[a] < worst) worst = an / res[a], in = a;
+		for (uint32_t a = 0; a < np; a++) { /* its normal acceleration, in force per unit of inverse mass */
+			const cpair *c = &cs->pairs[cl[a]];
+			double an = 0, lam = 0, *na = cs->nv + 3 * a;
+			for (int r = 0; r < cs->dc[a]; r++) {
+				uint32_t row = cs->at[a] + (uint32_t)r;
+				double acc = -cs->v0[row];
+				for (uint32_t k = 0; k < dim; k++) acc += cs->G[(size_t)row * dim + k] * x[k];
+				an += cs->dc[a] == 1 ? acc : acc * na[r];
+				lam += dot3(cs->B + 9 * a + 3 * r, na) * x[row];
 			}
+			an /= inv_mass_i(c, m) + inv_mass_j(c, m);
+			if (!solved) { /* a set that cannot hold: the pair parting fastest leaves */
+				if (cs->act[a] && an > res[a] && -an / res[a] < worst) worst = -an / res[a], out = a;
+			} else if (cs->act[a]) { /* a pair that would pull: its normal force */
+				if (lam < -res[a] && lam / res[a] < worst) worst = lam / res[a], out = a;
+			} else if (an < -res[a] && an / res[a] < worst) /* an apart pair that would close */
+				worst = an / res[a], in = a;
+		}
+		if (!solved && out < 0) return -1;
 		if (out >= 0) cs->act[out] = 0;
 		else if (in >= 0) cs->act[in] = 1;
 		else return 0;
 	}
 	return -1;
+}
+
+/* The rounding of each pair's normal force (lcp_cluster's res). */
+static void force_resolutions(const csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np, double *res)
+{
+	for (uint32_t a = 0; a < np; a++) {
+		const cpair *c = &cs->pairs[cl[a]];
+		double n[3], curv;
+		csf_contact_geometry(c, m, n, &curv);
+		res[a] = csf_contact_accel_resolution(c, m, curv) / (inv_mass_i(c, m) + inv_mass_j(c, m));
+	}
+}
+
+/*
+ * Which of the pairs that could press (cl[0..np): those in contact, and
+ * those that touch at zero relative normal velocity) are in contact
+ * (lcp_cluster, from the pairs in contact), at an instant: m holds the
+ * accelerations of every force with the pairs' modes as they are. The
+ * result, in cs->act: 1 in contact. Returns 0, or -1 (the modes stay).
+ */
+static int choose_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np)
+{
+	if (np > DIRECT_MAX) return -1;
+	double res[DIRECT_MAX];
+	uint32_t dim;
+	force_resolutions(cs, m, cl, np, res);
+	for (uint32_t a = 0; a < np; a++) cs->act[a] = (unsigned char)in_contact(&cs->pairs[cl[a]]);
+	for (uint32_t a = 0; a < np; a++) { /* the accelerations without the forces of these pairs */
+		cpair *c = &cs->pairs[cl[a]];
+		double n[3], curv, fn[3], f[3];
+		if (!in_contact(c)) continue;
+		csf_contact_geometry(c, m, n, &curv);
+		for (int k = 0; k < 3; k++) fn[k] = -W(c, LAM) * n[k], f[k] = -WV(c, F)[k];
+		add_force(c, m, fn, I(c, FN), J(c, FN));
+		add_force(c, m, f, I(c, FF), J(c, FF));
+	}
+	return lcp_cluster(cs, m, cl, np, res, &dim);
 }
 
 /*

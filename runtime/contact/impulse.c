@@ -16,10 +16,20 @@ void csf_contact_add_impulse(cpair *c, double *m, const double dv[3])
 	}
 }
 
-/* For csf_contact_clusters(): the pairs in contact, and the pair hit (arg). */
-static int picks_impact(const cpair *c, const void *hit)
+/* Does pair c take part in the impact of pair hit: the pairs in contact, or with cs->group set
+   the pairs marked in cs->mark (csf_contact_settle: every pair that touches)? */
+static int joins(const csf_contacts *cs, const cpair *c, const cpair *hit)
 {
-	return c == hit || in_contact(c);
+	return c == hit || (cs->group ? cs->mark[c - cs->pairs] != 0 : in_contact(c));
+}
+
+typedef struct impact { const csf_contacts *cs; const cpair *hit; } impact;
+
+/* For csf_contact_clusters(): the pairs that take part in the impact (arg). */
+static int picks_impact(const cpair *c, const void *arg)
+{
+	const impact *im = arg;
+	return joins(im->cs, c, im->hit);
 }
 
 /*
@@ -39,7 +49,8 @@ static int picks_impact(const cpair *c, const void *hit)
  */
 static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, double target, double size)
 {
-	uint32_t nq = csf_contact_clusters(cs, picks_impact, hit), h = (uint32_t)(hit - cs->pairs), q = 0, np = 0, ih = 0;
+	impact im = { cs, hit };
+	uint32_t nq = csf_contact_clusters(cs, picks_impact, &im), h = (uint32_t)(hit - cs->pairs), q = 0, np = 0, ih = 0;
 	const uint32_t *cl = NULL;
 	for (; q < nq && !cl; q++)
 		for (uint32_t a = cs->cstart[q]; a < cs->cstart[q + 1]; a++)
@@ -77,7 +88,7 @@ static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, doubl
 				cs->K[r * dim + k] = G[cs->at[r] * np + cs->at[k]];
 				cs->K1[r * dim + k] = cs->G1[cs->at[r] * np + cs->at[k]];
 			}
-		if (csf_contact_solve(cs, dim, cs->K1)) return -1;
+		if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m))) return -1;
 		for (uint32_t a = 0; a < np; a++) cs->lam[a] = 0;
 		for (uint32_t r = 0; r < dim; r++) cs->lam[cs->at[r]] = cs->x[r];
 		long out = -1, in = -1;
@@ -128,7 +139,7 @@ int csf_contact_collide(csf_contacts *cs, double *m, cpair *hit, double target, 
 		double change = 0;
 		for (uint32_t i = 0; i < cs->n; i++) {
 			cpair *c = &cs->pairs[i];
-			if (c != hit && !in_contact(c)) continue;
+			if (!joins(cs, c, hit)) continue;
 			double n[3], curv, vr[3], dv[3];
 			csf_contact_geometry(c, m, n, &curv);
 			rel(c, m, I(c, V), J(c, V), vr);

@@ -34,14 +34,21 @@ static void enter_contact(cpair *c, double *m, const double n[3])
 }
 
 /*
- * The smallest relative speed the pair's velocities resolve: a few units in
- * the last place of their magnitudes. A pair closing more slowly than that
- * is not struck: an impulse that small does not change the velocities it is
- * added to, and the pair would be struck again and again.
+ * The smallest relative speed that counts at an instant: 1e-13 of the pair's
+ * speeds, or of the fastest pair's at the instant (cs_vfloor). A pair that
+ * closes more slowly than that is not struck: an impulse that small does not
+ * change the velocities it is added to, or is the rounding of the impulses
+ * of an impact elsewhere (an impact at 1 m/s leaves the pairs at rest
+ * around it closing at 1e-17 m/s, and the impulses among touching bodies
+ * are solved to 1e-14 of their speeds, csf_contact_collide), which would be
+ * passed from pair to pair without end; nor is one that closes at a
+ * subnormal speed between bodies at rest.
  */
+static double cs_vfloor; /* of the instant being settled: see csf_contact_settle */
+
 static double speed_resolution(const cpair *c, const double *m)
 {
-	return 4 * DBL_EPSILON * (mag3(m + I(c, V)) + (c->plane ? 0 : mag3(m + J(c, V))));
+	return csf_max(1e-13 * (mag3(m + I(c, V)) + (c->plane ? 0 : mag3(m + J(c, V)))), cs_vfloor) + DBL_MIN;
 }
 
 /* Is the pair touching: the gap closed, up to the event's location error? */
@@ -138,6 +145,7 @@ static void after_impact(csf_contacts *cs, double *m, double zeno)
 		if (memcmp(vr, WV(c, VR), sizeof vr) == 0) continue;
 		csf_contact_geometry(c, m, n, &curv);
 		double vn = dot3(vr, n), an = -W(c, LAM) * (inv_mass_i(c, m) + inv_mass_j(c, m));
+		if (vn < -speed_resolution(c, m)) continue; /* closing: struck in turn (csf_contact_settle) */
 		if (vn > 0 && !at_rest(c, m, vn, an, zeno)) separate(c, m);
 		else enter_contact(c, m, n);
 	}
@@ -183,6 +191,23 @@ static int departure(csf_contacts *cs, const double *m, const cpair *c, double v
 	if (at_rest(c, m, v, an, zeno)) return RESTS;
 	if (!hops(c, m, v, an, tol)) return FLIES;
 	return crowded(cs, m, c) ? RESTS : HOPS;
+}
+
+/* Marks in cs->mark the pairs in contact and those touching (not hopping). 0, or -1: no memory. */
+static int mark_touching(csf_contacts *cs, const double *m)
+{
+	if (cs->n > cs->capmark) {
+		unsigned char *mk = realloc(cs->mark, cs->n);
+		if (!mk) return -1;
+		cs->mark = mk, cs->capmark = cs->n;
+	}
+	for (uint32_t i = 0; i < cs->n; i++) {
+		const cpair *c = &cs->pairs[i];
+		double n[3], curv;
+		cs->mark[i] = (unsigned char)(in_contact(c) ||
+		                              (W(c, MODE) != HOPPING && touching(c, m, csf_contact_geometry(c, m, n, &curv))));
+	}
+	return 0;
 }
 
 /*
@@ -243,6 +268,26 @@ static void hop(cpair *c, double t, double v, double an)
  * counts pi's digits), so a bound of 1e6/(n + 1) beyond 100 + 10 n admits
  * mass ratios up to about 1e9 in a small scene, in well under a second.
  */
+/*
+ * Impacts at one instant among bodies that touch are struck pair by pair,
+ * as through infinitesimal gaps (so a Newton's cradle sends one ball out
+ * whether its balls touch or not). A plastic impact (restitution 0, or a
+ * pair that comes to rest: at_rest) is the limit of such impacts passed
+ * back and forth among the pairs that touch, each stopping its pair's
+ * approach (Gauss-Seidel sweeps of their impulses): its limit, the
+ * impulses that leave no touching pair closing, is found at once, for the
+ * pair struck and every pair that touches in its cluster (the impulses of
+ * csf_contact_collide). With restitution below 1 a group of
+ * touching bodies (a ball landing on a pile) exchanges ever smaller impacts
+ * without end, each pair's speed falling by e at each (inelastic collapse,
+ * as the bounces of one ball end): past 64 (n + 1) impacts at one instant,
+ * an impact whose restitution is below 1 ends the group's at once, the
+ * pair struck and every pair in contact with it at rest together (the
+ * impulses of the cluster, csf_contact_collide). Elastic impacts are
+ * followed to the end (a light ball between heavy ones, csf_contact_passes).
+ */
+static uint64_t group_after(uint32_t n) { return 64 * ((uint64_t)n + 1); }
+
 uint64_t csf_contact_passes(uint32_t n)
 {
 	return 100 + 10 * (uint64_t)n + 1000000 / ((uint64_t)n + 1);
@@ -257,17 +302,36 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 	   up to 100 + 10 n passes in all, after which the modes stand as they are (if they are
 	   not consistent, the events that follow at this instant say so: csfvm(1)) */
 	uint64_t hits = 0, others = 0;
+	cs_vfloor = 0;
+	for (uint32_t i = 0; i < cs->n; i++) {
+		const cpair *c = &cs->pairs[i];
+		cs_vfloor = csf_max(cs_vfloor, 1e-13 * (mag3(m + I(c, V)) + (c->plane ? 0 : mag3(m + J(c, V)))));
+	}
+	int fresh = 0; /* the forces and guards of the last evaluation are those of the modes */
 	for (;;) {
-		cs->unsolved = 0; /* of the modes of this pass (the driver stops a run on it) */
-		if (eval(ctx)) return -1;
+		/* between impacts the evaluation is skipped: an impact changes velocities, which the next
+		   impact's choice reads; the accelerations it reads (whether a pair rests) from the
+		   evaluation before are evaluated afresh before anything else changes a mode */
+		if (!fresh) {
+			cs->unsolved = 0; /* of the modes of this pass (the driver stops a run on it) */
+			if (eval(ctx)) return -1;
+		}
+		int evaluated = !fresh;
+		fresh = 0;
 		/* the most violent impact first; each changes velocities, so look again */
 		long hit = -1;
 		double worst = 0;
 		int changed = 0;
 		for (uint32_t i = 0; i < cs->n; i++) {
 			cpair *c = &cs->pairs[i];
-			if (in_contact(c)) continue;
 			double n[3], curv, vr[3], ar[3];
+			if (in_contact(c)) { /* closing, struck by an impact on a body it holds */
+				csf_contact_geometry(c, m, n, &curv);
+				rel(c, m, I(c, V), J(c, V), vr);
+				double vn = dot3(vr, n);
+				if (vn < -speed_resolution(c, m) && vn < worst) worst = vn, hit = (long)i;
+				continue;
+			}
 			double gap = csf_contact_geometry(c, m, n, &curv);
 			int landing = 0;
 			if (W(c, MODE) == HOPPING) { /* nothing until it lands (it may have been knocked away) */
@@ -300,6 +364,7 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 				changed = 1;
 			}
 		}
+		if (hit < 0 && !evaluated) continue; /* evaluate before the other changes */
 		if (hit >= 0) {
 			if (++hits > csf_contact_passes(cs->n)) return CSF_SETTLE_ENDLESS;
 			cpair *c = &cs->pairs[hit];
@@ -308,16 +373,31 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 			rel(c, m, I(c, V), J(c, V), vr);
 			rel(c, m, I(c, A), J(c, A), ar);
 			double vn = dot3(vr, n), an = dot3(ar, n) + curv, sep = -restitution(c, m) * vn;
+			int was = in_contact(c);
+			if (was) an -= W(c, LAM) * (inv_mass_i(c, m) + inv_mass_j(c, m)); /* without its own force */
 			int how = sep == 0 ? RESTS : departure(cs, m, c, sep, an, zeno, tol);
 			csf_contact_before_impact(cs, m);
-			if (csf_contact_collide(cs, m, c, how == RESTS ? 0 : sep, vn)) return CSF_SETTLE_IMPULSES;
+			if (how == RESTS || (hits > group_after(cs->n) && restitution(c, m) < 1)) {
+				/* plastic, or a group's collapse: at rest together with every pair that touches */
+				how = RESTS;
+				if (mark_touching(cs, m)) return -1;
+				cs->group = 1;
+				int st = csf_contact_collide(cs, m, c, 0, vn);
+				cs->group = 0;
+				if (st) return CSF_SETTLE_IMPULSES;
+			} else { /* the pair alone, as through an infinitesimal gap */
+				for (int k = 0; k < 3; k++) vr[k] = (sep - vn) * n[k];
+				csf_contact_add_impulse(c, m, vr);
+			}
 			after_impact(cs, m, zeno);
 			close_gap(c, m, n, gap);
 			if (how == RESTS) enter_contact(c, m, n);
 			else if (how == HOPS) hop(c, m[p->tslot], sep, an);
+			else if (was) W(c, MODE) = APART;
 			for (uint32_t i = 0; i < cs->n; i++) /* flights whose velocities just changed */
 				if (share_body(c, &cs->pairs[i]) && W(&cs->pairs[i], MODE) == HOPPING)
 					W(&cs->pairs[i], MODE) = APART;
+			fresh = !changed; /* no other pair changed its mode in this pass */
 			continue;
 		}
 		/* a normal force that would pull: the pairs in contact chosen afresh, all at once */
