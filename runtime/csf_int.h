@@ -334,6 +334,15 @@ long csf_contacts_find(csf_contacts *c, const double *m, const double *const *ys
  * state gy[q] and m's radii and planes, as csf_contact_apply would.
  */
 void csf_contacts_commit(csf_contacts *c, const double *m, double *const *g, const double *const *gy, int ng);
+/*
+ * Candidate k's gap and its rate at the state y (m holds the radii, the
+ * planes and the anchors): the guard csf_contact_apply gives an apart pair
+ * at that state, into *gap, and its derivative, the relative velocity
+ * along the normal, into *rate (negative: closing). 1, or 0 (nothing
+ * written) when the pair is not apart: its guard is not its gap.
+ */
+int csf_contacts_gap_rate(const csf_contacts *cs, uint32_t k, const double *m, const double *y, double *gap,
+                          double *rate);
 
 
 /*

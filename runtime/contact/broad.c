@@ -11,9 +11,12 @@
  * be one, so that its events are located exactly as if every pair of the
  * scene were watched: a pair matters when its gap is (nearly) closed at one
  * of the instants the driver looks at its guards (the step's start, the
- * three interpolated points and its end: a crossing between them is not
- * seen, for any pair; the guards at the states that locate an event serve
- * only that event's pair), and at an event, when it touches. The driver calls
+ * three interpolated points and its end; a gap that dips below zero only
+ * between two of them, a grazing approach the driver finds from the gap's
+ * rate, belongs to a pair whose boxes, below, overlap, unless its bodies'
+ * paths curve over a quarter of the step by more than the dip is deep; the
+ * guards at the states that locate an event serve only that event's pair),
+ * and at an event, when it touches. The driver calls
  * csf_contacts_find after each step with those five states, and at each
  * event with the one state: so the candidates are fixed from a step's end
  * until the next step, while its events are located. A pair that is in

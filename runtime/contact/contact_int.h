@@ -65,6 +65,8 @@
  *               rest, hops, lift-off, sticking and sliding at an instant
  *   broad.c     the candidate pairs and the broad phase (sort and sweep);
  *               the run-time state's life and its accessors
+ *   graze.c     an apart pair's gap and its rate at a state, for the
+ *               driver's search for a grazing approach (runtime/run/events.c)
  */
 #ifndef CSF_CONTACT_INT_H
 #define CSF_CONTACT_INT_H

@@ -15,7 +15,10 @@
  * on the side it was last found on; for a contact, see runtime/contact/. After
  * each step the guards are checked at its end and at three points of the
  * step's cubic Hermite interpolant (so that a guard which dips below zero
- * and back within one step is seen). A guard that was >= 0 at the step's
+ * and back within one step is seen), and, with contacts, at the earliest
+ * point where an apart pair's gap, positive at those five instants, dips
+ * below zero between two of them (a grazing approach, found from the gap's
+ * rate: graze_point). A guard that was >= 0 at the step's
  * start and is negative at one of them is an event: its crossing is
  * bracketed and narrowed by the Illinois method on states computed by one
  * step of the method from the step's start, to 1e-13 s. The earliest
@@ -277,6 +280,145 @@ static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const 
 }
 
 /*
+ * A grazing approach. An apart pair's guard is its gap, and the gap's rate
+ * is known from the state: the relative velocity along the normal. A gap
+ * that is positive at two of the instants a step's guards are looked at
+ * and negative between them must close (its rate negative) and then open
+ * (positive): its minimum is where the rate turns from one to the other.
+ * So between two such instants, a pair's rate that turns is a bracket of
+ * that minimum; the interior extrema of the cubic Hermite of the gap (its
+ * values and rates at the two instants) are looked at too, so that a rate
+ * that turns and turns back between them is seen as the sampled guards
+ * are. Each bracket is narrowed by the Illinois method on the rate, over
+ * the step's interpolant (no evaluation of the right-hand side), to the
+ * location tolerance or to the first point where the gap is negative; a
+ * minimum that is not negative is no event. The earliest negative point is
+ * one more instant at which every guard is looked at, and the crossing is
+ * then located between the instant before it and it, as any other.
+ */
+
+/* Candidate q's gap and rate at fraction s of the step (on its interpolant, in r->ys). 0, or 1 if it failed. */
+static int gap_at(run *r, csf_ode *ode, double ta, double tb, const double *y, uint32_t q, double s, double *g,
+                  double *v)
+{
+	if (csf_run_interp(r, ode, ta, tb, y, s, r->ys)) return 1;
+	csf_contacts_gap_rate(r->cs, q, r->m, r->ys, g, v);
+	return 0;
+}
+
+/*
+ * The minimum of candidate q's gap in (a, b), fractions of the step, where
+ * its rate turns from va < 0 to vb > 0: *s becomes the first point found
+ * where the gap is negative (left alone if there is none). 0, or 1 if an
+ * evaluation failed.
+ */
+static int graze_min(run *r, csf_ode *ode, double ta, double tb, const double *y, uint32_t q, double a, double va,
+                     double b, double vb, double *s)
+{
+	const double tol = csf_run_location_tol(r->p) / (tb - ta);
+	int side = 0;
+	while (b - a > tol && nextafter(a, b) < b) {
+		double c = b - vb * (b - a) / (vb - va), g, v;
+		if (!(c >= a && c <= b)) c = a + (b - a) / 2;
+		if (c - a < tol / 4) c = a + tol / 4;
+		if (b - c < tol / 4) c = b - tol / 4;
+		if (c <= a) c = nextafter(a, b);
+		if (c >= b) c = nextafter(b, a);
+		if (gap_at(r, ode, ta, tb, y, q, c, &g, &v)) return 1;
+		if (g < 0) {
+			*s = c;
+			return 0;
+		}
+		if (v < 0) {
+			a = c, va = v;
+			if (side < 0) vb /= 2;
+			side = -1;
+		} else {
+			b = c, vb = v;
+			if (side > 0) va /= 2;
+			side = 1;
+		}
+	}
+	return 0;
+}
+
+/*
+ * The interior extrema, in increasing order, of the cubic Hermite on [0, 1]
+ * with values g0, g1 and derivatives d0, d1 (the rates times the interval's
+ * length), into u; returns how many (0 to 2).
+ */
+static int cubic_extrema(double g0, double d0, double g1, double d1, double u[2])
+{
+	/* its derivative: A u^2 + B u + C */
+	double A = 6 * (g0 - g1) + 3 * (d0 + d1), B = -6 * (g0 - g1) - 4 * d0 - 2 * d1, C = d0, x[2];
+	int n = 0, k = 0;
+	if (A == 0) {
+		if (B != 0) x[n++] = -C / B;
+	} else {
+		double disc = B * B - 4 * A * C;
+		if (disc > 0) {
+			double r = sqrt(disc), q = -(B + (B < 0 ? -r : r)) / 2; /* without cancellation; not 0 */
+			x[n++] = q / A;
+			x[n++] = C / q;
+		}
+	}
+	if (n == 2 && x[1] < x[0]) {
+		double t = x[0];
+		x[0] = x[1], x[1] = t;
+	}
+	for (int i = 0; i < n; i++)
+		if (x[i] > 0 && x[i] < 1) u[k++] = x[i];
+	return k;
+}
+
+/*
+ * The earliest point of the step from (ta, r->ya) to (tb, y), as a
+ * fraction of it, where an armed apart candidate's gap is negative though
+ * positive at the instants sampled before and after it (the step's start,
+ * the 3 interpolated states in r->yh, its end): into *sg, left alone when
+ * there is none. 0, or 1 if an evaluation failed.
+ */
+static int graze_point(run *r, csf_ode *ode, double ta, double tb, const double *y, double *sg)
+{
+	const csf_prog *p = r->p;
+	size_t n = p->ny;
+	const double *ys[5] = { r->ya, r->yh, r->yh + n, r->yh + 2 * n, y };
+	double dt = tb - ta;
+	for (uint32_t q = 0; q < csf_contacts_count(r->cs); q++) {
+		double g[5], v[5];
+		if (!(r->ga[p->nevents + 2 * (size_t)q] >= 0)) continue;
+		if (!csf_contacts_gap_rate(r->cs, q, r->m, ys[0], &g[0], &v[0])) continue;
+		for (int j = 1; j < 5; j++) csf_contacts_gap_rate(r->cs, q, r->m, ys[j], &g[j], &v[j]);
+		for (int j = 0; j < 4 && j / 4.0 < *sg; j++) {
+			if (!(g[j] >= 0 && g[j + 1] >= 0)) break; /* the samples see the crossing */
+			/* the points of the interval whose rates are looked at: its ends, and the cubic's extrema */
+			double s0 = j / 4.0, h = 0.25, u[2], sp[4], vp[4], gm = 0;
+			int k = cubic_extrema(g[j], h * dt * v[j], g[j + 1], h * dt * v[j + 1], u), np = 0;
+			sp[np] = s0, vp[np++] = v[j];
+			for (int i = 0; i < k && gm >= 0; i++) {
+				sp[np] = s0 + h * u[i];
+				if (gap_at(r, ode, ta, tb, y, q, sp[np], &gm, &vp[np])) return 1;
+				np++;
+			}
+			if (gm < 0) { /* negative at an extremum */
+				*sg = csf_min(*sg, sp[np - 1]);
+				break;
+			}
+			sp[np] = s0 + h, vp[np++] = v[j + 1];
+			double s = 2;
+			for (int i = 0; i + 1 < np && s > 1; i++)
+				if (vp[i] < 0 && vp[i + 1] > 0 && graze_min(r, ode, ta, tb, y, q, sp[i], vp[i], sp[i + 1], vp[i + 1], &s))
+					return 1;
+			if (s <= 1) {
+				*sg = csf_min(*sg, s);
+				break;
+			}
+		}
+	}
+	return 0;
+}
+
+/*
  * After a step from (ta, r->ya), with guards r->ga and derivative r->fa
  * there, to (tb, y): the earliest event in (ta, tb]. *which is its guard, or
  * -1 when there is none (r->ga and r->fa then move on to tb); *te is its
@@ -306,17 +448,26 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
 		if (choose_contacts(r, ys, 5, g, gy, 2)) return CSF_ODE_STOPPED;
 	}
 	size_t ng = r->ng;
-	/* the first of the sample points (3 interpolated, then the step's end) where an armed
-	   guard is negative: [lo, hi], with hi's guards in r->gh */
+	/* the sample points, as fractions of the step: 3 interpolated (with contacts, computed above),
+	   a grazing approach's (before the first of them after it), then the step's end */
+	double sg = 2, sv[5];
+	const double *yv[5];
+	int ns = 0;
+	if (r->cs && graze_point(r, ode, ta, tb, y, &sg)) return CSF_ODE_STOPPED;
+	for (int j = 1; j <= 4; j++) {
+		if (sg < j / 4.0) sv[ns] = sg, yv[ns++] = NULL, sg = 2;
+		sv[ns] = j / 4.0, yv[ns++] = j == 4 ? y : r->cs ? r->yh + (size_t)(j - 1) * n : NULL;
+	}
+	/* the first of them where an armed guard is negative: [lo, hi], with hi's guards in r->gh */
 	int found = 0;
-	for (int j = 1; j <= 4 && !found; j++) {
-		if (j < 4) {
-			const double *yj = r->yh + (size_t)(j - 1) * n; /* with contacts, computed above */
-			if (!r->cs) {
-				if (csf_run_interp(r, ode, ta, tb, y, j / 4.0, r->ys)) return CSF_ODE_STOPPED;
+	for (int j = 0; j < ns && !found; j++) {
+		if (yv[j] != y) {
+			const double *yj = yv[j];
+			if (!yj) {
+				if (csf_run_interp(r, ode, ta, tb, y, sv[j], r->ys)) return CSF_ODE_STOPPED;
 				yj = r->ys;
 			}
-			hi = ta + j / 4.0 * dt;
+			hi = ta + sv[j] * dt;
 			if (csf_run_guards_at(r, hi, yj, r->gh)) return CSF_ODE_STOPPED;
 		} else {
 			hi = tb;
