@@ -24,14 +24,6 @@ static void close_gap(cpair *c, double *m, const double n[3], double gap)
 }
 
 /* Enters contact: the relative normal velocity is zero; sticks if the tangential one is too. */
-static void enter_contact(cpair *c, double *m, const double n[3])
-{
-	double vt[3];
-	csf_contact_slip_velocity(c, m, n, vt);
-	double s = mag3(vt);
-	W(c, MODE) = s == 0 && has_friction(c, m) ? STICKING : SLIDING;
-	for (int k = 0; k < 3; k++) WV(c, DS)[k] = s > 0 ? vt[k] / s : 0;
-}
 
 /*
  * The smallest relative speed that counts at an instant: 1e-13 of the pair's
@@ -42,13 +34,40 @@ static void enter_contact(cpair *c, double *m, const double n[3])
  * around it closing at 1e-17 m/s, and the impulses among touching bodies
  * are solved to 1e-14 of their speeds, csf_contact_collide), which would be
  * passed from pair to pair without end; nor is one that closes at a
- * subnormal speed between bodies at rest.
+ * subnormal speed between bodies at rest. And the speeds change by their
+ * accelerations times the time within which an event is located (1e-13 s):
+ * 1e-13 of the pair's accelerations (0.1 csf_contact_accel_resolution) is
+ * no speed either, so a slip that small leaves a pair that comes to rest
+ * sticking.
  */
 static double cs_vfloor; /* of the instant being settled: see csf_contact_settle */
 
 static double speed_resolution(const cpair *c, const double *m)
 {
-	return csf_max(1e-13 * (mag3(m + I(c, V)) + (c->plane ? 0 : mag3(m + J(c, V)))), cs_vfloor) + DBL_MIN;
+	double n[3], curv;
+	csf_contact_geometry(c, m, n, &curv);
+	return csf_max(1e-13 * (mag3(m + I(c, V)) + (c->plane ? 0 : mag3(m + J(c, V)))), cs_vfloor) +
+	       0.1 * csf_contact_accel_resolution(c, m, curv) + DBL_MIN;
+}
+
+/*
+ * Enters contact: the relative normal velocity is zero; sticks if the
+ * tangential one is too, or slips no faster than the speeds' rounding
+ * (speed_resolution: the impulses that brought it to rest leave such a
+ * slip, whose direction is noise), which an impulse as small takes away.
+ */
+static void enter_contact(cpair *c, double *m, const double n[3])
+{
+	double vt[3];
+	csf_contact_slip_velocity(c, m, n, vt);
+	double s = mag3(vt);
+	if (s > 0 && has_friction(c, m) && s <= speed_resolution(c, m)) {
+		for (int k = 0; k < 3; k++) vt[k] = -vt[k];
+		csf_contact_add_impulse(c, m, vt);
+		s = 0;
+	}
+	W(c, MODE) = s == 0 && has_friction(c, m) ? STICKING : SLIDING;
+	for (int k = 0; k < 3; k++) WV(c, DS)[k] = s > 0 ? vt[k] / s : 0;
 }
 
 /* Is the pair touching: the gap closed, up to the event's location error? */
@@ -304,7 +323,11 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 	uint64_t hits = 0, others = 0;
 	cs_vfloor = 0;
 	for (uint32_t i = 0; i < cs->n; i++) {
-		const cpair *c = &cs->pairs[i];
+		cpair *c = &cs->pairs[i];
+		/* a pair that static friction cannot hold and that, sliding, would stick again at once
+		   (the slip its neighbours' sticking leaves, a rounding's worth, against its way) stops
+		   no more than twice at an instant, and slides on: its slip grows the way it slides */
+		W(c, SS) = 0;
 		cs_vfloor = csf_max(cs_vfloor, 1e-13 * (mag3(m + I(c, V)) + (c->plane ? 0 : mag3(m + J(c, V)))));
 	}
 	int fresh = 0; /* the forces and guards of the last evaluation are those of the modes */
@@ -349,13 +372,14 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 				if (vn < worst) worst = vn, hit = (long)i;
 				continue;
 			}
+			double v0 = vn; /* within the rounding of zero, perhaps closing: a rest takes it away */
 			vn = csf_max(vn, 0);
 			if (gap < 0) close_gap(c, m, n, gap), gap = 0; /* apart by rounding: arm its guard */
 			if (hit >= 0) continue;
 			int how = departure(cs, m, c, vn, an, zeno, tol);
 			if (how == RESTS) { /* pressed together, at rest: contact */
 				close_gap(c, m, n, gap);
-				for (int k = 0; k < 3; k++) vr[k] = -vn * n[k];
+				for (int k = 0; k < 3; k++) vr[k] = -v0 * n[k];
 				csf_contact_add_impulse(c, m, vr);
 				enter_contact(c, m, n);
 				changed = 1;
@@ -416,7 +440,8 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 			cpair *c = &cs->pairs[i];
 			if (!in_contact(c)) continue;
 			if (W(c, G0) < 0) separate(c, m), changed = 1;
-			else if (W(c, G1) < 0) (W(c, MODE) == SLIDING ? stick : slide)(c, m), changed = 1;
+			else if (W(c, G1) < 0 && W(c, MODE) == SLIDING && W(c, SS) < 2) stick(c, m), W(c, SS)++, changed = 1;
+			else if (W(c, G1) < 0 && W(c, MODE) == STICKING) slide(c, m), changed = 1;
 		}
 		if (!changed || ++others >= 100 + 10 * (uint64_t)cs->n) return 0;
 	}
