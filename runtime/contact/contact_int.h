@@ -82,9 +82,9 @@ enum { APART, SLIDING, STICKING, HOPPING }; /* the modes of a pair */
 
 /* A pair's work values: mode, the two guards, the normal force's size, the friction force,
    the sliding direction, the time a hop lands, the relative velocity before an impact, the
-   times it has begun to stick at the instant being settled (csf_contact_settle). A pair
-   that is not a candidate is apart. */
-enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_SS = 14, W_N = 15 };
+   times it has begun to stick at the instant being settled (csf_contact_settle), whether
+   sliding friction locks it (force.c). A pair that is not a candidate is apart. */
+enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_SS = 14, W_LOCK = 15, W_N = 16 };
 
 /* A candidate pair: body i (a mass point, $0) and body j (a mass point, a plane or an anchor, $1). */
 typedef struct cpair {

@@ -91,6 +91,7 @@ static uint32_t cluster_system(csf_contacts *cs, const double *m, const uint32_t
 }
 
 static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, const double *res, uint32_t *dimp);
+static int cluster_parts(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np);
 static void force_resolutions(const csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np, double *res);
 
 /*
@@ -104,7 +105,7 @@ static void force_resolutions(const csf_contacts *cs, const double *m, const uin
 static int cluster_parts(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np)
 {
 	double res[DIRECT_MAX];
-	uint32_t dim;
+	uint32_t dim = 0;
 	force_resolutions(cs, m, cl, np, res);
 	for (uint32_t a = 0; a < np; a++) cs->act[a] = 1;
 	if (lcp_cluster(cs, m, cl, np, res, &dim)) return -1;
@@ -128,6 +129,36 @@ static int cluster_parts(csf_contacts *cs, double *m, const uint32_t *cl, uint32
 }
 
 /*
+ * The contact forces of cluster cl[0..np) whose system has no solution
+ * (its direct solve failed, sign as there): if it has one without the
+ * sliding pairs' friction, sliding friction locks the contacts (Painlevé:
+ * a column of balls sliding against each other, each contact's friction
+ * pressing the next harder, whose forces grow without bound as the column
+ * leans into it). The forces are those without that friction, and each
+ * sliding pair's guard 1 says it stops (W_LOCK): the event that follows
+ * stops its slip by an impulse of friction, and it sticks if static
+ * friction can hold. Otherwise the pairs that cannot all hold
+ * (cluster_parts).
+ */
+static int cluster_locks(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, double *sign)
+{
+	int sliding = 0;
+	for (uint32_t a = 0; a < np; a++) {
+		const cpair *c = &cs->pairs[cl[a]];
+		if (has_friction(c, m) && W(c, MODE) == SLIDING) sign[a] = 0, sliding = 1;
+	}
+	if (!sliding || !(csf_contact_mass_ratio(cs, cl, np, m) < 1e6)) return cluster_parts(cs, m, cl, np);
+	uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs);
+	if (!dim || csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m)))
+		return cluster_parts(cs, m, cl, np);
+	for (uint32_t a = 0; a < np; a++) {
+		cpair *c = &cs->pairs[cl[a]];
+		if (sign[a] == 0) W(c, LOCK) = 1;
+	}
+	return 0;
+}
+
+/*
  * The contact forces of cluster cl[0..np), solved directly (cluster.c); fails
  * (-1, nothing changed) when it has more than DIRECT_MAX unknowns or its
  * system is singular and has no solution. The accelerations in m are those
@@ -142,7 +173,7 @@ static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 	for (int attempt = 0; attempt < 2; attempt++) {
 		uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs);
 		if (!dim) return -1;
-		if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m))) return cluster_parts(cs, m, cl, np);
+		if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m))) return cluster_locks(cs, m, cl, np, sign);
 		int flip = 0;
 		for (uint32_t a = 0; a < np; a++) {
 			const cpair *c = &cs->pairs[cl[a]];
@@ -261,7 +292,7 @@ static int choose_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 {
 	if (np > DIRECT_MAX) return -1;
 	double res[DIRECT_MAX];
-	uint32_t dim;
+	uint32_t dim = 0;
 	force_resolutions(cs, m, cl, np, res);
 	for (uint32_t a = 0; a < np; a++) cs->act[a] = (unsigned char)in_contact(&cs->pairs[cl[a]]);
 	for (uint32_t a = 0; a < np; a++) { /* the accelerations without the forces of these pairs */
@@ -361,7 +392,7 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 	for (uint32_t i = 0; i < cs->n; i++) {
 		cpair *c = &cs->pairs[i];
 		for (int k = 0; k < 3; k++) WV(c, F)[k] = 0;
-		W(c, LAM) = 0;
+		W(c, LAM) = W(c, LOCK) = 0;
 	}
 	/* each cluster directly; those it does not take (cluster.c) by Gauss-Seidel sweeps */
 	uint32_t nq = csf_contact_clusters(cs, picks_contact, NULL), sweeps = 0; /* some cluster needs them */
@@ -438,7 +469,7 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 		} else if (W(c, MODE) == SLIDING) {
 			double vt[3];
 			csf_contact_slip_velocity(c, m, n, vt);
-			g[1] = dot3(vt, WV(c, DS));
+			g[1] = W(c, LOCK) ? -1 : dot3(vt, WV(c, DS)); /* it stops; locked, at once (cluster_locks) */
 		} else {
 			g[1] = mu_s(c, m) * fabs(W(c, LAM)) - mag3(WV(c, F));
 		}
