@@ -441,7 +441,8 @@ t_piles() {
 t_piles_now() {
 	suite "piles that settle" sh tests/piles/piles.sh "$CSFC" "$CSFVM" "$T" "3 0 0 default" "3 0.5 0 default" \
 		"3 0.5 0.3 default" "3 1 0 default" "3 0.9 0.3 default" "16 0.5 0.3 default" "16 0 0.3 default" \
-		"3 0.5 0.3 rkf45" "16 0.5 0.3 msbdf" "16 1 0 default" "16 1 0.3 default"
+		"3 0.5 0.3 rkf45" "16 0.5 0.3 msbdf" "16 1 0 default" "16 1 0.3 default" "3 0 0.3 default" \
+		"3 0.9 0 default" "3 1 0.3 default" "16 0 0.3 rkf45"
 }
 t_piles_statics() {
 	suite "balls at rest" sh tests/piles/statics.sh "$CSFC" "$CSFVM" "$T"
