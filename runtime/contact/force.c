@@ -26,6 +26,22 @@ static int picks_contact(const cpair *c, const void *arg)
 	return in_contact(c);
 }
 
+/*
+ * The slip below which a sliding pair's direction is the one it began to
+ * slide in (W_DS), not that of its slip: 1e-13 of its bodies' speeds and of
+ * their accelerations times 1 s (csf_contact_accel_resolution): a slip that
+ * small is the rounding of the impulses and forces that stopped or started
+ * it, whose direction is noise, and friction along it would switch within a
+ * step.
+ */
+static double slip_resolution(const cpair *c, const double *m)
+{
+	double n[3], curv;
+	csf_contact_geometry(c, m, n, &curv);
+	return 1e-13 * (mag3(m + I(c, V)) + (c->plane ? 0 : mag3(m + J(c, V)))) +
+	       0.1 * csf_contact_accel_resolution(c, m, curv);
+}
+
 /* Pair c's force directions B (3 x d, column-major: d = 3 when it sticks), and E likewise. */
 static int force_basis(const cpair *c, const double *m, const double n[3], double sign, double B[9], double E[9])
 {
@@ -38,7 +54,7 @@ static int force_basis(const cpair *c, const double *m, const double n[3], doubl
 		double vt[3];
 		csf_contact_slip_velocity(c, m, n, vt);
 		double s = mag3(vt);
-		int ahead = dot3(vt, WV(c, DS)) > 0;
+		int ahead = dot3(vt, WV(c, DS)) > slip_resolution(c, m);
 		for (int j = 0; j < 3; j++) u[j] = ahead ? vt[j] / s : WV(c, DS)[j];
 		k = mu_k(c, m) * sign;
 	}
@@ -425,7 +441,7 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 				   event is located) against its direction at the start, so that the force is smooth
 				   up to the crossing and the integrator sees no switching */
 				double s = mag3(vt), k = mu_k(c, m) * fabs(W(c, LAM));
-				int ahead = dot3(vt, WV(c, DS)) > 0;
+				int ahead = dot3(vt, WV(c, DS)) > slip_resolution(c, m);
 				for (int j = 0; j < 3; j++) f[j] = -k * (ahead ? vt[j] / s : WV(c, DS)[j]);
 			} else { /* sticking: cancel the relative tangential acceleration */
 				double at[3];
