@@ -485,7 +485,9 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 		} else if (W(c, MODE) == SLIDING) {
 			double vt[3];
 			csf_contact_slip_velocity(c, m, n, vt);
-			g[1] = W(c, LOCK) ? -1 : dot3(vt, WV(c, DS)); /* it stops; locked, at once (cluster_locks) */
+			/* it stops, beyond the slip's rounding (slip_resolution: a slide that has just begun has
+			   none); locked, at once (cluster_locks) */
+			g[1] = W(c, LOCK) ? -1 : dot3(vt, WV(c, DS)) + slip_resolution(c, m);
 		} else {
 			g[1] = mu_s(c, m) * fabs(W(c, LAM)) - mag3(WV(c, F));
 		}

@@ -447,8 +447,11 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 				continue;
 			}
 		}
-		/* a guard of a pair in contact that is negative: its transition (contact_int.h's header) */
-		for (uint32_t i = 0; i < cs->n; i++) {
+		/* a guard of a pair in contact that is negative: its transition (contact_int.h's header);
+		   one a pass, the first in the order of pairs (the pairs of a cluster decide each other:
+		   changing every one at once can go round in a circle, changing the first each time
+		   settles, as Murty's least-index rule does for a complementarity problem) */
+		for (uint32_t i = 0; i < cs->n && !changed; i++) {
 			cpair *c = &cs->pairs[i];
 			if (!in_contact(c)) continue;
 			if (W(c, G0) < 0) separate(c, m), changed = 1;
