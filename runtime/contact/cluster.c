@@ -70,6 +70,22 @@ double csf_contact_mass_ratio(const csf_contacts *cs, const uint32_t *cl, uint32
 	return hi > 0 ? hi / lo : 1;
 }
 
+/* Records cluster cl[0..np) as the one that could not be solved (csf_contacts_why). */
+void csf_contact_unsolvable(csf_contacts *cs, const uint32_t *cl, uint32_t np, const double *m)
+{
+	uint32_t dim = 0;
+	for (uint32_t a = 0; a < np; a++) {
+		const cpair *c = &cs->pairs[cl[a]];
+		dim += has_friction(c, m) && W(c, MODE) == STICKING ? 3 : 1;
+	}
+	cs->why_pair = np ? cl[0] : 0, cs->why_np = np, cs->why_big = dim > DIRECT_MAX;
+}
+
+void csf_contacts_why(const csf_contacts *cs, uint32_t *pair, uint32_t *np, int *big)
+{
+	*pair = cs->why_pair, *np = cs->why_np, *big = cs->why_big;
+}
+
 /*
  * Sorts the candidates k for which pick(k) holds into clusters: cl lists
  * them cluster by cluster, each in the order of pairs, the clusters in the

@@ -135,6 +135,8 @@ struct csf_contacts {
 	unsigned char *mark;       /* per candidate: the pairs csf_contact_choose chooses among, and its choice */
 	size_t capmark;
 	int group;                 /* an impact's impulses are shared by the pairs marked (impulse.c) */
+	uint32_t why_pair, why_np; /* of a cluster that could not be solved: a pair of it, its pairs, */
+	int why_big;               /* and whether its unknowns are more than DIRECT_MAX */
 	int unsolved; /* the sweeps left contact forces that do not hold (csf_contacts_unsolved) */
 };
 
@@ -193,6 +195,7 @@ double csf_contact_coupling(const csf_contacts *cs, const cpair *c, const cpair 
 uint32_t csf_contact_clusters(csf_contacts *cs, int (*pick)(const cpair *, const void *), const void *arg);
 int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio);
 double csf_contact_mass_ratio(const csf_contacts *cs, const uint32_t *cl, uint32_t np, const double *m);
+void csf_contact_unsolvable(csf_contacts *cs, const uint32_t *cl, uint32_t np, const double *m);
 int csf_contact_least_squares(csf_contacts *cs, uint32_t dim);
 
 /* force.c: the rounding of a pair's relative acceleration (curv its centripetal term); an apart

@@ -459,7 +459,14 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 	}
 	/* the sweeps converge slowly on masses that differ greatly: a relative acceleration that
 	   they left above 1e-6 of what they began with means forces that do not hold the contacts */
-	if (sweeps && residual(cs, m) > 1e-6 * before) cs->unsolved = 1;
+	if (sweeps && residual(cs, m) > 1e-6 * before) {
+		cs->unsolved = 1;
+		for (uint32_t q = 0; q < nq; q++) /* the first cluster the direct solve did not take */
+			if (!cs->direct[cs->cl[cs->cstart[q]]]) {
+				csf_contact_unsolvable(cs, cs->cl + cs->cstart[q], cs->cstart[q + 1] - cs->cstart[q], m);
+				break;
+			}
+	}
 	for (uint32_t i = 0; i < cs->n; i++) {
 		cpair *c = &cs->pairs[i];
 		double n[3], curv;

@@ -152,6 +152,11 @@ int csf_contact_collide(csf_contacts *cs, double *m, cpair *hit, double target, 
 		}
 		if (change <= 1e-15 * size) return 0;
 	}
+	uint32_t np = 0; /* the pairs of the impact, as cluster_impulses took them, into cs->cl */
+	for (uint32_t i = 0; i < cs->n; i++)
+		if (joins(cs, &cs->pairs[i], hit)) cs->cl[np++] = i;
+	csf_contact_unsolvable(cs, cs->cl, np, m);
+	cs->why_pair = (uint32_t)(hit - cs->pairs);
 	return 1;
 }
 
