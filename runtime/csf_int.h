@@ -312,9 +312,9 @@ uint32_t csf_contacts_count(const csf_contacts *c);
 /* Whether the contact forces of some evaluation could not be solved (masses that differ by more than about 1e10,
    or a cluster that neither the direct solve nor the sweeps solve). */
 int csf_contacts_unsolved(const csf_contacts *c);
-/* Of the cluster whose forces or impulses could not be solved: a pair of it (a candidate), its pairs, and
-   whether its unknowns were too many for the direct solve. */
-void csf_contacts_why(const csf_contacts *c, uint32_t *pair, uint32_t *np, int *big);
+/* Of the cluster whose forces or impulses could not be solved: a pair of it (a candidate), its pairs, and,
+   when its unknowns were too many for the direct solve, the most it takes (else 0). */
+void csf_contacts_why(const csf_contacts *c, uint32_t *pair, uint32_t *np, uint32_t *big);
 /* The guards of candidate pairs as the last csf_contact_apply left them, into g[0 .. 2 count). */
 void csf_contacts_guards(const csf_contacts *c, double *g);
 /* The source statement of candidate k (its rule). */

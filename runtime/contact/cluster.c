@@ -26,13 +26,14 @@
  * Gauss-Seidel sweeps, which each pair corrects in turn, converge at a rate
  * of about one part in the mass ratio per sweep (a 1e-5 kg ball between 1
  * kg ones takes 1e5 sweeps). Those sweeps remain for what the direct solve
- * does not take: a cluster of more than DIRECT_MAX unknowns (its matrix
- * would cost DIRECT_MAX^3 operations per evaluation), or a singular one (a
- * body held by more contacts than it has directions, whose forces are not
- * determined: the sweeps find one of the answers). Sweeps that leave the
- * contacts' accelerations above 1e-6 of where they began (masses that
- * differ by more than the direct solve takes) mark the run's contacts
- * unsolved, and the driver stops it with a message.
+ * does not take: a cluster of more than DIRECT_MAX unknowns (its dense
+ * matrix would cost DIRECT_MAX^3/3 operations per evaluation, some 5e6 at
+ * 256: a column of 100 balls stands, one of 300 does not), or one whose
+ * system has no solution that neither csf_contact_solve's least-norm nor
+ * force.c's complementarity problem takes. Sweeps that leave the contacts'
+ * accelerations above 1e-6 of where they began mark the run's contacts
+ * unsolved, and the driver stops it with a message that names the cluster
+ * (csf_contacts_why).
  */
 
 /* The bodies of pair c as state slots of their positions (j a plane: none, UINT32_MAX). */
@@ -78,10 +79,10 @@ void csf_contact_unsolvable(csf_contacts *cs, const uint32_t *cl, uint32_t np, c
 		const cpair *c = &cs->pairs[cl[a]];
 		dim += has_friction(c, m) && W(c, MODE) == STICKING ? 3 : 1;
 	}
-	cs->why_pair = np ? cl[0] : 0, cs->why_np = np, cs->why_big = dim > DIRECT_MAX;
+	cs->why_pair = np ? cl[0] : 0, cs->why_np = np, cs->why_big = dim > DIRECT_MAX ? DIRECT_MAX : 0;
 }
 
-void csf_contacts_why(const csf_contacts *cs, uint32_t *pair, uint32_t *np, int *big)
+void csf_contacts_why(const csf_contacts *cs, uint32_t *pair, uint32_t *np, uint32_t *big)
 {
 	*pair = cs->why_pair, *np = cs->why_np, *big = cs->why_big;
 }

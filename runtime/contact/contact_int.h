@@ -136,12 +136,12 @@ struct csf_contacts {
 	size_t capmark;
 	int group;                 /* an impact's impulses are shared by the pairs marked (impulse.c) */
 	uint32_t why_pair, why_np; /* of a cluster that could not be solved: a pair of it, its pairs, */
-	int why_big;               /* and whether its unknowns are more than DIRECT_MAX */
+	uint32_t why_big;          /* and DIRECT_MAX if its unknowns are more (else 0) */
 	int unsolved; /* the sweeps left contact forces that do not hold (csf_contacts_unsolved) */
 };
 
 /* The most unknowns of a cluster solved directly (cluster.c). */
-enum { DIRECT_MAX = 96 };
+enum { DIRECT_MAX = 256 };
 
 #define I(c, f) ((c)->si[CSF_CF_##f])
 #define J(c, f) ((c)->sj[CSF_CF_##f])

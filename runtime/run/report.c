@@ -103,18 +103,20 @@ void csf_run_report_unsettled(const run *r, FILE *err)
 			        tb, what, csf_str(p, p->objects[lo]), mlo, csf_str(p, p->objects[hi]), mhi);
 			return;
 		}
-		uint32_t k, np, oi, oj;
-		int big;
+		uint32_t k, np, oi, oj, big;
 		csf_contacts_why(r->cs, &k, &np, &big);
 		csf_contacts_objects(r->cs, k, &oi, &oj);
+		char why[160];
+		if (big)
+			snprintf(why, sizeof why, "have more unknowns than the direct solve takes (%u), and the Gauss-Seidel "
+			         "sweeps that take them did not converge", (unsigned)big);
+		else
+			snprintf(why, sizeof why, "contradict each other (no set of them holds: sticking and sliding, or "
+			         "pressing and parting, decide each other there)");
 		fprintf(err,
 		        "error: at t=%s, the %s among bodies in contact could not be solved, though the masses differ "
 		        "by a factor of %.3g at most: %u contacts there, among them '%s' with '%s', %s\n",
-		        tb, what, mhi / mlo, np, csf_str(p, p->objects[oi]), csf_str(p, p->objects[oj]),
-		        big ? "have more unknowns than the direct solve takes (96), and the Gauss-Seidel sweeps that "
-		              "take them did not converge"
-		            : "contradict each other (no set of them holds: sticking and sliding, or pressing and "
-		              "parting, decide each other there)");
+		        tb, what, mhi / mlo, np, csf_str(p, p->objects[oi]), csf_str(p, p->objects[oj]), why);
 		return;
 	}
 	unsigned long long passes = (unsigned long long)csf_contact_passes(csf_contacts_count(r->cs));
