@@ -428,7 +428,7 @@ t_contacts_methods() {
 	suite "contacts and methods, $1" sh tests/contacts/methods.sh "$CSFC" "$CSFVM" "$T" "$1"
 }
 
-# 5j. piles of balls (issue 28; tests/piles/): no overlap, no energy gained, at rest in
+# 5q. piles of balls (issue 28; tests/piles/): no overlap, no energy gained, at rest in
 #     equilibrium (piles N, one job a size), and balls at rest with closed-form forces
 #     (piles_statics, always). The cases that settle today always (piles_now); the whole grid
 #     (piles N) only with CSF_TEST_PILES=1 (also make check-piles) until it passes.

@@ -137,6 +137,7 @@ struct csf_contacts {
 	int group;                 /* an impact's impulses are shared by the pairs marked (impulse.c) */
 	uint32_t why_pair, why_np; /* of a cluster that could not be solved: a pair of it, its pairs, */
 	uint32_t why_big;          /* and DIRECT_MAX if its unknowns are more (else 0) */
+	double vfloor;             /* the least speed that counts at the instant being settled (settle.c) */
 	int unsolved; /* the sweeps left contact forces that do not hold (csf_contacts_unsolved) */
 };
 
@@ -201,6 +202,10 @@ int csf_contact_least_squares(csf_contacts *cs, uint32_t dim);
 /* force.c: the rounding of a pair's relative acceleration (curv its centripetal term); an apart
    pair's guard at positions pi, pj (NULL: j's in m) */
 double csf_contact_accel_resolution(const cpair *c, const double *m, double curv);
+/* force.c: the sum of the pair's bodies' speeds; the least relative speed or slip that counts, no
+   less than least */
+double csf_contact_speeds(const cpair *c, const double *m);
+double csf_contact_speed_resolution(const cpair *c, const double *m, double least);
 double csf_contact_gap_guard(const cpair *c, const double *m, const double *pi, const double *pj);
 /* force.c: which of the pairs marked in cs->mark are in contact (the modes' complementarity
    problem): the marks become 0 apart, 1 in contact, 2 leaves contact, 3 joins (-1: not settled) */

@@ -26,20 +26,28 @@ static int picks_contact(const cpair *c, const void *arg)
 	return in_contact(c);
 }
 
+/* The sum of the speeds of the pair's bodies. */
+double csf_contact_speeds(const cpair *c, const double *m)
+{
+	return mag3(m + I(c, V)) + (c->plane ? 0 : mag3(m + J(c, V)));
+}
+
 /*
- * The slip below which a sliding pair's direction is the one it began to
- * slide in (W_DS), not that of its slip: 1e-13 of its bodies' speeds and of
- * their accelerations times 1 s (csf_contact_accel_resolution): a slip that
+ * The smallest relative speed (or slip) that counts: 1e-13 of the bodies'
+ * speeds (no less than least), and of their accelerations times 1 s
+ * (csf_contact_accel_resolution): the speeds change by their accelerations
+ * times the time within which an event is located, 1e-13 s. A slip that
  * small is the rounding of the impulses and forces that stopped or started
- * it, whose direction is noise, and friction along it would switch within a
- * step.
+ * it, whose direction is noise: below it a sliding pair's direction is the
+ * one it began to slide in (W_DS), not its slip's, whose friction would
+ * switch within a step; nor is a subnormal speed between bodies at rest
+ * one (DBL_MIN).
  */
-static double slip_resolution(const cpair *c, const double *m)
+double csf_contact_speed_resolution(const cpair *c, const double *m, double least)
 {
 	double n[3], curv;
 	csf_contact_geometry(c, m, n, &curv);
-	return 1e-13 * (mag3(m + I(c, V)) + (c->plane ? 0 : mag3(m + J(c, V)))) +
-	       0.1 * csf_contact_accel_resolution(c, m, curv);
+	return csf_max(1e-13 * csf_contact_speeds(c, m), least) + 0.1 * csf_contact_accel_resolution(c, m, curv) + DBL_MIN;
 }
 
 /* Pair c's force directions B (3 x d, column-major: d = 3 when it sticks), and E likewise. */
@@ -54,7 +62,7 @@ static int force_basis(const cpair *c, const double *m, const double n[3], doubl
 		double vt[3];
 		csf_contact_slip_velocity(c, m, n, vt);
 		double s = mag3(vt);
-		int ahead = dot3(vt, WV(c, DS)) > slip_resolution(c, m);
+		int ahead = dot3(vt, WV(c, DS)) > csf_contact_speed_resolution(c, m, 0);
 		for (int j = 0; j < 3; j++) u[j] = ahead ? vt[j] / s : WV(c, DS)[j];
 		k = mu_k(c, m) * sign;
 	}
@@ -441,7 +449,7 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 				   event is located) against its direction at the start, so that the force is smooth
 				   up to the crossing and the integrator sees no switching */
 				double s = mag3(vt), k = mu_k(c, m) * fabs(W(c, LAM));
-				int ahead = dot3(vt, WV(c, DS)) > slip_resolution(c, m);
+				int ahead = dot3(vt, WV(c, DS)) > csf_contact_speed_resolution(c, m, 0);
 				for (int j = 0; j < 3; j++) f[j] = -k * (ahead ? vt[j] / s : WV(c, DS)[j]);
 			} else { /* sticking: cancel the relative tangential acceleration */
 				double at[3];
@@ -492,9 +500,9 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 		} else if (W(c, MODE) == SLIDING) {
 			double vt[3];
 			csf_contact_slip_velocity(c, m, n, vt);
-			/* it stops, beyond the slip's rounding (slip_resolution: a slide that has just begun has
+			/* it stops, beyond the slip's rounding (csf_contact_speed_resolution: a slide that has just begun has
 			   none); locked, at once (cluster_locks) */
-			g[1] = W(c, LOCK) ? -1 : dot3(vt, WV(c, DS)) + slip_resolution(c, m);
+			g[1] = W(c, LOCK) ? -1 : dot3(vt, WV(c, DS)) + csf_contact_speed_resolution(c, m, 0);
 		} else {
 			g[1] = mu_s(c, m) * fabs(W(c, LAM)) - mag3(WV(c, F));
 		}

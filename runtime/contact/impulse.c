@@ -64,7 +64,7 @@ static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, doubl
 		rel(c, m, I(c, V), J(c, V), vr);
 		cs->v0[a] = dot3(vr, n + 3 * a);
 		/* the velocities' own size: a pair that closes within its rounding does not close */
-		size = csf_max(size, mag3(m + I(c, V)) + (c->plane ? 0 : mag3(m + J(c, V))));
+		size = csf_max(size, csf_contact_speeds(c, m));
 		cs->act[a] = a == ih;
 		cs->lam[a] = 0;
 	}

@@ -23,31 +23,21 @@ static void close_gap(cpair *c, double *m, const double n[3], double gap)
 		for (int k = 0; k < 3; k++) m[I(c, POS) + k] += csf_max(push, -gap) * n[k];
 }
 
-/* Enters contact: the relative normal velocity is zero; sticks if the tangential one is too. */
-
 /*
- * The smallest relative speed that counts at an instant: 1e-13 of the pair's
- * speeds, or of the fastest pair's at the instant (cs_vfloor). A pair that
- * closes more slowly than that is not struck: an impulse that small does not
- * change the velocities it is added to, or is the rounding of the impulses
- * of an impact elsewhere (an impact at 1 m/s leaves the pairs at rest
- * around it closing at 1e-17 m/s, and the impulses among touching bodies
- * are solved to 1e-14 of their speeds, csf_contact_collide), which would be
- * passed from pair to pair without end; nor is one that closes at a
- * subnormal speed between bodies at rest. And the speeds change by their
- * accelerations times the time within which an event is located (1e-13 s):
- * 1e-13 of the pair's accelerations (0.1 csf_contact_accel_resolution) is
- * no speed either, so a slip that small leaves a pair that comes to rest
+ * The smallest relative speed that counts at an instant being settled:
+ * csf_contact_speed_resolution, at least 1e-13 of the fastest pair's speeds
+ * at the instant (cs->vfloor). A pair that closes more slowly than that is
+ * not struck: an impulse that small does not change the velocities it is
+ * added to, or is the rounding of the impulses of an impact elsewhere (an
+ * impact at 1 m/s leaves the pairs at rest around it closing at 1e-17 m/s,
+ * and the impulses among touching bodies are solved to 1e-14 of their
+ * speeds, csf_contact_collide), which would be passed from pair to pair
+ * without end; and a slip that small leaves a pair that comes to rest
  * sticking.
  */
-static double cs_vfloor; /* of the instant being settled: see csf_contact_settle */
-
-static double speed_resolution(const cpair *c, const double *m)
+static double speed_resolution(const csf_contacts *cs, const cpair *c, const double *m)
 {
-	double n[3], curv;
-	csf_contact_geometry(c, m, n, &curv);
-	return csf_max(1e-13 * (mag3(m + I(c, V)) + (c->plane ? 0 : mag3(m + J(c, V)))), cs_vfloor) +
-	       0.1 * csf_contact_accel_resolution(c, m, curv) + DBL_MIN;
+	return csf_contact_speed_resolution(c, m, cs->vfloor);
 }
 
 /*
@@ -56,12 +46,12 @@ static double speed_resolution(const cpair *c, const double *m)
  * (speed_resolution: the impulses that brought it to rest leave such a
  * slip, whose direction is noise), which an impulse as small takes away.
  */
-static void enter_contact(cpair *c, double *m, const double n[3])
+static void enter_contact(const csf_contacts *cs, cpair *c, double *m, const double n[3])
 {
 	double vt[3];
 	csf_contact_slip_velocity(c, m, n, vt);
 	double s = mag3(vt);
-	if (s > 0 && has_friction(c, m) && s <= speed_resolution(c, m)) {
+	if (s > 0 && has_friction(c, m) && s <= speed_resolution(cs, c, m)) {
 		for (int k = 0; k < 3; k++) vt[k] = -vt[k];
 		csf_contact_add_impulse(c, m, vt);
 		s = 0;
@@ -176,9 +166,9 @@ static void after_impact(csf_contacts *cs, double *m, double zeno)
 		if (memcmp(vr, WV(c, VR), sizeof vr) == 0) continue;
 		csf_contact_geometry(c, m, n, &curv);
 		double vn = dot3(vr, n), an = -W(c, LAM) * (inv_mass_i(c, m) + inv_mass_j(c, m));
-		if (vn < -speed_resolution(c, m)) continue; /* closing: struck in turn (csf_contact_settle) */
+		if (vn < -speed_resolution(cs, c, m)) continue; /* closing: struck in turn (csf_contact_settle) */
 		if (vn > 0 && !at_rest(c, m, vn, an, zeno)) separate(c, m);
-		else enter_contact(c, m, n);
+		else enter_contact(cs, c, m, n);
 	}
 }
 
@@ -224,14 +214,20 @@ static int departure(csf_contacts *cs, const double *m, const cpair *c, double v
 	return crowded(cs, m, c) ? RESTS : HOPS;
 }
 
+/* Room in cs->mark for a mark per candidate. 0, or -1: no memory. */
+static int grow_marks(csf_contacts *cs)
+{
+	if (cs->n <= cs->capmark) return 0;
+	unsigned char *mk = realloc(cs->mark, cs->n);
+	if (!mk) return -1;
+	cs->mark = mk, cs->capmark = cs->n;
+	return 0;
+}
+
 /* Marks in cs->mark the pairs in contact and those touching (not hopping). 0, or -1: no memory. */
 static int mark_touching(csf_contacts *cs, const double *m)
 {
-	if (cs->n > cs->capmark) {
-		unsigned char *mk = realloc(cs->mark, cs->n);
-		if (!mk) return -1;
-		cs->mark = mk, cs->capmark = cs->n;
-	}
+	if (grow_marks(cs)) return -1;
 	for (uint32_t i = 0; i < cs->n; i++) {
 		const cpair *c = &cs->pairs[i];
 		double n[3], curv;
@@ -251,18 +247,14 @@ static int mark_touching(csf_contacts *cs, const double *m)
  */
 static int choose(csf_contacts *cs, double *m)
 {
-	if (cs->n > cs->capmark) {
-		unsigned char *mk = realloc(cs->mark, cs->n);
-		if (!mk) return -1;
-		cs->mark = mk, cs->capmark = cs->n;
-	}
+	if (grow_marks(cs)) return -1;
 	for (uint32_t i = 0; i < cs->n; i++) {
 		cpair *c = &cs->pairs[i];
 		double n[3], curv, vr[3];
 		cs->mark[i] = (unsigned char)in_contact(c);
 		if (cs->mark[i] || W(c, MODE) == HOPPING || !touching(c, m, csf_contact_geometry(c, m, n, &curv))) continue;
 		rel(c, m, I(c, V), J(c, V), vr);
-		cs->mark[i] = fabs(dot3(vr, n)) <= speed_resolution(c, m);
+		cs->mark[i] = fabs(dot3(vr, n)) <= speed_resolution(cs, c, m);
 	}
 	if (csf_contact_choose(cs, m)) return 0;
 	int changed = 0;
@@ -277,7 +269,7 @@ static int choose(csf_contacts *cs, double *m)
 			double vn = dot3(vr, n);
 			for (int k = 0; k < 3; k++) vr[k] = -vn * n[k];
 			csf_contact_add_impulse(c, m, vr);
-			enter_contact(c, m, n);
+			enter_contact(cs, c, m, n);
 			changed = 1;
 		}
 	}
@@ -324,23 +316,21 @@ uint64_t csf_contact_passes(uint32_t n)
 	return 100 + 10 * (uint64_t)n + 1000000 / ((uint64_t)n + 1);
 }
 
-int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, double tol, csf_eval_fn eval,
-                       void *ctx)
+static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, double tol, csf_eval_fn eval,
+                  void *ctx)
 {
-	if (!cs) return 0;
 	/* each pass evaluates the forces and guards of the current modes, then acts on what they say */
 	/* impacts, up to csf_contact_passes; other changes of mode (rest, lift-off, stick, slip),
 	   up to 100 + 10 n passes in all, after which the modes stand as they are (if they are
 	   not consistent, the events that follow at this instant say so: csfvm(1)) */
 	uint64_t hits = 0, others = 0;
-	cs_vfloor = 0;
 	for (uint32_t i = 0; i < cs->n; i++) {
 		cpair *c = &cs->pairs[i];
 		/* a pair that static friction cannot hold and that, sliding, would stick again at once
 		   (the slip its neighbours' sticking leaves, a rounding's worth, against its way) stops
 		   no more than twice at an instant, and slides on: its slip grows the way it slides */
 		W(c, SS) = 0;
-		cs_vfloor = csf_max(cs_vfloor, 1e-13 * (mag3(m + I(c, V)) + (c->plane ? 0 : mag3(m + J(c, V)))));
+		cs->vfloor = csf_max(cs->vfloor, 1e-13 * csf_contact_speeds(c, m));
 	}
 	int fresh = 0; /* the forces and guards of the last evaluation are those of the modes */
 	for (;;) {
@@ -364,7 +354,7 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 				csf_contact_geometry(c, m, n, &curv);
 				rel(c, m, I(c, V), J(c, V), vr);
 				double vn = dot3(vr, n);
-				if (vn < -speed_resolution(c, m) && vn < worst) worst = vn, hit = (long)i;
+				if (vn < -speed_resolution(cs, c, m) && vn < worst) worst = vn, hit = (long)i;
 				continue;
 			}
 			double gap = csf_contact_geometry(c, m, n, &curv);
@@ -380,7 +370,7 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 			rel(c, m, I(c, V), J(c, V), vr);
 			rel(c, m, I(c, A), J(c, A), ar);
 			double vn = dot3(vr, n), an = dot3(ar, n) + curv;
-			if (vn < -speed_resolution(c, m)) {
+			if (vn < -speed_resolution(cs, c, m)) {
 				if (vn < worst) worst = vn, hit = (long)i;
 				continue;
 			}
@@ -393,7 +383,7 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 				close_gap(c, m, n, gap);
 				for (int k = 0; k < 3; k++) vr[k] = -v0 * n[k];
 				csf_contact_add_impulse(c, m, vr);
-				enter_contact(c, m, n);
+				enter_contact(cs, c, m, n);
 				changed = 1;
 			} else if (how == HOPS) { /* alone, parting a little (at the start) */
 				hop(c, m[p->tslot], vn, an);
@@ -427,7 +417,7 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 			}
 			after_impact(cs, m, zeno);
 			close_gap(c, m, n, gap);
-			if (how == RESTS) enter_contact(c, m, n);
+			if (how == RESTS) enter_contact(cs, c, m, n);
 			else if (how == HOPS) hop(c, m[p->tslot], sep, an);
 			else if (was) W(c, MODE) = APART;
 			for (uint32_t i = 0; i < cs->n; i++) /* flights whose velocities just changed */
@@ -460,4 +450,15 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 		}
 		if (!changed || ++others >= 100 + 10 * (uint64_t)cs->n) return 0;
 	}
+}
+
+/* The instant's modes (settle), with the speed that counts at the instant (speed_resolution). */
+int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, double tol, csf_eval_fn eval,
+                       void *ctx)
+{
+	if (!cs) return 0;
+	cs->vfloor = 0;
+	int st = settle(p, cs, m, zeno, tol, eval, ctx);
+	cs->vfloor = 0;
+	return st;
 }
