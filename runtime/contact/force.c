@@ -384,8 +384,7 @@ int csf_contacts_unsolved(const csf_contacts *c) { return c->unsolved; }
 double csf_contact_gap_guard(const cpair *c, const double *m, const double *pi, const double *pj)
 {
 	double n[3], curv, gap = csf_contact_geometry_at(c, m, pi, pj, n, &curv);
-	double scale = mag3(pi) + (pj ? mag3(pj) : mag3(m + J(c, POS))) + m[I(c, R)] + (c->plane && !c->anchor ? 0 : m[J(c, R)]);
-	return csf_max(gap + 2 * DBL_EPSILON * scale, -csf_contact_inside_at(c, m, pi));
+	return csf_max(gap + 2 * DBL_EPSILON * csf_contact_scale_at(c, m, pi, pj), -csf_contact_inside_at(c, m, pi));
 }
 
 /*
@@ -478,7 +477,7 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 	for (uint32_t i = 0; i < cs->n; i++) {
 		cpair *c = &cs->pairs[i];
 		double n[3], curv;
-		csf_contact_geometry(c, m, n, &curv);
+		double gap = csf_contact_geometry(c, m, n, &curv);
 		double *g = WV(c, G0);
 		double in = csf_contact_inside(c, m);
 		if (W(c, MODE) == HOPPING) { /* the hop lands, or passes the plane's edge */
@@ -487,7 +486,7 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 			continue;
 		}
 		if (!in_contact(c)) { /* the gap closes over the plane (not past its edge) */
-			g[0] = csf_contact_gap_guard(c, m, m + I(c, POS), c->plane ? NULL : m + J(c, POS));
+			g[0] = csf_max(gap + csf_contact_resolution(c, m), -in); /* csf_contact_gap_guard, from the gap */
 			g[1] = 1;
 			continue;
 		}

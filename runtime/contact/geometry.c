@@ -75,10 +75,12 @@ double csf_contact_inside_at(const cpair *c, const double *m, const double *pi)
 double csf_contact_inside(const cpair *c, const double *m) { return csf_contact_inside_at(c, m, m + I(c, POS)); }
 
 /* The pair's length scale: the magnitudes its gap is computed from. */
-double csf_contact_scale(const cpair *c, const double *m)
+double csf_contact_scale_at(const cpair *c, const double *m, const double *pi, const double *pj)
 {
-	return mag3(m + I(c, POS)) + mag3(m + J(c, POS)) + m[I(c, R)] + (c->plane && !c->anchor ? 0 : m[J(c, R)]);
+	return mag3(pi) + mag3(pj ? pj : m + J(c, POS)) + m[I(c, R)] + (c->plane && !c->anchor ? 0 : m[J(c, R)]);
 }
+
+double csf_contact_scale(const cpair *c, const double *m) { return csf_contact_scale_at(c, m, m + I(c, POS), NULL); }
 
 /*
  * The smallest gap the pair's positions resolve: a few units in the last
