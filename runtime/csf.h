@@ -78,6 +78,14 @@ int csf_vm_exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, co
 void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m);
 
 /*
+ * The constraints (the CONSTRAIN instruction; runtime/constraint/): the
+ * forces that keep the second derivative of every active constraint zero
+ * (ideal: along its gradient), solved together, added to each body's a and
+ * written to its FC (nothing when x or x->cons is NULL).
+ */
+void csf_constraint_apply(const csf_prog *p, const csf_exec_ctx *x, double *m);
+
+/*
  * The program in the len bytes of a .csfb file (buf), decoded and verified,
  * in memory of its own (buf may be freed); NULL with the reason in err when
  * the bytes are not a valid program or memory runs out. csf_unload frees it.

@@ -136,6 +136,25 @@ typedef struct csf_cbody { uint32_t plane, object, varies, s[CSF_CF_N]; } csf_cb
  * by their $0's place in its list, then their $1's.
  */
 typedef struct csf_crule { uint32_t src, every, first0, n0, first1, n1; } csf_crule;
+/*
+ * The constraints (rules with attribute C; runtime/constraint/). A
+ * constraint k is the equation g = 0 (kind CSF_CON_EQ), or g <= 0 or
+ * g >= 0 (a string: one-sided), g = LHS - RHS of its rule. The code of
+ * the RHS and OUT sections computes, before the CONSTRAIN instruction, at
+ * the slots the table names: g, its rate gd = dg/dt, the bias c (the part
+ * of g's second derivative that is not J a: g'' = sum_b J_b . a_b + c),
+ * the scale of the equation's terms (|LHS| + |RHS|), and per body b,
+ * conbodies[first .. first + n), the gradient J_b of g with respect to b's
+ * position (3 slots). A body is a mass point: its pos and v in the state,
+ * its a, m and FC (the force the constraints put on it). unit is the
+ * unit of g (a string), for messages; src its rule's statement.
+ */
+enum { CSF_CON_EQ, CSF_CON_LE, CSF_CON_GE };
+typedef struct csf_con { uint32_t src, kind, g, gd, c, scale, first, n, unit; } csf_con;
+typedef struct csf_conbody { uint32_t object, J, pos, v, a, m, fc; } csf_conbody;
+/* The run-time state of the constraints: work arrays and modes (runtime/constraint/). */
+typedef struct csf_cons csf_cons;
+
 /* The run-time state of the contact routine: the candidate pairs and their modes (runtime/contact/broad.c). */
 typedef struct csf_contacts csf_contacts;
 
@@ -164,6 +183,9 @@ struct csf_prog {
 	csf_cbody *cbodies;
 	uint32_t *cmembers;
 	csf_crule *crules;
+	uint32_t ncons, nconbodies; /* the constraints (no constraints: none) */
+	csf_con *cons;
+	csf_conbody *conbodies;
 	uint32_t *objects; /* object names, in definition order */
 	csf_prop *props;
 	double ubase[CSF_NDIM]; /* the model's unit system: its units of length, mass, time, current in SI */
@@ -264,10 +286,12 @@ void csf_disassemble(const csf_prog *p, FILE *f);
  * The run-time state an execution function passes on, which the program
  * (const, as loaded) does not hold: the contact routine's candidate pairs
  * and modes, for the CONTACT instruction (csf_run owns them; NULL: no
- * contacts, and CONTACT does nothing).
+ * contacts, and CONTACT does nothing); the constraints' work arrays and
+ * modes, for the CONSTRAIN instruction (NULL: CONSTRAIN does nothing).
  */
 struct csf_exec_ctx {
 	csf_contacts *contacts;
+	csf_cons *cons;
 };
 
 

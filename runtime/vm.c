@@ -48,6 +48,10 @@ static int exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m)
 			csf_contact_apply(p, x, m);
 			pc += csf_insn_len(CSF_OP_CONTACT);
 			continue;
+		case CSF_OP_CONSTRAIN:
+			csf_constraint_apply(p, x, m);
+			pc += csf_insn_len(CSF_OP_CONSTRAIN);
+			continue;
 		case CSF_OP_ASSERT:
 			if (m[csf_operand(pc[1], reg)] == 0.0) return (int)csf_operand(pc[2], reg);
 			pc += csf_insn_len(CSF_OP_ASSERT);

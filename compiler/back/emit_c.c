@@ -302,6 +302,10 @@ static void emit_insn(Emit *E, const uint32_t *code, uint32_t pc)
 		E->used_p = E->used_m = 1;
 		fputs("csf_contact_apply(p, x, m);\n", E->f);
 		return;
+	case CSF_OP_CONSTRAIN:
+		E->used_p = E->used_m = 1;
+		fputs("csf_constraint_apply(p, x, m);\n", E->f);
+		return;
 	case CSF_OP_LOOP: { /* a count of 0 runs no iteration, as the VM's jump to the end */
 		unsigned long l = a[0];
 		fprintf(E->f, "for (uint32_t i%lu = 0; i%lu < %luu; i%lu++) {\n", l, l, (unsigned long)a[1], l);

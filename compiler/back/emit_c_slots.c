@@ -54,6 +54,15 @@ static void scan_slots(Slots *S)
 	}
 	for (uint32_t i = 0; i < p->ncbodies; i++)
 		for (int k = 0; k < CSF_CF_N; k++) mark_ext(S, p->cbodies[i].s[k], 3);
+	for (uint32_t i = 0; i < p->ncons; i++) {
+		const csf_con *c = &p->cons[i];
+		mark_ext(S, c->g, 1), mark_ext(S, c->gd, 1), mark_ext(S, c->c, 1), mark_ext(S, c->scale, 1);
+	}
+	for (uint32_t i = 0; i < p->nconbodies; i++) {
+		const csf_conbody *b = &p->conbodies[i];
+		mark_ext(S, b->J, 3), mark_ext(S, b->pos, 3), mark_ext(S, b->v, 3), mark_ext(S, b->a, 3);
+		mark_ext(S, b->m, 1), mark_ext(S, b->fc, 3);
+	}
 	/* what -D can set is read from m, not compiled in as a literal */
 	for (uint32_t i = 0; i < p->nprops; i++)
 		if (!*csf_str(p, p->pclasses[p->props[i].cls].why)) mark_ext(S, p->props[i].slot, p->props[i].width);
@@ -64,7 +73,7 @@ static void scan_slots(Slots *S)
 		Loops L = { .depth = 0 };
 		for (uint32_t pc = 0; pc < p->ncode[sec]; pc += csf_insn_len(code[pc])) {
 			const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
-			if (code[pc] == CSF_OP_CONTACT) S->direct = 0;
+			if (code[pc] == CSF_OP_CONTACT || code[pc] == CSF_OP_CONSTRAIN) S->direct = 0;
 			for (int k = 0; k < oi->nops; k++) {
 				if (!csf_kind_slot(oi->kind[k])) continue;
 				uint32_t w = code[pc + 1 + k], wd = csf_kind_width(oi->kind[k]), lo, hi;

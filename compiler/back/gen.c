@@ -47,10 +47,11 @@ static void sections(Gen *G, Model *M, csf_prog *p, int last_a)
 			if (sec == CSF_SEC_RHS && I->isassert) continue;
 			if (sec == CSF_SEC_OUT && I->isderiv) continue;
 			emit_inst(G, I);
-			if (i == last_a) {
+			if (i == last_a && p->ncrules) {
 				add_line(G, p->crules[0].src);
 				emit_op(G, CSF_OP_CONTACT, 0, 0, 0, 0);
 			}
+			if (i == last_a && p->ncons) gen_constraint_code(G, M, p);
 		}
 		p->code[sec] = G->code;
 		p->ncode[sec] = G->ncode;
@@ -99,13 +100,14 @@ static void gen_run(Gen *G, Model *M, csf_prog *p)
 	gen_state_scales(M, p);
 	M->time->slot = (int)p->tslot;
 	gen_contact_tables(G, M, p);
+	gen_constraint_tables(G, M, p);
 
 	sections(G, M, p, last_a);
 	gen_columns(G, M, p);
 	gen_globals(G, M, p);
 	gen_objects(G, M, p);
 	place_scratch(G, p);
-	if (!p->ncrules) gen_pairs(G, M, p); /* the contact routine's forces depend on v */
+	if (!p->ncrules && !p->ncons) gen_pairs(G, M, p); /* contact and constraint forces depend on v */
 	else p->vpair = xcalloc(p->ny ? p->ny : 1, sizeof *p->vpair);
 	gen_jacobian(G, p);
 	gen_source_tables(G, M, p);

@@ -85,6 +85,8 @@ void gen_pairs(Gen *G, Model *M, csf_prog *p);
 /* tables.c: the tables beside the code, in the order gen_program fills them */
 void gen_state_scales(Model *M, csf_prog *p);
 void gen_contact_tables(Gen *G, Model *M, csf_prog *p);
+void gen_constraint_tables(Gen *G, Model *M, csf_prog *p);
+void gen_constraint_code(Gen *G, Model *M, csf_prog *p);
 void gen_columns(Gen *G, Model *M, csf_prog *p);
 void gen_globals(Gen *G, Model *M, csf_prog *p);
 void gen_objects(Gen *G, Model *M, csf_prog *p);

@@ -49,6 +49,61 @@ void gen_state_scales(Model *M, csf_prog *p)
 	}
 }
 
+/* The constraint tables: each constraint's slots (g, gd, c, scale) and bodies (csf_con, csf_conbody). */
+void gen_constraint_tables(Gen *G, Model *M, csf_prog *p)
+{
+	p->ncons = (uint32_t)M->cons.n;
+	for (int i = 0; i < M->cons.n; i++) p->nconbodies += (uint32_t)((Constraint *)M->cons.v[i])->bodies.n;
+	p->cons = xcalloc(p->ncons + 1, sizeof *p->cons);
+	p->conbodies = xcalloc(p->nconbodies + 1, sizeof *p->conbodies);
+	uint32_t nb = 0;
+	for (uint32_t k = 0; k < p->ncons; k++) {
+		Constraint *K = M->cons.v[k];
+		csf_con *c = &p->cons[k];
+		c->src = (uint32_t)K->src;
+		c->kind = (uint32_t)K->kind;
+		c->g = alloc_mem(G, 1, NULL);
+		c->gd = alloc_mem(G, 1, NULL);
+		c->c = alloc_mem(G, 1, NULL);
+		c->scale = alloc_mem(G, 1, NULL);
+		c->first = nb;
+		c->n = (uint32_t)K->bodies.n;
+		c->unit = str_intern(G, K->dimk == DK_KNOWN ? dims_unit(K->dim) : "");
+		for (int b = 0; b < K->bodies.n; b++) {
+			Object *o = K->bodies.v[b];
+			csf_conbody *e = &p->conbodies[nb++];
+			e->object = (uint32_t)o->index;
+			e->J = alloc_mem(G, 3, NULL);
+			e->pos = var_slot(G, K->pos.v[b]);
+			e->v = var_slot(G, K->vel.v[b]);
+			e->a = var_slot(G, prop_of_obj(o, "a"));
+			e->m = var_slot(G, prop_of_obj(o, "m"));
+			e->fc = var_slot(G, prop_of_obj(o, "FC"));
+		}
+	}
+}
+
+/* The code of the constraints' values, before the CONSTRAIN instruction (gen.c). */
+void gen_constraint_code(Gen *G, Model *M, csf_prog *p)
+{
+	for (uint32_t k = 0; k < p->ncons; k++) {
+		Constraint *K = M->cons.v[k];
+		const csf_con *c = &p->cons[k];
+		RExpr *e[4] = { K->g, K->gd, K->c, K->scale };
+		uint32_t at[4] = { c->g, c->gd, c->c, c->scale };
+		add_line(G, c->src);
+		for (int i = 0; i < 4; i++) {
+			cse_reset(G);
+			emit_into(G, e[i], at[i]);
+		}
+		for (uint32_t b = 0; b < c->n; b++) {
+			cse_reset(G);
+			emit_into(G, K->grad[b], p->conbodies[c->first + b].J);
+		}
+	}
+	emit_op(G, CSF_OP_CONSTRAIN, 0, 0, 0, 0);
+}
+
 /* The contact tables: the bodies' property slots, and each rule's lists of bodies (csf.h). */
 void gen_contact_tables(Gen *G, Model *M, csf_prog *p)
 {

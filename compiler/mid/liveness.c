@@ -60,7 +60,18 @@ int live_mark(Model *M, Vec *Finsts)
 		mark(Finsts, a->det, CSF_SEC_OUT);
 		map_put(&dets, xprintf("%p", (void *)a->det), a->det);
 	}
-	for (int j = 0; j < M->insts.n && M->contacts.n; j++)
+	/* the constraints likewise: CONSTRAIN runs after CONTACT */
+	for (int i = 0; i < M->cons.n; i++) {
+		Constraint *K = M->cons.v[i];
+		for (int b = 0; b < K->bodies.n; b++) {
+			Var *a = sema_canon(prop_of_obj(K->bodies.v[b], "a"));
+			if (!a || !a->det) continue;
+			mark(Finsts, a->det, CSF_SEC_OUT);
+			mark(Finsts, a->det, CSF_SEC_RHS);
+			map_put(&dets, xprintf("%p", (void *)a->det), a->det);
+		}
+	}
+	for (int j = 0; j < M->insts.n && (M->contacts.n || M->cons.n); j++)
 		if (map_get(&dets, xprintf("%p", M->insts.v[j]))) last_a = j;
 	return last_a;
 }

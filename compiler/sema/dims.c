@@ -426,12 +426,24 @@ static void walk_inst(Walk *W, Inst *I)
 		}
 }
 
+/* A constraint's two sides have one dimension, which is g's. */
+static void walk_constraint(Walk *W, Constraint *K)
+{
+	Aff l = walk(W, K->lhs), r = walk(W, K->rhs);
+	constrain(W, l, K->lhs, r, K->rhs, K->rhs->loc, msg_eq, K->st->text);
+	if (!W->report) return;
+	Aff g = !l.soft && !l.nu && !l.overflow ? l : r;
+	K->dimk = !g.nu && !g.overflow ? DK_KNOWN : DK_UNKNOWN;
+	memcpy(K->dim, g.c, sizeof K->dim);
+}
+
 void dims_check(Model *M)
 {
 	Walk W = { 0 };
 	for (int iter = 0; iter < 64; iter++) {
 		W.progress = 0;
 		for (int i = 0; i < M->insts.n; i++) walk_inst(&W, M->insts.v[i]);
+		for (int i = 0; i < M->cons.n; i++) walk_constraint(&W, M->cons.v[i]);
 		if (W.progress) continue;
 		W.soft = 1; /* one unknown at a time from a soft side, then the others again */
 		for (int i = 0; i < M->insts.n && !W.progress; i++) walk_inst(&W, M->insts.v[i]);
@@ -440,6 +452,7 @@ void dims_check(Model *M)
 	}
 	W.report = 1;
 	for (int i = 0; i < M->insts.n; i++) walk_inst(&W, M->insts.v[i]);
+	for (int i = 0; i < M->cons.n; i++) walk_constraint(&W, M->cons.v[i]);
 }
 
 /* Gives constant out dimension a: known, or free when a is not fully known or is a bare

@@ -24,7 +24,8 @@
  * The pieces: state of the pass (sema_int.h, Sema); fold.c, expr.c: the
  * resolved expressions; context.c: names and types in a resolution context;
  * objects.c: step 1; walk.c, shapes.c, instances.c: step 2; resolve.c,
- * solve.c: steps 3 and 4; contacts.c: contact rules; watch.c: the watch
+ * solve.c: steps 3 and 4; contacts.c: contact rules; constraints.c and
+ * diff.c: constraints (rules with attribute C); watch.c: the watch
  * list; this file: the order of it all (resolve, sema_run). --explain is
  * compiler/mid/explain.c.
  */
@@ -155,7 +156,7 @@ static Model *resolve(Stmt *stmts, int shaped)
 	/* Derivative rules first: their targets are state, determined from the start. */
 	for (int i = 0; i < rules.n; i++) {
 		Stmt *s = rules.v[i];
-		if (s->eqns && s->eqns->deriv) {
+		if (s->eqns && s->eqns->deriv && !(s->attr && !strcmp(s->attr, "C"))) {
 			sema.cur_src = stmt_src(s);
 			for_each_binding(s, inst_deriv);
 		}
@@ -169,7 +170,7 @@ static Model *resolve(Stmt *stmts, int shaped)
 	Vec order = { 0 }, deferred = { 0 };
 	for (int i = 0; i < rules.n; i++) {
 		Stmt *s = rules.v[i];
-		if (s->eqns && s->eqns->deriv) continue;
+		if (s->eqns && s->eqns->deriv && !(s->attr && !strcmp(s->attr, "C"))) continue;
 		if (i < lastF && stmt_reads_rf(s) && !(s->attr && strcmp(s->attr, "F") == 0)) vec_push(&deferred, s);
 		else vec_push(&order, s);
 		if (i == lastF)
@@ -183,6 +184,14 @@ static Model *resolve(Stmt *stmts, int shaped)
 			continue;
 		}
 		sema.cur_src = stmt_src(s);
+		int con = is_constraint(s);
+		if (con) {
+			if (con > 0) {
+				unshape("a constraint (rule C)");
+				for_each_binding(s, inst_constraint);
+			}
+			continue;
+		}
 		if (!s->call) for_each_binding(s, inst_rule);
 		else if (check_call(s)) {
 			if (s->has_for) for_each_binding(s, inst_contact);
@@ -190,6 +199,7 @@ static Model *resolve(Stmt *stmts, int shaped)
 		}
 	}
 	contact_accels();
+	constraints_finish();
 	for (int i = 0; i < sema.deriv_insts.n; i++) {
 		resolve_deriv(sema.deriv_insts.v[i]);
 		vec_push(&sema.M->insts, sema.deriv_insts.v[i]);

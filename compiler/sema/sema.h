@@ -152,6 +152,29 @@ typedef struct Contact {
 	int nplanes, nanchors; /* of b1 */
 } Contact;
 
+/*
+ * A constraint: one binding of a rule with attribute C, g = lhs - rhs kept
+ * at 0 (kind CSF_CON_EQ), or at most or at least 0 (CSF_CON_LE, _GE: a
+ * string), by ideal forces on its bodies, the mass points whose positions
+ * it reads (constraints.c). Its code: g, its rate gd (positions moving at
+ * their velocities, t at 1), the bias c (g'' = sum of grad . a, plus c),
+ * the size of its terms (scale), and per body the gradient of g.
+ */
+typedef struct Constraint {
+	Stmt *st;
+	int src;
+	int kind;
+	Object **bind;
+	int nbind;
+	RExpr *lhs, *rhs, *g, *gd, *c, *scale;
+	Vec reads;        /* of Var* */
+	Vec bodies;       /* of Object* */
+	Vec pos, vel;     /* of Var*: each body's pos and v */
+	RExpr **grad;     /* per body */
+	int dimk;         /* the dimension of g (dims.c) */
+	double dim[CSF_NDIM];
+} Constraint;
+
 typedef struct WatchCol { char *name; Var *var; int comp; int member; /* index in var's shape (temps) */ } WatchCol;
 
 typedef struct Model {
@@ -161,6 +184,7 @@ typedef struct Model {
 	Vec insts;       /* of Inst*: algebraic rules in resolution order, then derivatives, then assertions */
 	Vec temps;       /* of Var* */
 	Vec contacts;    /* of Contact*: the contact rules that have a pair that can touch */
+	Vec cons;        /* of Constraint*, in rule order */
 	Vec cbodies;     /* of ContactBody*: their bodies */
 	Map cbody_keys;  /* ContactBody* by object and geometry */
 	Vec cols;        /* of WatchCol* */
@@ -181,6 +205,9 @@ Model *sema_run(Stmt *stmts);
 
 /* The variable standing for v in the code: the representative's property of v's name. */
 Var *sema_canon(Var *v);
+/* Object o's property name, or NULL. */
+static inline Var *prop_of_obj(Object *o, const char *name) { return map_get(&o->props_by_name, name); }
+
 /* Is v an array over its shape's members (a property, or a temporary of one object)? */
 int sema_per_member(const Var *v);
 

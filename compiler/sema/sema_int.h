@@ -165,6 +165,28 @@ void contact_pairs(Stmt *s);
 /* Every mass point of a contact rule must have its a determined (by Newton's second law). */
 void contact_accels(void);
 
+/* ---- diff.c: derivatives ---- */
+
+/* A direction: the rate of each variable (an R_VAR; NULL: zero), what is differentiated (for messages). */
+typedef struct Dir Dir;
+struct Dir {
+	RExpr *(*rate)(Dir *D, RExpr *var);
+	const char *what;
+	int failed;      /* an error was reported */
+	void *ctx;
+};
+/* The derivative of e along D (NULL: zero); reports, once, an operation that has none (D->failed). */
+RExpr *diff(Dir *D, RExpr *e);
+
+/* ---- constraints.c: rules with attribute C ---- */
+
+/* Is s a constraint (attribute C)? Checks its form (one equation, or a one-sided comparison); reports if not. */
+int is_constraint(Stmt *s);
+/* The constraint of one binding of rule s. */
+void inst_constraint(Stmt *s, Object **bind, int nbind);
+/* After every rule is resolved: what each constraint reads, its bodies, its derivatives. */
+void constraints_finish(void);
+
 /* ---- watch.c: the watch list ---- */
 
 void build_watch(Stmt *st);

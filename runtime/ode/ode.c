@@ -59,9 +59,9 @@ static const struct method methods[] = {
 	/* multistep: no fixed steps; a one-step method of high order takes the substeps (implicit where the
 	   method is, for stiff problems), since they cannot start from anywhere */
 	{ .name = "msadams", .type = STEP(msadams), .setup = csf_ode_gsl_setup, .substep = csf_ode_gsl_substep,
-	  .sub = STEP(rk8pd), .stab = &csf_ode_stab_unknown, .tol = CSF_DEFAULT_TOL },
+	  .sub = STEP(rk8pd), .stab = &csf_ode_stab_unknown, .tol = CSF_DEFAULT_TOL, .history = 1 },
 	{ .name = "msbdf", .type = STEP(msbdf), .setup = csf_ode_gsl_setup, .substep = csf_ode_gsl_substep,
-	  .sub = STEP(rk4imp), .stab = &csf_ode_stab_implicit, .jacobian = 1, .tol = CSF_DEFAULT_TOL },
+	  .sub = STEP(rk4imp), .stab = &csf_ode_stab_implicit, .jacobian = 1, .tol = CSF_DEFAULT_TOL, .history = 1 },
 	/* velocity Verlet, written here: symplectic, fixed steps */
 	{ .name = "verlet", .skip_compare = 1, .setup = csf_ode_verlet_setup, .step = csf_ode_verlet_fixed, .substep = csf_ode_verlet_substep,
 	  .fixed_h = csf_ode_verlet_h, .stab = &csf_ode_stab_verlet, .tol = CSF_DEFAULT_TOL },
@@ -316,6 +316,8 @@ void csf_ode_stats(const csf_ode *o, unsigned long *steps, unsigned long *reject
 }
 
 int csf_ode_explicit(const csf_ode *o) { return !o->m->jacobian; }
+
+int csf_ode_history(const csf_ode *o) { return o->m->history; }
 
 int csf_ode_fixed_only(const csf_ode *o) { return !o->m->type; }
 

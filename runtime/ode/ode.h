@@ -141,6 +141,8 @@ int csf_ode_fixed_only(const csf_ode *o);
 
 /* Is the method explicit (no Jacobian)? */
 int csf_ode_explicit(const csf_ode *o);
+/* Does it keep a history of past steps (a multistep method), which a restart throws away? */
+int csf_ode_history(const csf_ode *o);
 
 /* Calls fn after every step from now on (NULL: none). */
 void csf_ode_watch(csf_ode *o, csf_watch_fn fn, void *ctx);

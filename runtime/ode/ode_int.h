@@ -59,6 +59,7 @@ struct method {
 	const struct dense *dense;               /* a continuous extension: steps past the output times (or NULL) */
 	const struct stability *stab;
 	int jacobian;  /* the stepper uses the Jacobian */
+	int history;   /* a multistep method: a restart loses the history its order rests on */
 	int skip_compare; /* left out of --compare-methods' table (rk1imp, rk2imp: the low-order implicit
 	                     methods, which only spend its budget; verlet, fixed steps, has its own row) */
 	double tol;    /* the default local error bound (the work-precision benchmark: the cheapest that keeps

@@ -20,7 +20,8 @@
 _Static_assert(sizeof(csf_src) == 12 && sizeof(csf_col) == 8 && sizeof(csf_assert) == 8 && sizeof(csf_prop) == 20 &&
                sizeof(csf_global) == 16 && sizeof(csf_event) == 16 &&
                sizeof(csf_target) == 20 && sizeof(csf_line) == 8 && sizeof(csf_cbody) == 4 * (3 + CSF_CF_N) &&
-               sizeof(csf_crule) == 24, "tables are arrays of u32");
+               sizeof(csf_crule) == 24 && sizeof(csf_con) == 36 && sizeof(csf_conbody) == 28,
+               "tables are arrays of u32");
 _Static_assert(offsetof(csf_prog, jtan) == offsetof(csf_prog, tslot) + 16 &&
                offsetof(csf_prog, ystart) == offsetof(csf_prog, tslot) + 4 &&
                offsetof(csf_prog, dstart) == offsetof(csf_prog, tslot) + 8 &&
@@ -220,6 +221,27 @@ ELEM(cmember_ok)
 	return *e < p->ncbodies;
 }
 
+/* A constraint: its kind, slots, unit and rule in range, its bodies a range of conbodies. */
+ELEM(con_ok)
+{
+	const csf_con *c = e_;
+	UNUSED;
+	return c->kind <= CSF_CON_GE && c->src < p->nsrcs && str_ok(p, c->unit) && slot_ok(p, c->g, 1) &&
+	       slot_ok(p, c->gd, 1) && slot_ok(p, c->c, 1) && slot_ok(p, c->scale, 1) &&
+	       (uint64_t)c->first + c->n <= p->nconbodies;
+}
+
+/* A constrained body: a mass point, its position and velocity in the state, its other slots in memory. */
+ELEM(conbody_ok)
+{
+	const csf_conbody *b = e_;
+	UNUSED;
+	int instate = (uint64_t)b->pos >= p->ystart && (uint64_t)b->pos + 3 <= (uint64_t)p->ystart + p->ny &&
+	              (uint64_t)b->v >= p->ystart && (uint64_t)b->v + 3 <= (uint64_t)p->ystart + p->ny;
+	return instate && b->object < p->nobjects && slot_ok(p, b->J, 3) && slot_ok(p, b->a, 3) && slot_ok(p, b->m, 1) &&
+	       slot_ok(p, b->fc, 3);
+}
+
 ELEM(target_ok)
 {
 	const csf_target *t = e_;
@@ -289,6 +311,8 @@ const csf_field csf_fields[] = {
 	{ .name = "crules", .how = CSF_FC_PREFIX, .sec = -1, .words = sizeof(csf_crule) / 4,
 	  .at = offsetof(csf_prog, crules), .count = offsetof(csf_prog, ncrules), .size = sizeof(csf_crule),
 	  .check = check_crules },
+	U32S("conbodies", conbodies, nconbodies, csf_conbody, conbody_ok, "constrained body %lu out of range"),
+	U32S("cons", cons, ncons, csf_con, con_ok, "constraint %lu out of range"),
 	SECTION(CSF_SEC_RHS),
 	SECTION(CSF_SEC_OUT),
 	SECTION(CSF_SEC_JAC),

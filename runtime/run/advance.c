@@ -35,6 +35,7 @@ int csf_run_take_event(run *r, csf_ode *ode, double t, double *y)
 	}
 	if (r->g) r->g->due = 1; /* the scene may have changed: with fixed steps, look after the next one */
 	if (csf_run_update_modes(r, t, y)) return CSF_ODE_STOPPED;
+	if (csf_run_cons_row(r, t, y)) return CSF_ODE_STOPPED; /* impulses the constraints did not see */
 	csf_ode_restart(ode);
 	if (csf_run_guards_at(r, t, y, r->ga)) return CSF_ODE_STOPPED;
 	memcpy(r->fa, r->fs, r->p->ny * sizeof *r->fa);
@@ -54,6 +55,7 @@ int csf_run_advance_plain(run *r, csf_ode *ode, double *t, double t1, double *y,
 		int st = csf_ode_step(ode, t, t1, 0, 0, y, msg, msglen);
 		if (st != CSF_ODE_OK) return st;
 		r->last_h = *t - ta;
+		if (csf_run_cons_step(r, ode, *t, y)) return CSF_ODE_STOPPED;
 	}
 	return CSF_ODE_OK;
 }
@@ -95,6 +97,7 @@ int csf_run_advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed
 		if ((st = csf_run_step_events(r, ode, ta, *t, y, &best, &which, msg, msglen))) return st;
 		if (which < 0) {
 			same = 0;
+			if (csf_run_cons_step(r, ode, *t, y)) return CSF_ODE_STOPPED;
 			continue;
 		}
 		memcpy(y, r->ye, n * sizeof *y);
@@ -171,6 +174,8 @@ int csf_run_advance_dense(run *r, double tk, double *y, char *msg, size_t msglen
 			if ((st = switch_method(r))) return st;
 			ode = r->ode;
 		}
+		/* off the constraints after the last step: back on them, now that its rows are written */
+		if (csf_run_cons_step(r, ode, r->ti, r->yi)) return CSF_ODE_STOPPED;
 		if (events) memcpy(r->ya, r->yi, n * sizeof *y);
 		st = csf_ode_step(ode, &r->ti, r->dense ? r->tend : tk, 0, 0, r->yi, msg, msglen);
 		if (st != CSF_ODE_OK) return st;

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "run_int.h"
+#include "constraint.h"
 
 int csf_run_rhs(double t, const double *y, double *dydt, void *ctx)
 {
@@ -17,6 +18,12 @@ int csf_run_rhs(double t, const double *y, double *dydt, void *ctx)
 	m[p->tslot] = t;
 	r->exec(p, &r->x, CSF_SEC_RHS, m, y, dydt);
 	r->nrhs++;
+	if (r->cons && csf_cons_failed(r->cons, &r->con_k, &r->con_off)) {
+		r->fail = 1;
+		r->fail_t = t;
+		r->conflict = 1;
+		return 1;
+	}
 	for (uint32_t i = 0; i < p->ny; i++)
 		if (!isfinite(dydt[i])) {
 			r->fail = 1;
@@ -71,7 +78,7 @@ int csf_run_jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx
 	double *m = r->m, *tan = r->m + p->jtan;
 	uint32_t n = p->ny;
 	r->njac++;
-	if (p->ncrules || !p->jtan) return jac_differences(r, t, y, dfdy, dfdt); /* (no JAC: --method auto) */
+	if (p->ncrules || p->ncons || !p->jtan) return jac_differences(r, t, y, dfdy, dfdt); /* (no JAC: --method auto) */
 	m[p->tslot] = t;
 	memcpy(m + p->ystart, y, n * sizeof *y);
 	for (uint32_t j = 0; j <= n; j++) {

@@ -245,6 +245,23 @@ int csf_run_report_stop(run *r, const stop *s, int fixed, FILE *err)
 	case STOP_CHATTER:
 		report_chatter(r, s, tb, err);
 		return 1;
+	case STOP_CON_START:
+	case STOP_CON_CONFLICT: {
+		const csf_con *c = &p->cons[r->con_k];
+		const csf_src *src = &p->srcs[c->src];
+		char ob[32];
+		csf_fmt_double(ob, r->con_off);
+		if (s->kind == STOP_CON_START)
+			fprintf(err, "%s:%lu: error: rule C at line %lu is off by %s%s%s at t = 0 (%s): the initial positions must "
+			        "satisfy every constraint (to 1e-9 relative)\n", csf_str(p, p->files[src->file]),
+			        (unsigned long)src->line, (unsigned long)src->line, ob, *csf_str(p, c->unit) ? " " : "",
+			        csf_str(p, c->unit), csf_str(p, src->text));
+		else
+			fprintf(err, "%s:%lu: error: at t=%s rule C at line %lu contradicts the constraints before it (its "
+			        "equation is off by %s of its terms with their forces): %s\n", csf_str(p, p->files[src->file]),
+			        (unsigned long)src->line, tb, (unsigned long)src->line, ob, csf_str(p, src->text));
+		return 1;
+	}
 	case STOP_BUDGET:
 		fprintf(err, "error: at t=%s, over the budget of %lu right-hand side evaluations\n", tb, r->max_rhs);
 		return 1;

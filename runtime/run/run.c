@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "run_int.h"
+#include "constraint.h"
 
 /*
  * One run's state beside the run (run_int.h): the stability guard, --method
@@ -62,7 +63,7 @@ static stop run_alloc(session *S)
 	r->m = malloc((p->nmem ? p->nmem : 1) * sizeof(double));
 	S->y = malloc((p->ny ? p->ny : 1) * sizeof(double));
 	r->ng = p->nevents; /* and two per candidate contact, none yet */
-	if (S->events || S->autom_on) { /* (auto: jw, for a Jacobian by differences) */
+	if (S->events || S->autom_on || p->ncons) { /* (auto, constraints: jw, for a Jacobian by differences) */
 		size_t n = p->ny ? p->ny : 1;
 		S->work = malloc(12 * n * sizeof *S->work);
 		if (S->work) {
@@ -77,8 +78,14 @@ static stop run_alloc(session *S)
 		r->cs = csf_contacts_new(p);
 		r->x.contacts = r->cs; /* the CONTACT instruction's state */
 	}
+	if (p->ncons) {
+		r->cons = csf_cons_new(p);
+		r->x.cons = r->cons; /* the CONSTRAIN instruction's state */
+		r->cw = malloc(2 * (p->ny ? p->ny : 1) * sizeof *r->cw);
+		r->cy = r->cw + (p->ny ? p->ny : 1);
+	}
 	if (S->sink) S->v = malloc((p->ncols + 1) * sizeof *S->v);
-	if (!r->m || !S->y || ((S->events || S->autom_on) && !S->work) || r->nomem || (p->ncrules && !r->cs) ||
+	if (!r->m || !S->y || ((S->events || S->autom_on || p->ncons) && !S->work) || r->nomem || (p->ncrules && !r->cs) || (p->ncons && (!r->cons || !r->cw)) ||
 	    (S->sink && !S->v))
 		return stop_kind_only(STOP_NOMEM);
 	memcpy(r->m, p->mem0, p->nmem * sizeof(double));
@@ -153,7 +160,7 @@ static stop run_guard(session *S, csf_opts *o)
 		gd->y = malloc(4 * n * sizeof *gd->y);
 		if (!gd->sp || !gd->y) return stop_kind_only(STOP_NOMEM);
 		gd->f0 = gd->y + n, gd->yd = gd->f0 + n, gd->fd = gd->yd + n;
-		gd->exact = p->jtan && !p->ncrules;
+		gd->exact = p->jtan && !p->ncrules && !p->ncons;
 		gd->err = r->err;
 		gd->span = r->tend;
 		gd->h = p->by / ceil(p->by / S->fixed_h * (1 - 1e-12)); /* the step a row's interval is cut into */
@@ -211,6 +218,11 @@ static stop run_start(session *S)
 		stop s = run_modes(S);
 		if (s.kind != STOP_END) return s;
 	}
+	if (r->cons) { /* the state on the constraints: positions checked, velocities projected */
+		int st = csf_run_cons_start(r, y, r->err);
+		if (st > 0) return stop_kind_only(STOP_CON_START);
+		if (st < 0) return stop_at(r->conflict ? STOP_CON_CONFLICT : STOP_NONFINITE, 0);
+	}
 	r->dense = ode && !S->fixed && csf_ode_dense(ode);
 	r->own = r->dense; /* (auto: dop853, dense) */
 	r->ode = ode;
@@ -247,7 +259,7 @@ static stop advance_stop(session *S, int st, double t, double tk)
 		s.kind = STOP_HALTED;
 		break;
 	case CSF_ODE_STOPPED:
-		s.kind = r->unsettled ? STOP_UNSETTLED : r->nomem ? STOP_NOMEM : STOP_NONFINITE;
+		s.kind = r->unsettled ? STOP_UNSETTLED : r->nomem ? STOP_NOMEM : r->conflict ? STOP_CON_CONFLICT : STOP_NONFINITE;
 		s.t = r->fail_t;
 		break;
 	case ADV_TOO_MUCH:
@@ -325,8 +337,14 @@ static stop run_row(session *S, double tk, int *last)
 		csf_run_free_modes(r, tk, S->y);
 		csf_run_stop_now(r, tk);
 	}
+	const double *y = S->y;
+	if (r->cons) { /* the row on the constraints, to rounding (the integrator's state stays as it is) */
+		memcpy(r->cy, S->y, p->ny * sizeof *r->cy);
+		if (csf_run_cons_row(r, tk, r->cy)) return stop_at(r->conflict ? STOP_CON_CONFLICT : STOP_NONFINITE, tk);
+		y = r->cy;
+	}
 	r->m[p->tslot] = tk;
-	memcpy(r->m + p->ystart, S->y, p->ny * sizeof(double));
+	memcpy(r->m + p->ystart, y, p->ny * sizeof(double));
 	int a = r->exec(p, &r->x, CSF_SEC_OUT, r->m, r->m + p->ystart, r->m + p->dstart);
 	if (a >= 0) {
 		stop s = stop_at(STOP_ASSERT, tk);
@@ -467,6 +485,8 @@ static void run_free(session *S)
 	csf_ode_free(S->ode);
 	csf_ode_free(S->au.m[1]);
 	csf_contacts_free(r->cs);
+	csf_cons_free(r->cons);
+	free(r->cw);
 	free(r->ga);
 	free(r->gb);
 	free(r->gs);

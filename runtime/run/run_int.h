@@ -41,7 +41,12 @@ typedef struct run {
 	double *jw; /* with contacts: 3 work vectors for the Jacobian by differences */
 	double *yh; /* with contacts: the 3 interpolated states of a step, one after the other */
 	csf_contacts *cs; /* with contacts: the candidate pairs (runtime/contact/) */
-	csf_exec_ctx x;   /* what exec passes on to the code: cs */
+	csf_exec_ctx x;   /* what exec passes on to the code: cs, cons */
+	csf_cons *cons;   /* with constraints: their work arrays and modes (runtime/constraint/) */
+	double *cw, *cy;  /* with constraints: a derivative and a state to work in (constrain.c) */
+	uint32_t con_k;   /* a constraint that failed (STOP_CON_START, STOP_CON_CONFLICT) */
+	double con_off;   /* by how much */
+	int conflict;     /* the constraints contradict each other (csf_cons_failed) */
 	unsigned long nchoices, ncand, maxcand; /* for --stats: the choices of candidates, their sum and largest */
 	int nomem; /* memory ran out */
 	int unsettled;     /* why the contacts stopped the run: CSF_SETTLE_ENDLESS, _IMPULSES, _FORCES (csf.h) */
@@ -91,6 +96,8 @@ typedef enum stop_kind {
 	STOP_CHATTER,      /* ADV_CHATTER at t (msg; the event r->last): 1 */
 	STOP_FAILED,       /* the integration failed at t (msg): 1 */
 	STOP_BUDGET,       /* ADV_BUDGET at t: 1 */
+	STOP_CON_START,    /* the initial positions break constraint r->con_k by r->con_off: 1 */
+	STOP_CON_CONFLICT, /* constraints that contradict each other at t (r->con_k, r->con_off): 1 */
 } stop_kind;
 
 typedef struct stop {
@@ -213,6 +220,15 @@ double csf_run_location_tol(const csf_prog *p);
 int csf_run_interp(run *r, csf_ode *ode, double ta, double tb, const double *yb, double s, double *out);
 int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double *y, double *te, long *which, char *msg,
                 size_t msglen);
+
+/* constrain.c */
+/* At t = 0: 0, or 1 (positions off a constraint: r->con_k, r->con_off), or -1 (an evaluation failed).
+   Projects y's velocities onto the constraints, with a warning on err when they were off. */
+int csf_run_cons_start(run *r, double *y, FILE *err);
+/* After a step to (t, y): projects y back if it drifted, and restarts ode. Nonzero if an evaluation failed. */
+int csf_run_cons_step(run *r, csf_ode *ode, double t, double *y);
+/* A row's state y at t onto the constraints (to rounding). Nonzero if an evaluation failed. */
+int csf_run_cons_row(run *r, double t, double *y);
 
 /* guard.c */
 double csf_run_stable_step(run *r, csf_ode *ode, const csf_eigs *e);

@@ -1,0 +1,41 @@
+/*
+ * constraint.h - the constraints' run-time state and what the run does
+ * with it (runtime/constraint/constraint.c; the force stage, the
+ * CONSTRAIN instruction, is csf_constraint_apply in csf.h).
+ */
+#ifndef CSF_CONSTRAINT_H
+#define CSF_CONSTRAINT_H
+
+#include "csf_int.h"
+
+/* What a solve is for: the forces (CONSTRAIN), or a correction of the positions or of the velocities. */
+enum { CSF_CONS_FORCE, CSF_CONS_POS, CSF_CONS_VEL };
+
+/* The work arrays and modes for p's constraints (every one taut), or NULL when memory runs out. */
+csf_cons *csf_cons_new(const csf_prog *p);
+void csf_cons_free(csf_cons *cs);
+
+/*
+ * Moves the positions (what CSF_CONS_POS) or velocities (CSF_CONS_VEL) of
+ * state y onto the constraints, by the mass-weighted projection of one
+ * Newton step, from g (or gd) and J that the RHS section left in m at y.
+ */
+void csf_cons_correct(csf_cons *cs, const double *m, double *y, int what);
+
+/*
+ * The largest residual of the taut constraints in m (g, or gd), relative
+ * to the sizes of its terms; *worst gets its constraint and *abs_res its
+ * value (either may be NULL). 0 when every one holds exactly.
+ */
+double csf_cons_residual(const csf_cons *cs, const double *m, int what, uint32_t *worst, double *abs_res);
+
+/* Did a solve find constraints that contradict each other? *k gets one of them, *res how much (relative). */
+int csf_cons_failed(const csf_cons *cs, uint32_t *k, double *res);
+
+/* A one-sided constraint's mode: taut (a row of the solve) or slack (no force). */
+void csf_cons_set_mode(csf_cons *cs, uint32_t k, int taut);
+int csf_cons_taut(const csf_cons *cs, uint32_t k);
+/* The multiplier of constraint k in the last solve. */
+double csf_cons_force(const csf_cons *cs, uint32_t k);
+
+#endif
