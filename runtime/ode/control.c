@@ -86,8 +86,11 @@ static const gsl_odeiv2_control_type control_type = { "csf", control_alloc, cont
  * 3.6e-5 mol/L is held to the tolerance relative to 3.6e-5, not to 1 mol/L
  * (where it would be free to go negative: Robertson's kinetics), while a
  * component that stays at rounding-error size, such as a normal mode's node,
- * is held absolutely, at LIVE_FLOOR of its unit. A component the scene gives
- * an atol (or --atol) keeps that.
+ * is held absolutely, at LIVE_FLOOR of its unit. A component of a vector
+ * follows the vector's size (csf_ode_vectors): the x velocity of a bead at
+ * the bottom of a swinging chain is 0 by symmetry, and what it has is the
+ * rounding of forces of the size of its z velocity's, which no step can
+ * make smaller. A component the scene gives an atol (or --atol) keeps that.
  */
 #define LIVE_FLOOR 1e-6
 
@@ -96,6 +99,10 @@ void csf_ode_live_grow(csf_ode *o, const double *y)
 	for (size_t i = 0; i < o->n; i++) {
 		if (o->fixed_atol[i]) continue;
 		double a = fabs(y[i]);
+		if (o->vec && o->vec[i]) { /* a vector's component: the vector's size (its largest component) */
+			const double *v = y + o->vec[i] - 1;
+			a = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+		}
 		if (a > o->live[i]) o->live[i] = a < o->base[i] ? a : o->base[i];
 	}
 }

@@ -319,6 +319,8 @@ int csf_ode_explicit(const csf_ode *o) { return !o->m->jacobian; }
 
 int csf_ode_history(const csf_ode *o) { return o->m->history; }
 
+void csf_ode_vectors(csf_ode *o, const uint32_t *vec) { o->vec = vec; }
+
 int csf_ode_fixed_only(const csf_ode *o) { return !o->m->type; }
 
 double csf_ode_fixed_step(const csf_ode *o, double by, double step)

@@ -141,6 +141,13 @@ int csf_ode_fixed_only(const csf_ode *o);
 
 /* Is the method explicit (no Jacobian)? */
 int csf_ode_explicit(const csf_ode *o);
+/*
+ * The state's vectors: vec[i] is 1 + the first component of the vector
+ * component i belongs to, or 0 for a scalar (NULL: every component is a
+ * scalar). A component's absolute error scale then follows the size of its
+ * vector, not its own. The array must outlive o.
+ */
+void csf_ode_vectors(csf_ode *o, const uint32_t *vec);
 /* Does it keep a history of past steps (a multistep method), which a restart throws away? */
 int csf_ode_history(const csf_ode *o);
 

@@ -30,6 +30,7 @@ typedef struct session {
 	int events;         /* comparisons, or contacts (whose candidates come and go) */
 	int fixed;          /* fixed steps */
 	double *y, *work;   /* the rows' state; the events' work vectors */
+	uint32_t *vec;      /* the state's vectors, for the error control (csf_ode_vectors) */
 	csf_ode *ode;
 	double kmax;        /* the last output time is kmax * by */
 	double fixed_h;     /* the fixed step */
@@ -85,8 +86,14 @@ static stop run_alloc(session *S)
 		r->cy = r->cw + (p->ny ? p->ny : 1);
 	}
 	if (S->sink) S->v = malloc((p->ncols + 1) * sizeof *S->v);
+	S->vec = calloc(p->ny ? p->ny : 1, sizeof *S->vec);
+	for (uint32_t i = 0; S->vec && i < p->nprops; i++) { /* a vector in the state: its components, together */
+		const csf_prop *q = &p->props[i];
+		if (q->width == 3 && q->slot >= p->ystart && (uint64_t)q->slot + 3 <= (uint64_t)p->ystart + p->ny)
+			for (uint32_t k = 0; k < 3; k++) S->vec[q->slot - p->ystart + k] = q->slot - p->ystart + 1;
+	}
 	if (!r->m || !S->y || ((S->events || S->autom_on || p->ncons) && !S->work) || r->nomem || (p->ncrules && !r->cs) || (p->ncons && (!r->cons || !r->cw)) ||
-	    (S->sink && !S->v))
+	    (S->sink && !S->v) || !S->vec)
 		return stop_kind_only(STOP_NOMEM);
 	memcpy(r->m, p->mem0, p->nmem * sizeof(double));
 	csf_overlay_apply(S->init, r->m); /* -D's values, a sweep variant's */
@@ -117,11 +124,13 @@ static stop run_method(session *S, csf_opts *o)
 	if (o->hmax > 0 && o->hmax < hmax) hmax = o->hmax;
 	S->ode = csf_ode_new(S->method, o->fixed, p->ny, p->by, hmax, o->tol, o->atol, p->yatol, p->yscale, p->vpair, csf_run_rhs,
 	                     p->jtan ? csf_run_jac : NULL, r, S->msg, sizeof S->msg);
+	if (S->ode) csf_ode_vectors(S->ode, S->vec);
 	if (S->ode && S->autom_on) { /* the implicit method ends its steps on the rows: at most by */
 		S->au.m[0] = S->ode;
 		S->au.m[1] = csf_ode_new(AUTO_STIFF, 0, p->ny, p->by, o->hmax > 0 && o->hmax < p->by ? o->hmax : p->by,
 		                         o->tol, o->atol, p->yatol, p->yscale, p->vpair, csf_run_rhs, csf_run_jac, r, S->msg, sizeof S->msg);
 		r->au = &S->au;
+		if (S->au.m[1]) csf_ode_vectors(S->au.m[1], S->vec);
 		if (!S->au.m[1]) {
 			csf_ode_free(S->ode);
 			S->ode = NULL;
@@ -496,6 +505,7 @@ static void run_free(session *S)
 	free(S->work);
 	free(S->y);
 	free(S->v);
+	free(S->vec);
 	free(r->yi);
 	free(r->m);
 }

@@ -26,10 +26,11 @@ START_TEST(test_each_instruction)
 	if (op == CSF_OP_JMP || op == CSF_OP_JZ || op == CSF_OP_ASSERT || op == CSF_OP_LOOP || op == CSF_OP_NEXT ||
 	    op == CSF_OP_JEQ)
 		return; /* control flow: test_control_flow, and the loops suite */
-	if (op == CSF_OP_CONTACT) { /* the runtime's contact routine, which reads the program's tables */
+	if (op == CSF_OP_CONTACT || op == CSF_OP_CONSTRAIN) { /* the runtime's routines, which read the program's tables */
 		uint32_t one = (uint32_t)op;
 		char *c = emit_one(&one, 1);
-		ck_assert_msg(strstr(c, "\tcsf_contact_apply(p, x, m);\n") != NULL, "%s", c);
+		const char *want = op == CSF_OP_CONTACT ? "\tcsf_contact_apply(p, x, m);\n" : "\tcsf_constraint_apply(p, x, m);\n";
+		ck_assert_msg(strstr(c, want) != NULL, "%s", c);
 		free(c);
 		return;
 	}
