@@ -66,6 +66,7 @@ void gen_constraint_tables(Gen *G, Model *M, csf_prog *p)
 		c->gd = alloc_mem(G, 1, NULL);
 		c->c = alloc_mem(G, 1, NULL);
 		c->scale = alloc_mem(G, 1, NULL);
+		c->cr = alloc_mem(G, 1, NULL);
 		c->first = nb;
 		c->n = (uint32_t)K->bodies.n;
 		c->unit = str_intern(G, K->dimk == DK_KNOWN ? dims_unit(K->dim) : "");
@@ -89,10 +90,10 @@ void gen_constraint_code(Gen *G, Model *M, csf_prog *p)
 	for (uint32_t k = 0; k < p->ncons; k++) {
 		Constraint *K = M->cons.v[k];
 		const csf_con *c = &p->cons[k];
-		RExpr *e[4] = { K->g, K->gd, K->c, K->scale };
-		uint32_t at[4] = { c->g, c->gd, c->c, c->scale };
+		RExpr *e[5] = { K->g, K->gd, K->c, K->scale, K->cr };
+		uint32_t at[5] = { c->g, c->gd, c->c, c->scale, c->cr };
 		add_line(G, c->src);
-		for (int i = 0; i < 4; i++) {
+		for (int i = 0; i < 5; i++) {
 			cse_reset(G);
 			emit_into(G, e[i], at[i]);
 		}

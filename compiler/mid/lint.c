@@ -51,6 +51,14 @@ void lint_model(Model *M)
 		rf_read |= I->rf_reads.n > 0;
 	}
 	for (int i = 0; i < M->cols.n; i++) vec_push(&read, sema_canon(((WatchCol *)M->cols.v[i])->var));
+	for (int i = 0; i < M->cons.n; i++) { /* a constraint reads what it names, and its objects' cr, m, a, v */
+		Constraint *K = M->cons.v[i];
+		static const char *const props[] = { "cr", "m", "a", "v", "FC" };
+		for (int k = 0; k < K->reads.n; k++) vec_push(&read, sema_canon(K->reads.v[k]));
+		for (int b = 0; b < K->nbind; b++)
+			for (size_t k = 0; k < sizeof props / sizeof props[0]; k++)
+				if (prop_of_obj(K->bind[b], props[k])) vec_push(&read, sema_canon(prop_of_obj(K->bind[b], props[k])));
+	}
 	for (int i = 0; i < M->cbodies.n; i++) {
 		ContactBody *b = M->cbodies.v[i];
 		for (int f = 0; f < CSF_CF_N; f++)

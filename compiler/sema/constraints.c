@@ -192,6 +192,14 @@ static int derive(Constraint *K)
 	K->c = diff(&D, K->gd);
 	if (!K->c) K->c = rconst(0, l);
 	if (D.failed) return 0;
+	K->cr = NULL; /* the least cr of its objects', 1 if none has one */
+	for (int i = 0; i < K->nbind; i++) {
+		Var *cr = prop_of(K->bind[i], "cr");
+		if (!cr || cr->isvec) continue;
+		RExpr *v = var_ref(cr, l);
+		K->cr = K->cr ? rop(CSF_OP_MIN, 0, l, K->cr, v, NULL) : v;
+	}
+	if (!K->cr) K->cr = rconst(1, l);
 	K->scale = rop(CSF_OP_ADD, 0, l, rop(CSF_OP_ABS, 0, l, K->lhs, NULL, NULL), rop(CSF_OP_ABS, 0, l, K->rhs, NULL, NULL),
 	               NULL);
 	return 1;

@@ -158,7 +158,8 @@ typedef struct Contact {
  * string), by ideal forces on its bodies, the mass points whose positions
  * it reads (constraints.c). Its code: g, its rate gd (positions moving at
  * their velocities, t at 1), the bias c (g'' = sum of grad . a, plus c),
- * the size of its terms (scale), and per body the gradient of g.
+ * the size of its terms (scale), the restitution of going taut (cr, the
+ * least of its objects'), and per body the gradient of g.
  */
 typedef struct Constraint {
 	Stmt *st;
@@ -166,7 +167,7 @@ typedef struct Constraint {
 	int kind;
 	Object **bind;
 	int nbind;
-	RExpr *lhs, *rhs, *g, *gd, *c, *scale;
+	RExpr *lhs, *rhs, *g, *gd, *c, *scale, *cr;
 	Vec reads;        /* of Var* */
 	Vec bodies;       /* of Object* */
 	Vec pos, vel;     /* of Var*: each body's pos and v */

@@ -262,6 +262,7 @@ void csf_constraint_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 	for (uint32_t e = 0; e < p->nconbodies; e++) memset(m + p->conbodies[e].fc, 0, 3 * sizeof *m);
 	for (uint32_t k = 0; k < cs->n; k++) {
 		const csf_con *c = &p->cons[k];
+		if (!cs->taut[k]) continue; /* a slack string's gradient need not even be finite (at its pivot) */
 		for (uint32_t e = c->first; e < c->first + c->n; e++) {
 			const csf_conbody *b = &p->conbodies[e];
 			for (int i = 0; i < 3; i++) m[b->fc + i] += cs->mu[k] * m[b->J + i];
@@ -283,7 +284,7 @@ void csf_cons_correct(csf_cons *cs, const double *m, double *y, int what)
 	const csf_prog *p = cs->p;
 	multipliers(cs, m, what);
 	for (uint32_t k = 0; k < cs->n; k++) {
-		if (cs->mu[k] == 0) continue;
+		if (!cs->taut[k] || cs->mu[k] == 0) continue;
 		const csf_con *c = &p->cons[k];
 		for (uint32_t e = c->first; e < c->first + c->n; e++) {
 			const csf_conbody *b = &p->conbodies[e];
@@ -346,3 +347,76 @@ void csf_cons_set_mode(csf_cons *cs, uint32_t k, int taut) { cs->taut[k] = (unsi
 int csf_cons_taut(const csf_cons *cs, uint32_t k) { return cs->taut[k]; }
 
 double csf_cons_force(const csf_cons *cs, uint32_t k) { return cs->mu[k]; }
+
+/* The side a one-sided constraint breaks on: +1 for g <= 0 (breaks when g > 0), -1 for g >= 0, 0 for an equality. */
+static double side(const csf_con *c) { return c->kind == CSF_CON_LE ? 1 : c->kind == CSF_CON_GE ? -1 : 0; }
+
+/* The size of the terms of constraint k's g: |LHS| + |RHS| and each body's |J| |pos|. */
+static double size_of(const csf_prog *p, const double *m, uint32_t k)
+{
+	const csf_con *c = &p->cons[k];
+	double size = m[c->scale];
+	for (uint32_t e = c->first; e < c->first + c->n; e++) {
+		const csf_conbody *b = &p->conbodies[e];
+		size += sqrt(dot3(m + b->J, m + b->J) * dot3(m + b->pos, m + b->pos));
+	}
+	return size;
+}
+
+double csf_cons_resolution(const csf_cons *cs, const double *m, uint32_t k) { return 1e-13 * size_of(cs->p, m, k); }
+
+void csf_cons_guards(const csf_cons *cs, const double *m, double *g)
+{
+	const csf_prog *p = cs->p;
+	for (uint32_t k = 0; k < cs->n; k++) {
+		const csf_con *c = &p->cons[k];
+		double s = side(c);
+		if (s == 0) g[k] = 1;
+		else if (cs->taut[k]) g[k] = -s * cs->mu[k];
+		else /* within its resolution of its bound is at it (a string that has just bounced, put back on
+		        its bound to 1e-14: csf_run_cons_modes) */
+			g[k] = -s * m[c->g] + csf_cons_resolution(cs, m, k);
+	}
+}
+
+void csf_cons_impulse(csf_cons *cs, const double *m, double *y, uint32_t k, double e)
+{
+	const csf_prog *p = cs->p;
+	assemble(cs, m);
+	factor(cs);
+	for (uint32_t j = 0; j < cs->n; j++)
+		cs->b[j] = !cs->taut[j] ? 0 : j == k ? (1 + e) * m[p->cons[j].gd] : m[p->cons[j].gd];
+	solve(cs);
+	for (uint32_t j = 0; j < cs->n; j++) {
+		if (!cs->taut[j] || cs->mu[j] == 0) continue;
+		const csf_con *c = &p->cons[j];
+		for (uint32_t x = c->first; x < c->first + c->n; x++) {
+			const csf_conbody *b = &p->conbodies[x];
+			double w = inv_mass(b, m);
+			for (int i = 0; i < 3; i++) y[b->v - p->ystart + i] -= w * cs->mu[j] * m[b->J + i];
+		}
+	}
+}
+
+double csf_cons_pull(const csf_cons *cs, uint32_t k)
+{
+	const csf_con *c = &cs->p->cons[k];
+	return -side(c) * cs->mu[k] * cs->A[cs->row[k] + (k - cs->f[k])];
+}
+
+int csf_cons_state(const csf_cons *cs, const double *m, uint32_t k, double *g, double *gd)
+{
+	const csf_prog *p = cs->p;
+	const csf_con *c = &p->cons[k];
+	double s = side(c), size = size_of(p, m, k), vsize = 0, jv = 0;
+	for (uint32_t e = c->first; e < c->first + c->n; e++) {
+		const csf_conbody *b = &p->conbodies[e];
+		double jj = dot3(m + b->J, m + b->J);
+		vsize += sqrt(jj * dot3(m + b->v, m + b->v));
+		jv += dot3(m + b->J, m + b->v);
+	}
+	vsize += fabs(m[c->gd] - jv);
+	*g = size > 0 ? s * m[c->g] / size : 0;
+	*gd = vsize > 0 ? s * m[c->gd] / vsize : 0;
+	return s != 0;
+}

@@ -159,7 +159,7 @@ int csf_run_advance_dense(run *r, double tk, double *y, char *msg, size_t msglen
 	const csf_prog *p = r->p;
 	size_t n = p->ny;
 	unsigned long same = 0, work = 0;
-	int events = p->nevents || p->ncrules;
+	int events = p->nevents || p->ncrules || r->ncg;
 	while (r->ti < tk) {
 		double ta = r->ti, te;
 		long which;

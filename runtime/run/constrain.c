@@ -27,6 +27,8 @@
 /* What a projection aims at, and what t = 0 allows of the positions (relative). */
 #define EXACT 1e-14
 #define START_OFF 1e-9
+/* A one-sided constraint this near its bound (relative), or moving this slowly, is at it. */
+#define EDGE 1e-9
 
 /* RHS at (t, y) into r->m (the constraints' values with it); nonzero if it failed. */
 static int eval_at(run *r, double t, const double *y) { return csf_run_rhs(t, y, r->cw, r); }
@@ -37,7 +39,7 @@ static int eval_at(run *r, double t, const double *y) { return csf_run_rhs(t, y,
  * velocities. 1 if y changed, 0 if not, -1 if an evaluation failed. r->m
  * holds the evaluation at the y it returns.
  */
-static int project(run *r, double t, double *y, double within)
+static int project_pos(run *r, double t, double *y, double within)
 {
 	csf_cons *cs = r->cons;
 	int changed = 0;
@@ -50,6 +52,14 @@ static int project(run *r, double t, double *y, double within)
 		csf_cons_correct(cs, r->m, y, CSF_CONS_POS);
 		changed = 1;
 	}
+	return changed;
+}
+
+static int project(run *r, double t, double *y, double within)
+{
+	csf_cons *cs = r->cons;
+	int changed = project_pos(r, t, y, within);
+	if (changed < 0) return -1;
 	for (int it = 0; it < 3; it++) {
 		if (csf_cons_residual(cs, r->m, CSF_CONS_VEL, NULL, NULL) <= within) break;
 		csf_cons_correct(cs, r->m, y, CSF_CONS_VEL);
@@ -63,7 +73,10 @@ int csf_run_cons_start(run *r, double *y, FILE *err)
 {
 	const csf_prog *p = r->p;
 	uint32_t k;
-	double off;
+	double off, g, gd;
+	if (eval_at(r, 0, y)) return -1;
+	for (k = 0; k < p->ncons; k++) /* a one-sided constraint away from its bound is slack */
+		if (csf_cons_state(r->cons, r->m, k, &g, &gd) && g < -EDGE) csf_cons_set_mode(r->cons, k, 0);
 	if (eval_at(r, 0, y)) return -1;
 	if (csf_cons_residual(r->cons, r->m, CSF_CONS_POS, &k, &off) > START_OFF) {
 		r->con_k = k, r->con_off = off;
@@ -82,6 +95,62 @@ int csf_run_cons_start(run *r, double *y, FILE *err)
 		        (unsigned long)s->line, ob, *u ? " " : " ", *u ? u : "1", csf_str(p, s->text));
 	}
 	return 0;
+}
+
+/*
+ * The modes of the one-sided constraints, one change at a time until none
+ * is called for: a slack one at its bound goes taut, with an impulse of its
+ * restitution when it is moving to break (a string jerked taut), or without
+ * one when it is at rest there and the force it needs is one it can give (a
+ * string pulls); a taut one goes slack when its force would act the other
+ * way or it is moving away from its bound (after a bounce).
+ */
+int csf_run_cons_modes(run *r, double t, double *y)
+{
+	const csf_prog *p = r->p;
+	csf_cons *cs = r->cons;
+	if (!r->ncg) return 0;
+	uint32_t last = 0;
+	for (uint32_t pass = 0; pass < 4 * p->ncons + 4; pass++) {
+		int changed = 0;
+		if (eval_at(r, t, y)) return 1;
+		for (uint32_t k = 0; k < p->ncons && !changed; k++) {
+			double g, gd, s = p->cons[k].kind == CSF_CON_LE ? 1 : -1;
+			if (!csf_cons_state(cs, r->m, k, &g, &gd)) continue;
+			if (csf_cons_taut(cs, k)) {
+				if (gd < -EDGE || s * csf_cons_force(cs, k) > 0) csf_cons_set_mode(cs, k, 0), changed = 1, last = k;
+				continue;
+			}
+			if (g < -EDGE || gd < -EDGE) continue; /* away from its bound, or leaving it */
+			csf_cons_set_mode(cs, k, 1);
+			if (gd > EDGE) { /* jerked taut: an impact, on its bound (where its guard has put it, to 1e-13 s) */
+				if (project_pos(r, t, y, EXACT) < 0) return 1;
+				double e = r->m[p->cons[k].cr], v = s * r->m[p->cons[k].gd], a;
+				/* the train of bounces that would follow (rates e^n v, each turned back by the pull a
+				   the taut string gives) ends within the Zeno time, or its first bounce is too low
+				   for positions to follow (1000 times the bound's resolution): at rest on the
+				   bound, taut */
+				if (e > 0 && e < 1) {
+					if (eval_at(r, t, y)) return 1;
+					a = csf_cons_pull(cs, k);
+					if (a > 0 && (2 * e * v / (a * (1 - e)) <= r->zeno ||
+					              e * v * e * v / (2 * a) <= 1e3 * csf_cons_resolution(cs, r->m, k)))
+						e = 0;
+				}
+				csf_cons_impulse(cs, r->m, y, k, e);
+				changed = 1, last = k;
+				continue;
+			}
+			if (eval_at(r, t, y)) return 1; /* at rest on its bound: taut if its force acts the way it can */
+			if (s * csf_cons_force(cs, k) > 0) csf_cons_set_mode(cs, k, 0);
+			else changed = 1, last = k;
+		}
+		if (!changed) return 0;
+	}
+	r->conflict = 1; /* taut and slack in turn without end */
+	r->con_k = last, r->con_off = -1;
+	r->fail = 1, r->fail_t = t;
+	return 1;
 }
 
 int csf_run_cons_step(run *r, csf_ode *ode, double t, double *y)

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "run_int.h"
+#include "constraint.h"
 
 /*
  * A guard is a continuous function of t and the state that is >= 0 while
@@ -35,7 +36,8 @@ static void read_guards(run *r, double *g)
 		const csf_event *e = &p->events[i];
 		g[i] = m[e->mode] > 0 ? m[e->value] : -m[e->value];
 	}
-	if (r->cs) csf_contacts_guards(r->cs, g + p->nevents);
+	if (r->ncg) csf_cons_guards(r->cons, m, g + p->nevents);
+	if (r->cs) csf_contacts_guards(r->cs, g + r->gcont);
 }
 
 /* Guards g at (t, y), and the derivative in r->fs. 0, or 1 if a derivative is not finite. */
@@ -97,16 +99,15 @@ int csf_run_room_for_guards(run *r, size_t ng)
  */
 static int choose_contacts(run *r, const double *const *ys, int ns, double **g[], const double *const *gy, int ng)
 {
-	const csf_prog *p = r->p;
 	long k = csf_contacts_find(r->cs, r->m, ys, ns);
-	if (k < 0 || csf_run_room_for_guards(r, p->nevents + 2 * (size_t)k)) {
+	if (k < 0 || csf_run_room_for_guards(r, r->gcont + 2 * (size_t)k)) {
 		r->nomem = 1;
 		return -1;
 	}
 	double *gc[2];
-	for (int q = 0; q < ng; q++) gc[q] = *g[q] + p->nevents;
+	for (int q = 0; q < ng; q++) gc[q] = *g[q] + r->gcont;
 	csf_contacts_commit(r->cs, r->m, gc, gy, ng);
-	r->ng = p->nevents + 2 * (uint32_t)k;
+	r->ng = r->gcont + 2 * (uint32_t)k;
 	r->nchoices++, r->ncand += (unsigned long)k;
 	if ((unsigned long)k > r->maxcand) r->maxcand = (unsigned long)k;
 	return 0;
@@ -129,6 +130,7 @@ int csf_run_update_modes(run *r, double t, double *y)
 		memcpy(y, r->m + p->ystart, p->ny * sizeof *y);
 		csf_run_free_modes(r, t, y);
 	}
+	if (csf_run_cons_modes(r, t, y)) return 1;
 	return r->fail;
 }
 
@@ -386,7 +388,7 @@ static int graze_point(run *r, csf_ode *ode, double ta, double tb, const double 
 	double dt = tb - ta;
 	for (uint32_t q = 0; q < csf_contacts_count(r->cs); q++) {
 		double g[5], v[5];
-		if (!(r->ga[p->nevents + 2 * (size_t)q] >= 0)) continue;
+		if (!(r->ga[r->gcont + 2 * (size_t)q] >= 0)) continue;
 		if (!csf_contacts_gap_rate(r->cs, q, r->m, ys[0], &g[0], &v[0])) continue;
 		for (int j = 1; j < 5; j++) csf_contacts_gap_rate(r->cs, q, r->m, ys[j], &g[j], &v[j]);
 		for (int j = 0; j < 4 && j / 4.0 < *sg; j++) {
@@ -525,6 +527,7 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
 	*te = best;
 	r->last = *which;
 	r->last_src = *which < (long)p->nevents ? p->events[*which].src
-	                                        : csf_contacts_src(r->cs, (uint32_t)(*which - (long)p->nevents) / 2);
+	              : *which < (long)r->gcont ? p->cons[*which - (long)p->nevents].src
+	                                        : csf_contacts_src(r->cs, (uint32_t)(*which - (long)r->gcont) / 2);
 	return CSF_ODE_OK;
 }

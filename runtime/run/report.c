@@ -175,9 +175,9 @@ static void report_too_much(const run *r, const stop *s, const char *tb, FILE *e
 static void report_chatter(const run *r, const stop *s, const char *tb, FILE *err)
 {
 	const csf_prog *p = r->p;
-	if (r->last >= (long)p->nevents) { /* a contact: the bodies are the user's, the rule the library's */
+	if (r->last >= (long)r->gcont) { /* a contact: the bodies are the user's, the rule the library's */
 		uint32_t oi, oj;
-		csf_contacts_objects(r->cs, (uint32_t)(r->last - (long)p->nevents) / 2, &oi, &oj);
+		csf_contacts_objects(r->cs, (uint32_t)(r->last - (long)r->gcont) / 2, &oi, &oj);
 		fprintf(err,
 		        "error: at t=%s the contact of '%s' and '%s' switches between touching and parting, "
 		        "or sticking and sliding, again and again (%s): no set of contacts among the "
@@ -256,6 +256,11 @@ int csf_run_report_stop(run *r, const stop *s, int fixed, FILE *err)
 			        "satisfy every constraint (to 1e-9 relative)\n", csf_str(p, p->files[src->file]),
 			        (unsigned long)src->line, (unsigned long)src->line, ob, *csf_str(p, c->unit) ? " " : "",
 			        csf_str(p, c->unit), csf_str(p, src->text));
+		else if (r->con_off < 0)
+			fprintf(err, "%s:%lu: error: at t=%s rule C at line %lu goes taut and slack again and again without time "
+			        "advancing: no mode of the one-sided constraints there is consistent (%s)\n",
+			        csf_str(p, p->files[src->file]), (unsigned long)src->line, tb, (unsigned long)src->line,
+			        csf_str(p, src->text));
 		else
 			fprintf(err, "%s:%lu: error: at t=%s rule C at line %lu contradicts the constraints before it (its "
 			        "equation is off by %s of its terms with their forces): %s\n", csf_str(p, p->files[src->file]),

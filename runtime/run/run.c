@@ -63,7 +63,10 @@ static stop run_alloc(session *S)
 	const csf_prog *p = r->p;
 	r->m = malloc((p->nmem ? p->nmem : 1) * sizeof(double));
 	S->y = malloc((p->ny ? p->ny : 1) * sizeof(double));
-	r->ng = p->nevents; /* and two per candidate contact, none yet */
+	for (uint32_t k = 0; k < p->ncons; k++) /* one-sided constraints switch: a guard for each constraint */
+		if (p->cons[k].kind != CSF_CON_EQ) r->ncg = p->ncons;
+	r->gcont = p->nevents + r->ncg;
+	r->ng = r->gcont; /* and two per candidate contact, none yet */
 	if (S->events || S->autom_on || p->ncons) { /* (auto, constraints: jw, for a Jacobian by differences) */
 		size_t n = p->ny ? p->ny : 1;
 		S->work = malloc(12 * n * sizeof *S->work);
@@ -223,14 +226,14 @@ static stop run_start(session *S)
 	const csf_prog *p = r->p;
 	csf_ode *ode = S->ode;
 	double *y = S->y;
-	if (S->events) {
-		stop s = run_modes(S);
-		if (s.kind != STOP_END) return s;
-	}
 	if (r->cons) { /* the state on the constraints: positions checked, velocities projected */
 		int st = csf_run_cons_start(r, y, r->err);
 		if (st > 0) return stop_kind_only(STOP_CON_START);
 		if (st < 0) return stop_at(r->conflict ? STOP_CON_CONFLICT : STOP_NONFINITE, 0);
+	}
+	if (S->events) {
+		stop s = run_modes(S);
+		if (s.kind != STOP_END) return s;
 	}
 	r->dense = ode && !S->fixed && csf_ode_dense(ode);
 	r->own = r->dense; /* (auto: dop853, dense) */
@@ -519,6 +522,7 @@ int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, co
 	S.method = o->method && strcmp(o->method, "auto") != 0 ? o->method : NULL;
 	S.autom_on = !S.method && !o->fixed && p->ny <= AUTO_MAX_N;
 	S.events = p->nevents || p->ncrules;
+	for (uint32_t k = 0; k < p->ncons; k++) S.events |= p->cons[k].kind != CSF_CON_EQ;
 	clock_gettime(CLOCK_MONOTONIC, &S.t0);
 	S.r.err = err;
 	S.r.start = S.r.drawn = S.t0;

@@ -47,6 +47,8 @@ typedef struct run {
 	uint32_t con_k;   /* a constraint that failed (STOP_CON_START, STOP_CON_CONFLICT) */
 	double con_off;   /* by how much */
 	int conflict;     /* the constraints contradict each other (csf_cons_failed) */
+	uint32_t ncg;     /* the constraints' guards: one a constraint when one of them is one-sided, else none */
+	uint32_t gcont;   /* the first contact guard: after the comparisons' and the constraints' */
 	unsigned long nchoices, ncand, maxcand; /* for --stats: the choices of candidates, their sum and largest */
 	int nomem; /* memory ran out */
 	int unsettled;     /* why the contacts stopped the run: CSF_SETTLE_ENDLESS, _IMPULSES, _FORCES (csf.h) */
@@ -222,6 +224,9 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
                 size_t msglen);
 
 /* constrain.c */
+/* The modes of the one-sided constraints at (t, y): taut (with an impulse) or slack. Nonzero if an
+   evaluation failed or they do not come to rest (r->conflict). */
+int csf_run_cons_modes(run *r, double t, double *y);
 /* At t = 0: 0, or 1 (positions off a constraint: r->con_k, r->con_off), or -1 (an evaluation failed).
    Projects y's velocities onto the constraints, with a warning on err when they were off. */
 int csf_run_cons_start(run *r, double *y, FILE *err);
