@@ -34,7 +34,8 @@
 #     where Open MPI is installed, else a SKIP line).
 #     hostile sources refused in bounded time and memory, failed writes that
 #     keep what was there, and the fuzz targets' regression corpus
-#     (tests/fuzz/regress/, replayed by fuzz-replay-csfc and fuzz-replay-csfb).
+#     (tests/fuzz/regress/, replayed by fuzz-replay-csfc and fuzz-replay-csfb),
+#     constraints (tests/constraints/).
 # A test that fails prints "FAIL: " and its name; one that does not finish
 # (its shell killed) counts as failed. The last line is "N passed, N failed".
 set -u
@@ -455,6 +456,13 @@ t_galton() {
 	suite "a Galton board of $1 balls, $2 rows" sh tests/piles/galton.sh "$CSFC" "$CSFVM" "$T" "$1" "$2"
 }
 
+# 5r. constraints (rules with attribute C; tests/constraints/check.sh): a double pendulum on rods
+#     against the same in angles, its energy over 100 s, a frame with a redundant rod, a chain
+#     settling into the discrete catenary
+t_constraints() {
+	suite "constraints" sh tests/constraints/check.sh "$CSFC" "$CSFVM" "$T"
+}
+
 # 5o. parameters and sweeps: -D with units against the closed form, the errors, a sweep of 100
 #     variants (-j 1 = -j 2 = each variant's -D run), --out-dir, --sweep-file, --sweep-summary,
 #     a generated program, mpirun -np 3 where Open MPI is installed (tests/sweep/check.sh)
@@ -617,6 +625,7 @@ done
 		for n in 64 16 3; do echo "piles $n"; done
 	fi
 	echo methods_tol
+	echo constraints
 	echo sweep
 	echo slide_stop
 	echo box

@@ -31,7 +31,7 @@
 #include "liveness.h"
 
 /* The RHS and OUT sections: the code of each instance the section needs, in order, the
-   contact routine after the instance last_a (live_mark). */
+   contact routine (and the constraints) after the instance last_a (live_mark). */
 static void sections(Gen *G, Model *M, csf_prog *p, int last_a)
 {
 	for (int sec = CSF_SEC_RHS; sec <= CSF_SEC_OUT; sec++) {
@@ -47,7 +47,8 @@ static void sections(Gen *G, Model *M, csf_prog *p, int last_a)
 			if (sec == CSF_SEC_RHS && I->isassert) continue;
 			if (sec == CSF_SEC_OUT && I->isderiv) continue;
 			emit_inst(G, I);
-			if (i == last_a && p->ncrules) {
+			/* with constraints, CONSTRAIN runs the contact routine too (their forces depend on each other) */
+			if (i == last_a && p->ncrules && !p->ncons) {
 				add_line(G, p->crules[0].src);
 				emit_op(G, CSF_OP_CONTACT, 0, 0, 0, 0);
 			}

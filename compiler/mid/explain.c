@@ -56,6 +56,26 @@ static int explain_contacts(Model *Mo, Stmt *s, FILE *f)
 	return lines;
 }
 
+/* For --explain: the constraints of statement s (rule C), one line each. Returns how many lines it wrote. */
+static int explain_constraints(Model *Mo, Stmt *s, FILE *f)
+{
+	static const char *const kind_of[] = { "holds LHS = RHS", "holds LHS <= RHS (slack or taut: events)",
+		                               "holds LHS >= RHS (slack or taut: events)" };
+	int lines = 0;
+	for (int k = 0; k < Mo->cons.n; k++) {
+		Constraint *K = Mo->cons.v[k];
+		if (K->st != s) continue;
+		lines++;
+		fprintf(f, "  for %s", K->bind[0]->name);
+		for (int b = 1; b < K->nbind; b++) fprintf(f, "%s%s", b == 1 ? " with " : ", ", K->bind[b]->name);
+		fprintf(f, ": a constraint, %s by forces along its gradient on ", kind_of[K->kind]);
+		for (int b = 0; b < K->bodies.n; b++)
+			fprintf(f, "%s%s", b ? (b + 1 == K->bodies.n ? " and " : ", ") : "", ((Object *)K->bodies.v[b])->name);
+		fprintf(f, " (their FC), solved with every constraint and contact; computed in rhs and out\n");
+	}
+	return lines;
+}
+
 /* Writes conditional block B, indented by depth levels: each branch's line with its equations and
  * the variables it leaves zero, then its nested blocks, deeper; an elif at the depth of its if. */
 static void explain_block(FILE *f, Branch *B, int depth)
@@ -122,6 +142,7 @@ void explain_model(Model *Mo, FILE *f)
 			explain_block(f, cond->top, 2);
 		}
 		n += explain_contacts(Mo, s, f);
+		n += explain_constraints(Mo, s, f);
 		if (!n) fprintf(f, "  applies to no %s\n", s->call ? "pair that can touch" : "object");
 	}
 	if (!Mo->shaped && *Mo->unshaped_why) fprintf(f, "rules compiled once per object, not per shape: %s\n", Mo->unshaped_why);

@@ -157,9 +157,9 @@ static int find_bodies(Constraint *K)
 			continue;
 		}
 		if (v->state || v->det) {
-			error_at(K->st->loc, "a constraint reads positions, constants and t: '%s'%s%s %s", v->name,
-			         v->obj ? " of " : "", v->obj ? v->obj->name : "",
-			         v->state ? "is integrated" : "is computed by a rule");
+			error_at(K->st->loc, "a constraint reads positions, constants and t, not '%s'%s%s%s, which %s", v->name,
+			         v->obj ? " of '" : "", v->obj ? v->obj->name : "", v->obj ? "'" : "",
+			         v->state ? "is integrated (a derivative rule's)" : "a rule computes");
 			return 0;
 		}
 	}

@@ -27,11 +27,23 @@
 /* What a projection aims at, and what t = 0 allows of the positions (relative). */
 #define EXACT 1e-14
 #define START_OFF 1e-9
+/* (and what a projection must reach: beyond it, constraints contradict each other) */
 /* A one-sided constraint this near its bound (relative), or moving this slowly, is at it. */
 #define EDGE 1e-9
 
 /* RHS at (t, y) into r->m (the constraints' values with it); nonzero if it failed. */
 static int eval_at(run *r, double t, const double *y) { return csf_run_rhs(t, y, r->cw, r); }
+
+/* After a projection: a residual it could not remove (what, at t) is constraints that contradict each other. */
+static int contradicts(run *r, double t, int what)
+{
+	uint32_t k;
+	double res = csf_cons_residual(r->cons, r->m, what, &k, NULL);
+	if (!(res > START_OFF)) return 0;
+	r->conflict = 1, r->con_k = k, r->con_off = res;
+	r->fail = 1, r->fail_t = t;
+	return 1;
+}
 
 /*
  * Moves y at t onto the constraints until the residuals are within `within`
@@ -59,14 +71,14 @@ static int project(run *r, double t, double *y, double within)
 {
 	csf_cons *cs = r->cons;
 	int changed = project_pos(r, t, y, within);
-	if (changed < 0) return -1;
+	if (changed < 0 || contradicts(r, t, CSF_CONS_POS)) return -1;
 	for (int it = 0; it < 3; it++) {
 		if (csf_cons_residual(cs, r->m, CSF_CONS_VEL, NULL, NULL) <= within) break;
 		csf_cons_correct(cs, r->m, y, CSF_CONS_VEL);
 		changed = 1;
 		if (eval_at(r, t, y)) return -1;
 	}
-	return changed;
+	return contradicts(r, t, CSF_CONS_VEL) ? -1 : changed;
 }
 
 int csf_run_cons_start(run *r, double *y, FILE *err)

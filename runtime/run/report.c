@@ -262,8 +262,8 @@ int csf_run_report_stop(run *r, const stop *s, int fixed, FILE *err)
 			        csf_str(p, p->files[src->file]), (unsigned long)src->line, tb, (unsigned long)src->line,
 			        csf_str(p, src->text));
 		else
-			fprintf(err, "%s:%lu: error: at t=%s rule C at line %lu contradicts the constraints before it (its "
-			        "equation is off by %s of its terms with their forces): %s\n", csf_str(p, p->files[src->file]),
+			fprintf(err, "%s:%lu: error: at t=%s rule C at line %lu contradicts the constraints before it: where "
+			        "they hold, its value or its rate is off by %s of the size of its terms (%s)\n", csf_str(p, p->files[src->file]),
 			        (unsigned long)src->line, tb, (unsigned long)src->line, ob, csf_str(p, src->text));
 		return 1;
 	}
