@@ -30,39 +30,42 @@ mkdir -p "$TMP"
 GEN=../tests/constraints/gen_chain.sh
 export CSF_STDLIB="${CSF_STDLIB:-$(cd .. && pwd)/stdlib}"
 
-# springs in place of the rods of a chain from gen_chain.sh: the same scene, each rod a Hooke spring
+# springs in place of the rods of a chain from gen_chain.sh: the same scene, each rod a Hooke
+# spring, a force rule for each end that is a bead (Sl: its link to the left, Sr: to the right)
 springs() {
-	sed -e 's/^rule C for \(b[0-9]*\), \([a-z0-9]*\): (pos - pos\$1).mag = L$/rule F for \1, \2: S = (pos$1 - pos).mul(k * ((pos$1 - pos).mag - L) \/ (pos$1 - pos).mag)/' \
-		-e "s/^global L = /global k = $CON_K N\\/m\\nglobal L = /" "$1"
-}
-# the springs pull both ways: a rule for each end (the rod rules name each pair once)
-both_ends() {
-	awk '{ print } /^rule F for b[0-9]*, b[0-9]*: S = / { split($0, a, /[ ,:]+/); l = $0
-		sub("for " a[4] ", " a[5], "for " a[5] ", " a[4], l); print l }' "$1"
+	awk -v k="$CON_K" '
+	function spring(a, b, name) {
+		printf "rule F for %s, %s: %s = (pos$1 - pos).mul(k * ((pos$1 - pos).mag - L) / (pos$1 - pos).mag)\n", a, b, name
+	}
+	/^global L = / { print "global k = " k " N/m" }
+	/^rule C for / { split($0, w, /[ ,:]+/); a = w[4]; b = w[5]
+		if (b == "left") spring(a, b, "Sl")
+		else if (b == "right") spring(a, b, "Sr")
+		else { spring(a, b, "Sl"); spring(b, a, "Sr") }
+		next }
+	{ print }' "$1"
 }
 # stats NAME: evaluations and seconds from csfvm --stats (stderr in $TMP/NAME.err)
 stats() { awk -F'[ ,;()]+' '/^stats: method/ { for (i = 1; i <= NF; i++) { if ($(i + 1) == "right-hand") f = $i
 	if ($i ~ /^[0-9.]+$/) last = $i } print f "," last }' "$TMP/$1.err"; }
 run() { # run NAME SCENE OPTIONS...
-	n=$1 f=$2
+	rn=$1 rf=$2
 	shift 2
-	"$BUILD/csfc" "$f" -o "$TMP/$n.csfb" 2>"$TMP/$n.cerr" && "$BUILD/csfvm" --stats "$@" "$TMP/$n.csfb" >"$TMP/$n.csv" 2>"$TMP/$n.err" || true
+	"$BUILD/csfc" "$rf" -o "$TMP/$rn.csfb" 2>"$TMP/$rn.cerr" && "$BUILD/csfvm" --stats "$@" "$TMP/$rn.csfb" >"$TMP/$rn.csv" 2>"$TMP/$rn.err" || true
 }
 
 echo "scene,n,evaluations,seconds,us_per_evaluation" >"$CSV"
 for n in $CON_N; do
 	sh "$GEN" "$n" "$(awk -v n="$n" 'BEGIN { print n * 0.15 }')" 0.2 0.2 "$CON_TILL" "$CON_TILL" >"$TMP/rods$n.csf"
-	springs "$TMP/rods$n.csf" >"$TMP/sp.csf"
-	both_ends "$TMP/sp.csf" >"$TMP/springs$n.csf"
+	springs "$TMP/rods$n.csf" >"$TMP/springs$n.csf"
 	for s in rods springs; do
 		run "$s$n" "$TMP/$s$n.csf" --method rk4 --fixed --step "$CON_STEP"
-		echo "$s,$n,$(stats "$s$n")" | awk -F, '{ printf "%s,%s,%s,%s,%.3f\n", $1, $2, $3, $4, $3 > 0 ? 1e6 * $4 / $3 : 0 }' >>"$CSV"
+		echo "$s,$n,$(stats "$s$n")" | awk -F, '{ printf "%s,%s,%s,%s,%.3f\n", $1, $2, $3, $4, ($3 > 0) ? 1e6 * $4 / $3 : 0 }' >>"$CSV"
 	done
 done
 # the same accuracy: the chain of 20 settling into the catenary
 sh "$GEN" 20 3 0.2 0.2 60 1 >"$TMP/rods20.csf"
-springs "$TMP/rods20.csf" >"$TMP/sp.csf"
-both_ends "$TMP/sp.csf" >"$TMP/springs20.csf"
+springs "$TMP/rods20.csf" >"$TMP/springs20.csf"
 for s in rods springs; do
 	run "${s}20" "$TMP/${s}20.csf"
 	e=$(awk -F, -v n=20 -v span=3 -v L=0.2 -v m=0.1 -v tol=1 -f ../tests/constraints/catenary.awk "$TMP/${s}20.csv" 2>&1 |
@@ -87,7 +90,7 @@ awk -v n="$CON_CLOTH" 'BEGIN {
 	printf "inc t till %s s by %s s watch c%d_%d.pos\n", 0.01, 0.01, n - 1, n - 1
 }' >"$TMP/cloth.csf"
 run cloth "$TMP/cloth.csf" --method rk4 --fixed --step "$CON_STEP"
-echo "cloth,$((CON_CLOTH * CON_CLOTH)),$(stats cloth)" | awk -F, '{ printf "%s,%s,%s,%s,%.3f\n", $1, $2, $3, $4, $3 > 0 ? 1e6 * $4 / $3 : 0 }' >>"$CSV"
+echo "cloth,$((CON_CLOTH * CON_CLOTH)),$(stats cloth)" | awk -F, '{ printf "%s,%s,%s,%s,%.3f\n", $1, $2, $3, $4, ($3 > 0) ? 1e6 * $4 / $3 : 0 }' >>"$CSV"
 
 awk -F, -v k="$CON_K" -v step="$CON_STEP" -v till="$CON_TILL" -v cloth="$CON_CLOTH" '
 	NR == 1 { next }
@@ -99,10 +102,11 @@ awk -F, -v k="$CON_K" -v step="$CON_STEP" -v till="$CON_TILL" -v cloth="$CON_CLO
 		print "|---|---|---|---|---|"
 		for (i = 1; i <= nn; i++) {
 			n = ns[i]
-			printf "| %d | %.2f | %s | %.2f | %.2f |\n", n, us["rods", n], i > 1 ? sprintf("%.2f for %.0fx the links", us["rods", n] / us["rods", ns[i - 1]], n / ns[i - 1]) : "-", us["springs", n], us["rods", n] / us["springs", n]
+			printf "| %d | %.2f | %s | %.2f | %.2f |\n", n, us["rods", n], (i > 1) ? sprintf("%.2f for %.0fx the links", us["rods", n] / us["rods", ns[i - 1]], n / ns[i - 1]) : "-", us["springs", n], us["rods", n] / us["springs", n]
 		}
 		printf "\nEach for %s s by rk4 with a fixed step of %s s (the same evaluations for both). A cloth of %d x %d beads joined by rods to their neighbours (%d rods, loops), its top corners on rails: %.2f us per evaluation.\n\n", till, step, cloth, cloth, 2 * cloth * (cloth - 1), cus
-		printf "A chain of 20 settling for 60 s (the default method) into the discrete catenary: rods, %d evaluations, worst joint %s m from the catenary; springs of %s N/m, %d evaluations, worst joint %s m (their stretch). The rods take %.1fx fewer evaluations and are %s closer.\n", ev["rods"], err["rods"], k, ev["springs"], err["springs"], ev["springs"] / ev["rods"], err["rods"] > 0 ? sprintf("%.2g times", err["springs"] / err["rods"]) : "infinitely"
+		closer = (err["rods"] > 0) ? sprintf("%.2g times", err["springs"] / err["rods"]) : "infinitely"
+		printf "A chain of 20 settling for 60 s (the default method) into the discrete catenary: rods, %d evaluations, worst joint %s m from the catenary; springs of %s N/m, %d evaluations, worst joint %s m (their stretch). The rods take %.1fx fewer evaluations and are %s closer.\n", ev["rods"], err["rods"], k, ev["springs"], err["springs"], ev["springs"] / ev["rods"], closer
 	}' "$CSV" >"$TXT"
 cat "$TXT"
 sh ./readme_section.sh "$README" constraints "$TXT"

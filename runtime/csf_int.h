@@ -146,12 +146,14 @@ typedef struct csf_crule { uint32_t src, every, first0, n0, first1, n1; } csf_cr
  * the scale of the equation's terms (|LHS| + |RHS|), and per body b,
  * conbodies[first .. first + n), the gradient J_b of g with respect to b's
  * position (3 slots), and the restitution of going taut (a string), the
- * least cr of its objects (1 when none has one). A body is a mass point: its pos and v in the state,
+ * least cr of its objects (1 when none has one). The code computes g, gd,
+ * scale and cr only while the slot want (the same for every constraint)
+ * holds a nonzero value: the forces need only J and c. A body is a mass point: its pos and v in the state,
  * its a, m and FC (the force the constraints put on it). unit is the
  * unit of g (a string), for messages; src its rule's statement.
  */
 enum { CSF_CON_EQ, CSF_CON_LE, CSF_CON_GE };
-typedef struct csf_con { uint32_t src, kind, g, gd, c, scale, cr, first, n, unit; } csf_con;
+typedef struct csf_con { uint32_t src, kind, g, gd, c, scale, cr, want, first, n, unit; } csf_con;
 typedef struct csf_conbody { uint32_t object, J, pos, v, a, m, fc; } csf_conbody;
 /* The run-time state of the constraints: work arrays and modes (runtime/constraint/). */
 typedef struct csf_cons csf_cons;

@@ -56,7 +56,7 @@ static void scan_slots(Slots *S)
 		for (int k = 0; k < CSF_CF_N; k++) mark_ext(S, p->cbodies[i].s[k], 3);
 	for (uint32_t i = 0; i < p->ncons; i++) {
 		const csf_con *c = &p->cons[i];
-		mark_ext(S, c->g, 1), mark_ext(S, c->gd, 1), mark_ext(S, c->c, 1), mark_ext(S, c->scale, 1), mark_ext(S, c->cr, 1);
+		mark_ext(S, c->g, 1), mark_ext(S, c->gd, 1), mark_ext(S, c->c, 1), mark_ext(S, c->scale, 1), mark_ext(S, c->cr, 1), mark_ext(S, c->want, 1);
 	}
 	for (uint32_t i = 0; i < p->nconbodies; i++) {
 		const csf_conbody *b = &p->conbodies[i];

@@ -56,7 +56,7 @@ void gen_constraint_tables(Gen *G, Model *M, csf_prog *p)
 	for (int i = 0; i < M->cons.n; i++) p->nconbodies += (uint32_t)((Constraint *)M->cons.v[i])->bodies.n;
 	p->cons = xcalloc(p->ncons + 1, sizeof *p->cons);
 	p->conbodies = xcalloc(p->nconbodies + 1, sizeof *p->conbodies);
-	uint32_t nb = 0;
+	uint32_t nb = 0, want = p->ncons ? alloc_mem(G, 1, (double[1]){ 1 }) : 0;
 	for (uint32_t k = 0; k < p->ncons; k++) {
 		Constraint *K = M->cons.v[k];
 		csf_con *c = &p->cons[k];
@@ -67,6 +67,7 @@ void gen_constraint_tables(Gen *G, Model *M, csf_prog *p)
 		c->c = alloc_mem(G, 1, NULL);
 		c->scale = alloc_mem(G, 1, NULL);
 		c->cr = alloc_mem(G, 1, NULL);
+		c->want = want;
 		c->first = nb;
 		c->n = (uint32_t)K->bodies.n;
 		c->unit = str_intern(G, K->dimk == DK_KNOWN ? dims_unit(K->dim) : "");
@@ -93,14 +94,16 @@ void gen_constraint_code(Gen *G, Model *M, csf_prog *p)
 		RExpr *e[5] = { K->g, K->gd, K->c, K->scale, K->cr };
 		uint32_t at[5] = { c->g, c->gd, c->c, c->scale, c->cr };
 		add_line(G, c->src);
-		for (int i = 0; i < 5; i++) {
-			cse_reset(G);
-			emit_into(G, e[i], at[i]);
-		}
-		for (uint32_t b = 0; b < c->n; b++) {
-			cse_reset(G);
-			emit_into(G, K->grad[b], p->conbodies[c->first + b].J);
-		}
+		G->scratch = 0; /* one constraint's values share their common parts (scratch is not reused within it) */
+		cse_reset(G);
+		/* what the forces need (the gradients, c), then, while want is set, the rest */
+		for (uint32_t b = 0; b < c->n; b++) emit_into(G, K->grad[b], p->conbodies[c->first + b].J);
+		emit_into(G, e[2], at[2]);
+		uint32_t jz = pc(G);
+		emit_op(G, CSF_OP_JZ, c->want, 0, 0, 0);
+		for (int i = 0; i < 5; i++)
+			if (i != 2) emit_into(G, e[i], at[i]);
+		G->code[jz + 2] = pc(G);
 	}
 	emit_op(G, CSF_OP_CONSTRAIN, 0, 0, 0, 0);
 }

@@ -50,9 +50,32 @@ static RExpr *dvd(RExpr *a, RExpr *k, Loc l)
 	return rop(a->isvec ? CSF_OP_VDIV : CSF_OP_DIV, a->isvec, l, a, k, NULL);
 }
 
+/* The axis (0, 1, 2) a constant vector is a unit vector along, times *sign; -1 if it is not one. */
+static int axis_of(const RExpr *e, double *sign)
+{
+	if (e->k != R_CONST || !e->isvec) return -1;
+	int ax = -1;
+	for (int i = 0; i < 3; i++) {
+		if (e->c[i] == 0) continue;
+		if (ax >= 0 || fabs(e->c[i]) != 1) return -1;
+		ax = i, *sign = e->c[i];
+	}
+	return ax;
+}
+
 static RExpr *dot(RExpr *a, RExpr *b, Loc l)
 {
 	if (!a || !b) return NULL;
+	double sign;
+	int ax = axis_of(b, &sign);
+	if (ax < 0 && (ax = axis_of(a, &sign)) >= 0) a = b;
+	if (ax >= 0) { /* along an axis (a gradient's direction): a component, not a dot product */
+		RExpr *c = rnew(R_COMP, l);
+		c->a[0] = a;
+		c->n = 1;
+		c->comp = ax;
+		return sign > 0 ? c : rop(CSF_OP_NEG, 0, l, c, NULL, NULL);
+	}
 	return rop(CSF_OP_VDOT, 0, l, a, b, NULL);
 }
 

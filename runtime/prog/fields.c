@@ -20,7 +20,7 @@
 _Static_assert(sizeof(csf_src) == 12 && sizeof(csf_col) == 8 && sizeof(csf_assert) == 8 && sizeof(csf_prop) == 20 &&
                sizeof(csf_global) == 16 && sizeof(csf_event) == 16 &&
                sizeof(csf_target) == 20 && sizeof(csf_line) == 8 && sizeof(csf_cbody) == 4 * (3 + CSF_CF_N) &&
-               sizeof(csf_crule) == 24 && sizeof(csf_con) == 40 && sizeof(csf_conbody) == 28,
+               sizeof(csf_crule) == 24 && sizeof(csf_con) == 44 && sizeof(csf_conbody) == 28,
                "tables are arrays of u32");
 _Static_assert(offsetof(csf_prog, jtan) == offsetof(csf_prog, tslot) + 16 &&
                offsetof(csf_prog, ystart) == offsetof(csf_prog, tslot) + 4 &&
@@ -227,7 +227,8 @@ ELEM(con_ok)
 	const csf_con *c = e_;
 	UNUSED;
 	return c->kind <= CSF_CON_GE && c->src < p->nsrcs && str_ok(p, c->unit) && slot_ok(p, c->g, 1) &&
-	       slot_ok(p, c->gd, 1) && slot_ok(p, c->c, 1) && slot_ok(p, c->scale, 1) && slot_ok(p, c->cr, 1) &&
+	       slot_ok(p, c->gd, 1) && slot_ok(p, c->c, 1) && slot_ok(p, c->scale, 1) && slot_ok(p, c->cr, 1) && slot_ok(p, c->want, 1) &&
+	       (!i || c->want == p->cons[0].want) &&
 	       (uint64_t)c->first + c->n <= p->nconbodies;
 }
 

@@ -31,8 +31,19 @@
 /* A one-sided constraint this near its bound (relative), or moving this slowly, is at it. */
 #define EDGE 1e-9
 
-/* RHS at (t, y) into r->m (the constraints' values with it); nonzero if it failed. */
-static int eval_at(run *r, double t, const double *y) { return csf_run_rhs(t, y, r->cw, r); }
+/*
+ * RHS at (t, y) into r->m, with the constraints' values (g, its rate, the
+ * sizes: what the forces alone do not need, csf_con.want); nonzero if it
+ * failed.
+ */
+static int eval_at(run *r, double t, const double *y)
+{
+	double *want = r->m + r->p->cons[0].want, was = *want;
+	*want = 1;
+	int st = csf_run_rhs(t, y, r->cw, r);
+	*want = was;
+	return st;
+}
 
 /* After a projection: a residual it could not remove (what, at t) is constraints that contradict each other. */
 static int contradicts(run *r, double t, int what)

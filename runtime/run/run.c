@@ -99,6 +99,7 @@ static stop run_alloc(session *S)
 	    (S->sink && !S->v) || !S->vec)
 		return stop_kind_only(STOP_NOMEM);
 	memcpy(r->m, p->mem0, p->nmem * sizeof(double));
+	if (p->ncons) r->m[p->cons[0].want] = r->ncg ? 1 : 0; /* one-sided constraints' guards read g */
 	csf_overlay_apply(S->init, r->m); /* -D's values, a sweep variant's */
 	memcpy(S->y, r->m + p->ystart, p->ny * sizeof(double));
 	if (p->ncrules && !csf_method_contacts(S->method)) {
@@ -311,6 +312,8 @@ static stop run_advance(session *S, double *t, double *tk, int *last)
 	         : S->events ? csf_run_advance_events(r, ode, t, *tk, S->fixed, S->fixed_h, S->y, S->msg, sizeof S->msg)
 	         : S->fixed  ? csf_ode_advance_fixed(ode, t, *tk, S->fixed_h, S->y, S->msg, sizeof S->msg)
 	                     : csf_run_advance_plain(r, ode, t, *tk, S->y, S->msg, sizeof S->msg);
+	/* fixed steps: back on the constraints at each row (the steps between have no error control) */
+	if (st == CSF_ODE_OK && S->fixed && !S->events && csf_run_cons_step(r, ode, *t, S->y)) st = CSF_ODE_STOPPED;
 	if (st == CSF_ODE_HALTED && csf_signal) {
 		*last = 1;
 		return stop_kind_only(STOP_SIGNAL);
