@@ -24,10 +24,10 @@
 #define DRIFT 1e-3
 /* A multistep method's: a restart costs it its order (it starts again from one), so it drifts further. */
 #define DRIFT_HISTORY 1e3
-/* What a projection aims at, and what t = 0 allows of the positions (relative). */
+/* What a projection aims at; what t = 0 allows of the positions, and what a projection must
+   reach (beyond it, the constraints contradict each other): relative to the sizes of the terms. */
 #define EXACT 1e-14
 #define START_OFF 1e-9
-/* (and what a projection must reach: beyond it, constraints contradict each other) */
 /* A one-sided constraint this near its bound (relative), or moving this slowly, is at it. */
 #define EDGE 1e-9
 
@@ -115,7 +115,7 @@ int csf_run_cons_start(run *r, double *y, FILE *err)
 		csf_fmt_double(ob, off);
 		fprintf(err, "%s:%lu: warning: the initial velocities break rule C at line %lu by %s%s%s/s (its rate): "
 		        "projected onto it (%s)\n", csf_str(p, p->files[s->file]), (unsigned long)s->line,
-		        (unsigned long)s->line, ob, *u ? " " : " ", *u ? u : "1", csf_str(p, s->text));
+		        (unsigned long)s->line, ob, " ", *u ? u : "1", csf_str(p, s->text));
 	}
 	return 0;
 }
