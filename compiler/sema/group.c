@@ -14,10 +14,10 @@
  * gets one unknown, the value of the whole system), at the point of the rule
  * that completed it, so what it reads is whatever is determined there. A
  * waiting rule left with one unknown by such a system is then resolved
- * alone, and one left with none is overdetermined. Before any of this the
- * rules are in order: a waiting rule one of whose unknowns a later rule
- * determines alone (not a waiting one) is an error as before, since it read
- * a temporary that no earlier rule determined.
+ * alone, and one left with none is overdetermined. Rule order still
+ * counts: a waiting rule one of whose unknowns a later rule determines alone
+ * (a rule that does not wait) is an error as before, since it read a
+ * temporary that no earlier rule determined.
  *
  * After the last rule (group_finish), the rules still waiting are reported,
  * by the sets they make through shared unknowns: a set with at least as
@@ -42,8 +42,6 @@
  * the candidates are the waiting rules reached through shared unknowns, at
  * most MAX_CANDS of them.
  */
-#include <string.h>
-
 #include "csfc.h"
 #include "sema.h"
 #include "sema_int.h"
