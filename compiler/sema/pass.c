@@ -15,7 +15,10 @@
  *    (unwatched temporary, then property, then global; the later defined
  *    first); none left is "overdetermined", an undetermined temporary read
  *    is "unresolvable". The equation is then solved for the target
- *    symbolically: it must be linear in it.
+ *    symbolically: it must be linear in it. A rule with two unknown
+ *    temporaries or more waits for the rules that determine them only
+ *    together with it, and is solved with them as one linear system
+ *    (group.c); the rules still waiting after the last are reported.
  * 5. Assertions and the watch list are resolved, and the dimensions checked
  *    (dims.c) over every instance that resolved, also after errors; then
  *    gen.c keeps only the instances that the derivatives, the watches and
@@ -24,8 +27,8 @@
  * The pieces: state of the pass (sema_int.h, Sema); fold.c, expr.c: the
  * resolved expressions; context.c: names and types in a resolution context;
  * objects.c: step 1; walk.c, shapes.c, instances.c: step 2; resolve.c,
- * solve.c: steps 3 and 4; contacts.c: contact rules; constraints.c and
- * diff.c: constraints (rules with attribute C); watch.c: the watch
+ * solve.c, group.c: steps 3 and 4; contacts.c: contact rules; constraints.c
+ * and diff.c: constraints (rules with attribute C); watch.c: the watch
  * list; this file: the order of it all (resolve, sema_run). --explain is
  * compiler/mid/explain.c.
  */
@@ -198,6 +201,7 @@ static Model *resolve(Stmt *stmts, int shaped)
 			else contact_pairs(s);
 		}
 	}
+	group_finish();
 	contact_accels();
 	constraints_finish();
 	for (int i = 0; i < sema.deriv_insts.n; i++) {

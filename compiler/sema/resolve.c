@@ -1,8 +1,9 @@
 /*
  * resolve.c - resolving one rule instance: the target of each equation chosen
  * by the precedence of spec 2.4.1 among the variables not yet determined,
- * then solved for (solve.c); conditional blocks; derivative rules,
- * assertions and stop conditions.
+ * then solved for (solve.c), or, for a rule with several unknowns, left to
+ * wait for the rules that determine them together (group.c); conditional
+ * blocks; derivative rules, assertions and stop conditions.
  */
 #include <string.h>
 
@@ -93,80 +94,36 @@ static Ctx inst_ctx(const Inst *I, Vec *reads, Vec *rf, Vec *pending)
 	return C;
 }
 
-/*
- * Resolves one equation of instance I: chooses the target among the
- * undetermined variables, solves for it, records the assignment. Returns
- * the target, or NULL after reporting an error.
- */
-static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
+/* A new temporary x that is a side of lhs = rhs alone takes its type from the other side. Returns 0
+ * after an error (a declared vector made a scalar). */
+static int type_new_temp(Var *x, RExpr *lhs, RExpr *rhs, Eqn *q)
 {
-	Vec reads = { 0 }, pending = { 0 }, rf = { 0 };
-	Ctx C = inst_ctx(I, &reads, &rf, &pending);
-	RExpr *lhs = build(&C, q->lhs), *rhs = build(&C, q->rhs);
-	if (C.failed) return NULL;
-	if (lhs->isbool || rhs->isbool) {
-		error_at(q->loc, "an equation relates values, not conditions");
-		return NULL;
+	if (x->kind != V_TEMP || map_get(&sema.temps, x->key)) return 1;
+	RExpr *side = lhs->k == R_VAR && lhs->var == x ? lhs : rhs->k == R_VAR && rhs->var == x ? rhs : NULL;
+	if (!side) return 1;
+	side->isvec = (side == lhs ? rhs : lhs)->isvec;
+	if (map_get(&sema.vector_decls, x->name) && !side->isvec) {
+		error_at(q->loc, "'%s' is declared a vector, but \"%s\" makes it a scalar", x->name, q->text);
+		return 0;
 	}
-	Var *x = NULL;
-	for (int i = 0; i < reads.n; i++) {
-		Var *v = reads.v[i];
-		if (determined(v)) continue;
-		if (!x || var_class(v) < var_class(x) || (var_class(v) == var_class(x) && v->order > x->order)) x = v;
-	}
-	if (!x) {
-		error_at(q->loc, "rule \"%s\" is overdetermined%s%s: every variable in it is already determined", q->text,
-		         I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "");
-		for (int i = 0; i < reads.n; i++) explain_det(reads.v[i]);
-		return NULL;
-	}
-	Var *other = NULL; /* a temporary besides the target that nothing determines: two unknowns */
-	for (int i = 0; i < reads.n && !other; i++) {
-		Var *v = reads.v[i];
-		if (v != x && v->kind == V_TEMP && !determined(v)) other = v;
-	}
-	if (other) {
-		/* the one the equation defines is a bare name on its left side (else the target chosen); the
-		   other is unknown, most often a misspelling or another object's temporary */
-		Var *want = lhs->k == R_VAR && lhs->var == other ? other : x, *u = want == other ? x : other;
-		const char *s = near_name(I, u);
-		Loc at = read_loc(lhs, rhs, u, q->loc);
-		if (s)
-			error_at(at, "unknown name '%s' in rule \"%s\"%s%s; did you mean '%s'?", u->name, q->text,
-			         I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", s);
-		else
-			error_at(at, "rule \"%s\" is unresolvable%s%s: it solves for %s but also reads %s, which no earlier rule determines",
-			         q->text, I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", want->name, u->name);
-		return NULL;
-	}
-	/* A new temporary takes its type from the other side of its equation. */
-	if (x->kind == V_TEMP && !map_get(&sema.temps, x->key)) {
-		RExpr *side = lhs->k == R_VAR && lhs->var == x ? lhs : rhs->k == R_VAR && rhs->var == x ? rhs : NULL;
-		if (side) {
-			side->isvec = (side == lhs ? rhs : lhs)->isvec;
-			if (map_get(&sema.vector_decls, x->name) && !side->isvec) {
-				error_at(q->loc, "'%s' is declared a vector, but \"%s\" makes it a scalar", x->name, q->text);
-				return NULL;
-			}
-			x->isvec = side->isvec;
-		}
-	}
-	if (lhs->isvec != rhs->isvec) {
-		/* a side that is a global alone: a name meant for a new value that is already taken (G, c, g) */
-		const RExpr *g = lhs->k == R_VAR && lhs->var->kind == V_GLOBAL ? lhs : rhs->k == R_VAR && rhs->var->kind == V_GLOBAL ? rhs : NULL;
-		error_at(q->rhs->loc, "the two sides of \"%s\" differ: %s = %s%s%s%s", q->text, lhs->isvec ? "vector" : "scalar",
-		         rhs->isvec ? "vector" : "scalar", g ? " ('" : "", g ? g->var->name : "",
-		         g ? "' is a global, not a new name: give the value a name of its own)" : "");
-		return NULL;
-	}
-	if (x->kind == V_TEMP && !map_get(&sema.temps, x->key)) register_temp(x);
-	RExpr *sol = solve(lhs, rhs, x, q->loc, q->text);
-	if (!sol) return NULL;
-	if (sol->isvec != x->isvec) {
-		error_at(q->loc, "\"%s\" would make %s a %s, but it is a %s", q->text, var_label(x), sol->isvec ? "vector" : "scalar",
-		         x->isvec ? "vector" : "scalar");
-		return NULL;
-	}
+	x->isvec = side->isvec;
+	return 1;
+}
+
+/* Do the two sides of q differ, a vector and a scalar? Reports it. */
+static int sides_differ(RExpr *lhs, RExpr *rhs, Eqn *q)
+{
+	if (lhs->isvec == rhs->isvec) return 0;
+	/* a side that is a global alone: a name meant for a new value that is already taken (G, c, g) */
+	const RExpr *g = lhs->k == R_VAR && lhs->var->kind == V_GLOBAL ? lhs : rhs->k == R_VAR && rhs->var->kind == V_GLOBAL ? rhs : NULL;
+	error_at(q->rhs->loc, "the two sides of \"%s\" differ: %s = %s%s%s%s", q->text, lhs->isvec ? "vector" : "scalar",
+	         rhs->isvec ? "vector" : "scalar", g ? " ('" : "", g ? g->var->name : "",
+	         g ? "' is a global, not a new name: give the value a name of its own)" : "");
+	return 1;
+}
+
+void resolve_assign(Inst *I, Var *x, RExpr *sol, RExpr *lhs, RExpr *rhs, Eqn *q, int src, Vec *branch, Vec *reads, Vec *rf)
+{
 	if (sema.shaped && !I->st->has_for && I->nbind > 1 && !(x->kind == V_TEMP && x->pair))
 		unshape("a rule over pairs ($1) determines a variable of one object");
 	if (sema.shaped && sema_per_member(x) && (var_places(lhs, x) | var_places(rhs, x)) & ~2u)
@@ -180,15 +137,103 @@ static Var *resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src)
 	a->loc = q->loc;
 	a->text = q->text;
 	vec_push(branch, a);
-	for (int i = 0; i < reads.n; i++)
-		if (reads.v[i] != x) add_unique(&I->reads, reads.v[i]);
-	for (int i = 0; i < rf.n; i++) add_unique(&I->rf_reads, rf.v[i]);
+	for (int i = 0; i < reads->n; i++)
+		if (reads->v[i] != x) add_unique(&I->reads, reads->v[i]);
+	for (int i = 0; i < rf->n; i++) add_unique(&I->rf_reads, rf->v[i]);
 	x->det = I;
 	for (int i = 0; i < I->targets.n; i++)
-		if (I->targets.v[i] == x) return x; /* the other branch of a conditional rule: already listed */
+		if (I->targets.v[i] == x) return; /* the other branch of a conditional rule: already listed */
 	vec_push(&I->targets, x);
 	I->why = I->why ? xprintf("%s, %s (%s)", I->why, x->name, class_name(x)) : xprintf("%s (%s)", x->name, class_name(x));
-	return x;
+}
+
+/* What resolve_eqn did with an equation. */
+enum { EQN_ERROR, EQN_SOLVED, EQN_WAITING };
+
+/*
+ * Equation q of instance I reads the temporaries unknowns (two or more) that no rule has
+ * determined: it waits for the rules that determine them only together with it (group.c). msg,
+ * at at, is the error it is if none does (suggests: it names a misspelling). New temporaries
+ * that are a side alone take their type from the other side, and the unknowns are registered,
+ * so that later rules read the same ones.
+ */
+static int wait_eqn(Inst *I, Eqn *q, RExpr *lhs, RExpr *rhs, Vec *reads, Vec *rf, Vec *unknowns, Loc at, const char *msg,
+                    int suggests)
+{
+	for (int i = 0; i < unknowns->n; i++)
+		if (!type_new_temp(unknowns->v[i], lhs, rhs, q)) return EQN_ERROR;
+	if (sides_differ(lhs, rhs, q)) return EQN_ERROR;
+	for (int i = 0; i < unknowns->n; i++) register_temp(unknowns->v[i]);
+	group_wait(I, q, lhs, rhs, reads, rf, unknowns, at, msg, suggests);
+	return EQN_WAITING;
+}
+
+/*
+ * Resolves one equation of instance I: chooses the target among the
+ * undetermined variables, solves for it, records the assignment. An
+ * equation with two unknown temporaries or more waits, if may_wait, for the
+ * rules that determine them together with it (group.c). Returns EQN_SOLVED,
+ * EQN_WAITING, or EQN_ERROR after reporting an error.
+ */
+static int resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src, int may_wait)
+{
+	Vec reads = { 0 }, pending = { 0 }, rf = { 0 };
+	Ctx C = inst_ctx(I, &reads, &rf, &pending);
+	RExpr *lhs = build(&C, q->lhs), *rhs = build(&C, q->rhs);
+	if (C.failed) return EQN_ERROR;
+	if (lhs->isbool || rhs->isbool) {
+		error_at(q->loc, "an equation relates values, not conditions");
+		return EQN_ERROR;
+	}
+	Var *x = NULL;
+	for (int i = 0; i < reads.n; i++) {
+		Var *v = reads.v[i];
+		if (determined(v)) continue;
+		if (!x || var_class(v) < var_class(x) || (var_class(v) == var_class(x) && v->order > x->order)) x = v;
+	}
+	if (!x) {
+		error_at(q->loc, "rule \"%s\" is overdetermined%s%s: every variable in it is already determined", q->text,
+		         I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "");
+		for (int i = 0; i < reads.n; i++) explain_det(reads.v[i]);
+		return EQN_ERROR;
+	}
+	Var *other = NULL; /* a temporary besides the target that nothing determines: two unknowns */
+	for (int i = 0; i < reads.n && !other; i++) {
+		Var *v = reads.v[i];
+		if (v != x && v->kind == V_TEMP && !determined(v)) other = v;
+	}
+	if (other) {
+		/* the one the equation defines is a bare name on its left side (else the target chosen); the
+		   other is unknown, most often a misspelling or another object's temporary */
+		Var *want = lhs->k == R_VAR && lhs->var == other ? other : x, *u = want == other ? x : other;
+		const char *s = near_name(I, u), *msg;
+		Loc at = read_loc(lhs, rhs, u, q->loc);
+		if (s)
+			msg = xprintf("unknown name '%s' in rule \"%s\"%s%s; did you mean '%s'?", u->name, q->text,
+			              I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", s);
+		else
+			msg = xprintf("rule \"%s\" is unresolvable%s%s: it solves for %s but also reads %s, which no earlier rule determines",
+			              q->text, I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "", want->name, u->name);
+		Vec unknowns = { 0 };
+		for (int i = 0; i < reads.n; i++) {
+			Var *v = reads.v[i];
+			if (v->kind == V_TEMP && !determined(v)) vec_push(&unknowns, v);
+		}
+		if (may_wait && unknowns.n >= 2) return wait_eqn(I, q, lhs, rhs, &reads, &rf, &unknowns, at, msg, s != NULL);
+		error_at(at, "%s", msg);
+		return EQN_ERROR;
+	}
+	if (!type_new_temp(x, lhs, rhs, q) || sides_differ(lhs, rhs, q)) return EQN_ERROR;
+	if (x->kind == V_TEMP && !map_get(&sema.temps, x->key)) register_temp(x);
+	RExpr *sol = solve(lhs, rhs, x, q->loc, q->text);
+	if (!sol) return EQN_ERROR;
+	if (sol->isvec != x->isvec) {
+		error_at(q->loc, "\"%s\" would make %s a %s, but it is a %s", q->text, var_label(x), sol->isvec ? "vector" : "scalar",
+		         x->isvec ? "vector" : "scalar");
+		return EQN_ERROR;
+	}
+	resolve_assign(I, x, sol, lhs, rhs, q, src, branch, &reads, &rf);
+	return EQN_SOLVED;
 }
 
 static RExpr *build_cond(Inst *I, Expr *cond, const char *what)
@@ -235,7 +280,7 @@ static int resolve_steps(Inst *I, Eqn *q, Vec *out, Vec *flat)
 			error_at(q->loc, "a derivative rule cannot be conditional");
 			return 0;
 		}
-		if (!resolve_eqn(I, q, out, add_src(q->loc, q->text))) return 0;
+		if (resolve_eqn(I, q, out, add_src(q->loc, q->text), 0) != EQN_SOLVED) return 0;
 		vec_push(flat, out->v[out->n - 1]);
 	}
 	return 1;
@@ -278,7 +323,8 @@ void inst_rule(Stmt *s, Object **bind, int nbind)
 	Inst *I = new_inst(s, bind, nbind);
 	I->src = sema.cur_src;
 	if (!s->eqns->nest) {
-		if (!resolve_eqn(I, s->eqns, &I->then, I->src)) return;
+		/* a rule with attribute F does not wait: RF, the sum of their forces, is read in their order */
+		if (resolve_eqn(I, s->eqns, &I->then, I->src, !I->isF) != EQN_SOLVED) return; /* waiting: group.c goes on */
 	} else {
 		if (sema.shaped && !s->has_for && nbind > 1) unshape("a conditional rule over pairs ($1)");
 		I->top = resolve_block(I, s->eqns->nest, &I->then, &I->els);

@@ -22,6 +22,9 @@ typedef struct Sema {
 	Map watched;            /* names in the watch list, and OBJECT\x01NAME */
 	Vec *cur_insts;         /* where the instances of rules, assertions and stops go */
 	Vec deriv_insts;        /* the derivative rules' instances, resolved after the others */
+	Vec waiting;            /* rules that cannot be resolved alone, in the order reached (group.c) */
+	Map waits_of;           /* "%p" of an unknown of theirs: a Vec of them */
+	Map group_vars;         /* "%p" of a variable they determined (its rule waited) */
 } Sema;
 
 /* A resolution context: what an expression is built for (context.c). */
@@ -128,11 +131,29 @@ void explain_det(Var *v);
 /* Solves lhs = rhs for x. Returns NULL (after an error) when it cannot. */
 RExpr *solve(RExpr *lhs, RExpr *rhs, Var *x, Loc l, const char *text);
 
+/* The most rules solved together, as one linear system (csf(5), RULES). */
+#define SOLVE_MAX 3
+
+/*
+ * Solves the rules lhs[i] = rhs[i] (i < k, 2 <= k <= SOLVE_MAX; text[i] as written) together
+ * for x[0..k): returns the values of x[0..k) (arena), expressions of what the rules read
+ * besides; NULL after an error at l or in a rule, which begins with what (which rules
+ * determine which unknowns together): a rule not linear in them, the vector and scalar
+ * rules mixed, a system that is singular at compile time. nz[i*k + j]: x[j]'s coefficient in
+ * rule i is not zero (a constant 0).
+ */
+RExpr **solve_system(RExpr **lhs, RExpr **rhs, char **text, Var *const *x, int k, Loc l, const char *what, int *nz);
+
 /* ---- resolve.c: resolving one rule instance ---- */
 
 int stmt_src(Stmt *s);
 void inst_rule(Stmt *s, Object **bind, int nbind);
 void inst_deriv(Stmt *s, Object **bind, int nbind);
+
+/* Records that instance I solves equation q (its sides lhs, rhs) for x: x := sol, an assignment
+ * into branch from source entry src; reads (all but x) and rf (objects whose RF it reads)
+ * become I's. x is determined from here on. */
+void resolve_assign(Inst *I, Var *x, RExpr *sol, RExpr *lhs, RExpr *rhs, Eqn *q, int src, Vec *branch, Vec *reads, Vec *rf);
 void resolve_deriv(Inst *I);
 void inst_assert(Stmt *s, Object **bind, int nbind);
 
@@ -142,6 +163,22 @@ void inst_assert(Stmt *s, Object **bind, int nbind);
  * the runtime reads the guards), never in OUT.
  */
 void inst_stop(Stmt *s, Object **bind, int nbind);
+
+/* ---- group.c: rules solved together ---- */
+
+/*
+ * Rule instance I (a plain rule), its equation q built as lhs = rhs reading reads and the RF of
+ * rf, has two unknowns or more (temporaries no rule has determined, registered): it waits. When
+ * it and other waiting rules determine their unknowns together, they are solved (pushed to
+ * sema.cur_insts), here or at a later rule; msg is reported at at if that never happens
+ * (suggests: it suggests a name for a misspelt one, the likelier mistake).
+ */
+void group_wait(Inst *I, Eqn *q, RExpr *lhs, RExpr *rhs, Vec *reads, Vec *rf, Vec *unknowns, Loc at, const char *msg,
+                int suggests);
+
+/* After the last rule: reports the rules that still wait (each as the error it would have been
+ * had it not waited; too many unknowns to solve together). */
+void group_finish(void);
 
 /* ---- contacts.c: contact rules ---- */
 
