@@ -50,6 +50,7 @@ struct csf_cons {
 	size_t *row;          /* per constraint: where its row starts in A and L */
 	double *A, *L;        /* the matrix (envelope), its factor */
 	double *d, *b, *mu;   /* the pivots, the right-hand side, the multipliers */
+	double *mut;          /* with contacts: the multipliers' sum over the turns (csf_constraint_apply) */
 	unsigned char *drop;  /* a redundant row (or a slack one): no force of its own */
 	unsigned char *taut;  /* one-sided: taut (an equality: always 1) */
 	uint32_t *order;      /* the conbodies entries sorted by body (pos slot), then constraint */
@@ -83,11 +84,12 @@ csf_cons *csf_cons_new(const csf_prog *p)
 	cs->d = malloc((n + 1) * sizeof *cs->d);
 	cs->b = malloc((n + 1) * sizeof *cs->b);
 	cs->mu = malloc((n + 1) * sizeof *cs->mu);
+	cs->mut = malloc((n + 1) * sizeof *cs->mut);
 	cs->drop = malloc(n + 1);
 	cs->taut = malloc(n + 1);
 	cs->order = malloc((nb + 1) * sizeof *cs->order);
 	cs->owner = malloc((nb + 1) * sizeof *cs->owner);
-	if (!cs->f || !cs->row || !cs->d || !cs->b || !cs->mu || !cs->drop || !cs->taut || !cs->order || !cs->owner) {
+	if (!cs->f || !cs->row || !cs->d || !cs->b || !cs->mu || !cs->mut || !cs->drop || !cs->taut || !cs->order || !cs->owner) {
 		csf_cons_free(cs);
 		return NULL;
 	}
@@ -148,6 +150,7 @@ void csf_cons_free(csf_cons *cs)
 	free(cs->d);
 	free(cs->b);
 	free(cs->mu);
+	free(cs->mut);
 	free(cs->drop);
 	free(cs->taut);
 	free(cs->order);
@@ -324,6 +327,7 @@ void csf_constraint_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 		return;
 	}
 	for (uint32_t j = 0; j < cs->na; j++) memcpy(cs->a0 + 3 * j, m + cs->aslot[j], 3 * sizeof *m);
+	memset(cs->mut, 0, cs->n * sizeof *cs->mut);
 	for (int turn = 0; turn < 200; turn++) {
 		for (uint32_t j = 0; j < cs->na; j++) memcpy(m + cs->aslot[j], cs->a0 + 3 * j, 3 * sizeof *m);
 		for (uint32_t i = 0; i < p->nconbodies;) { /* the constraints' forces so far */
@@ -336,8 +340,10 @@ void csf_constraint_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 		}
 		csf_contact_apply(p, x, m);
 		add_forces(cs, m, &most, &size);
+		for (uint32_t k = 0; k < cs->n; k++) cs->mut[k] += cs->mu[k];
 		if (most <= 1e-14 * size) break;
 	}
+	memcpy(cs->mu, cs->mut, cs->n * sizeof *cs->mu); /* each turn's were the change: the whole for the guards */
 }
 
 void csf_cons_correct(csf_cons *cs, const double *m, double *y, int what)
@@ -469,14 +475,19 @@ int csf_cons_state(const csf_cons *cs, const double *m, uint32_t k, double *g, d
 {
 	const csf_prog *p = cs->p;
 	const csf_con *c = &p->cons[k];
-	double s = side(c), size = size_of(p, m, k), vsize = 0, jv = 0;
+	double s = side(c), size = size_of(p, m, k), vsize = 0, asize = fabs(m[c->c]), jv = 0;
 	for (uint32_t e = c->first; e < c->first + c->n; e++) {
 		const csf_conbody *b = &p->conbodies[e];
 		double jj = dot3(m + b->J, m + b->J);
 		vsize += sqrt(jj * dot3(m + b->v, m + b->v));
+		/* the acceleration's size with and without the constraints' forces: the same taut or slack */
+		asize += sqrt(jj * dot3(m + b->a, m + b->a)) + sqrt(jj * dot3(m + b->fc, m + b->fc)) * inv_mass(b, m);
 		jv += dot3(m + b->J, m + b->v);
 	}
-	vsize += fabs(m[c->gd] - jv);
+	/* a rate is measured against its terms' sizes, and against what the accelerations change it by
+	   in 1e-4 s (a billionth of that, 1e-13 s, the time events are located to, is rounding): at
+	   rest after an impact, what is left of the velocity along it is noise, not a direction */
+	vsize += fabs(m[c->gd] - jv) + 1e-4 * asize;
 	*g = size > 0 ? s * m[c->g] / size : 0;
 	*gd = vsize > 0 ? s * m[c->gd] / vsize : 0;
 	return s != 0;

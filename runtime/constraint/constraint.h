@@ -52,8 +52,9 @@ double csf_cons_resolution(const csf_cons *cs, const double *m, uint32_t k);
 void csf_cons_impulse(csf_cons *cs, const double *m, double *y, uint32_t k, double e);
 /*
  * One-sided constraint k in m: *g and *gd, its value and rate relative to
- * the sizes of their terms, signed so that positive breaks it (0 for an
- * equality, which returns 0; else 1).
+ * the sizes of their terms (the rate's also to 1e-4 s times its
+ * acceleration's), signed so that positive breaks it (0 for an equality,
+ * which returns 0; else 1).
  */
 int csf_cons_state(const csf_cons *cs, const double *m, uint32_t k, double *g, double *gd);
 /*
