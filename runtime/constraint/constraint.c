@@ -362,6 +362,41 @@ void csf_cons_correct(csf_cons *cs, const double *m, double *y, int what)
 	}
 }
 
+/* The size of the terms of constraint k's g: |LHS| + |RHS| and each body's |J| |pos|. */
+static double size_of(const csf_prog *p, const double *m, uint32_t k)
+{
+	const csf_con *c = &p->cons[k];
+	double size = m[c->scale];
+	for (uint32_t e = c->first; e < c->first + c->n; e++) {
+		const csf_conbody *b = &p->conbodies[e];
+		size += sqrt(dot3(m + b->J, m + b->J) * dot3(m + b->pos, m + b->pos));
+	}
+	return size;
+}
+
+/*
+ * The size of the terms of constraint k's rate gd = sum_b J_b . v_b + g_t:
+ * each body's |J_b| |v_b| and |g_t|, and what the accelerations change it by
+ * in 1e-4 s (a billionth of that, 1e-13 s, the time events are located to,
+ * is rounding): at rest after an impact, what is left of a velocity along a
+ * constraint is noise, not a direction. The acceleration's size is taken
+ * with and without the constraints' forces, the same taut or slack.
+ */
+static double rate_size(const csf_cons *cs, const double *m, uint32_t k)
+{
+	const csf_prog *p = cs->p;
+	const csf_con *c = &p->cons[k];
+	double vsize = 0, asize = fabs(m[c->c]), jv = 0;
+	for (uint32_t e = c->first; e < c->first + c->n; e++) {
+		const csf_conbody *b = &p->conbodies[e];
+		double jj = dot3(m + b->J, m + b->J);
+		vsize += sqrt(jj * dot3(m + b->v, m + b->v));
+		asize += sqrt(jj * dot3(m + b->a, m + b->a)) + sqrt(jj * dot3(m + b->fc, m + b->fc)) * inv_mass(b, m);
+		jv += dot3(m + b->J, m + b->v);
+	}
+	return vsize + fabs(m[c->gd] - jv) + 1e-4 * asize;
+}
+
 double csf_cons_residual(const csf_cons *cs, const double *m, int what, uint32_t *worst, double *abs_res)
 {
 	const csf_prog *p = cs->p;
@@ -374,21 +409,10 @@ double csf_cons_residual(const csf_cons *cs, const double *m, int what, uint32_t
 		double r, size;
 		if (what == CSF_CONS_POS) {
 			r = m[c->g];
-			size = m[c->scale];
-			for (uint32_t e = c->first; e < c->first + c->n; e++) {
-				const csf_conbody *b = &p->conbodies[e];
-				size += sqrt(dot3(m + b->J, m + b->J) * dot3(m + b->pos, m + b->pos));
-			}
-		} else { /* gd = J v + g_t: its terms' sizes */
-			double jv = 0;
-			size = 0;
-			for (uint32_t e = c->first; e < c->first + c->n; e++) {
-				const csf_conbody *b = &p->conbodies[e];
-				jv += dot3(m + b->J, m + b->v);
-				size += sqrt(dot3(m + b->J, m + b->J) * dot3(m + b->v, m + b->v));
-			}
+			size = size_of(p, m, k);
+		} else {
 			r = m[c->gd];
-			size += fabs(r - jv);
+			size = rate_size(cs, m, k);
 		}
 		double rel = r == 0 ? 0 : size > 0 ? fabs(r) / size : INFINITY;
 		if (rel > most) {
@@ -417,18 +441,6 @@ double csf_cons_force(const csf_cons *cs, uint32_t k) { return cs->mu[k]; }
 
 /* The side a one-sided constraint breaks on: +1 for g <= 0 (breaks when g > 0), -1 for g >= 0, 0 for an equality. */
 static double side(const csf_con *c) { return c->kind == CSF_CON_LE ? 1 : c->kind == CSF_CON_GE ? -1 : 0; }
-
-/* The size of the terms of constraint k's g: |LHS| + |RHS| and each body's |J| |pos|. */
-static double size_of(const csf_prog *p, const double *m, uint32_t k)
-{
-	const csf_con *c = &p->cons[k];
-	double size = m[c->scale];
-	for (uint32_t e = c->first; e < c->first + c->n; e++) {
-		const csf_conbody *b = &p->conbodies[e];
-		size += sqrt(dot3(m + b->J, m + b->J) * dot3(m + b->pos, m + b->pos));
-	}
-	return size;
-}
 
 double csf_cons_resolution(const csf_cons *cs, const double *m, uint32_t k) { return 1e-13 * size_of(cs->p, m, k); }
 
@@ -475,19 +487,7 @@ int csf_cons_state(const csf_cons *cs, const double *m, uint32_t k, double *g, d
 {
 	const csf_prog *p = cs->p;
 	const csf_con *c = &p->cons[k];
-	double s = side(c), size = size_of(p, m, k), vsize = 0, asize = fabs(m[c->c]), jv = 0;
-	for (uint32_t e = c->first; e < c->first + c->n; e++) {
-		const csf_conbody *b = &p->conbodies[e];
-		double jj = dot3(m + b->J, m + b->J);
-		vsize += sqrt(jj * dot3(m + b->v, m + b->v));
-		/* the acceleration's size with and without the constraints' forces: the same taut or slack */
-		asize += sqrt(jj * dot3(m + b->a, m + b->a)) + sqrt(jj * dot3(m + b->fc, m + b->fc)) * inv_mass(b, m);
-		jv += dot3(m + b->J, m + b->v);
-	}
-	/* a rate is measured against its terms' sizes, and against what the accelerations change it by
-	   in 1e-4 s (a billionth of that, 1e-13 s, the time events are located to, is rounding): at
-	   rest after an impact, what is left of the velocity along it is noise, not a direction */
-	vsize += fabs(m[c->gd] - jv) + 1e-4 * asize;
+	double s = side(c), size = size_of(p, m, k), vsize = rate_size(cs, m, k);
 	*g = size > 0 ? s * m[c->g] / size : 0;
 	*gd = vsize > 0 ? s * m[c->gd] / vsize : 0;
 	return s != 0;

@@ -121,6 +121,25 @@ int csf_run_cons_start(run *r, double *y, FILE *err)
 }
 
 /*
+ * The contacts' impulses are not solved together with the constraints: a
+ * bob that strikes a peg across its rod (a cradle's balls, hung by strings)
+ * is exact, the rod's rate untouched; one that strikes it at a slant would
+ * have the part of its rebound along the rod taken away by the projection.
+ * That answer would be wrong, so it is an error, not a result.
+ */
+int csf_run_cons_impact(run *r, double t, double *y)
+{
+	uint32_t k;
+	if (!r->cons) return 0;
+	if (eval_at(r, t, y)) return 1;
+	double res = csf_cons_residual(r->cons, r->m, CSF_CONS_VEL, &k, NULL);
+	if (!(res > 1e-6)) return 0;
+	r->conflict = r->con_impact = 1, r->con_k = k, r->con_off = res;
+	r->fail = 1, r->fail_t = t;
+	return 1;
+}
+
+/*
  * The modes of the one-sided constraints, one change at a time until none
  * is called for: a slack one at its bound goes taut, with an impulse of its
  * restitution when it is moving to break (a string jerked taut), or without

@@ -128,6 +128,7 @@ int csf_run_update_modes(run *r, double t, double *y)
 		if (!st && csf_contacts_unsolved(r->cs)) r->unsettled = CSF_SETTLE_FORCES, r->unsettled_t = t, st = 1;
 		if (st) return 1;
 		memcpy(y, r->m + p->ystart, p->ny * sizeof *y);
+		if (csf_run_cons_impact(r, t, y)) return 1;
 		csf_run_free_modes(r, t, y);
 	}
 	if (csf_run_cons_modes(r, t, y)) return 1;

@@ -251,7 +251,16 @@ int csf_run_report_stop(run *r, const stop *s, int fixed, FILE *err)
 		const csf_src *src = &p->srcs[c->src];
 		char ob[32];
 		csf_fmt_double(ob, r->con_off);
-		if (s->kind == STOP_CON_START)
+		if (r->con_impact) {
+			uint32_t oi = 0, oj = 0;
+			if (r->last >= (long)r->gcont) csf_contacts_objects(r->cs, (uint32_t)(r->last - (long)r->gcont) / 2, &oi, &oj);
+			fprintf(err, "%s:%lu: error: at t=%s an impact", csf_str(p, p->files[src->file]), (unsigned long)src->line, tb);
+			if (r->last >= (long)r->gcont)
+				fprintf(err, " of '%s' and '%s'", csf_str(p, p->objects[oi]), csf_str(p, p->objects[oj]));
+			fprintf(err, " changes the rate of rule C at line %lu (by %s of its terms): impacts are not yet solved "
+			        "together with constraints, and only one across them is exact (%s)\n",
+			        (unsigned long)src->line, ob, csf_str(p, src->text));
+		} else if (s->kind == STOP_CON_START)
 			fprintf(err, "%s:%lu: error: rule C at line %lu is off by %s%s%s at t = 0 (%s): the initial positions must "
 			        "satisfy every constraint (to 1e-9 relative)\n", csf_str(p, p->files[src->file]),
 			        (unsigned long)src->line, (unsigned long)src->line, ob, *csf_str(p, c->unit) ? " " : "",

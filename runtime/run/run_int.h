@@ -46,7 +46,8 @@ typedef struct run {
 	double *cw, *cy;  /* with constraints: a derivative and a state to work in (constrain.c) */
 	uint32_t con_k;   /* a constraint that failed (STOP_CON_START, STOP_CON_CONFLICT) */
 	double con_off;   /* by how much */
-	int conflict;     /* the constraints contradict each other (csf_cons_failed) */
+	int conflict;     /* the constraints contradict each other (csf_cons_failed), or an impact broke one */
+	int con_impact;   /* an impact broke constraint con_k (by con_off of its rate's terms) */
 	uint32_t ncg;     /* the constraints' guards: one a constraint when one of them is one-sided, else none */
 	uint32_t gcont;   /* the first contact guard: after the comparisons' and the constraints' */
 	unsigned long nchoices, ncand, maxcand; /* for --stats: the choices of candidates, their sum and largest */
@@ -224,6 +225,9 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
                 size_t msglen);
 
 /* constrain.c */
+/* After the contacts' impulses at (t, y): nonzero (r->conflict, r->con_impact) if they broke a
+   constraint's rate by more than 1e-6 of its terms: impulses are not solved together with constraints. */
+int csf_run_cons_impact(run *r, double t, double *y);
 /* The modes of the one-sided constraints at (t, y): taut (with an impulse) or slack. Nonzero if an
    evaluation failed or they do not come to rest (r->conflict). */
 int csf_run_cons_modes(run *r, double t, double *y);
