@@ -9,17 +9,21 @@
 #
 # Design: a POSIX shell script over installed pieces. The CSV (a file, or
 # standard input copied to a temporary file) is read twice by awk: once to
-# count the rows and to find the constant columns, once to keep every k-th
-# row (k = ceil(rows / --max-rows); the last row always) for display. The
-# page is the template viewer/view.html with its marker lines replaced by the
-# files they name: Debian's three.js and dygraphs (libjs-three,
-# libjs-dygraphs), the decimated CSV as the text of a <script type=text/csv>,
-# the scene's facts as a small JavaScript object, and viewer/view.js. Nothing
-# on the page refers to another file. The static plots are a gnuplot script
-# written by awk from the header. What the CSV cannot say (planes, radii of
-# objects whose radius was not watched, the scene's end time) comes from the
-# scene's source (--scene) or from flags; csfvm's stderr (--log) says whether
-# the run ended early.
+# count the rows, to find the constant columns and the range of every pos
+# column, once to keep every k-th row (k = ceil(rows / --max-rows); the last
+# row always) for display. The page is the template viewer/view.html with
+# its marker lines replaced by the files they name: Debian's three.js and
+# dygraphs (libjs-three, libjs-dygraphs), the decimated CSV as the text of a
+# <script type=text/csv>, the scene's facts as a small JavaScript object
+# (CSF_META), and viewer/view.js. Nothing on the page refers to another
+# file. The static plots are a gnuplot script written by awk from the
+# header. What the CSV cannot say (planes, radii of objects whose radius was
+# not watched, the scene's end time, its fixed objects and the rods, strings
+# and springs between objects) comes from the scene's source (--scene) or
+# from flags; csfvm's stderr (--log) says whether the run ended early. The
+# geometry the page needs from the whole run, the box of every centre and
+# the rectangle each plane is drawn as, is worked out here too, so that the
+# page's numbers can be checked as text.
 #
 # Exit status: 0, 1 (the input is not a CSV csfview can read), 2 (bad usage,
 # an unreadable or unwritable file, a missing package).
@@ -127,8 +131,9 @@ fi
 [ -n "$title" ] || title=$name
 
 # Pass 1: count the rows, check every row has the header's number of fields,
-# find the columns that never change; writes cols.tsv (index, name, unit, constant)
-# and facts (rows, last t).
+# find the columns that never change and the range of every pos column;
+# writes cols.tsv (index, name, unit, constant, first value, and for a pos
+# column its least and greatest value) and facts (rows, last t).
 awk -F, -v cols="$T/cols.tsv" '
 	NR == 1 {
 		sub(/\r$/, "")
@@ -147,6 +152,7 @@ awk -F, -v cols="$T/cols.tsv" '
 			name[i] = h
 			un[i] = unit
 			const[i] = 1
+			if (h ~ /(^|\.)pos\.[xyz]$/) pc[++npc] = i
 		}
 		next
 	}
@@ -156,14 +162,25 @@ awk -F, -v cols="$T/cols.tsv" '
 		if ($1 !~ /^[-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?$/) {
 			printf "csfview: line %d: the first field is not a number: %s\n", NR, $1 > "/dev/stderr"; bad = 1; exit 1
 		}
-		if (NR == 2) for (i = 1; i <= NF; i++) first[i] = $i
-		else for (i = 2; i <= NF; i++) if (const[i] && $i != first[i]) const[i] = 0
+		if (NR == 2) {
+			for (i = 1; i <= NF; i++) first[i] = $i
+			for (j = 1; j <= npc; j++) { i = pc[j]; lo[i] = hi[i] = $i + 0 }
+		} else {
+			for (i = 2; i <= NF; i++) if (const[i] && $i != first[i]) const[i] = 0
+			for (j = 1; j <= npc; j++) {
+				i = pc[j]
+				if ($i + 0 < lo[i]) lo[i] = $i + 0
+				if ($i + 0 > hi[i]) hi[i] = $i + 0
+			}
+		}
 		last = $1
 	}
 	END {
 		if (bad) exit 1
 		if (NR < 2) { print "csfview: no data rows" > "/dev/stderr"; exit 1 }
-		for (i = 1; i <= nf; i++) printf "%d\t%s\t%s\t%d\n", i, name[i], un[i], (i > 1 && const[i]) > cols
+		CONVFMT = OFMT = "%.17g"
+		for (i = 1; i <= nf; i++)
+			printf "%d\t%s\t%s\t%d\t%s\t%s\t%s\n", i, name[i], un[i], (i > 1 && const[i]), first[i], lo[i], hi[i] > cols
 		printf "rows=%d\nlast=%s\n", NR - 1, last
 	}' "$in" >"$T/facts" || exit 1
 rows=$(sed -n 's/^rows=//p' "$T/facts")
@@ -172,10 +189,16 @@ stride=$(((rows - 1 + maxrows - 1) / maxrows))   # at most maxrows intervals
 [ "$stride" -ge 1 ] || stride=1
 
 # The scene's source: planes (object P: plane, with its point, normal and
-# edge), radii (of objects and of the kinds they are made of) and the end
-# time (inc t till T). Lengths in m, cm, mm, km, ft or in; times in s, ms,
-# min or h; a bare number is taken as SI. Writes lines "plane ...", "radius
-# NAME R" and "till T" in SI.
+# edge), radii (of objects and of the kinds they are made of), the end time
+# (inc t till T), the fixed objects (object P: anchor, at its pos or the
+# anchor's (0, 0, 0) m; or an object with a pos, no kind and no v) and what
+# joins two objects: rule C for A, B: with = (a rod) or <= / >= (a string),
+# its length when the equation is (pos - pos$1).mag against a length, and
+# rule F for A, B: (a spring). Objects in for are names or numbers (from 0
+# in the order of their first line). Lengths in m, cm, mm, km, ft or in;
+# times in s, ms, min or h; a bare number is taken as SI. Writes lines
+# "plane NAME POINT NORMAL EDGE", "radius NAME R", "till T", "anchor NAME
+# [X Y Z]" and "link A B rod|string|spring LENGTH|- OP|-" in SI.
 if [ -n "$scene" ]; then
 	awk '
 	function si(num, u, kind) {
@@ -189,7 +212,34 @@ if [ -n "$scene" ]; then
 		if (n != 3) return ""
 		return si(a[1], u, "L") " " si(a[2], u, "L") " " si(a[3], u, "L")
 	}
+	# the vector of "... = (X, Y, Z) UNIT" (no unit when bare), or "" when
+	# it is not three numbers in a length unit
+	function vecof(s, bare,    inner, u, v) {
+		inner = s; sub(/^[^(]*\(/, "", inner); u = inner; sub(/\).*/, "", inner)
+		sub(/^[^)]*\) */, "", u); sub(/ .*/, "", u)
+		v = vec(inner, bare ? "" : u)
+		return v ~ /\?/ ? "" : v
+	}
+	# an object of a for list: a name, or a number in the order of definition
+	function obj(s) {
+		if (s !~ /^[0-9]+$/) return s
+		return (s + 0) in byindex ? byindex[s + 0] : ""
+	}
+	# (pos - pos$1).mag between the rule objects a and b, spaces removed
+	function isdist(x, a, b) {
+		return x == "(pos-pos$1).mag" || x == "(pos$1-pos).mag" || x == "(pos$0-pos$1).mag" ||
+			x == "(pos$1-pos$0).mag" || x == "(" a ".pos-" b ".pos).mag" || x == "(" b ".pos-" a ".pos).mag"
+	}
+	# a length: a number with a length unit, or a global that is one; "-" if not
+	function metres(x,    n) {
+		if (x in glob) return glob[x]
+		if (!match(x, /^[-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?/)) return "-"
+		n = substr(x, 1, RLENGTH)
+		x = substr(x, RLENGTH + 1)
+		return x in LEN ? n * LEN[x] : "-"
+	}
 	BEGIN {
+		CONVFMT = OFMT = "%.15g"
 		LEN["m"] = 1; LEN["cm"] = 0.01; LEN["mm"] = 0.001; LEN["km"] = 1000; LEN["ft"] = 0.3048; LEN["in"] = 0.0254
 		TIM["s"] = 1; TIM["ms"] = 0.001; TIM["min"] = 60; TIM["h"] = 3600
 	}
@@ -203,6 +253,10 @@ if [ -n "$scene" ]; then
 		next
 	}
 	{ def = "" }
+	/^object [A-Za-z_][A-Za-z0-9_]*:/ {
+		o = $2; sub(/:.*/, "", o)
+		if (!(o in number)) { number[o] = nobj; byindex[nobj++] = o }
+	}
 	/^object [A-Za-z_][A-Za-z0-9_]*: *[A-Za-z_][A-Za-z0-9_]* *$/ {
 		o = $2; sub(/:$/, "", o); k = $3
 		if (o ~ /:/) { split(o, a, ":"); o = a[1]; k = a[2] }
@@ -213,15 +267,29 @@ if [ -n "$scene" ]; then
 	/^object [A-Za-z_][A-Za-z0-9_]*: *(vector +)?(point|normal|edge) *= *\(/ {
 		o = $2; sub(/:.*/, "", o)
 		p = $0; sub(/^[^:]*: *(vector +)?/, "", p); prop = p; sub(/ *=.*/, "", prop)
-		inner = p; sub(/^[^(]*\(/, "", inner); u = inner; sub(/\).*/, "", inner); sub(/^[^)]*\) */, "", u); sub(/ .*/, "", u)
-		v = vec(inner, prop == "normal" ? "" : u)
-		if (v != "" && v !~ /\?/) { if (prop == "point") pt[o] = v; else if (prop == "normal") nm[o] = v; else ed[o] = v }
+		v = vecof(p, prop == "normal")
+		if (v != "") { if (prop == "point") pt[o] = v; else if (prop == "normal") nm[o] = v; else ed[o] = v }
 		next
 	}
+	/^object [A-Za-z_][A-Za-z0-9_]*: *(vector +)?pos *=/ { o = $2; sub(/:.*/, "", o); pos[o] = vecof($0, 0); next }
+	/^object [A-Za-z_][A-Za-z0-9_]*: *(vector +)?v *=/ { o = $2; sub(/:.*/, "", o); hasv[o] = 1; next }
 	/^object [A-Za-z_][A-Za-z0-9_]*: *radius *= *[-+.0-9eE]+/ {
 		o = $2; sub(/:.*/, "", o)
 		s = $0; sub(/^[^=]*= */, "", s); split(s, a, / +/); r = si(a[1], a[2], "L")
 		if (r != "?") objr[o] = r
+		next
+	}
+	/^global [A-Za-z_][A-Za-z0-9_]* *= *[-+.0-9eE]+ *[a-z]* *$/ {
+		s = $0; sub(/^global +/, "", s); g = s; sub(/ *=.*/, "", g); sub(/^[^=]*= */, "", s)
+		split(s, a, / +/)
+		if (a[2] in LEN) glob[g] = si(a[1], a[2], "L")
+		next
+	}
+	/^rule [CF] +for +[^:]+:/ {
+		s = $0; sub(/^rule +/, "", s); at = substr(s, 1, 1); sub(/^[CF] +for +/, "", s)
+		i = index(s, ":"); list = substr(s, 1, i - 1); body = substr(s, i + 1)
+		gsub(/[ \t]/, "", list)
+		if (split(list, a, ",") == 2) { ++nr; ra[nr] = a[1]; rb[nr] = a[2]; rat[nr] = at; rbody[nr] = body }
 		next
 	}
 	/^inc t till / { s = $0; sub(/^inc t till +/, "", s); split(s, a, / +/); u = a[2] == "by" || a[2] == "watch" ? "" : a[2]; till = si(a[1], u, "T") }
@@ -230,6 +298,28 @@ if [ -n "$scene" ]; then
 		for (o in kind) if (!(o in objr) && kind[o] in defr) objr[o] = defr[kind[o]]
 		for (o in objr) print "radius", o, objr[o]
 		if (till != "" && till != "?") print "till", till
+		for (i = 0; i < nobj; i++) {
+			o = byindex[i]
+			if ((o in kind) ? kind[o] == "anchor" : !(o in isplane) && (o in pos) && !(o in hasv))
+				print "anchor", o, (o in pos) ? pos[o] : "0 0 0"
+		}
+		for (i = 1; i <= nr; i++) {
+			oa = obj(ra[i]); ob = obj(rb[i])
+			if (oa == "" || ob == "" || oa == ob) continue
+			len = "-"; op = "-"; k = "spring"
+			if (rat[i] == "C") {
+				e = rbody[i]; gsub(/[ \t]/, "", e)
+				op = index(e, "<=") ? "<=" : index(e, ">=") ? ">=" : "="
+				j = index(e, op); lhs = substr(e, 1, j - 1); rhs = substr(e, j + length(op))
+				k = op == "=" ? "rod" : "string"
+				if (isdist(lhs, oa, ob)) len = metres(rhs)
+				else if (isdist(rhs, oa, ob)) { len = metres(lhs); op = op == "<=" ? ">=" : op == ">=" ? "<=" : op }
+			}
+			key = k SUBSEP (oa < ob ? oa SUBSEP ob : ob SUBSEP oa)
+			if (key in seen) continue
+			seen[key] = 1
+			print "link", oa, ob, k, len, op
+		}
 	}' "$scene" >"$T/scene"
 else
 	: >"$T/scene"
@@ -261,14 +351,124 @@ page() {
 		[ -r "$f" ] || die "$f is missing: install libjs-three and libjs-dygraphs (make deps)"
 	done
 	[ -r "$VIEWDIR/view.html" ] && [ -r "$VIEWDIR/view.js" ] || die "the viewer's files are missing in $VIEWDIR"
-	# the facts for view.js
-	awk -v rows="$rows" -v stride="$stride" '
-		$1 == "plane" { pl = pl sprintf("%s{name:\"%s\",point:[%s,%s,%s],normal:[%s,%s,%s],edge:[%s,%s,%s]}", pl == "" ? "" : ",", $2, $3, $4, $5, $6, $7, $8, $9, $10, $11) }
-		$1 == "radius" { ra = ra sprintf("%s\"%s\":%s", ra == "" ? "" : ",", $2, $3) }
-		$1 == "till" { till = $2 }
+	# the facts for view.js, in metres: the planes, each with the rectangle
+	# it is drawn as; the radii (a NAME.radius column's first value, else the
+	# scene's); the box of every object's centre over the run (the CSV's pos
+	# columns, the fixed objects' scene positions); the fixed objects; the links
+	awk -F'\t' -v rows="$rows" -v stride="$stride" '
+		function factor(u) { return u in LEN ? LEN[u] : 1 }
+		function js(a, b, c) { return "[" a "," b "," c "]" }
+		function dot(a, b) { return a[1] * b[1] + a[2] * b[2] + a[3] * b[3] }
+		function unit(a,    l) { l = sqrt(dot(a, a)); if (l > 0) { a[1] /= l; a[2] /= l; a[3] /= l }; return l }
+		function grow(k, c0, c1, r) {
+			if (!nbox || c0 < lo[k]) lo[k] = c0
+			if (!nbox || c1 > hi[k]) hi[k] = c1
+			if (!nbox || c0 - r < elo[k]) elo[k] = c0 - r
+			if (!nbox || c1 + r > ehi[k]) ehi[k] = c1 + r
+		}
+		function radius(o) { return o in colr ? colr[o] : o in sr ? sr[o] : 0 }
+		# plane i drawn as a rectangle: the box grown by its radii, projected
+		# onto the plane, a margin of a quarter of the box on every side, cut
+		# at the edge line; its centre, sides u and v and size
+		function rect(i,    P, N, E, U, V, A, d, k, c, cu, cv, u0, u1, v0, v1, m, ue, ext, mid) {
+			split(ppt[i], P, " "); split(pnm[i], N, " "); split(ped[i], E, " ")
+			if (unit(N) == 0) { N[1] = 0; N[2] = 0; N[3] = 1 }
+			d = dot(E, N)
+			for (k = 1; k <= 3; k++) U[k] = E[k] - d * N[k]
+			if (unit(U) == 0) {
+				A[1] = N[1] < 0.9 && N[1] > -0.9; A[2] = !A[1]; A[3] = 0
+				d = dot(A, N)
+				for (k = 1; k <= 3; k++) U[k] = A[k] - d * N[k]
+				unit(U)
+			}
+			V[1] = N[2] * U[3] - N[3] * U[2]; V[2] = N[3] * U[1] - N[1] * U[3]; V[3] = N[1] * U[2] - N[2] * U[1]
+			ext = 0
+			for (k = 1; k <= 3; k++) if (ehi[k] - elo[k] > ext) ext = ehi[k] - elo[k]
+			m = (ext > 0 ? ext : 1) / 4
+			for (c = 0; c < 8; c++) {
+				for (k = 1; k <= 3; k++) A[k] = (int(c / 2 ^ (k - 1)) % 2 ? ehi[k] : elo[k]) - P[k]
+				cu = dot(A, U); cv = dot(A, V)
+				if (!c || cu < u0) u0 = cu
+				if (!c || cu > u1) u1 = cu
+				if (!c || cv < v0) v0 = cv
+				if (!c || cv > v1) v1 = cv
+			}
+			u0 -= m; u1 += m; v0 -= m; v1 += m
+			if (dot(E, E) > 0) {
+				ue = dot(E, U)
+				if (u1 > ue) u1 = ue
+				if (u0 > u1 - m) u0 = u1 - m
+			}
+			for (k = 1; k <= 3; k++) mid[k] = P[k] + U[k] * (u0 + u1) / 2 + V[k] * (v0 + v1) / 2
+			return sprintf(",centre:%s,u:%s,v:%s,size:[%s,%s]", js(mid[1], mid[2], mid[3]), js(U[1], U[2], U[3]),
+				js(V[1], V[2], V[3]), u1 - u0, v1 - v0)
+		}
+		BEGIN {
+			CONVFMT = OFMT = "%.15g"
+			LEN["m"] = 1; LEN["cm"] = 0.01; LEN["mm"] = 0.001; LEN["km"] = 1000; LEN["ft"] = 0.3048; LEN["in"] = 0.0254
+		}
+		# cols.tsv: index, name, unit, constant, first, least, greatest
+		FNR == NR && $2 ~ /(^|\.)pos\.[xyz]$/ {
+			o = $2; sub(/\.?pos\.[xyz]$/, "", o)
+			if (o == "") o = "pos"
+			k = index("xyz", substr($2, length($2)))
+			clo[o, k] = $6 * factor($3); chi[o, k] = $7 * factor($3)
+			if (++naxes[o] == 3) csvobj[++ncsv] = o
+			next
+		}
+		FNR == NR && $2 ~ /\.radius$/ { o = $2; sub(/\.radius$/, "", o); colr[o] = $5 * factor($3); next }
+		FNR == NR && $2 ~ /\.(normal|point|edge)\.[xyz]$/ {
+			o = $2; sub(/\.(normal|point|edge)\.[xyz]$/, "", o)
+			p = $2; sub(/\.[xyz]$/, "", p); sub(/^.*\./, "", p)
+			k = index("xyz", substr($2, length($2)))
+			val[o, p, k] = $5 * (p == "normal" ? 1 : factor($3))
+			if (++cn[o, p] == 3 && p == "normal") csvplane[++ncp] = o
+			next
+		}
+		FNR == NR { next }
+		# the scene: see above
+		{ n = split($0, w, " ") }
+		w[1] == "plane" { np++; pname[np] = w[2]; ppt[np] = w[3] " " w[4] " " w[5]; pnm[np] = w[6] " " w[7] " " w[8]; ped[np] = w[9] " " w[10] " " w[11]; byplane[w[2]] = np }
+		w[1] == "radius" { sr[w[2]] = w[3] }
+		w[1] == "till" { till = w[2] }
+		w[1] == "anchor" { anchor[++na] = w[2]; if (n == 5) apos[w[2]] = w[3] " " w[4] " " w[5] }
+		w[1] == "link" { li = li sprintf("%s{a:\"%s\",b:\"%s\",kind:\"%s\",length:%s,op:%s}", li == "" ? "" : ",", w[2], w[3], w[4],
+			w[5] == "-" ? "null" : w[5], w[6] == "-" ? "null" : "\"" w[6] "\"") }
 		END {
-			printf "var CSF_META = {rows: %d, stride: %d, till: %s, planes: [%s], radii: {%s}};\n", rows, stride, till == "" ? "null" : till, pl, ra
-		}' "$T/scene" >"$T/meta.js"
+			for (i = 1; i <= ncsv; i++) {
+				o = csvobj[i]
+				for (k = 1; k <= 3; k++) grow(k, clo[o, k], chi[o, k], radius(o))
+				nbox++
+			}
+			for (i = 1; i <= na; i++) {
+				o = anchor[i]
+				an = an sprintf("%s{name:\"%s\",pos:%s}", an == "" ? "" : ",", o, o in apos ? "[" apos[o] "]" : "null")
+				if (naxes[o] == 3 || !(o in apos)) continue
+				split(apos[o], A, " ")
+				for (k = 1; k <= 3; k++) grow(k, A[k], A[k], radius(o))
+				nbox++
+			}
+			gsub(/ /, ",", an)
+			# a watched plane is drawn where its columns say
+			for (i = 1; i <= ncp; i++) {
+				o = csvplane[i]
+				j = o in byplane ? byplane[o] : ++np
+				pname[j] = o
+				pnm[j] = val[o, "normal", 1] " " val[o, "normal", 2] " " val[o, "normal", 3]
+				ppt[j] = cn[o, "point"] == 3 ? val[o, "point", 1] " " val[o, "point", 2] " " val[o, "point", 3] : "0 0 0"
+				ped[j] = cn[o, "edge"] == 3 ? val[o, "edge", 1] " " val[o, "edge", 2] " " val[o, "edge", 3] : "0 0 0"
+			}
+			for (i = 1; i <= np; i++) {
+				pl = pl sprintf("%s{name:\"%s\",point:[%s],normal:[%s],edge:[%s]%s}", pl == "" ? "" : ",", pname[i],
+					ppt[i], pnm[i], ped[i], nbox ? rect(i) : "")
+			}
+			gsub(/ /, ",", pl)
+			for (o in sr) if (!(o in colr)) colr[o] = sr[o]
+			for (o in colr) ra = ra sprintf("%s\"%s\":%s", ra == "" ? "" : ",", o, colr[o])
+			printf "var CSF_META = {rows: %d, stride: %d, till: %s, planes: [%s], radii: {%s}, box: %s, anchors: [%s], links: [%s]};\n",
+				rows, stride, till == "" ? "null" : till, pl, ra,
+				nbox ? "{lo:" js(lo[1], lo[2], lo[3]) ",hi:" js(hi[1], hi[2], hi[3]) "}" : "null", an, li
+		}' "$T/cols.tsv" "$T/scene" >"$T/meta.js"
 	# every stride-th row and the last; "<" written as \x3c (view.js reads it back)
 	awk -v k="$stride" '
 		{ sub(/\r$/, "") }

@@ -2,14 +2,20 @@
  * pos was watched and a plot of every column against time, one panel per unit.
  *
  * Design: the page carries the run as CSV text (<script id="csv">, every
- * k-th row of the run as csfview decimated it) and the facts the CSV cannot
- * tell as window.CSF_META (rows in the run, k, the scene's end time, planes
- * and radii in metres). The CSV is parsed into one Float64Array per column.
- * An object is a NAME.pos.x/.y/.z triple; its radius is NAME.radius if that
- * was watched, else the scene's, else a size that shows. Planes come from
- * CSF_META or from watched NAME.normal (and NAME.point, NAME.edge) columns.
+ * k-th row of the run as csfview decimated it) and the facts csfview worked
+ * out from the scene and the whole CSV as window.CSF_META, in metres: rows
+ * in the run, k, the scene's end time, the radii, the box of every object's
+ * centre over the run, the planes each with the rectangle to draw, the fixed
+ * objects (anchors) with their positions, and the links (rods, strings,
+ * springs) between two objects. The CSV is parsed into one Float64Array per
+ * column. An object is a NAME.pos.x/.y/.z triple, or a fixed object of the
+ * scene at its scene position when the CSV has no pos of it; its radius is
+ * CSF_META's, else a size that shows. A link is a line between the centres
+ * of its two objects: a rod solid, a string solid when taut and dashed when
+ * slack, a spring a zigzag.
  * One time, state.t, drives everything: the spheres (linear between rows),
- * their trails, the slider, the readout table and the cursor in every plot.
+ * their trails, the links, the slider, the readout table and the cursor in
+ * every plot.
  * three.js (libjs-three) draws the scene; OrbitControls turns and zooms it;
  * a scene that is flat (every z = 0, or every y = 0) is shown face-on with an
  * orthographic camera. dygraphs (libjs-dygraphs) draws the plots; zooming one
@@ -23,7 +29,13 @@
 	var LENGTH = { m: 1, cm: 0.01, mm: 0.001, km: 1000, ft: 0.3048, in: 0.0254 };
 	var COLORS = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd',
 		'#8c564b', '#e377c2', '#17becf', '#bcbd22', '#7f7f7f'];
-	var meta = window.CSF_META || { rows: 0, stride: 1, till: null, planes: [], radii: {} };
+	var FIXED = '#666666';   /* anchors and other fixed objects */
+	/* how each kind of link is drawn: its colour and its name in the legend */
+	var LINKS = { rod: '#333333', string: '#a0522d', spring: '#2a9d4a' };
+	/* a string is slack while its length is short of L by more than this part of L */
+	var SLACK = 1e-6;
+	var meta = window.CSF_META ||
+		{ rows: 0, stride: 1, till: null, planes: [], radii: {}, box: null, anchors: [], links: [] };
 
 	/* The CSV text as {cols: [{name, unit}], data: [Float64Array per column], n}. */
 	function parseCsv(text) {
@@ -82,35 +94,42 @@
 		: n + ' rows, all shown.';
 	document.getElementById('tunit').textContent = tunit;
 
-	/* ---- the objects and planes ---- */
-	var objects = [];
+	/* ---- the objects, links and planes ---- */
+	/* objects: {name, i: its pos columns (or at: its fixed position), fixed, color, radius} */
+	var anchors = {};
+	(meta.anchors || []).forEach(function (a) { anchors[a.name] = a; });
+	var objects = [], moving = 0;
 	cols.forEach(function (c) {
 		var m = /^(?:(.*)\.)?pos\.x$/.exec(c.name);
 		var ix = m && triple(m[1] || '', 'pos');
-		if (ix) objects.push({ name: m[1] || 'pos', i: ix, color: COLORS[objects.length % COLORS.length] });
+		if (!ix) return;
+		var name = m[1] || 'pos', fixed = name in anchors;
+		objects.push({ name: name, i: ix, fixed: fixed, color: fixed ? FIXED : COLORS[moving++ % COLORS.length] });
 	});
 	var posUnit = objects.length ? cols[objects[0].i[0]].unit : 'm';
 	var perMetre = 1 / (LENGTH[posUnit] || 1);   /* display units in a metre */
-
-	/* value of column i in the display's length unit (first row) */
-	function length0(i) {
-		return data[i][0] * (LENGTH[cols[i].unit] || 1) * perMetre;
+	var inCsv = objects.length;   /* objects[0 .. inCsv - 1] have columns */
+	function scaled(a) {
+		return a.map(function (v) { return v * perMetre; });
 	}
-
-	var lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-	objects.forEach(function (o) {
-		for (var k = 0; k < 3; k++) {
-			var col = data[o.i[k]];
-			for (var r = 0; r < n; r++) {
-				if (col[r] < lo[k]) lo[k] = col[r];
-				if (col[r] > hi[k]) hi[k] = col[r];
-			}
-		}
-		var ir = byName[o.name + '.radius'];
-		if (ir !== undefined) o.radius = length0(ir);
-		else if (meta.radii[o.name] !== undefined) o.radius = meta.radii[o.name] * perMetre;
-		else o.radius = 0;
+	var objectByName = {};
+	objects.forEach(function (o) { objectByName[o.name] = o; });
+	(meta.anchors || []).forEach(function (a) {
+		if (a.pos && !(a.name in objectByName))
+			objects.push(objectByName[a.name] = { name: a.name, at: scaled(a.pos), fixed: true, color: FIXED });
 	});
+	objects.forEach(function (o) {
+		o.radius = meta.radii[o.name] !== undefined ? meta.radii[o.name] * perMetre : 0;
+	});
+
+	/* links: {a, b (objects, or undefined when the page has no position of one), names, kind, length, op} */
+	var links = (meta.links || []).map(function (l) {
+		return { a: objectByName[l.a], b: objectByName[l.b], names: [l.a, l.b], kind: l.kind,
+			length: l.length === null ? null : l.length * perMetre, op: l.op };
+	});
+
+	var bounds = meta.box || { lo: [0, 0, 0], hi: [0, 0, 0] };   /* of every centre over the run */
+	var lo = scaled(bounds.lo), hi = scaled(bounds.hi);
 	var extent = 0, maxR = 0;
 	objects.forEach(function (o) { maxR = Math.max(maxR, o.radius); });
 	for (var k = 0; k < 3; k++) extent = Math.max(extent, hi[k] - lo[k]);
@@ -125,25 +144,9 @@
 		: mode === 'xz' ? 'Face-on: the x-z plane (every y = 0). Drag to pan, wheel to zoom.'
 		: 'Drag to turn, right-drag to pan, wheel to zoom.';
 
-	var planes = (meta.planes || []).map(function (p) {
-		return {
-			name: p.name,
-			point: p.point.map(function (v) { return v * perMetre; }),
-			normal: p.normal,
-			edge: p.edge.map(function (v) { return v * perMetre; })
-		};
-	});
-	cols.forEach(function (c) {
-		var m = /^(.*)\.normal\.x$/.exec(c.name);
-		var inl = m && triple(m[1], 'normal');
-		if (!inl) return;
-		var ip = triple(m[1], 'point'), ie = triple(m[1], 'edge');
-		planes.push({
-			name: m[1],
-			normal: inl.map(function (i) { return data[i][0]; }),
-			point: ip ? ip.map(length0) : [0, 0, 0],
-			edge: ie ? ie.map(length0) : [0, 0, 0]
-		});
+	/* planes: the rectangles csfview worked out (the box and a margin, projected onto each) */
+	var planes = (meta.planes || []).filter(function (p) { return p.size; }).map(function (p) {
+		return { name: p.name, centre: scaled(p.centre), u: p.u, v: p.v, size: scaled(p.size) };
 	});
 
 	/* ---- time ---- */
@@ -166,11 +169,30 @@
 		return a;
 	}
 
+	/* the row nearest to t */
+	function nearestRow(t) {
+		var row = rowAt(t);
+		return row + 1 < n && T[row + 1] - t < t - T[row] ? row + 1 : row;
+	}
+
 	/* the position of object o at time t, between the rows around it */
 	function positionAt(o, t) {
+		if (o.at) return o.at.slice();
 		var i = rowAt(t), j = Math.min(i + 1, n - 1);
 		var f = j > i && T[j] > T[i] ? Math.min(1, Math.max(0, (t - T[i]) / (T[j] - T[i]))) : 0;
 		return o.i.map(function (c) { return data[c][i] + f * (data[c][j] - data[c][i]); });
+	}
+
+	function distance(p, q) {
+		return Math.sqrt(Math.pow(p[0] - q[0], 2) + Math.pow(p[1] - q[1], 2) + Math.pow(p[2] - q[2], 2));
+	}
+
+	/* a string of known length at row r: slack while shorter than it (longer, for >=) */
+	function slackAt(l, r) {
+		var p = l.a.at || l.a.i.map(function (c) { return data[c][r]; });
+		var q = l.b.at || l.b.i.map(function (c) { return data[c][r]; });
+		var d = distance(p, q);
+		return l.op === '>=' ? d > l.length * (1 + SLACK) : d < l.length * (1 - SLACK);
 	}
 
 	function setTime(t) {
@@ -210,14 +232,14 @@
 
 	/* ---- the readout: t and each object's position ---- */
 	var readout = document.getElementById('readout');
-	if (objects.length) {
+	if (inCsv) {
 		var head = readout.insertRow();
 		['object', 'x', 'y', 'z'].forEach(function (h, k) {
 			var th = document.createElement('th');
 			th.textContent = k ? h + (posUnit ? ' [' + posUnit + ']' : '') : h;
 			head.appendChild(th);
 		});
-		objects.forEach(function (o) {
+		objects.slice(0, inCsv).forEach(function (o) {
 			o.row = readout.insertRow();
 			o.row.id = 'obj-' + o.name;
 			var c = o.row.insertCell();
@@ -226,6 +248,48 @@
 			c.appendChild(document.createTextNode(o.name));
 			o.cells = [o.row.insertCell(), o.row.insertCell(), o.row.insertCell()];
 		});
+	}
+
+	/* ---- the legend of the links, with each string's state ---- */
+	var linksEl = document.getElementById('links');
+	links.forEach(function (l, k) {
+		if (!k) linksEl.appendChild(document.createTextNode('Links: '));
+		l.el = document.createElement('span');
+		l.el.setAttribute('data-link', l.kind + ' ' + l.names.join(' '));
+		l.el.innerHTML = '<span class="swatch"></span>';
+		l.el.firstChild.style.background = LINKS[l.kind];
+		l.text = document.createTextNode('');
+		l.el.appendChild(l.text);
+		linksEl.appendChild(l.el);
+		linksEl.appendChild(document.createTextNode(k + 1 < links.length ? '; ' : '.'));
+	});
+	/* the legend's words for link l, slack or not */
+	function linkText(l, slack) {
+		var s = l.kind + ' ' + l.names.join('\u2013');
+		var missing = l.names.filter(function (name) { return !objectByName[name]; });
+		if (missing.length) return s + ' (not drawn: no position of ' + missing.join(' or ') + ')';
+		if (l.kind !== 'string') return s;
+		return s + (l.length === null ? ' (length unknown: drawn taut)' : slack ? ', slack' : ', taut');
+	}
+
+	/* a spring from p to q: straight ends and ZIGZAG corners width apart
+	 * between them, across the link in the plane of the view */
+	var ZIGZAG = 16;
+	function zigzag(p, q, width) {
+		var d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+		function across(s) { return [d[1] * s[2] - d[2] * s[1], d[2] * s[0] - d[0] * s[2], d[0] * s[1] - d[1] * s[0]]; }
+		function at(f, side) { return [0, 1, 2].map(function (k) { return p[k] + f * d[k] + side * w[k]; }); }
+		var w = across(mode === 'xz' ? [0, 1, 0] : [0, 0, 1]);
+		var len = distance(w, [0, 0, 0]);
+		if (len <= 1e-9 * distance(p, q)) {
+			w = across([1, 0, 0]);
+			len = distance(w, [0, 0, 0]);
+		}
+		w = w.map(function (v) { return len > 0 ? v * width / 2 / len : 0; });
+		var pts = [p, at(0.1, 0)];
+		for (var j = 0; j < ZIGZAG; j++) pts.push(at(0.1 + 0.8 * (j + 0.5) / ZIGZAG, j % 2 ? -1 : 1));
+		pts.push(at(0.9, 0), q);
+		return pts;
 	}
 
 	/* ---- the 3-D view ---- */
@@ -283,34 +347,29 @@
 		if (c.length() < 5 * extent) scene.add(new THREE.AxesHelper(extent * 0.2));
 
 		planes.forEach(function (p) {
-			var nrm = V(p.normal).normalize();
-			var a = Math.abs(nrm.x) < 0.9 ? new THREE.Vector3(1, 0, 0) : new THREE.Vector3(0, 1, 0);
-			var edge = V(p.edge);
-			var u = edge.length() > 0 ? edge.clone().normalize() : a.sub(nrm.clone().multiplyScalar(a.dot(nrm))).normalize();
-			var v = new THREE.Vector3().crossVectors(nrm, u);
-			var size = extent * 1.6;
-			var pt = V(p.point);
-			var mid = c.clone().sub(nrm.clone().multiplyScalar(c.clone().sub(pt).dot(nrm)));
-			if (edge.length() > 0) {   /* the plane ends at the edge line, on the side away from edge */
-				var q = pt.clone().add(edge);
-				mid.sub(u.clone().multiplyScalar(mid.clone().sub(q).dot(u) + size / 2));
-			}
-			var geom = new THREE.PlaneBufferGeometry(size, size);
+			var u = V(p.u), v = V(p.v), nrm = new THREE.Vector3().crossVectors(u, v);
+			var geom = new THREE.PlaneBufferGeometry(p.size[0], p.size[1]);
 			var mesh = new THREE.Mesh(geom, new THREE.MeshBasicMaterial({
 				color: 0x8899aa, transparent: true, opacity: 0.25, side: THREE.DoubleSide, depthWrite: false }));
 			var outline = new THREE.LineSegments(new THREE.EdgesGeometry(geom), new THREE.LineBasicMaterial({ color: 0x445566 }));
 			[mesh, outline].forEach(function (m) {
+				m.name = 'plane ' + p.name;
 				m.quaternion.setFromRotationMatrix(new THREE.Matrix4().makeBasis(u, v, nrm));
-				m.position.copy(mid);
+				m.position.copy(V(p.centre));
 				scene.add(m);
 			});
 		});
 
+		/* a moving object is a sphere with its trail; a fixed one a grey
+		 * sphere of its radius, or a small octahedron when it is a point */
 		objects.forEach(function (o) {
 			var r = o.radius > 0 ? o.radius : extent * 0.02;
-			o.mesh = new THREE.Mesh(new THREE.SphereBufferGeometry(r, 24, 16),
-				new THREE.MeshLambertMaterial({ color: o.color }));
+			var geom = o.fixed && !(o.radius > 0) ? new THREE.OctahedronBufferGeometry(extent * 0.015)
+				: new THREE.SphereBufferGeometry(r, 24, 16);
+			o.mesh = new THREE.Mesh(geom, new THREE.MeshLambertMaterial({ color: o.color }));
+			o.mesh.name = (o.fixed ? 'fixed ' : 'object ') + o.name;
 			scene.add(o.mesh);
+			if (o.fixed) return;
 			var pts = new Float32Array(n * 3);
 			for (var r2 = 0; r2 < n; r2++)
 				for (var k = 0; k < 3; k++) pts[3 * r2 + k] = data[o.i[k]][r2];
@@ -319,6 +378,26 @@
 			g.setDrawRange(0, 1);
 			o.trail = new THREE.Line(g, new THREE.LineBasicMaterial({ color: o.color }));
 			scene.add(o.trail);
+		});
+
+		/* a link is a line of as many points as its shape, moved by show();
+		 * a string has a second, dashed line, shown while it is slack */
+		function line(count, material, name) {
+			var g = new THREE.BufferGeometry();
+			g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * count), 3));
+			var ln = new THREE.Line(g, material);
+			ln.name = name;
+			ln.frustumCulled = false;
+			scene.add(ln);
+			return ln;
+		}
+		links.forEach(function (l) {
+			if (!l.a || !l.b) return;
+			var name = 'link ' + l.kind + ' ' + l.names.join(' ');
+			l.line = line(l.kind === 'spring' ? ZIGZAG + 4 : 2, new THREE.LineBasicMaterial({ color: LINKS[l.kind] }), name);
+			if (l.kind === 'string')
+				l.dashed = line(2, new THREE.LineDashedMaterial({ color: LINKS[l.kind], dashSize: extent * 0.02,
+					gapSize: extent * 0.015 }), name + ' slack');
 		});
 
 		function resize() {
@@ -412,23 +491,45 @@
 	if (!order.length && !constants.length) plotsEl.textContent = 'No column to plot.';
 
 	/* ---- one frame ---- */
+	function setLine(ln, pts) {
+		var a = ln.geometry.attributes.position;
+		pts.forEach(function (p, j) { a.setXYZ(j, p[0], p[1], p[2]); });
+		a.needsUpdate = true;
+	}
 	function show() {
-		var t = state.t;
+		var t = state.t, row = nearestRow(t);
 		objects.forEach(function (o) {
 			var p = positionAt(o, t);
-			for (var k = 0; k < 3; k++) o.cells[k].textContent = fmt(p[k]);
-			o.row.setAttribute('data-pos', p.join(' '));
+			if (o.row) {
+				for (var k = 0; k < 3; k++) o.cells[k].textContent = fmt(p[k]);
+				o.row.setAttribute('data-pos', p.join(' '));
+			}
 			if (view) {
 				o.mesh.position.set(p[0], p[1], p[2]);
-				o.trail.geometry.setDrawRange(0, rowAt(t) + 1);
+				if (o.trail) o.trail.geometry.setDrawRange(0, rowAt(t) + 1);
+			}
+		});
+		/* a string's state is its nearest row's */
+		links.forEach(function (l) {
+			var placed = l.a && l.b;
+			var slack = placed && l.kind === 'string' && l.length !== null && slackAt(l, row);
+			l.text.textContent = linkText(l, slack);
+			l.el.setAttribute('data-state', !placed ? 'none' : l.kind !== 'string' ? 'drawn' : slack ? 'slack' : 'taut');
+			if (!view || !placed) return;
+			var p = positionAt(l.a, t), q = positionAt(l.b, t);
+			var pts = l.kind === 'spring' ? zigzag(p, q, extent * 0.03) : [p, q];
+			setLine(l.line, pts);
+			l.line.visible = !slack;
+			if (l.dashed) {
+				setLine(l.dashed, pts);
+				l.dashed.computeLineDistances();
+				l.dashed.visible = slack;
 			}
 		});
 		if (view) view.render();
 		slider.value = t;
 		timeEl.textContent = fmt(t);
 		timeEl.setAttribute('data-t', t);
-		var row = rowAt(t);
-		if (row + 1 < n && T[row + 1] - t < t - T[row]) row++;
 		graphs.forEach(function (o) {
 			if (row !== state.row) o.g.setSelection(row);
 			var range = o.g.xAxisRange(), area = o.g.getArea();

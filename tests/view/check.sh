@@ -7,14 +7,27 @@
 # text; a plain CSV without units; a run that failed an assertion (--log)
 # and ended before its till (--scene) is noted; a 1e6-row CSV is decimated
 # to every 100th row, said so, in a few seconds; bad usage is exit 2, a file
-# that is no CSV exit 1.
+# that is no CSV exit 1. What joins objects, in the page's CSF_META: the
+# pendulum's rod from bob to pivot (an anchor at the origin), a string of
+# 1 m, a scene's rod (a global in cm), string (written backwards), springs
+# (by number; one named twice) and fixed objects, the
+# spring of examples/spring.csf to an object the CSV has no pos of; the
+# rectangles the planes are drawn as, against the box of the motion worked
+# out by hand (the bouncing ball's floor; the table that ends at its edge).
+# In node, where it is installed, else a SKIP line (tests/view/drawn.js runs
+# the page with a stub DOM and renderer): the rod's ends at the exact
+# pendulum's position; the string slack (dashed) just before it goes taut
+# at t = sqrt(1.6 m / g) and taut (solid, its length L) just after; the
+# spring a zigzag from the exact position to the scene's fixed anchor; the
+# planes drawn at the size CSF_META gives.
 # In headless Chromium, where it is installed (make deps-chromium), else a
 # SKIP line: the pages of the bouncing ball and Newton's cradle load with no
 # console error; the screenshot has drawn pixels in the 3-D view and in the
 # plots; at t = 1.3548 s (#t=1.3548) the page shows the ball on the floor,
 # at t = 0.2 s above it at 1 - g t^2/2; the cradle's last ball at
 # x = 0.6 + (t - 0.105) m; the page of a plain CSV shows its plot; the page
-# of the 1e6-row run says it is decimated.
+# of the 1e6-row run says it is decimated; the string's page loads with no
+# console error and its legend says slack at t = 0.2 s, taut at t = 1 s.
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 CSFVIEW=$3 T=$4
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -24,8 +37,8 @@ pass=0 fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: view: $*"; }
 
-run() { # MODEL: compile and run examples/MODEL.csf into $T/MODEL.csv
-	"$CSFC" "$TOP/examples/$1.csf" -o "$T/$1.csfb" 2>"$T/err" && "$CSFVM" "$T/$1.csfb" >"$T/$1.csv" 2>>"$T/err"
+run() { # MODEL [FILE]: compile and run FILE (examples/MODEL.csf) into $T/MODEL.csv
+	"$CSFC" "${2:-$TOP/examples/$1.csf}" -o "$T/$1.csfb" 2>"$T/err" && "$CSFVM" "$T/$1.csfb" >"$T/$1.csv" 2>>"$T/err"
 }
 
 # the CSV inside a page (between <script id="csv" ...> and </script>)
@@ -102,7 +115,162 @@ printf 't,x\n0,1\n1\n' | "$CSFVIEW" -o "$T/x.html" 2>"$T/err"; st=$?
 : | "$CSFVIEW" -o "$T/x.html" 2>/dev/null; [ $? -eq 1 ] || { u=1; bad "empty input: not exit 1"; }
 [ $u -eq 0 ] && ok
 
-# 7. in headless Chromium
+# 7. what joins objects, the fixed objects and the planes' rectangles, in CSF_META
+meta() { # PAGE: the line of CSF_META
+	grep -o 'var CSF_META = .*' "$1"
+}
+page() { # MODEL FILE: run FILE and write its page $T/MODEL.html
+	run "$1" "$2" && "$CSFVIEW" --scene "$2" -o "$T/$1.html" "$T/$1.csv" 2>>"$T/err"
+}
+has() { # MODEL TEXT...: the page of MODEL has every TEXT in its CSF_META
+	m=$1
+	shift
+	for want in "$@"; do
+		meta "$T/$m.html" | grep -qF "$want" || { bad "$m: CSF_META lacks $want: $(meta "$T/$m.html")"; return 1; }
+	done
+	ok
+}
+if page pendulum "$TOP/examples/pendulum.csf"; then
+	has pendulum 'anchors: [{name:"pivot",pos:[0,0,0]}]' 'links: [{a:"bob",b:"pivot",kind:"rod",length:1,op:"="}]'
+else bad "pendulum: $(head -n 2 "$T/err")"; fi
+# the scenes are written here, not kept as .csf files (tests/layout/check.sh
+# takes the digests of every .csf under tests/)
+cat >"$T/string_swing.csf" <<'EOF'
+# A ball on a string of 1 m from a pivot at the origin, let go at rest
+# 0.6 m beside it, the string slack. It falls freely until the string goes
+# taut at z = -0.8 m, at t = sqrt(1.6 m / g) = 0.40393 s; cr 0, so the
+# impact is plastic (it keeps the 0.6 g t of its speed across the string)
+# and the string stays taut: the ball swings on it, up to z = -0.8 m +
+# (0.6 g t)^2 / (2 g) = -0.512 m, below the pivot, where the tension
+# m (g cos(angle) + v^2 / L) is still positive.
+using mechanics/mass_point
+object pivot: anchor
+object ball: mass_point
+object ball: cr = 0
+object ball: pos = (0.6, 0, 0) m
+using mechanics/rules
+rule F: W = g.mul(m)
+rule C for ball, pivot: (pos - pos$1).mag <= 1 m
+inc t till 2 s by 0.01 s watch pos
+EOF
+cat >"$T/links.csf" <<'EOF'
+# What csfview reads as links: a rod whose length is a global in cm, a
+# string written backwards (a constant >= the distance, so the distance
+# <= 50 cm), a spring given by the objects' numbers, a spring
+# named twice (b, d and d, b: one link), a constraint on one object (no
+# link), and a fixed object that is no anchor (hook: a pos, no kind, no v).
+# Objects by number: pivot 0, a 1, b 2, d 3, hook 4.
+using mechanics/mass_point
+object pivot: anchor
+object pivot: pos = (0, 0, 2) m
+object a: mass_point
+object a: pos = (0, 0, 1) m
+object b: mass_point
+object b: pos = (0.3, 0, 1) m
+object d: mass_point
+object d: pos = (1, 0, 1) m
+object hook: vector pos = (2, 0, 1) m
+global L = 100 cm
+global k = 10 N/m
+using mechanics/rules
+rule F: W = g.mul(m)
+rule C for a, pivot: (pos - pos$1).mag = L
+rule C for b, a: 50 cm >= (pos$1 - pos).mag
+rule F for 3, 4: S1 = (pos$1 - pos).mul(k)
+rule F for b, d: S2 = (pos$1 - pos).mul(k)
+rule F for d, b: S3 = (pos$1 - pos).mul(k)
+rule C for d: pos.y = 0 m
+inc t till 1 s by 0.1 s watch pos
+EOF
+if page string_swing "$T/string_swing.csf"; then
+	has string_swing 'links: [{a:"ball",b:"pivot",kind:"string",length:1,op:"<="}]'
+else bad "string_swing: $(head -n 2 "$T/err")"; fi
+if page links "$T/links.csf"; then
+	has links 'anchors: [{name:"pivot",pos:[0,0,2]},{name:"hook",pos:[2,0,1]}]' \
+		'links: [{a:"a",b:"pivot",kind:"rod",length:1,op:"="},{a:"b",b:"a",kind:"string",length:0.5,op:"<="},{a:"d",b:"hook",kind:"spring",length:null,op:null},{a:"b",b:"d",kind:"spring",length:null,op:null}]}'
+else bad "links: $(head -n 2 "$T/err")"; fi
+if page spring "$TOP/examples/spring.csf"; then
+	if head -n 1 "$T/spring.csv" | grep -q 'anchor\.pos'; then bad "spring: the CSV has the anchor's pos: the test wants one it has not"
+	else has spring 'anchors: [{name:"anchor",pos:[0,0,1]}]' 'links: [{a:"bob",b:"anchor",kind:"spring",length:null,op:null}]'; fi
+else bad "spring: $(head -n 2 "$T/err")"; fi
+# a plane is the box of every centre over the run projected onto it, a
+# quarter of the box's longest side beyond it, cut at its edge line
+rect() { # PAGE NAME: the centre and size of plane NAME, "x y z w h"
+	meta "$1" | sed -n "s/.*{name:\"$2\",[^}]*centre:\[\([^]]*\)\],u:\[[^]]*\],v:\[[^]]*\],size:\[\([^]]*\)\]}.*/\1,\2/p" | tr ',' ' '
+}
+near() { # GOT WANT...: the numbers agree to 1e-6
+	echo "$1 | $2" | awk -F'|' '{ n = split($1, a, " "); if (split($2, b, " ") != n || n == 0) exit 1
+		for (i = 1; i <= n; i++) if ((a[i] - b[i])^2 > 1e-12) exit 1 }'
+}
+# the ball drops from z = 1 m to the floor at z = 0 straight down: a box 1 m
+# tall and no wider than a point; the floor 0.5 m square under it
+f=$(rect "$T/ball.html" floor)
+if near "$f" "0 0 0 0.5 0.5"; then ok; else bad "bouncing_ball: the floor's rectangle is $f, want 0 0 0 0.5 0.5"; fi
+# off a table at z = 1 m that ends at x = 1 m at 2 m/s: 1 m to the edge, a
+# fall of sqrt(2 m / g) to the floor (cr 0), a slide at mu_k g = 0.2 g to
+# rest: x from 0 to X = 1 + 2 sqrt(2/g) + 2^2 / (2 0.2 g) m, z from 0 to 1;
+# a margin of X / 4. The table ends at its edge, x = 1; the floor does not.
+if page table_edge "$TOP/examples/table_edge.csf"; then
+	want=$(awk 'BEGIN { g = 9.80665; X = 1 + 2 * sqrt(2 / g) + 4 / (0.4 * g); m = X / 4
+		printf "%.12g 0 1 %.12g %.12g|%.12g 0 0 %.12g %.12g\n", (1 - m) / 2, 1 + m, 2 * m, X / 2, X + 2 * m, 2 * m }')
+	tb=$(rect "$T/table_edge.html" table) fl=$(rect "$T/table_edge.html" floor)
+	if near "$tb" "${want%|*}" && near "$fl" "${want#*|}"; then ok
+	else bad "table_edge: the table's rectangle $tb (want ${want%|*}), the floor's $fl (want ${want#*|})"; fi
+else bad "table_edge: $(head -n 2 "$T/err")"; fi
+
+# 8. what the page draws, in node with a stub DOM and renderer
+if ! command -v node >/dev/null 2>&1; then
+	echo "SKIP: view: what the page draws (tests/view/drawn.js): no node"
+else
+	drawn() { # MODEL SECONDS: the things the page of MODEL draws at that time, in $T/MODEL.drawn
+		node "$HERE/drawn.js" "$T/$1.html" "$2" >"$T/$1.drawn" 2>"$T/err" || { bad "$1 in node: $(head -n 2 "$T/err")"; return 1; }
+	}
+	line() { # MODEL PREFIX: the drawn line that starts with PREFIX, without it
+		sed -n "s/^$2 //p" "$T/$1.drawn" | head -n 1
+	}
+	# the pendulum at t = 0.5 s: theta = 0.84004966 (examples/pendulum.csf)
+	if drawn pendulum 0.5; then
+		want=$(awk 'BEGIN { th = 0.84004966; printf "shown 2 %.9f 0 %.9f 0 0 0\n", sin(th), -cos(th) }')
+		got=$(line pendulum 'link rod bob pivot')
+		if near "$got" "$want" && line pendulum 'fixed pivot' | grep -q '^0 0 0 OctahedronBufferGeometry '; then ok
+		else bad "pendulum at t = 0.5 s: the rod is ($got), want ($want); the pivot $(line pendulum 'fixed pivot')"; fi
+	fi
+	# the string: slack at t = 0.4 s, taut from t = sqrt(1.6 / g) = 0.40393 s
+	if drawn string_swing 0.4; then
+		s=$(line string_swing 'link string ball pivot' | cut -d' ' -f1) d=$(line string_swing 'link string ball pivot slack' | cut -d' ' -f1)
+		if [ "$s $d" = "hidden shown" ] && grep -q '^legend string ball pivot slack string ball.pivot, slack$' "$T/string_swing.drawn"; then ok
+		else bad "the string at t = 0.4 s: solid $s, dashed $d, want it slack: $(grep legend "$T/string_swing.drawn")"; fi
+	fi
+	if drawn string_swing 0.41; then
+		got=$(line string_swing 'link string ball pivot')
+		d=$(line string_swing 'link string ball pivot slack' | cut -d' ' -f1)
+		if echo "$got" | awk -v d="$d" '{ l = sqrt(($3 - $6)^2 + ($4 - $7)^2 + ($5 - $8)^2); exit !($1 == "shown" && d == "hidden" && (l - 1)^2 < 1e-12) }' &&
+			grep -q '^legend string ball pivot taut ' "$T/string_swing.drawn"; then ok
+		else bad "the string at t = 0.41 s: ($got), dashed $d, want it taut and 1 m long"; fi
+	fi
+	# the spring at t = 0.5 s: bob at (0.00385019, 0.09092974, 1) m (examples/spring.csf),
+	# the anchor at (0, 0, 1) m from the scene; between them corners on alternate sides
+	if drawn spring 0.5; then
+		got=$(line spring 'link spring bob anchor')
+		if echo "$got" | awk '{ if ($1 != "shown" || $2 != 20) exit 1
+				if (($3 - 0.00385019)^2 + ($4 - 0.09092974)^2 + ($5 - 1)^2 > 1e-14 || $60^2 + $61^2 + ($62 - 1)^2 > 1e-14) exit 1
+				ax = $60 - $3; ay = $61 - $4
+				for (j = 3; j <= 18; j++) {
+					s = ax * ($(3 * j + 1) - $4) - ay * ($(3 * j) - $3)
+					if (j > 3 && (s * prev >= 0 || (s + prev)^2 > 1e-12 * s^2)) exit 1
+					prev = s
+				} }' && line spring 'fixed anchor' | grep -q '^0 0 1 '; then ok
+		else bad "the spring at t = 0.5 s: ($got); the anchor $(line spring 'fixed anchor')"; fi
+	fi
+	# the planes at the size CSF_META gives
+	if drawn table_edge 1; then
+		got="$(line table_edge 'plane table' | cut -d' ' -f1,2) $(line table_edge 'plane floor' | cut -d' ' -f1,2)"
+		if near "$got" "$(echo "$tb $fl" | cut -d' ' -f4,5,9,10)"; then ok
+		else bad "table_edge: the planes drawn are $got (width, height), CSF_META says $tb, $fl"; fi
+	fi
+fi
+
+# 9. in headless Chromium
 # CSF_TEST_CHROMIUM names the browser (empty: none, the test is skipped)
 CHROMIUM=${CSF_TEST_CHROMIUM-$(command -v chromium || command -v chromium-browser || true)}
 if [ -z "$CHROMIUM" ]; then
@@ -173,6 +341,13 @@ else
 	if grep -q '<div id="view3d"><div id="nowebgl">No pos was watched' "$T/plain.dom" && grep -q '<div class="graph"' "$T/plain.dom" &&
 		[ -z "$(attr data-errors "$T/plain.dom")" ]; then ok
 	else bad "the page of a plain CSV: $(attr data-errors "$T/plain.dom")"; fi
+	if [ -f "$T/string_swing.html" ] && browse string "$T/string_swing.html" t=0.2; then
+		probe "$T/string_swing.html" "$T/string.probe.html"
+		chrome t=1 "$T/string.probe.html" --dump-dom >"$T/string1.dom"
+		if grep -q '<span data-link="string ball pivot" data-state="slack">' "$T/string.dom" &&
+			grep -q '<span data-link="string ball pivot" data-state="taut">' "$T/string1.dom"; then ok
+		else bad "the string's legend at t = 0.2 s and 1 s: $(grep -o '<span data-link[^>]*>' "$T/string.dom" "$T/string1.dom")"; fi
+	fi
 	probe "$T/big.html" "$T/big.probe.html"
 	chrome t=5 "$T/big.probe.html" --dump-dom >"$T/big.dom"
 	if grep -q 'id="decimation">Decimated for display: the run has 1000001 rows; every 100th row (and the last) is shown, 10001 rows.<' "$T/big.dom" &&
