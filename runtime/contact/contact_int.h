@@ -131,6 +131,8 @@ struct csf_contacts {
 	unsigned char *dc;        /* and its unknowns */
 	double *kb, *ls;           /* a copy of a system while it is solved, and the least-norm solve's work */
 	double *K1, *G1;           /* K and G with every mass 1 (DIRECT_MAX^2 each) */
+	double *T;                 /* the frames of K's unknowns (DIRECT_MAX^2), and which are friction */
+	unsigned char *fric;
 	size_t capkb, capls;
 	unsigned char *mark;       /* per candidate: the pairs csf_contact_choose chooses among, and its choice */
 	size_t capmark;
@@ -195,10 +197,15 @@ void csf_contact_slip_velocity(const cpair *c, const double *m, const double n[3
    K1 the system with every mass 1, wratio the masses' ratio (-1: not solved) */
 double csf_contact_coupling(const csf_contacts *cs, const cpair *c, const cpair *d, const double *m);
 uint32_t csf_contact_clusters(csf_contacts *cs, int (*pick)(const cpair *, const void *), const void *arg);
-int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio);
+int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio, const double *T,
+                      const unsigned char *fric);
 double csf_contact_mass_ratio(const csf_contacts *cs, const uint32_t *cl, uint32_t np, const double *m);
 void csf_contact_unsolvable(csf_contacts *cs, const uint32_t *cl, uint32_t np, const double *m);
-int csf_contact_least_squares(csf_contacts *cs, uint32_t dim);
+int csf_contact_least_squares(csf_contacts *cs, uint32_t dim, const double *T, const unsigned char *fric);
+/* cluster.c: the frames of a system's unknowns (pair a's dc[a] of them, normal n + 3a): T turns them
+   into normal forces and friction, which fric marks (csf_contact_solve takes the least friction) */
+void csf_contact_frames(uint32_t np, const unsigned char *dc, const double *n, uint32_t dim, double *T,
+                        unsigned char *fric);
 
 /* force.c: the rounding of a pair's relative acceleration (curv its centripetal term); an apart
    pair's guard at positions pi, pj (NULL: j's in m) */

@@ -173,7 +173,9 @@ static int cluster_locks(csf_contacts *cs, double *m, const uint32_t *cl, uint32
 	}
 	if (!sliding || !(csf_contact_mass_ratio(cs, cl, np, m) < 1e6)) return cluster_parts(cs, m, cl, np);
 	uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs);
-	if (!dim || csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m)))
+	if (!dim) return cluster_parts(cs, m, cl, np);
+	csf_contact_frames(np, cs->dc, cs->nv, dim, cs->T, cs->fric);
+	if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m), cs->T, cs->fric))
 		return cluster_parts(cs, m, cl, np);
 	for (uint32_t a = 0; a < np; a++) {
 		cpair *c = &cs->pairs[cl[a]];
@@ -197,7 +199,9 @@ static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 	for (int attempt = 0; attempt < 2; attempt++) {
 		uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs);
 		if (!dim) return -1;
-		if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m))) return cluster_locks(cs, m, cl, np, sign);
+		csf_contact_frames(np, cs->dc, cs->nv, dim, cs->T, cs->fric);
+		if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m), cs->T, cs->fric))
+			return cluster_locks(cs, m, cl, np, sign);
 		int flip = 0;
 		for (uint32_t a = 0; a < np; a++) {
 			const cpair *c = &cs->pairs[cl[a]];
@@ -262,8 +266,11 @@ static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t
 				cs->K1[r * sub + k] = cs->G1[(size_t)rows[r] * dim + rows[k]];
 			}
 		}
-		int solved = !sub || !csf_contact_solve(cs, sub, cs->K1, wratio);
-		if (!solved && (!(wratio < 1e6) || csf_contact_least_squares(cs, sub))) return -1;
+		unsigned char dc[DIRECT_MAX];
+		for (uint32_t a = 0; a < np; a++) dc[a] = cs->act[a] ? cs->dc[a] : 0;
+		csf_contact_frames(np, dc, cs->nv, sub, cs->T, cs->fric);
+		int solved = !sub || !csf_contact_solve(cs, sub, cs->K1, wratio, cs->T, cs->fric);
+		if (!solved && (!(wratio < 1e6) || csf_contact_least_squares(cs, sub, cs->T, cs->fric))) return -1;
 		memset(x, 0, dim * sizeof *x);
 		for (uint32_t r = 0; r < sub; r++) x[rows[r]] = cs->x[r];
 		long out = -1, in = -1;
