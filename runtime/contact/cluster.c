@@ -77,7 +77,9 @@ void csf_contact_unsolvable(csf_contacts *cs, const uint32_t *cl, uint32_t np, c
 	uint32_t dim = 0;
 	for (uint32_t a = 0; a < np; a++) {
 		const cpair *c = &cs->pairs[cl[a]];
-		dim += has_friction(c, m) && W(c, MODE) == STICKING ? 3 : 1;
+		double n[3], curv, B[9], E[9];
+		csf_contact_geometry(c, m, n, &curv);
+		dim += (uint32_t)csf_contact_basis(c, m, n, 1, (int)W(c, MODE), WV(c, DS), B, E);
 	}
 	cs->why_pair = np ? cl[0] : 0, cs->why_np = np, cs->why_big = dim > DIRECT_MAX ? DIRECT_MAX : 0;
 }

@@ -215,6 +215,11 @@ double csf_contact_accel_resolution(const cpair *c, const double *m, double curv
 double csf_contact_speeds(const cpair *c, const double *m);
 double csf_contact_speed_resolution(const cpair *c, const double *m, double least);
 double csf_contact_gap_guard(const cpair *c, const double *m, const double *pi, const double *pj);
+/* force.c: pair c's force directions B and equations E in mode mode, sliding along ds where it
+   does not slip ahead (returns its unknowns: 3 sticking, 1 sliding, 2 sliding without slipping
+   ahead, with the friction across ds) */
+int csf_contact_basis(const cpair *c, const double *m, const double n[3], double sign, int mode, const double ds[3],
+                      double B[9], double E[9]);
 /* force.c: which of the pairs marked in cs->mark are in contact (the modes' complementarity
    problem): the marks become 0 apart, 1 in contact, 2 leaves contact, 3 joins (-1: not settled) */
 int csf_contact_choose(csf_contacts *cs, double *m);

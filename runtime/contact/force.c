@@ -50,24 +50,38 @@ double csf_contact_speed_resolution(const cpair *c, const double *m, double leas
 	return csf_max(1e-13 * csf_contact_speeds(c, m), least) + 0.1 * csf_contact_accel_resolution(c, m, curv) + DBL_MIN;
 }
 
-/* Pair c's force directions B (3 x d, column-major: d = 3 when it sticks), and E likewise. */
-static int force_basis(const cpair *c, const double *m, const double n[3], double sign, double B[9], double E[9])
+/*
+ * Pair c's force directions B (3 x d, column-major) and equations E likewise, in mode mode: d = 3
+ * when it sticks (its whole force; every direction of its relative acceleration), else its
+ * normal force with sliding friction -mu_k |N| along the way it slips or, where it does not slip
+ * ahead of ds (a slide that begins, or stopped: the direction it began to slide in), along ds,
+ * and then (d = 2) the friction across ds that keeps it from slipping sideways: it begins to slip
+ * along ds, or, held by its neighbours, stays at rest with a static friction whose part along ds
+ * is mu_k |N|. Returns d.
+ */
+int csf_contact_basis(const cpair *c, const double *m, const double n[3], double sign, int mode, const double ds[3],
+                      double B[9], double E[9])
 {
-	if (has_friction(c, m) && W(c, MODE) == STICKING) {
+	if (has_friction(c, m) && mode == STICKING) {
 		for (int k = 0; k < 9; k++) B[k] = E[k] = k % 4 == 0;
 		return 3;
 	}
-	double u[3] = { 0, 0, 0 }, k = 0;
+	double u[3] = { 0, 0, 0 }, k = 0, w[3] = { 0, 0, 0 };
+	int ahead = 0;
 	if (has_friction(c, m)) { /* sliding: -mu_k |N| along the way it slides (as csf_contact_apply's sweeps) */
 		double vt[3];
 		csf_contact_slip_velocity(c, m, n, vt);
 		double s = mag3(vt);
-		int ahead = dot3(vt, WV(c, DS)) > csf_contact_speed_resolution(c, m, 0);
-		for (int j = 0; j < 3; j++) u[j] = ahead ? vt[j] / s : WV(c, DS)[j];
+		ahead = dot3(vt, ds) > csf_contact_speed_resolution(c, m, 0);
+		for (int j = 0; j < 3; j++) u[j] = ahead ? vt[j] / s : ds[j];
 		k = mu_k(c, m) * sign;
+		w[0] = n[1] * u[2] - n[2] * u[1], w[1] = n[2] * u[0] - n[0] * u[2], w[2] = n[0] * u[1] - n[1] * u[0];
 	}
 	for (int j = 0; j < 3; j++) B[j] = n[j] - k * u[j], E[j] = n[j];
-	return 1;
+	double sw = mag3(w);
+	if (ahead || !(sw > 0)) return 1;
+	for (int j = 0; j < 3; j++) B[3 + j] = E[3 + j] = w[j] / sw;
+	return 2;
 }
 
 /*
@@ -89,7 +103,8 @@ static uint32_t cluster_system(csf_contacts *cs, const double *m, const uint32_t
 		const cpair *c = &cs->pairs[cl[a]];
 		double curv, ar[3];
 		csf_contact_geometry(c, m, n + 3 * a, &curv);
-		cs->dc[a] = (unsigned char)force_basis(c, m, n + 3 * a, sign ? sign[a] : 1, B + 9 * a, E + 9 * a);
+		cs->dc[a] = (unsigned char)csf_contact_basis(c, m, n + 3 * a, sign ? sign[a] : 1, (int)W(c, MODE), WV(c, DS),
+		                                             B + 9 * a, E + 9 * a);
 		cs->at[a] = dim;
 		dim += cs->dc[a];
 		if (dim > DIRECT_MAX) return 0;
@@ -140,7 +155,7 @@ static int cluster_parts(csf_contacts *cs, double *m, const uint32_t *cl, uint32
 			uint32_t row = cs->at[a] + (uint32_t)q;
 			double acc = -cs->v0[row];
 			for (uint32_t k = 0; k < dim; k++) acc += cs->G[(size_t)row * dim + k] * cs->lam[k];
-			an += cs->dc[a] == 1 ? acc : acc * na[q];
+			an += acc * dot3(cs->E + 9 * a + 3 * q, na);
 			for (int k = 0; k < 3; k++) F[k] += cs->B[9 * a + 3 * q + k] * cs->lam[row];
 		}
 		double lam = cs->act[a] ? dot3(F, na) : -an / (inv_mass_i(c, m) + inv_mass_j(c, m));
@@ -215,7 +230,7 @@ static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 		for (int q = 0; q < cs->dc[a]; q++)
 			for (int k = 0; k < 3; k++) F[k] += B[9 * a + 3 * q + k] * cs->x[cs->at[a] + q];
 		/* F = N n + the friction force */
-		double lam = cs->dc[a] == 1 ? cs->x[cs->at[a]] : dot3(F, na), fn[3], *f = WV(c, F);
+		double lam = cs->dc[a] < 3 ? cs->x[cs->at[a]] : dot3(F, na), fn[3], *f = WV(c, F);
 		for (int k = 0; k < 3; k++) fn[k] = lam * na[k], f[k] = has_friction(c, m) ? F[k] - fn[k] : 0;
 		W(c, LAM) = lam;
 		add_force(c, m, fn, I(c, FN), J(c, FN));
@@ -282,7 +297,7 @@ static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t
 				uint32_t row = cs->at[a] + (uint32_t)r;
 				double acc = -cs->v0[row];
 				for (uint32_t k = 0; k < dim; k++) acc += cs->G[(size_t)row * dim + k] * x[k];
-				an += cs->dc[a] == 1 ? acc : acc * na[r];
+				an += acc * dot3(cs->E + 9 * a + 3 * r, na);
 				lam += dot3(cs->B + 9 * a + 3 * r, na) * x[row];
 			}
 			an /= inv_mass_i(c, m) + inv_mass_j(c, m);
@@ -507,8 +522,11 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 			double vt[3];
 			csf_contact_slip_velocity(c, m, n, vt);
 			/* it stops, beyond the slip's rounding (csf_contact_speed_resolution: a slide that has just begun has
-			   none); locked, at once (cluster_locks) */
-			g[1] = W(c, LOCK) ? -1 : dot3(vt, WV(c, DS)) + csf_contact_speed_resolution(c, m, 0);
+			   none); locked, at once (cluster_locks); not slipping ahead, its friction (its part across the
+			   way it slides is static friction's) grows past what it can hold */
+			double ahead = dot3(vt, WV(c, DS)), vres = csf_contact_speed_resolution(c, m, 0);
+			g[1] = W(c, LOCK) ? -1 : ahead + vres;
+			if (!(ahead > vres)) g[1] = csf_min(g[1], csf_max(mu_s(c, m), mu_k(c, m)) * fabs(W(c, LAM)) - mag3(WV(c, F)));
 		} else {
 			g[1] = mu_s(c, m) * fabs(W(c, LAM)) - mag3(WV(c, F));
 		}
