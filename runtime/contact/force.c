@@ -354,30 +354,28 @@ static int choose_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 }
 
 /*
- * Chooses the pairs in contact among those marked in cs->mark (the pairs in
- * contact, and those touching at rest), cluster by cluster (choose_cluster):
- * those that leave are marked 2, those that join 3, the others 1 (in
- * contact) or 0. m holds the accelerations of the forces of the modes as
- * they are. Returns 0, or -1 when a cluster's sets do not settle.
+ * Chooses the modes of the pairs marked in cs->mark (the pairs in contact,
+ * and those touching at rest), cluster by cluster: with fresh
+ * accelerations (m holds those of the forces of the modes as they are), a
+ * cluster with friction chooses them all at once (modes.c); the others,
+ * and those it leaves, which pairs are in contact (choose_cluster). The
+ * marks become TO_APART, TO_CONTACT, TO_SLIDE or TO_STICK; a cluster whose
+ * sets do not settle keeps its modes.
  */
-int csf_contact_choose(csf_contacts *cs, double *m)
+void csf_contact_choose(csf_contacts *cs, double *m, int fresh)
 {
 	const csf_contacts *self = cs;
 	uint32_t nq = csf_contact_clusters(cs, picks_marked, &self);
-	int st = 0;
 	for (uint32_t q = 0; q < nq; q++) {
 		const uint32_t *cl = cs->cl + cs->cstart[q];
 		uint32_t np = cs->cstart[q + 1] - cs->cstart[q];
-		if (choose_cluster(cs, m, cl, np)) {
-			st = -1;
-			continue;
-		}
+		if (fresh && !csf_contact_choose_modes(cs, m, cl, np)) continue;
+		int settled = !choose_cluster(cs, m, cl, np);
 		for (uint32_t a = 0; a < np; a++) {
-			int was = in_contact(&cs->pairs[cl[a]]);
-			cs->mark[cl[a]] = (unsigned char)(cs->act[a] ? (was ? 1 : 3) : (was ? 2 : 0));
+			int now = settled ? cs->act[a] : in_contact(&cs->pairs[cl[a]]);
+			cs->mark[cl[a]] = (unsigned char)(now ? TO_CONTACT : TO_APART);
 		}
 	}
-	return st;
 }
 
 /* The largest relative normal acceleration of a pair in contact that the sweeps solve. */
