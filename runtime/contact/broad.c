@@ -93,6 +93,8 @@ csf_contacts *csf_contacts_new(const csf_prog *p)
 	c->G = malloc((size_t)DIRECT_MAX * DIRECT_MAX * sizeof *c->G);
 	c->K1 = malloc((size_t)DIRECT_MAX * DIRECT_MAX * sizeof *c->K1);
 	c->G1 = malloc((size_t)DIRECT_MAX * DIRECT_MAX * sizeof *c->G1);
+	c->T = malloc((size_t)DIRECT_MAX * DIRECT_MAX * sizeof *c->T);
+	c->fric = malloc(DIRECT_MAX * sizeof *c->fric);
 	c->lam = malloc(DIRECT_MAX * sizeof *c->lam);
 	c->v0 = malloc(DIRECT_MAX * sizeof *c->v0);
 	c->nv = malloc(3 * DIRECT_MAX * sizeof *c->nv);
@@ -103,7 +105,7 @@ csf_contacts *csf_contacts_new(const csf_prog *p)
 	c->B = malloc(9 * DIRECT_MAX * sizeof *c->B);
 	c->E = malloc(9 * DIRECT_MAX * sizeof *c->E);
 	c->dc = malloc(DIRECT_MAX * sizeof *c->dc);
-	if (!c->box || !c->mg || !c->pn || !c->mstart || !c->sap || !c->uf || !c->cid || !c->K || !c->G || !c->K1 || !c->G1 || !c->lam || !c->v0 || !c->nv || !c->act || !c->rhs || !c->x ||
+	if (!c->box || !c->mg || !c->pn || !c->mstart || !c->sap || !c->uf || !c->cid || !c->K || !c->G || !c->K1 || !c->G1 || !c->T || !c->fric || !c->lam || !c->v0 || !c->nv || !c->act || !c->rhs || !c->x ||
 	    !c->at || !c->B || !c->E || !c->dc)
 		goto oom;
 	/* the memberships of mass points and anchors in rules without `for`, by body, each body's in rule order */
@@ -160,7 +162,10 @@ void csf_contacts_free(csf_contacts *c)
 	free(c->kb);
 	free(c->K1);
 	free(c->G1);
+	free(c->T);
+	free(c->fric);
 	free(c->mark);
+	free(c->dir);
 	free(c->ls);
 	free(c->G);
 	free(c->lam);

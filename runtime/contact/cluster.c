@@ -77,7 +77,9 @@ void csf_contact_unsolvable(csf_contacts *cs, const uint32_t *cl, uint32_t np, c
 	uint32_t dim = 0;
 	for (uint32_t a = 0; a < np; a++) {
 		const cpair *c = &cs->pairs[cl[a]];
-		dim += has_friction(c, m) && W(c, MODE) == STICKING ? 3 : 1;
+		double n[3], curv, B[9], E[9];
+		csf_contact_geometry(c, m, n, &curv);
+		dim += (uint32_t)csf_contact_basis(c, m, n, 1, (int)W(c, MODE), WV(c, DS), B, E);
 	}
 	cs->why_pair = np ? cl[0] : 0, cs->why_np = np, cs->why_big = dim > DIRECT_MAX ? DIRECT_MAX : 0;
 }
@@ -133,51 +135,185 @@ uint32_t csf_contact_clusters(csf_contacts *cs, int (*pick)(const cpair *, const
  * resting on two others that stick, or a row of balls jammed between two
  * walls, is held by more contacts than it has directions to move in, and
  * the forces are not determined by the motion (which is). Of the forces
- * that hold it, the routine takes the least-norm solution: the smallest
- * forces that keep every contact's acceleration (or velocity) zero. It is
- * the least-squares solution of least norm, from GSL's complete orthogonal
- * decomposition (rank revealed by the pivots of a QR with column pivoting,
- * those below 1e-10 of the largest taken as zero), accepted when it solves
- * the system to 1e-9 of its sizes: a singular system that has no solution
- * (contacts that contradict each other) fails (-1).
+ * that hold it, the routine takes those with the least friction (in the
+ * sum of the squares of the friction forces), and of those the least
+ * normal forces: friction takes only what the normal forces cannot. A
+ * ball on the floor pressed against a wall stands on the floor, the
+ * wall's friction carrying none of its weight (the least forces overall
+ * would share it half and half); a ball's prestress against its
+ * neighbours, which only the floor's friction could hold, is none. In the
+ * frames of the pairs (csf_contact_frames: each sticking pair's force as
+ * its normal force and two components of friction), with A = K T split
+ * into the columns of normal forces A_N and of friction A_F: the friction
+ * is the least-norm solution of P A_F y_F = P b, P the projection on what
+ * A_N cannot reach (the residual of A_N's least squares), and the normal
+ * forces the least-norm solution of A_N y_N = b - A_F y_F. Each least
+ * squares is the least-norm one, from GSL's complete orthogonal
+ * decomposition (rank revealed by the pivots of a QR with column
+ * pivoting, those below 1e-10 of the largest column taken as zero). The
+ * answer is accepted when it solves the system to 1e-9 of its sizes: a
+ * singular system that has no solution (contacts that contradict each
+ * other) fails (-1).
  */
-static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, const double *b, int check)
+
+/*
+ * The frames of a system of pairs 0..np, pair a's dc[a] unknowns (0: not
+ * in the system) in order, its normal at n + 3a (csf_contact_basis): T
+ * (dim x dim, block-diagonal, orthogonal) turns a sticking pair's force
+ * into its normal force and two components of friction, and leaves the
+ * other unknowns as they are; fric marks the unknowns (after T) that are
+ * friction: a sticking pair's two, and the friction across the way a pair
+ * slides.
+ */
+void csf_contact_frames(uint32_t np, const unsigned char *dc, const double *n, uint32_t dim, double *T,
+                        unsigned char *fric)
 {
-	size_t need = (size_t)dim * dim + 6 * (size_t)dim;
+	memset(T, 0, (size_t)dim * dim * sizeof *T);
+	for (uint32_t a = 0, at = 0; a < np; at += dc[a], a++) {
+		const double *na = n + 3 * a;
+		double t1[3] = { 0, 0, 0 }, t2[3];
+		if (dc[a] == 3) { /* t1 across n from its least component's axis, t2 = n x t1 */
+			int k = fabs(na[0]) <= fabs(na[1]) && fabs(na[0]) <= fabs(na[2]) ? 0 : fabs(na[1]) <= fabs(na[2]) ? 1 : 2;
+			t1[k] = 1;
+			double d = dot3(t1, na), s;
+			for (int j = 0; j < 3; j++) t1[j] -= d * na[j];
+			s = mag3(t1);
+			for (int j = 0; j < 3; j++) t1[j] /= s;
+			t2[0] = na[1] * t1[2] - na[2] * t1[1], t2[1] = na[2] * t1[0] - na[0] * t1[2], t2[2] = na[0] * t1[1] - na[1] * t1[0];
+		}
+		for (int r = 0; r < dc[a]; r++) {
+			fric[at + r] = r > 0;
+			for (int q = 0; q < dc[a]; q++) {
+				const double *col = q == 0 ? na : q == 1 ? t1 : t2;
+				T[(size_t)(at + r) * dim + at + q] = dc[a] < 3 ? r == q : col[r];
+			}
+		}
+	}
+}
+
+/* The largest column norm of the rows x cols matrix A (row-major, leading dimension ld). */
+static double max_column(const double *A, uint32_t rows, uint32_t cols, uint32_t ld)
+{
+	double big = 0;
+	for (uint32_t j = 0; j < cols; j++) {
+		double c = 0;
+		for (uint32_t i = 0; i < rows; i++) c = hypot(c, A[(size_t)i * ld + j]);
+		big = csf_max(big, c);
+	}
+	return big;
+}
+
+/* A least-squares problem: the rows x cols matrix (rows >= cols) and its COD (GSL's) in place. */
+typedef struct lsq {
+	gsl_matrix_view A;
+	gsl_vector_view tq, tz, work, res;
+	gsl_permutation p;
+	size_t perm[DIRECT_MAX], rank;
+} lsq;
+
+/* Factors A (rows x cols, row-major, destroyed), with w 4 rows doubles of work. 0, or -1. */
+static int lsq_factor(lsq *q, double *A, uint32_t rows, uint32_t cols, double tol, double *w)
+{
+	q->A = gsl_matrix_view_array(A, rows, cols);
+	q->tq = gsl_vector_view_array(w, cols), q->tz = gsl_vector_view_array(w + rows, cols);
+	q->work = gsl_vector_view_array(w + 2 * (size_t)rows, cols), q->res = gsl_vector_view_array(w + 3 * (size_t)rows, rows);
+	q->p = (gsl_permutation){ cols, q->perm };
+	return gsl_linalg_COD_decomp_e(&q->A.matrix, &q->tq.vector, &q->tz.vector, &q->p, tol, &q->rank, &q->work.vector)
+	               ? -1
+	               : 0;
+}
+
+/* The least-squares solution of least norm of the factored system with right-hand side b (rows) into
+   y (cols), and, if r is not NULL, its residual b - A y into r. 0, or -1. */
+static int lsq_solve(lsq *q, const double *b, double *y, double *r)
+{
+	gsl_vector_const_view bv = gsl_vector_const_view_array(b, q->A.matrix.size1);
+	gsl_vector_view yv = gsl_vector_view_array(y, q->A.matrix.size2);
+	if (gsl_linalg_COD_lssolve(&q->A.matrix, &q->tq.vector, &q->tz.vector, &q->p, q->rank, &bv.vector, &yv.vector,
+	                           &q->res.vector))
+		return -1;
+	if (r) memcpy(r, q->res.vector.data, q->A.matrix.size1 * sizeof *r);
+	return 0;
+}
+
+static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, const double *b, const double *T,
+                            const unsigned char *fric, int check)
+{
+	uint32_t nf = 0, nn, cn[DIRECT_MAX], cf[DIRECT_MAX];
+	for (uint32_t j = 0; T && j < dim; j++) nf += fric[j] != 0;
+	nn = dim - nf;
+	size_t need = 2 * (size_t)dim * dim + 2 * (size_t)dim * nf + 14 * (size_t)dim;
 	if (need > cs->capls) {
 		double *ls = realloc(cs->ls, need * sizeof *ls);
 		if (!ls) return -1;
 		cs->ls = ls, cs->capls = need;
 	}
-	double *A = cs->ls, *w = A + (size_t)dim * dim, colmax = 0;
-	memcpy(A, K, (size_t)dim * dim * sizeof *A);
-	for (uint32_t j = 0; j < dim; j++) {
-		double c = 0;
-		for (uint32_t i = 0; i < dim; i++) c = hypot(c, K[i * dim + j]);
-		colmax = csf_max(colmax, c);
+	double *A = cs->ls, *AN = A + (size_t)dim * dim, *AF = AN + (size_t)dim * nn, *M = AF + (size_t)dim * nf;
+	double *w = M + (size_t)dim * nf, *y = w + 4 * dim, *v = y + dim, *c = v + dim, *yf = c + dim, *yn = yf + dim;
+	double colmax = max_column(K, dim, dim, dim);
+	if (!nf) memcpy(A, K, (size_t)dim * dim * sizeof *A);
+	else { /* A = K T, T block-diagonal: at most 3 terms a column */
+		memset(A, 0, (size_t)dim * dim * sizeof *A);
+		for (uint32_t k = 0; k < dim; k++)
+			for (uint32_t j = 0; j < dim; j++) {
+				double t = T[(size_t)k * dim + j];
+				if (t == 0) continue;
+				for (uint32_t i = 0; i < dim; i++) A[(size_t)i * dim + j] += K[(size_t)i * dim + k] * t;
+			}
 	}
-	size_t perm[DIRECT_MAX], rank = 0;
-	gsl_matrix_view Av = gsl_matrix_view_array(A, dim, dim);
-	gsl_vector_view tq = gsl_vector_view_array(w, dim), tz = gsl_vector_view_array(w + dim, dim),
-	                work = gsl_vector_view_array(w + 2 * dim, dim), res = gsl_vector_view_array(w + 3 * dim, dim),
-	                bv = gsl_vector_view_array(w + 4 * dim, dim), xv = gsl_vector_view_array(cs->x, dim);
-	gsl_permutation pv = { dim, perm };
-	memcpy(w + 4 * dim, b, dim * sizeof *b);
+	double tol = 1e-10 * max_column(A, dim, dim, dim);
+	lsq qn, qf;
 	gsl_set_error_handler_off();
-	if (gsl_linalg_COD_decomp_e(&Av.matrix, &tq.vector, &tz.vector, &pv, 1e-10 * colmax, &rank, &work.vector) ||
-	    gsl_linalg_COD_lssolve(&Av.matrix, &tq.vector, &tz.vector, &pv, rank, &bv.vector, &xv.vector, &res.vector))
-		return -1;
+	if (!nf) { /* the least-norm forces */
+		if (lsq_factor(&qn, A, dim, dim, tol, w) || lsq_solve(&qn, b, cs->x, NULL)) return -1;
+	} else {
+		nn = nf = 0;
+		for (uint32_t j = 0; j < dim; j++) {
+			if (fric[j]) cf[nf++] = j;
+			else cn[nn++] = j;
+		}
+		for (uint32_t i = 0; i < dim; i++) {
+			for (uint32_t j = 0; j < nn; j++) AN[(size_t)i * nn + j] = A[(size_t)i * dim + cn[j]];
+			for (uint32_t j = 0; j < nf; j++) AF[(size_t)i * nf + j] = A[(size_t)i * dim + cf[j]];
+		}
+		if (lsq_factor(&qn, AN, dim, nn, tol, w)) return -1;
+		for (uint32_t j = 0; j < nf; j++) { /* M = P A_F, column by column */
+			for (uint32_t i = 0; i < dim; i++) v[i] = AF[(size_t)i * nf + j];
+			if (lsq_solve(&qn, v, yn, c)) return -1;
+			for (uint32_t i = 0; i < dim; i++) M[(size_t)i * nf + j] = c[i];
+		}
+		if (lsq_solve(&qn, b, yn, c)) return -1; /* c = P b */
+		double *wf = yn + dim; /* the friction's own work, past qn's */
+		if (lsq_factor(&qf, M, dim, nf, tol, wf) || lsq_solve(&qf, c, yf, NULL)) return -1;
+		for (uint32_t i = 0; i < dim; i++) { /* the normal forces for what friction leaves */
+			v[i] = b[i];
+			for (uint32_t j = 0; j < nf; j++) v[i] -= AF[(size_t)i * nf + j] * yf[j];
+		}
+		if (lsq_solve(&qn, v, yn, NULL)) return -1;
+		for (uint32_t j = 0; j < nn; j++) y[cn[j]] = yn[j];
+		for (uint32_t j = 0; j < nf; j++) y[cf[j]] = yf[j];
+		for (uint32_t i = 0; i < dim; i++) { /* x = T y */
+			double s = 0;
+			for (uint32_t j = 0; j < dim; j++) s += T[(size_t)i * dim + j] * y[j];
+			cs->x[i] = s;
+		}
+	}
 	double rn = 0, bn = 0, xn = 0;
-	for (uint32_t i = 0; i < dim; i++) rn = hypot(rn, w[3 * dim + i]), bn = hypot(bn, b[i]), xn = hypot(xn, cs->x[i]);
+	for (uint32_t i = 0; i < dim; i++) {
+		double r = -b[i];
+		for (uint32_t j = 0; j < dim; j++) r += K[(size_t)i * dim + j] * cs->x[j];
+		rn = hypot(rn, r), bn = hypot(bn, b[i]), xn = hypot(xn, cs->x[i]);
+	}
 	for (uint32_t i = 0; i < dim; i++)
 		if (!isfinite(cs->x[i])) return -1;
 	return !check || rn <= 1e-9 * csf_max(bn, colmax * xn) ? 0 : -1;
 }
 
-/* After csf_contact_solve failed: the least-squares solution of least norm of its system into cs->x. */
-int csf_contact_least_squares(csf_contacts *cs, uint32_t dim)
+/* After csf_contact_solve failed: the least-squares solution of least norm of its system (T, fric as
+   there) into cs->x. */
+int csf_contact_least_squares(csf_contacts *cs, uint32_t dim, const double *T, const unsigned char *fric)
 {
-	return solve_least_norm(cs, dim, cs->kb, cs->kb + (size_t)dim * dim, 0);
+	return solve_least_norm(cs, dim, cs->kb, cs->kb + (size_t)dim * dim, T, fric, 0);
 }
 
 /*
@@ -223,7 +359,8 @@ static int solve_lu(double *K, double *b, double *x, uint32_t dim, double tiny)
  * told apart by K1, the same system with every body's mass 1 (or NULL: the
  * first). If K1 is singular too, the contacts are more than the bodies'
  * motions can tell apart (a statically indeterminate cluster, whatever the
- * masses): the least-norm solution above. If not, the masses differ by more
+ * masses): the solution with the least friction above (in the frames T and
+ * fric of csf_contact_frames; NULL: the least-norm solution). If not, the masses differ by more
  * than about 1e10, and the net force on the lightest body would be the
  * difference of forces 1e10 times larger, of which rounding would take more
  * than 1e-6: it fails (-1). wratio is the ratio of the largest inverse mass
@@ -235,7 +372,8 @@ static int solve_lu(double *K, double *b, double *x, uint32_t dim, double tiny)
  * coefficient, gives its forces, large as they may be. K, rhs and K1 are
  * destroyed.
  */
-int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio)
+int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio, const double *T,
+                      const unsigned char *fric)
 {
 	double *K = cs->K, *b = cs->rhs, big = 0, big1 = 0;
 	for (uint32_t k = 0; k < dim * dim; k++) big = csf_max(big, fabs(K[k]));
@@ -254,7 +392,7 @@ int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio)
 	double *b1 = cs->rhs; /* a right-hand side for K1's elimination, whose answer is not used */
 	for (uint32_t k = 0; k < dim; k++) b1[k] = 1;
 	int redundant = solve_lu(K1, b1, cs->x, dim, 1e-10 * big1) != 0;
-	if (redundant && !solve_least_norm(cs, dim, cs->kb, cs->kb + (size_t)dim * dim, 1)) return 0;
+	if (redundant && !solve_least_norm(cs, dim, cs->kb, cs->kb + (size_t)dim * dim, T, fric, 1)) return 0;
 	if (!redundant && !(wratio < 1e6)) return -1; /* the masses differ too much */
 	/* nearly redundant contacts, whose forces are large (a row of balls all but jammed), or
 	   sliding friction that all but cancels a normal force: the elimination's own answer */

@@ -60,6 +60,8 @@
  *               the direct (LU) solve of their linear systems
  *   force.c     the force stage (csf_contact_apply): contact forces and
  *               friction, directly or by Gauss-Seidel sweeps; the guards
+ *   modes.c     the modes of a cluster with friction (apart, sliding,
+ *               sticking), chosen for the whole cluster at an instant
  *   impulse.c   impacts: impulses by active sets, or by sweeps
  *   settle.c    the settle state machine (csf_contact_settle): impacts,
  *               rest, hops, lift-off, sticking and sliding at an instant
@@ -131,8 +133,11 @@ struct csf_contacts {
 	unsigned char *dc;        /* and its unknowns */
 	double *kb, *ls;           /* a copy of a system while it is solved, and the least-norm solve's work */
 	double *K1, *G1;           /* K and G with every mass 1 (DIRECT_MAX^2 each) */
+	double *T;                 /* the frames of K's unknowns (DIRECT_MAX^2), and which are friction */
+	unsigned char *fric;
 	size_t capkb, capls;
 	unsigned char *mark;       /* per candidate: the pairs csf_contact_choose chooses among, and its choice */
+	double *dir;               /* per candidate, 3: the direction a pair chosen to slide slides in */
 	size_t capmark;
 	int group;                 /* an impact's impulses are shared by the pairs marked (impulse.c) */
 	uint32_t why_pair, why_np; /* of a cluster that could not be solved: a pair of it, its pairs, */
@@ -195,10 +200,15 @@ void csf_contact_slip_velocity(const cpair *c, const double *m, const double n[3
    K1 the system with every mass 1, wratio the masses' ratio (-1: not solved) */
 double csf_contact_coupling(const csf_contacts *cs, const cpair *c, const cpair *d, const double *m);
 uint32_t csf_contact_clusters(csf_contacts *cs, int (*pick)(const cpair *, const void *), const void *arg);
-int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio);
+int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio, const double *T,
+                      const unsigned char *fric);
 double csf_contact_mass_ratio(const csf_contacts *cs, const uint32_t *cl, uint32_t np, const double *m);
 void csf_contact_unsolvable(csf_contacts *cs, const uint32_t *cl, uint32_t np, const double *m);
-int csf_contact_least_squares(csf_contacts *cs, uint32_t dim);
+int csf_contact_least_squares(csf_contacts *cs, uint32_t dim, const double *T, const unsigned char *fric);
+/* cluster.c: the frames of a system's unknowns (pair a's dc[a] of them, normal n + 3a): T turns them
+   into normal forces and friction, which fric marks (csf_contact_solve takes the least friction) */
+void csf_contact_frames(uint32_t np, const unsigned char *dc, const double *n, uint32_t dim, double *T,
+                        unsigned char *fric);
 
 /* force.c: the rounding of a pair's relative acceleration (curv its centripetal term); an apart
    pair's guard at positions pi, pj (NULL: j's in m) */
@@ -208,9 +218,22 @@ double csf_contact_accel_resolution(const cpair *c, const double *m, double curv
 double csf_contact_speeds(const cpair *c, const double *m);
 double csf_contact_speed_resolution(const cpair *c, const double *m, double least);
 double csf_contact_gap_guard(const cpair *c, const double *m, const double *pi, const double *pj);
-/* force.c: which of the pairs marked in cs->mark are in contact (the modes' complementarity
-   problem): the marks become 0 apart, 1 in contact, 2 leaves contact, 3 joins (-1: not settled) */
-int csf_contact_choose(csf_contacts *cs, double *m);
+/* The choice of csf_contact_choose for a pair: apart, in contact (in the mode it has, or entering
+   contact takes), sliding (along cs->dir), sticking; or'ed with MODES_CHOSEN when modes.c chose
+   it for its whole cluster. */
+enum { TO_APART = 1, TO_CONTACT, TO_SLIDE, TO_STICK, MODES_CHOSEN = 8 };
+/* force.c: pair c's force directions B and equations E in mode mode, sliding along ds where it
+   does not slip ahead (returns its unknowns: 3 sticking, 1 sliding, 2 sliding without slipping
+   ahead, with the friction across ds) */
+int csf_contact_basis(const cpair *c, const double *m, const double n[3], double sign, int mode, const double ds[3],
+                      double B[9], double E[9]);
+/* force.c: the modes of the pairs marked in cs->mark (those in contact, and those touching at
+   rest), cluster by cluster: with fresh accelerations (of the modes as they are) a cluster with
+   friction by csf_contact_choose_modes, the others (and those it leaves) by the complementarity
+   problem of their normal forces; the marks become TO_* (a cluster not settled keeps its modes) */
+void csf_contact_choose(csf_contacts *cs, double *m, int fresh);
+/* modes.c: the modes of cluster cl[0..np) with friction, chosen together (0), or -1 (not chosen) */
+int csf_contact_choose_modes(csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np);
 
 /* impulse.c: a change dv of a pair's relative velocity; the impact of pair hit, whose relative
    normal velocity vn becomes target (1: not solved); the velocities before an impact, into W_VR */

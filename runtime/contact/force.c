@@ -50,24 +50,38 @@ double csf_contact_speed_resolution(const cpair *c, const double *m, double leas
 	return csf_max(1e-13 * csf_contact_speeds(c, m), least) + 0.1 * csf_contact_accel_resolution(c, m, curv) + DBL_MIN;
 }
 
-/* Pair c's force directions B (3 x d, column-major: d = 3 when it sticks), and E likewise. */
-static int force_basis(const cpair *c, const double *m, const double n[3], double sign, double B[9], double E[9])
+/*
+ * Pair c's force directions B (3 x d, column-major) and equations E likewise, in mode mode: d = 3
+ * when it sticks (its whole force; every direction of its relative acceleration), else its
+ * normal force with sliding friction -mu_k |N| along the way it slips or, where it does not slip
+ * ahead of ds (a slide that begins, or stopped: the direction it began to slide in), along ds,
+ * and then (d = 2) the friction across ds that keeps it from slipping sideways: it begins to slip
+ * along ds, or, held by its neighbours, stays at rest with a static friction whose part along ds
+ * is mu_k |N|. Returns d.
+ */
+int csf_contact_basis(const cpair *c, const double *m, const double n[3], double sign, int mode, const double ds[3],
+                      double B[9], double E[9])
 {
-	if (has_friction(c, m) && W(c, MODE) == STICKING) {
+	if (has_friction(c, m) && mode == STICKING) {
 		for (int k = 0; k < 9; k++) B[k] = E[k] = k % 4 == 0;
 		return 3;
 	}
-	double u[3] = { 0, 0, 0 }, k = 0;
+	double u[3] = { 0, 0, 0 }, k = 0, w[3] = { 0, 0, 0 };
+	int ahead = 0;
 	if (has_friction(c, m)) { /* sliding: -mu_k |N| along the way it slides (as csf_contact_apply's sweeps) */
 		double vt[3];
 		csf_contact_slip_velocity(c, m, n, vt);
 		double s = mag3(vt);
-		int ahead = dot3(vt, WV(c, DS)) > csf_contact_speed_resolution(c, m, 0);
-		for (int j = 0; j < 3; j++) u[j] = ahead ? vt[j] / s : WV(c, DS)[j];
+		ahead = dot3(vt, ds) > csf_contact_speed_resolution(c, m, 0);
+		for (int j = 0; j < 3; j++) u[j] = ahead ? vt[j] / s : ds[j];
 		k = mu_k(c, m) * sign;
+		w[0] = n[1] * u[2] - n[2] * u[1], w[1] = n[2] * u[0] - n[0] * u[2], w[2] = n[0] * u[1] - n[1] * u[0];
 	}
 	for (int j = 0; j < 3; j++) B[j] = n[j] - k * u[j], E[j] = n[j];
-	return 1;
+	double sw = mag3(w);
+	if (ahead || !(sw > 0)) return 1;
+	for (int j = 0; j < 3; j++) B[3 + j] = E[3 + j] = w[j] / sw;
+	return 2;
 }
 
 /*
@@ -89,7 +103,8 @@ static uint32_t cluster_system(csf_contacts *cs, const double *m, const uint32_t
 		const cpair *c = &cs->pairs[cl[a]];
 		double curv, ar[3];
 		csf_contact_geometry(c, m, n + 3 * a, &curv);
-		cs->dc[a] = (unsigned char)force_basis(c, m, n + 3 * a, sign ? sign[a] : 1, B + 9 * a, E + 9 * a);
+		cs->dc[a] = (unsigned char)csf_contact_basis(c, m, n + 3 * a, sign ? sign[a] : 1, (int)W(c, MODE), WV(c, DS),
+		                                             B + 9 * a, E + 9 * a);
 		cs->at[a] = dim;
 		dim += cs->dc[a];
 		if (dim > DIRECT_MAX) return 0;
@@ -140,7 +155,7 @@ static int cluster_parts(csf_contacts *cs, double *m, const uint32_t *cl, uint32
 			uint32_t row = cs->at[a] + (uint32_t)q;
 			double acc = -cs->v0[row];
 			for (uint32_t k = 0; k < dim; k++) acc += cs->G[(size_t)row * dim + k] * cs->lam[k];
-			an += cs->dc[a] == 1 ? acc : acc * na[q];
+			an += acc * dot3(cs->E + 9 * a + 3 * q, na);
 			for (int k = 0; k < 3; k++) F[k] += cs->B[9 * a + 3 * q + k] * cs->lam[row];
 		}
 		double lam = cs->act[a] ? dot3(F, na) : -an / (inv_mass_i(c, m) + inv_mass_j(c, m));
@@ -173,7 +188,9 @@ static int cluster_locks(csf_contacts *cs, double *m, const uint32_t *cl, uint32
 	}
 	if (!sliding || !(csf_contact_mass_ratio(cs, cl, np, m) < 1e6)) return cluster_parts(cs, m, cl, np);
 	uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs);
-	if (!dim || csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m)))
+	if (!dim) return cluster_parts(cs, m, cl, np);
+	csf_contact_frames(np, cs->dc, cs->nv, dim, cs->T, cs->fric);
+	if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m), cs->T, cs->fric))
 		return cluster_parts(cs, m, cl, np);
 	for (uint32_t a = 0; a < np; a++) {
 		cpair *c = &cs->pairs[cl[a]];
@@ -197,7 +214,9 @@ static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 	for (int attempt = 0; attempt < 2; attempt++) {
 		uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs);
 		if (!dim) return -1;
-		if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m))) return cluster_locks(cs, m, cl, np, sign);
+		csf_contact_frames(np, cs->dc, cs->nv, dim, cs->T, cs->fric);
+		if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m), cs->T, cs->fric))
+			return cluster_locks(cs, m, cl, np, sign);
 		int flip = 0;
 		for (uint32_t a = 0; a < np; a++) {
 			const cpair *c = &cs->pairs[cl[a]];
@@ -211,7 +230,7 @@ static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 		for (int q = 0; q < cs->dc[a]; q++)
 			for (int k = 0; k < 3; k++) F[k] += B[9 * a + 3 * q + k] * cs->x[cs->at[a] + q];
 		/* F = N n + the friction force */
-		double lam = cs->dc[a] == 1 ? cs->x[cs->at[a]] : dot3(F, na), fn[3], *f = WV(c, F);
+		double lam = cs->dc[a] < 3 ? cs->x[cs->at[a]] : dot3(F, na), fn[3], *f = WV(c, F);
 		for (int k = 0; k < 3; k++) fn[k] = lam * na[k], f[k] = has_friction(c, m) ? F[k] - fn[k] : 0;
 		W(c, LAM) = lam;
 		add_force(c, m, fn, I(c, FN), J(c, FN));
@@ -262,8 +281,11 @@ static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t
 				cs->K1[r * sub + k] = cs->G1[(size_t)rows[r] * dim + rows[k]];
 			}
 		}
-		int solved = !sub || !csf_contact_solve(cs, sub, cs->K1, wratio);
-		if (!solved && (!(wratio < 1e6) || csf_contact_least_squares(cs, sub))) return -1;
+		unsigned char dc[DIRECT_MAX];
+		for (uint32_t a = 0; a < np; a++) dc[a] = cs->act[a] ? cs->dc[a] : 0;
+		csf_contact_frames(np, dc, cs->nv, sub, cs->T, cs->fric);
+		int solved = !sub || !csf_contact_solve(cs, sub, cs->K1, wratio, cs->T, cs->fric);
+		if (!solved && (!(wratio < 1e6) || csf_contact_least_squares(cs, sub, cs->T, cs->fric))) return -1;
 		memset(x, 0, dim * sizeof *x);
 		for (uint32_t r = 0; r < sub; r++) x[rows[r]] = cs->x[r];
 		long out = -1, in = -1;
@@ -275,7 +297,7 @@ static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t
 				uint32_t row = cs->at[a] + (uint32_t)r;
 				double acc = -cs->v0[row];
 				for (uint32_t k = 0; k < dim; k++) acc += cs->G[(size_t)row * dim + k] * x[k];
-				an += cs->dc[a] == 1 ? acc : acc * na[r];
+				an += acc * dot3(cs->E + 9 * a + 3 * r, na);
 				lam += dot3(cs->B + 9 * a + 3 * r, na) * x[row];
 			}
 			an /= inv_mass_i(c, m) + inv_mass_j(c, m);
@@ -332,30 +354,28 @@ static int choose_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 }
 
 /*
- * Chooses the pairs in contact among those marked in cs->mark (the pairs in
- * contact, and those touching at rest), cluster by cluster (choose_cluster):
- * those that leave are marked 2, those that join 3, the others 1 (in
- * contact) or 0. m holds the accelerations of the forces of the modes as
- * they are. Returns 0, or -1 when a cluster's sets do not settle.
+ * Chooses the modes of the pairs marked in cs->mark (the pairs in contact,
+ * and those touching at rest), cluster by cluster: with fresh
+ * accelerations (m holds those of the forces of the modes as they are), a
+ * cluster with friction chooses them all at once (modes.c); the others,
+ * and those it leaves, which pairs are in contact (choose_cluster). The
+ * marks become TO_APART, TO_CONTACT, TO_SLIDE or TO_STICK; a cluster whose
+ * sets do not settle keeps its modes.
  */
-int csf_contact_choose(csf_contacts *cs, double *m)
+void csf_contact_choose(csf_contacts *cs, double *m, int fresh)
 {
 	const csf_contacts *self = cs;
 	uint32_t nq = csf_contact_clusters(cs, picks_marked, &self);
-	int st = 0;
 	for (uint32_t q = 0; q < nq; q++) {
 		const uint32_t *cl = cs->cl + cs->cstart[q];
 		uint32_t np = cs->cstart[q + 1] - cs->cstart[q];
-		if (choose_cluster(cs, m, cl, np)) {
-			st = -1;
-			continue;
-		}
+		if (fresh && !csf_contact_choose_modes(cs, m, cl, np)) continue;
+		int settled = !choose_cluster(cs, m, cl, np);
 		for (uint32_t a = 0; a < np; a++) {
-			int was = in_contact(&cs->pairs[cl[a]]);
-			cs->mark[cl[a]] = (unsigned char)(cs->act[a] ? (was ? 1 : 3) : (was ? 2 : 0));
+			int now = settled ? cs->act[a] : in_contact(&cs->pairs[cl[a]]);
+			cs->mark[cl[a]] = (unsigned char)(now ? TO_CONTACT : TO_APART);
 		}
 	}
-	return st;
 }
 
 /* The largest relative normal acceleration of a pair in contact that the sweeps solve. */
@@ -500,8 +520,11 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 			double vt[3];
 			csf_contact_slip_velocity(c, m, n, vt);
 			/* it stops, beyond the slip's rounding (csf_contact_speed_resolution: a slide that has just begun has
-			   none); locked, at once (cluster_locks) */
-			g[1] = W(c, LOCK) ? -1 : dot3(vt, WV(c, DS)) + csf_contact_speed_resolution(c, m, 0);
+			   none); locked, at once (cluster_locks); not slipping ahead, its friction (its part across the
+			   way it slides is static friction's) grows past what it can hold */
+			double ahead = dot3(vt, WV(c, DS)), vres = csf_contact_speed_resolution(c, m, 0);
+			g[1] = W(c, LOCK) ? -1 : ahead + vres;
+			if (!(ahead > vres)) g[1] = csf_min(g[1], csf_max(mu_s(c, m), mu_k(c, m)) * fabs(W(c, LAM)) - mag3(WV(c, F)));
 		} else {
 			g[1] = mu_s(c, m) * fabs(W(c, LAM)) - mag3(WV(c, F));
 		}

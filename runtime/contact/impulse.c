@@ -88,7 +88,7 @@ static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, doubl
 				cs->K[r * dim + k] = G[cs->at[r] * np + cs->at[k]];
 				cs->K1[r * dim + k] = cs->G1[cs->at[r] * np + cs->at[k]];
 			}
-		if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m))) return -1;
+		if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m), NULL, NULL)) return -1;
 		for (uint32_t a = 0; a < np; a++) cs->lam[a] = 0;
 		for (uint32_t r = 0; r < dim; r++) cs->lam[cs->at[r]] = cs->x[r];
 		long out = -1, in = -1;

@@ -214,13 +214,16 @@ static int departure(csf_contacts *cs, const double *m, const cpair *c, double v
 	return crowded(cs, m, c) ? RESTS : HOPS;
 }
 
-/* Room in cs->mark for a mark per candidate. 0, or -1: no memory. */
+/* Room in cs->mark for a mark per candidate, and in cs->dir for a direction. 0, or -1: no memory. */
 static int grow_marks(csf_contacts *cs)
 {
 	if (cs->n <= cs->capmark) return 0;
 	unsigned char *mk = realloc(cs->mark, cs->n);
 	if (!mk) return -1;
-	cs->mark = mk, cs->capmark = cs->n;
+	cs->mark = mk;
+	double *dir = realloc(cs->dir, 3 * (size_t)cs->n * sizeof *dir);
+	if (!dir) return -1;
+	cs->dir = dir, cs->capmark = cs->n;
 	return 0;
 }
 
@@ -238,14 +241,54 @@ static int mark_touching(csf_contacts *cs, const double *m)
 }
 
 /*
- * The pairs in contact chosen afresh (csf_contact_choose) among those in
- * contact and those that touch at rest (a relative normal velocity within
- * the rounding of zero): those that leave separate, those that join enter
- * contact. Returns 1 if a mode changed, 0 if none did or the choice did not
- * settle (the pairs' guards then act one at a time), -1 when memory runs
- * out.
+ * Pair c takes the mode csf_contact_choose chose for it (to, TO_*; a
+ * slide along dir). Entering contact, it is placed exactly in contact and
+ * its relative normal velocity (within the rounding of zero) is taken
+ * away; to stick, its slip (as small) too. Returns 1 if its mode changed.
  */
-static int choose(csf_contacts *cs, double *m)
+static int take_mode(const csf_contacts *cs, cpair *c, double *m, int to, const double dir[3])
+{
+	int was = in_contact(c);
+	if (to == TO_APART) {
+		if (was) separate(c, m);
+		return was;
+	}
+	if (!has_friction(c, m)) to = TO_CONTACT;
+	if (!was) {
+		double n[3], curv, vr[3];
+		double gap = csf_contact_geometry(c, m, n, &curv);
+		close_gap(c, m, n, gap);
+		rel(c, m, I(c, V), J(c, V), vr);
+		double vn = dot3(vr, n);
+		for (int k = 0; k < 3; k++) vr[k] = -vn * n[k];
+		csf_contact_add_impulse(c, m, vr);
+		if (to == TO_CONTACT) enter_contact(cs, c, m, n);
+	} else if (to == TO_CONTACT || (to == TO_STICK && W(c, MODE) == STICKING) ||
+	           (to == TO_SLIDE && W(c, MODE) == SLIDING && memcmp(WV(c, DS), dir, 3 * sizeof *dir) == 0))
+		return 0;
+	if (to == TO_STICK) stick(c, m);
+	if (to == TO_SLIDE) { /* a slip within the rounding, whose way is noise, is taken away: it begins along dir */
+		double n[3], curv, vt[3];
+		csf_contact_geometry(c, m, n, &curv);
+		csf_contact_slip_velocity(c, m, n, vt);
+		if (mag3(vt) <= speed_resolution(cs, c, m)) {
+			for (int k = 0; k < 3; k++) vt[k] = -vt[k];
+			csf_contact_add_impulse(c, m, vt);
+		}
+		W(c, MODE) = SLIDING;
+		memcpy(WV(c, DS), dir, 3 * sizeof *dir);
+	}
+	return 1;
+}
+
+/*
+ * The modes chosen afresh (csf_contact_choose; fresh: m holds the
+ * accelerations of the modes as they are) among the pairs in contact and
+ * those that touch at rest (a relative normal velocity within the
+ * rounding of zero), and taken. Returns 1 if a mode changed, 0 if none
+ * did, -1 when memory runs out.
+ */
+static int choose(csf_contacts *cs, double *m, int fresh)
 {
 	if (grow_marks(cs)) return -1;
 	for (uint32_t i = 0; i < cs->n; i++) {
@@ -256,24 +299,29 @@ static int choose(csf_contacts *cs, double *m)
 		rel(c, m, I(c, V), J(c, V), vr);
 		cs->mark[i] = fabs(dot3(vr, n)) <= speed_resolution(cs, c, m);
 	}
-	if (csf_contact_choose(cs, m)) return 0;
+	csf_contact_choose(cs, m, fresh);
 	int changed = 0;
-	for (uint32_t i = 0; i < cs->n; i++) {
-		cpair *c = &cs->pairs[i];
-		if (cs->mark[i] == 2) separate(c, m), changed = 1;
-		if (cs->mark[i] == 3) {
-			double n[3], curv, vr[3];
-			double gap = csf_contact_geometry(c, m, n, &curv);
-			close_gap(c, m, n, gap);
-			rel(c, m, I(c, V), J(c, V), vr);
-			double vn = dot3(vr, n);
-			for (int k = 0; k < 3; k++) vr[k] = -vn * n[k];
-			csf_contact_add_impulse(c, m, vr);
-			enter_contact(cs, c, m, n);
-			changed = 1;
-		}
-	}
+	for (uint32_t i = 0; i < cs->n; i++)
+		if (cs->mark[i]) changed |= take_mode(cs, &cs->pairs[i], m, cs->mark[i] & ~MODES_CHOSEN, cs->dir + 3 * (size_t)i);
 	return changed;
+}
+
+/*
+ * A sliding pair that does not slip ahead (beyond the speeds' rounding, as
+ * csf_contact_choose_modes sees it) whose relative tangential acceleration
+ * points against the way it slides, beyond its rounding: its friction
+ * would turn it back at once (it sticks, or slides the other way).
+ */
+static int turns_back(const csf_contacts *cs, const cpair *c, const double *m)
+{
+	double n[3], curv, vt[3], ar[3], at[3];
+	if (W(c, MODE) != SLIDING || !has_friction(c, m)) return 0;
+	csf_contact_geometry(c, m, n, &curv);
+	csf_contact_slip_velocity(c, m, n, vt);
+	if (dot3(vt, WV(c, DS)) > speed_resolution(cs, c, m)) return 0;
+	rel(c, m, I(c, A), J(c, A), ar);
+	csf_contact_tangential(ar, n, at);
+	return dot3(at, WV(c, DS)) < -csf_contact_accel_resolution(c, m, curv);
 }
 
 /* Hops from time t at normal speed v >= 0 (an < 0): it lands after 2 v/|an|. */
@@ -426,24 +474,32 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 			fresh = !changed; /* no other pair changed its mode in this pass */
 			continue;
 		}
-		/* a normal force that would pull: the pairs in contact chosen afresh, all at once */
-		int pulls = cs->unsolved; /* or forces that do not hold */
-		for (uint32_t i = 0; i < cs->n; i++) pulls |= in_contact(&cs->pairs[i]) && W(&cs->pairs[i], G0) < 0;
-		if (pulls) {
-			int st = choose(cs, m);
+		/* a normal force that would pull (or forces that do not hold), static friction that
+		   cannot hold, a slide that stops or would turn back: the modes chosen afresh, each
+		   cluster's all at once (those with friction only on the accelerations of their modes) */
+		int pulls = cs->unsolved, slips = 0, chose = 0;
+		for (uint32_t i = 0; i < cs->n; i++) {
+			const cpair *c = &cs->pairs[i];
+			if (!in_contact(c)) continue;
+			pulls |= W(c, G0) < 0;
+			slips |= W(c, G1) < 0 || turns_back(cs, c, m);
+		}
+		if (pulls || (slips && !changed)) {
+			int st = choose(cs, m, !changed);
 			if (st < 0) return -1;
 			if (st > 0) {
 				if (++others >= 100 + 10 * (uint64_t)cs->n) return 0;
 				continue;
 			}
+			chose = 1;
 		}
-		/* a guard of a pair in contact that is negative: its transition (contact_int.h's header);
-		   one a pass, the first in the order of pairs (the pairs of a cluster decide each other:
-		   changing every one at once can go round in a circle, changing the first each time
-		   settles, as Murty's least-index rule does for a complementarity problem) */
+		/* a guard of a pair in contact that is negative, of a cluster whose modes were not chosen
+		   together: its transition (contact_int.h's header); one a pass, the first in the order of
+		   pairs (changing every one at once can go round in a circle, changing the first each
+		   time settles, as Murty's least-index rule does for a complementarity problem) */
 		for (uint32_t i = 0; i < cs->n && !changed; i++) {
 			cpair *c = &cs->pairs[i];
-			if (!in_contact(c)) continue;
+			if (!in_contact(c) || (chose && cs->mark[i] & MODES_CHOSEN)) continue;
 			if (W(c, G0) < 0) separate(c, m), changed = 1;
 			else if (W(c, G1) < 0 && W(c, MODE) == SLIDING && W(c, SS) < 2) stick(c, m), W(c, SS)++, changed = 1;
 			else if (W(c, G1) < 0 && W(c, MODE) == STICKING) slide(c, m), changed = 1;

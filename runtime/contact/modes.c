@@ -1,0 +1,304 @@
+/*
+ * modes.c - the modes of a cluster with friction, chosen for the whole
+ * cluster at once (csf_contact_choose_modes), at an instant.
+ *
+ * Each pair of the cluster (in contact, or touching at rest) takes a mode:
+ *
+ *   apart:  no force; its relative normal acceleration does not close;
+ *   slide:  a normal force N >= 0 and friction -mu_k N u, u the way it
+ *           slips or, where it does not slip, the way its slip begins:
+ *           its relative tangential acceleration does not point back
+ *           against u (the friction across u keeps it from slipping
+ *           sideways: csf_contact_basis), and where the forces hold it at
+ *           rest its friction is static friction's, within mu_s N; a pair
+ *           turned back tries the other way;
+ *   stick:  (a pair that does not slip) the force that cancels its
+ *           relative acceleration, N >= 0 and |f| <= mu_s N.
+ *
+ * A set of modes is consistent when every pair's forces and
+ * accelerations, the cluster's system solved as the force stage solves it
+ * (force.c), agree with its mode, to the rounding of the accelerations
+ * that meet in the pair (csf_contact_accel_resolution). The pairs decide
+ * each other: a pair that sticks presses or pulls the next, whose
+ * friction holds or slips the first, so no rule of one pair at a time
+ * settles every cluster (a ball pressed against a wall by one sliding
+ * down it flips between sticking and sliding on the floor, and between
+ * touching the wall and parting, without end). So the sets are tried in
+ * order of the number of pairs whose mode changes: first the modes as
+ * they are (a pair that does not slip taken as sticking: at zero relative
+ * velocity friction is static, and a pair sticks when it can), then every
+ * set that changes one pair, then two, and so on; among as many changes,
+ * those of the earliest pairs in the order of pairs first, each pair
+ * trying sticking, then sliding, then parting. The first consistent set is
+ * the cluster's. Clusters are small (a handful of pairs) and most sets are
+ * found within a change or two; a cluster of more than MODES_MAX pairs, or
+ * whose first sets (as many as MODES_WORK allows) are inconsistent, or
+ * that has none (with sliding friction, Painlevé's paradox), is left to
+ * the complementarity problem of its normal forces and its pairs' own
+ * guards (force.c, settle.c).
+ */
+#include "contact_int.h"
+
+/* The most pairs of a cluster, the most sets tried, and the solves a set may take to turn its
+   slides round. The sets tried are fewer for a large cluster: about MODES_WORK operations in all
+   (a set costs some dim^3, dim its unknowns), 0.1 s, but at least every set that changes one
+   pair. */
+enum { MODES_MAX = 32, MODES_TRIES = 4096, MODES_TURNS = 4 };
+static const double MODES_WORK = 2e8;
+
+/* A pair's options: what it is tried in. */
+enum { O_APART, O_SLIDE, O_STICK };
+
+/* A pair of the cluster, as the search sees it. */
+typedef struct mpair {
+	cpair *c;
+	double n[3], curv, ar[3]; /* its normal, centripetal term, relative acceleration without contact forces */
+	double wn, res;           /* its inverse masses' sum; the rounding of its forces */
+	double u0[3], u[3];       /* the direction it slides in: the first guess, and the one tried */
+	int slips;                /* it slips beyond the speeds' rounding: it slides along u0 or parts */
+	int nopt;
+	unsigned char opt[3]; /* its options, in the order tried: the first is its mode now */
+	unsigned char mode;   /* in the set being tried */
+} mpair;
+
+typedef struct search {
+	csf_contacts *cs;
+	const double *m;
+	uint32_t np;
+	double wratio;
+	double F[3 * MODES_MAX]; /* the forces of the set tried (on body i of each pair) */
+	mpair p[MODES_MAX];
+} search;
+
+/* The unit vector of x into u; 0 if x is 0. */
+static int unit(const double x[3], double u[3])
+{
+	double s = mag3(x);
+	for (int k = 0; k < 3; k++) u[k] = s > 0 ? x[k] / s : 0;
+	return s > 0;
+}
+
+/*
+ * Solves the cluster's system in the modes of s->p[].mode, each sliding
+ * pair along its u: its forces into s->F. Returns 0, or -1 when the system
+ * has no solution.
+ */
+static int solve_set(search *s)
+{
+	csf_contacts *cs = s->cs;
+	uint32_t np = s->np, dim = 0, at[MODES_MAX];
+	unsigned char dc[MODES_MAX];
+	double *B = cs->B, *E = cs->E;
+	for (uint32_t a = 0; a < np; a++) {
+		mpair *p = &s->p[a];
+		dc[a] = 0, at[a] = dim;
+		if (p->mode == O_APART) continue;
+		int mode = p->mode == O_STICK ? STICKING : SLIDING;
+		dc[a] = (unsigned char)csf_contact_basis(p->c, s->m, p->n, 1, mode, p->u, B + 9 * a, E + 9 * a);
+		for (int r = 0; r < dc[a]; r++)
+			cs->rhs[dim + r] = -(dot3(E + 9 * a + 3 * r, p->ar) + p->curv * dot3(E + 9 * a + 3 * r, p->n));
+		dim += dc[a];
+	}
+	for (uint32_t a = 0; a < np; a++)
+		for (uint32_t b = 0; b < np; b++)
+			for (int r = 0; r < dc[a]; r++)
+				for (int q = 0; q < dc[b]; q++) {
+					size_t k = (size_t)(at[a] + r) * dim + at[b] + q;
+					double w = cs->G[a * np + b], w1 = cs->G1[a * np + b];
+					cs->K[k] = w == 0 ? 0 : w * dot3(E + 9 * a + 3 * r, B + 9 * b + 3 * q);
+					cs->K1[k] = w1 == 0 ? 0 : w1 * dot3(E + 9 * a + 3 * r, E + 9 * b + 3 * q);
+				}
+	for (uint32_t a = 0; a < np; a++) memcpy(cs->nv + 3 * a, s->p[a].n, sizeof s->p[a].n);
+	csf_contact_frames(np, dc, cs->nv, dim, cs->T, cs->fric);
+	if (dim && csf_contact_solve(cs, dim, cs->K1, s->wratio, cs->T, cs->fric)) return -1;
+	for (uint32_t a = 0; a < np; a++) {
+		double *F = s->F + 3 * a;
+		F[0] = F[1] = F[2] = 0;
+		for (int q = 0; q < dc[a]; q++)
+			for (int k = 0; k < 3; k++) F[k] += B[9 * a + 3 * q + k] * cs->x[at[a] + q];
+	}
+	return 0;
+}
+
+/*
+ * Is the set of modes in s->p[].mode consistent? A pair that slides
+ * without slipping whose forces turn it back tries the other way, again
+ * (MODES_TURNS solves at most). 1 consistent, 0 not.
+ */
+static int consistent(search *s)
+{
+	uint32_t np = s->np;
+	for (uint32_t a = 0; a < np; a++) memcpy(s->p[a].u, s->p[a].u0, sizeof s->p[a].u);
+	for (int turn = 0; turn < MODES_TURNS; turn++) {
+		if (solve_set(s)) return 0;
+		int turned = 0;
+		for (uint32_t a = 0; a < np; a++) {
+			mpair *p = &s->p[a];
+			double acc[3], *F = s->F + 3 * a;
+			memcpy(acc, p->ar, sizeof acc);
+			for (uint32_t b = 0; b < np; b++) {
+				double w = s->cs->G[a * np + b];
+				for (int k = 0; k < 3; k++) acc[k] += w * s->F[3 * b + k];
+			}
+			double an = (dot3(acc, p->n) + p->curv) / p->wn, N = dot3(F, p->n);
+			if (p->mode == O_APART) { /* does not close */
+				if (an < -p->res) return 0;
+				continue;
+			}
+			if (N < -p->res) return 0; /* pushes */
+			if (!has_friction(p->c, s->m)) continue;
+			if (p->mode == O_STICK) { /* static friction holds (as the guard says) */
+				double f[3];
+				for (int k = 0; k < 3; k++) f[k] = F[k] - N * p->n[k];
+				if (mu_s(p->c, s->m) * fabs(N) - mag3(f) < 0) return 0;
+				continue;
+			}
+			if (p->slips) continue;
+			/* it does not slip: it begins to slip along u (its friction across u keeps it from
+			   slipping sideways), or, held by its neighbours, does not slip, its friction static
+			   friction's (within mu_s |N|, or mu_k's if that is more); or, turned back, it tries
+			   the other way (without a way, the way it is pulled) */
+			double f[3], t[3];
+			csf_contact_tangential(acc, p->n, t);
+			if (!(mag3(p->u) > 0)) {
+				if (!(mag3(t) / p->wn > p->res) || turn == MODES_TURNS - 1) return 0;
+				unit(t, p->u), turned = 1;
+				continue;
+			}
+			if (dot3(t, p->u) / p->wn < -p->res) {
+				if (turn == MODES_TURNS - 1) return 0;
+				for (int k = 0; k < 3; k++) p->u[k] = -p->u[k];
+				turned = 1;
+				continue;
+			}
+			for (int k = 0; k < 3; k++) f[k] = F[k] - N * p->n[k];
+			if (csf_max(mu_s(p->c, s->m), mu_k(p->c, s->m)) * fabs(N) - mag3(f) < 0) return 0; /* as its guard */
+		}
+		if (!turned) return 1;
+	}
+	return 0;
+}
+
+/*
+ * The sets of modes in order (the header): those that change d pairs,
+ * for d = 0, 1, ..., np; the pairs changed, idx[0..d), in lexicographic
+ * order, and each one's alternatives (its options after the first) in
+ * theirs. Returns 0 with the consistent set in s->p[].mode and .u, 1 when
+ * there is none, -1 when the sets it may try (MODES_WORK) are done.
+ */
+static int find_set(search *s)
+{
+	uint32_t np = s->np, tries = 0, idx[MODES_MAX], alt[MODES_MAX];
+	double dim = 3.0 * np, most = csf_max(csf_min(MODES_TRIES, MODES_WORK / (dim * dim * dim)), 1 + 3.0 * np);
+	for (uint32_t d = 0; d <= np; d++) {
+		for (uint32_t k = 0; k < d; k++) idx[k] = k;
+		for (;;) {
+			for (uint32_t k = 0; k < d; k++) alt[k] = 1;
+			for (;;) {
+				for (uint32_t a = 0; a < np; a++) s->p[a].mode = s->p[a].opt[0];
+				for (uint32_t k = 0; k < d; k++) s->p[idx[k]].mode = s->p[idx[k]].opt[alt[k]];
+				if (++tries > most) return -1;
+				if (consistent(s)) return 0;
+				uint32_t k = d;
+				while (k > 0 && ++alt[k - 1] >= (uint32_t)s->p[idx[k - 1]].nopt) alt[k - 1] = 1, k--;
+				if (k == 0) break;
+			}
+			uint32_t k = d;
+			while (k > 0 && idx[k - 1] == np - d + k - 1) k--;
+			if (k == 0) break;
+			idx[k - 1]++;
+			for (uint32_t j = k; j < d; j++) idx[j] = idx[j - 1] + 1;
+		}
+	}
+	return 1;
+}
+
+/*
+ * Pair a of the search, for cluster pair c at the instant m (whose
+ * accelerations are those of the modes as they are): its geometry, its
+ * relative acceleration without contact forces (each body's acceleration
+ * less its contact forces over its mass: every contact force on a body of
+ * the cluster is one of the cluster's), the rounding of its forces, its
+ * options and its first guess of a direction to slide in.
+ */
+static void take_pair(search *s, mpair *p, cpair *c)
+{
+	const double *m = s->m;
+	double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), vt[3];
+	p->c = c;
+	csf_contact_geometry(c, m, p->n, &p->curv);
+	p->wn = wi + wj;
+	p->res = csf_contact_accel_resolution(c, m, p->curv) / p->wn;
+	for (int k = 0; k < 3; k++) {
+		double ai = m[I(c, A) + k] - (m[I(c, FN) + k] + m[I(c, FF) + k]) * wi;
+		double aj = c->plane ? 0 : m[J(c, A) + k] - (m[J(c, FN) + k] + m[J(c, FF) + k]) * wj;
+		p->ar[k] = ai - aj;
+	}
+	/* it slips: beyond the speeds' rounding, or, sliding, ahead (its guard: past the event at which
+	   its slip turns back, a slip within the rounding behind it, it has stopped) */
+	csf_contact_slip_velocity(c, m, p->n, vt);
+	int touch = in_contact(c), fr = has_friction(c, m);
+	double vres = csf_contact_speed_resolution(c, m, s->cs->vfloor);
+	p->slips = fr && (W(c, MODE) == SLIDING ? dot3(vt, WV(c, DS)) > vres : mag3(vt) > vres);
+	p->nopt = 0;
+	if (fr && !p->slips) { /* sticks if it can; or slides, or parts */
+		if (!touch) p->opt[p->nopt++] = O_APART;
+		p->opt[p->nopt++] = O_STICK;
+		p->opt[p->nopt++] = O_SLIDE;
+		if (touch) p->opt[p->nopt++] = O_APART;
+	} else {
+		p->opt[p->nopt++] = touch ? O_SLIDE : O_APART;
+		p->opt[p->nopt++] = touch ? O_APART : O_SLIDE;
+	}
+	/* the way it slides: as it slides (csf_contact_basis turns that to its slip where it slips
+	   ahead); its slip, entering contact; against its static friction; as it is pulled */
+	double t[3];
+	if (W(c, MODE) == SLIDING && unit(WV(c, DS), p->u0)) return;
+	if (p->slips && unit(vt, p->u0)) return;
+	for (int k = 0; k < 3; k++) t[k] = -WV(c, F)[k];
+	if (W(c, MODE) == STICKING && unit(t, p->u0)) return;
+	csf_contact_tangential(p->ar, p->n, t);
+	unit(t, p->u0);
+}
+
+/*
+ * The modes of cluster cl[0..np) (pairs in contact, or touching at rest)
+ * if it has friction: the first consistent set (the header), written into
+ * cs->mark (TO_APART, TO_SLIDE or TO_STICK, with MODES_CHOSEN) and, for
+ * each pair that slides, its direction into cs->dir. A slip counts beyond
+ * the speeds' rounding at the instant (cs->vfloor). m holds the accelerations of the modes as they are.
+ * Returns 0, or -1 with nothing written: the cluster has no friction, a
+ * pair locked by its sliding friction (force.c: its impulse settles it),
+ * more than MODES_MAX pairs, or no consistent set among those it tries.
+ */
+int csf_contact_choose_modes(csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np)
+{
+	int friction = 0;
+	if (np > MODES_MAX) return -1;
+	for (uint32_t a = 0; a < np; a++) {
+		const cpair *c = &cs->pairs[cl[a]];
+		friction |= has_friction(c, m);
+		if (W(c, LOCK)) return -1;
+	}
+	if (!friction) return -1;
+	search s;
+	s.cs = cs, s.m = m, s.np = np, s.wratio = csf_contact_mass_ratio(cs, cl, np, m);
+	for (uint32_t a = 0; a < np; a++) take_pair(&s, &s.p[a], &cs->pairs[cl[a]]);
+	for (uint32_t a = 0; a < np; a++) /* the pairs' coupling, with their masses and with every mass 1 */
+		for (uint32_t b = 0; b < np; b++) {
+			cs->G[a * np + b] = csf_contact_coupling(cs, s.p[a].c, s.p[b].c, m);
+			cs->G1[a * np + b] = csf_contact_coupling(cs, s.p[a].c, s.p[b].c, NULL);
+		}
+	if (find_set(&s)) return -1;
+	for (uint32_t a = 0; a < np; a++) {
+		const mpair *p = &s.p[a];
+		const cpair *c = p->c;
+		double *dir = cs->dir + 3 * (size_t)cl[a];
+		int to = p->mode == O_APART ? TO_APART : p->mode == O_STICK ? TO_STICK : TO_SLIDE;
+		cs->mark[cl[a]] = (unsigned char)(to | MODES_CHOSEN);
+		/* a pair that slides on keeps the direction it began in; one that begins takes its own */
+		if (W(c, MODE) == SLIDING && p->slips) memcpy(dir, WV(c, DS), 3 * sizeof *dir);
+		else memcpy(dir, p->u, 3 * sizeof *dir);
+	}
+	return 0;
+}
