@@ -346,10 +346,10 @@ void csf_constraint_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 	memcpy(cs->mu, cs->mut, cs->n * sizeof *cs->mu); /* each turn's were the change: the whole for the guards */
 }
 
-void csf_cons_correct(csf_cons *cs, const double *m, double *y, int what)
+/* Moves the positions (what CSF_CONS_POS) or velocities of state y by -W J^T mu, the last solve's. */
+static void move_by(csf_cons *cs, const double *m, double *y, int what)
 {
 	const csf_prog *p = cs->p;
-	multipliers(cs, m, what);
 	for (uint32_t k = 0; k < cs->n; k++) {
 		if (!cs->taut[k] || cs->mu[k] == 0) continue;
 		const csf_con *c = &p->cons[k];
@@ -360,6 +360,12 @@ void csf_cons_correct(csf_cons *cs, const double *m, double *y, int what)
 			for (int i = 0; i < 3; i++) y[s + i] -= w * cs->mu[k] * m[b->J + i];
 		}
 	}
+}
+
+void csf_cons_correct(csf_cons *cs, const double *m, double *y, int what)
+{
+	multipliers(cs, m, what);
+	move_by(cs, m, y, what);
 }
 
 /* The size of the terms of constraint k's g: |LHS| + |RHS| and each body's |J| |pos|. */
@@ -466,15 +472,7 @@ void csf_cons_impulse(csf_cons *cs, const double *m, double *y, uint32_t k, doub
 	for (uint32_t j = 0; j < cs->n; j++)
 		cs->b[j] = !cs->taut[j] ? 0 : j == k ? (1 + e) * m[p->cons[j].gd] : m[p->cons[j].gd];
 	solve(cs, 1);
-	for (uint32_t j = 0; j < cs->n; j++) {
-		if (!cs->taut[j] || cs->mu[j] == 0) continue;
-		const csf_con *c = &p->cons[j];
-		for (uint32_t x = c->first; x < c->first + c->n; x++) {
-			const csf_conbody *b = &p->conbodies[x];
-			double w = inv_mass(b, m);
-			for (int i = 0; i < 3; i++) y[b->v - p->ystart + i] -= w * cs->mu[j] * m[b->J + i];
-		}
-	}
+	move_by(cs, m, y, CSF_CONS_VEL);
 }
 
 double csf_cons_pull(const csf_cons *cs, uint32_t k)
