@@ -79,6 +79,8 @@ void lint_model(Model *M)
 				if (q != p && (q->from_kind || vec_has(&read, sema_canon(q)) || q->state)) c[nc++] = q->name;
 			}
 			const char *s = csf_suggest_name(p->name, c, nc);
+			/* of an object left out, nothing is read: only a misspelling is worth a word */
+			if (o->dropped && !s) continue;
 			if (s) warn_at(p->loc, "property '%s' of object '%s' is never read; did you mean '%s'?", p->name, o->name, s);
 			else warn_at(p->loc, "property '%s' of object '%s' is never read", p->name, o->name);
 		}

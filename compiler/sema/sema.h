@@ -67,6 +67,7 @@ struct Object {
 	Map props_by_name; /* the same, by name */
 	Shape *shape;
 	int sidx;        /* its index among the shape's members */
+	int dropped;     /* left out: nothing watched depends on it (mid/cone.c); no rule applies to it */
 };
 
 typedef enum RKind { R_CONST, R_VAR, R_RF, R_OP, R_COMP } RKind;
@@ -196,13 +197,16 @@ typedef struct Model {
 	Vec shapes;      /* of Shape* */
 	int shaped;      /* rules compiled once per shape; 0: once per object */
 	const char *unshaped_why; /* why not, for --explain */
+	int ndropped;    /* objects left out (Object.dropped) */
 } Model;
 
 /* A statement in the source table (what runtime errors name). */
 typedef struct SrcEntry { Loc loc; char *text; } SrcEntry;
 
-/* Builds and resolves the model from the statement list. Errors are reported; check diag_errors. */
-Model *sema_run(Stmt *stmts);
+/* Builds and resolves the model from the statement list. Errors are reported; check diag_errors.
+ * drop (NULL: none): by object index, the objects to leave out (no rule, contact or watch of all
+ * objects applies to them; mid/cone.c), resolved silently. */
+Model *sema_run(Stmt *stmts, const char *drop);
 
 /* The variable standing for v in the code: the representative's property of v's name. */
 Var *sema_canon(Var *v);
