@@ -130,6 +130,7 @@ static stop run_method(session *S, csf_opts *o)
 	S->ode = csf_ode_new(S->method, o->fixed, p->ny, p->by, hmax, o->tol, o->atol, p->yatol, p->yscale, p->vpair, csf_run_rhs,
 	                     p->jtan ? csf_run_jac : NULL, r, S->msg, sizeof S->msg);
 	if (S->ode) csf_ode_vectors(S->ode, S->vec);
+	if (S->ode && (r->row_y = csf_run_row_state(p, &r->nrow_y))) csf_ode_set_rows(S->ode, r->row_y, r->nrow_y);
 	if (S->ode && S->autom_on) { /* the implicit method ends its steps on the rows: at most by */
 		S->au.m[0] = S->ode;
 		S->au.m[1] = csf_ode_new(AUTO_STIFF, 0, p->ny, p->by, o->hmax > 0 && o->hmax < p->by ? o->hmax : p->by,
@@ -512,6 +513,7 @@ static void run_free(session *S)
 	free(r->gl);
 	free(S->work);
 	free(S->y);
+	free(S->r.row_y);
 	free(S->v);
 	free(S->vec);
 	free(r->yi);
