@@ -231,7 +231,10 @@ static int compile(const cli *c, csf_prog *p)
 	if (diag_errors) return 1;
 	Model *M = sema_run(stmts, NULL);
 	if (diag_errors) return 1;
-	if (!c->keep_all) M = leave_out(stmts, M);
+	if (!c->keep_all) {
+		M = leave_out(stmts, M);
+		cone_idle_states(M);
+	}
 	if (gen_program(M, p)) {
 		csf_prog_free(p);
 		return 1;

@@ -189,29 +189,48 @@ static int couple(Walk *W)
 	return W->nkept > before;
 }
 
-char *cone_dropped(const Model *M)
+/* The walk from the roots (the watched columns, the assertions and stop conditions) to its end. */
+static void walk(Walk *W, const Model *M)
 {
-	Walk W = { .M = M, .Finsts = live_forces(M) };
-	W.kept = xalloc((size_t)M->objects.n + 1);
+	*W = (Walk){ .M = M, .Finsts = live_forces(M) };
+	W->kept = xalloc((size_t)M->objects.n + 1);
 	for (int i = 0; i < M->cols.n; i++) {
 		WatchCol *w = M->cols.v[i];
 		Var *v = sema_canon(w->var);
-		need_var(&W, v, !sema_per_member(v) ? 0 : v->kind == V_TEMP ? w->member : w->var->obj->sidx);
+		need_var(W, v, !sema_per_member(v) ? 0 : v->kind == V_TEMP ? w->member : w->var->obj->sidx);
 	}
 	for (int i = 0; i < M->insts.n; i++) {
 		Inst *I = M->insts.v[i];
-		if (I->isassert || I->isstop) need_inst(&W, I, -1);
+		if (I->isassert || I->isstop) need_inst(W, I, -1);
 	}
-	drain(&W);
-	while (couple(&W))
+	drain(W);
+	while (couple(W))
 		;
+	free(W->stack);
+}
+
+char *cone_dropped(const Model *M)
+{
+	Walk W;
+	walk(&W, M);
 	/* nothing kept (only t and globals watched): left as it is, so that every assertion stays */
-	if (W.nkept == M->objects.n || W.nkept == 0) {
-		free(W.stack);
-		return NULL;
-	}
-	free(W.stack);
+	if (W.nkept == M->objects.n || W.nkept == 0) return NULL;
 	char *drop = xalloc((size_t)M->objects.n + 1);
 	for (int i = 0; i < M->objects.n; i++) drop[i] = !W.kept[i];
 	return drop;
+}
+
+void cone_idle_states(Model *M)
+{
+	Walk W;
+	walk(&W, M);
+	for (int i = 0; i < M->insts.n; i++) {
+		Inst *I = M->insts.v[i];
+		if (!I->isderiv || !I->targets.n) continue;
+		Var *v = sema_canon(I->targets.v[0]);
+		const char *m = map_get(&W.seen, xprintf("%p", (void *)v));
+		int n = sema_per_member(v) ? v->obj->shape->n : 1, any = 0;
+		for (int k = 0; m && k < n; k++) any |= m[k];
+		I->idle = !any;
+	}
 }

@@ -10,4 +10,8 @@
    NULL when every object is needed (or none is). */
 char *cone_dropped(const Model *M);
 
+/* Marks idle the derivatives of the state variables that nothing watched, asserted or stopped on
+   depends on (Inst.idle): they are not integrated. */
+void cone_idle_states(Model *M);
+
 #endif

@@ -157,7 +157,7 @@ void explain_model(Model *Mo, FILE *f)
 		for (int j = 0; j < o->props.n; j++) {
 			Var *v = o->props.v[j], *r = sema_canon(v);
 			fprintf(f, "%s %s (%s)", j ? "," : "", v->name,
-			        r->state ? "state" : r->det ? xprintf("computed, line %d", r->det->st->loc.line) : "constant");
+			        r->state ? (var_integrated(r) ? "state" : "state, left out: nothing needs it") : r->det ? xprintf("computed, line %d", r->det->st->loc.line) : "constant");
 		}
 		fputc('\n', f);
 	}

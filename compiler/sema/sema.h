@@ -131,6 +131,8 @@ struct Inst {
 	int assert_index;
 	char *why;       /* for --explain: what it solves for and why */
 	int acc;         /* gen.c: a $1 F rule's sums over $1, an array of vectors (slot, -1 before) */
+	int idle;        /* a derivative whose state variable nothing watched depends on: not integrated
+	                    (mid/cone.c) */
 };
 
 /* A body of the contact routine: a mass point, a plane or an anchor, with the properties the routine reads. */
@@ -212,6 +214,9 @@ Model *sema_run(Stmt *stmts, const char *drop);
 Var *sema_canon(Var *v);
 /* Object o's property name, or NULL. */
 static inline Var *prop_of_obj(Object *o, const char *name) { return map_get(&o->props_by_name, name); }
+
+/* Is v integrated: a state variable whose derivative is not idle (mid/cone.c)? */
+static inline int var_integrated(const Var *v) { return v->state && !(v->deriv && v->deriv->idle); }
 
 /* Is v an array over its shape's members (a property, or a temporary of one object)? */
 int sema_per_member(const Var *v);

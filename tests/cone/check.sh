@@ -14,6 +14,9 @@
 #  - an assertion keeps what it reads (assert_kept.csf): it fails at t = 0.5 s, exit 1, after
 #    the 5 rows before it;
 #  - -D on a property of an object left out is an error naming it;
+#  - a state variable nothing watched reads (odometer.csf) is not integrated: --explain says so,
+#    the rows are byte for byte those of --keep-all under --fixed; watched, it is the arc length
+#    of the parabola to 1e-9 m;
 #  - --every 4 writes rows 0, 4, 8, ... and the last of the full output, byte for byte.
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3
@@ -103,6 +106,22 @@ if [ -f "$T/proj.csfb" ]; then
 	"$CSFVM" -D p7.k=1 "$T/proj.csfb" >/dev/null 2>"$T/d.err"
 	check test $? = 2
 	check grep -q "object 'p7' has no property 'k' that the run uses" "$T/d.err"
+fi
+
+# an odometer nobody reads
+if comp odo "$D/odometer.csf" && comp odoall "$D/odometer.csf" --keep-all; then
+	check test ! -s "$T/odo.err"
+	"$CSFC" --explain "$D/odometer.csf" 2>/dev/null | grep -q "path (state, left out: nothing needs it)"
+	check test $? = 0
+	"$CSFVM" --fixed "$T/odo.csfb" >"$T/a.csv" && "$CSFVM" --fixed "$T/odoall.csfb" >"$T/b.csv" && check cmp -s "$T/a.csv" "$T/b.csv"
+	sed 's/watch ball.pos$/watch ball.pos, ball.path/' "$D/odometer.csf" >"$T/odo2.csf"
+	comp odo2 "$T/odo2.csf" && "$CSFVM" "$T/odo2.csfb" >"$T/a.csv" && check awk -F, 'function abs(x) { return x < 0 ? -x : x }
+		function asinh(x) { return log(x + sqrt(x * x + 1)) }
+		function F(u) { return (u * sqrt(9 + u * u) + 9 * asinh(u / 3)) / 2 }
+		NR > 1 { g = 9.80665; s = (F(4) - F(4 - g * $1)) / g
+			if (abs($5 - s) > 1e-9) { printf "FAIL: path at t=%s: %.17g, not %.17g\n", $1, $5, s; exit 1 }
+			n++ }
+		END { exit n != 9 }' "$T/a.csv"
 fi
 
 # --every 4: rows 0, 4, 8, ... and the last (40 rows after t = 0: the last is row 40, a multiple)
