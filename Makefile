@@ -1,6 +1,8 @@
 # CSF - build, test, install.
 #
-#   make            build build/csfc, build/csfvm, build/libcsfrt.a, build/csfview
+#   make            build build/csfc, build/csfvm, build/libcsfrt.a, build/csfview, and (but with SAN=1)
+#                   libcsf.so and the Python package csf (make python)
+#   make python     build/libcsf.so (runtime/api/csf_api.h) and the Python package in build/python/csf
 #   make deps       install missing Debian packages (apt-get, as root)
 #   make deps-chromium  headless Chromium, only for the browser test of csfview
 #   make demo       deps + build + compile and run an example
@@ -23,7 +25,10 @@ CC ?= cc
 CFLAGS ?= -O2 -g
 SAN ?=
 
-DEB_PACKAGES = gcc make libgsl-dev check re2c bison pkg-config gnuplot-nox $(VIEW_PACKAGES)
+DEB_PACKAGES = gcc make libgsl-dev check re2c bison pkg-config gnuplot-nox $(VIEW_PACKAGES) $(PYTHON_PACKAGES)
+# the Python package csf (python/csf: numpy, pandas optional) and its tests (pytest), for Debian's python3
+PYTHON_PACKAGES = python3-numpy python3-pandas python3-pytest
+PYTHON = /usr/bin/python3
 # what csfview needs at run time: the JavaScript it inlines into its pages
 # (gnuplot-nox, for its static plots, is above)
 VIEW_PACKAGES = libjs-three libjs-dygraphs
@@ -59,7 +64,8 @@ CC_H = $(wildcard compiler/*.h compiler/*/*.h)
 CC_GEN = $(BUILD)/lex.c $(BUILD)/parse.c
 CC_OBJ = $(CC_SRC:compiler/%.c=$(BUILD)/cc/%.o) $(BUILD)/cc/lex.o $(BUILD)/cc/parse.o
 
-all: $(BUILD)/csfc $(BUILD)/csfvm $(BUILD)/libcsfrt.a $(BUILD)/csfview $(if $(MPI),$(BUILD)/csfvm-mpi)
+all: $(BUILD)/csfc $(BUILD)/csfvm $(BUILD)/libcsfrt.a $(BUILD)/csfview $(if $(MPI),$(BUILD)/csfvm-mpi) \
+	$(if $(SAN),,python)
 
 $(BUILD)/rt/%.o: runtime/%.c $(RT_H)
 	@mkdir -p $(@D)
@@ -68,6 +74,41 @@ $(BUILD)/rt/%.o: runtime/%.c $(RT_H)
 $(BUILD)/libcsfrt.a: $(RT_OBJ)
 	rm -f $@
 	ar rcs $@ $^
+
+# libcsf.so (runtime/api/csf_api.h): the runtime built position-independent, its API alone exported
+# (runtime/api/csf_api.map: version node CSF_1). Not with SAN=1: a sanitized shared library needs the
+# sanitizer's runtime loaded before it (tests/api_test.c drives the API under the sanitizers, linked
+# with libcsfrt.a, which has runtime/api/api.c too).
+SO_NAME = libcsf.so.1
+PIC_OBJ = $(RT_SRC:runtime/%.c=$(BUILD)/pic/%.o)
+
+$(BUILD)/pic/%.o: runtime/%.c $(RT_H)
+	@mkdir -p $(@D)
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) -fPIC -fvisibility=hidden $(CPPFLAGS_ALL) -c $< -o $@
+
+$(BUILD)/$(SO_NAME): $(PIC_OBJ) runtime/api/csf_api.map
+	$(CC) -shared -Wl,-soname,$(SO_NAME) -Wl,--version-script=runtime/api/csf_api.map -Wl,-z,defs -o $@ \
+		$(PIC_OBJ) $(LDLIBS_GSL)
+
+$(BUILD)/libcsf.so: $(BUILD)/$(SO_NAME)
+	ln -sf $(SO_NAME) $@
+
+# the Python package csf: python/csf/*.py, and _paths.py, which says where it finds libcsf.so, csfc
+# and csfvm (here: this build directory; make install writes the installed paths)
+PY_SRC = $(wildcard python/csf/*.py)
+PY_OUT = $(PY_SRC:python/%=$(BUILD)/python/%)
+py_paths = printf '%s\n' '"""Where this copy of csf finds libcsf and the programs (written by make)."""' \
+	'LIBCSF = "$(1)/$(SO_NAME)"' 'BINDIR = "$(2)"'
+
+$(BUILD)/python/csf/%.py: python/csf/%.py
+	@mkdir -p $(@D)
+	cp $< $@
+
+$(BUILD)/python/csf/_paths.py: Makefile
+	@mkdir -p $(@D)
+	$(call py_paths,$(abspath $(BUILD)),$(abspath $(BUILD))) >$@
+
+python: $(BUILD)/libcsf.so $(PY_OUT) $(BUILD)/python/csf/_paths.py $(BUILD)/csfc $(BUILD)/csfvm
 
 $(BUILD)/parse.c $(BUILD)/parse.h &: compiler/front/parse.y
 	@mkdir -p $(BUILD)

@@ -489,6 +489,21 @@ double csf_units_to_system(double si, const double d[CSF_NDIM], const double bas
 const char *csf_suggest_name(const char *name, const char *const *cands, int n);
 
 
+/*
+ * csf_parse_opts with its --help and --version text to out and its usage
+ * errors to err (csf_parse_opts: stdout and stderr; the embedding API
+ * keeps both in the run's diagnostics).
+ */
+int csf_parse_opts_to(int argc, char **argv, int first, csf_opts *o, int *pos, int npos, int *npos_out,
+                      const char *usage, FILE *out, FILE *err);
+
+/*
+ * The index of p's last output row, kmax: the rows are t_k = k*by for k = 0 .. kmax, the
+ * last k with k*by <= till allowing for till/by's rounding (run.c). A run writes at most
+ * kmax + 1 rows.
+ */
+double csf_run_kmax(const csf_prog *p);
+
 /* Name of the i-th available ODE method (the default is 0), NULL past the last. */
 const char *csf_method_name(size_t i);
 

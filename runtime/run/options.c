@@ -10,14 +10,14 @@
 
 #include "run_int.h"
 
-/* The value v of option name into *x: a positive finite number, or a usage error (-1). */
-static int positive(const char *prog, const char *v, const char *name, const char *what, double *x)
+/* The value v of option name into *x: a positive finite number, or a usage error (-1) on err. */
+static int positive(FILE *err, const char *prog, const char *v, const char *name, const char *what, double *x)
 {
 	char *end;
 	errno = 0;
 	*x = strtod(v, &end);
 	if (end == v || *end || errno || !(*x > 0) || !isfinite(*x)) {
-		fprintf(stderr, "%s: %s needs a positive number%s, not '%s'\n", prog, name, what, v);
+		fprintf(err, "%s: %s needs a positive number%s, not '%s'\n", prog, name, what, v);
 		return -1;
 	}
 	return 0;
@@ -57,31 +57,37 @@ int csf_opt_value(int argc, char **argv, int *i, const char *name, const char **
 int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int npos, int *npos_out,
                    const char *usage)
 {
+	return csf_parse_opts_to(argc, argv, first, o, pos, npos, npos_out, usage, stdout, stderr);
+}
+
+int csf_parse_opts_to(int argc, char **argv, int first, csf_opts *o, int *pos, int npos, int *npos_out,
+                      const char *usage, FILE *out, FILE *err)
+{
 	memset(o, 0, sizeof *o);
 	*npos_out = 0;
 	for (int i = first; i < argc; i++) {
 		const char *a = argv[i], *v;
 		if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-			fputs(usage, stdout);
+			fputs(usage, out);
 			return 1;
 		} else if (strcmp(a, "--version") == 0) {
 			const char *slash = strrchr(argv[0], '/');
-			printf("%s %s\n", slash ? slash + 1 : argv[0], CSF_VERSION_STRING);
+			fprintf(out, "%s %s\n", slash ? slash + 1 : argv[0], CSF_VERSION_STRING);
 			return 1;
 		} else if (csf_opt_value(argc, argv, &i, "--method", &v)) {
 			o->method = v;
 			int known = strcmp(v, "auto") == 0;
 			for (size_t k = 0; csf_method_name(k); k++) known |= strcmp(csf_method_name(k), o->method) == 0;
 			if (!known) {
-				fprintf(stderr, "%s: unknown method '%s' (one of: auto", argv[0], o->method);
-				for (size_t k = 0; csf_method_name(k); k++) fprintf(stderr, " %s", csf_method_name(k));
-				fprintf(stderr, ")\n");
+				fprintf(err, "%s: unknown method '%s' (one of: auto", argv[0], o->method);
+				for (size_t k = 0; csf_method_name(k); k++) fprintf(err, " %s", csf_method_name(k));
+				fprintf(err, ")\n");
 				return 2;
 			}
 		} else if (csf_opt_value(argc, argv, &i, "--tol", &v)) {
-			if (positive(argv[0], v, "--tol", "", &o->tol)) return 2;
+			if (positive(err, argv[0], v, "--tol", "", &o->tol)) return 2;
 			if (o->tol < CSF_MIN_TOL || o->tol >= 1) {
-				fprintf(stderr,
+				fprintf(err,
 				        o->tol >= 1 ? "%s: --tol %s: a relative error of 1 or more allows any answer; the tolerance "
 				                      "must be below 1\n"
 				                    : "%s: --tol %s is below 1e-15, what doubles can deliver: a step's result is "
@@ -92,18 +98,18 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 				return 2;
 			}
 		} else if (csf_opt_value(argc, argv, &i, "--atol", &v)) {
-			if (positive(argv[0], v, "--atol", " (in the model's units)", &o->atol)) return 2;
+			if (positive(err, argv[0], v, "--atol", " (in the model's units)", &o->atol)) return 2;
 		} else if (csf_opt_value(argc, argv, &i, "--step", &v)) {
-			if (positive(argv[0], v, "--step", " of seconds", &o->step)) return 2;
+			if (positive(err, argv[0], v, "--step", " of seconds", &o->step)) return 2;
 			o->fixed = 1;
 		} else if (csf_opt_value(argc, argv, &i, "--hmax", &v)) {
-			if (positive(argv[0], v, "--hmax", " of seconds", &o->hmax)) return 2;
+			if (positive(err, argv[0], v, "--hmax", " of seconds", &o->hmax)) return 2;
 		} else if (csf_opt_value(argc, argv, &i, "--every", &v)) {
 			char *end;
 			errno = 0;
 			long k = strtol(v, &end, 10);
 			if (end == v || *end || errno || k < 1) {
-				fprintf(stderr, "%s: --every needs a whole number of rows, 1 or more, not '%s'\n", argv[0], v);
+				fprintf(err, "%s: --every needs a whole number of rows, 1 or more, not '%s'\n", argv[0], v);
 				return 2;
 			}
 			o->every = (unsigned long)k;
@@ -133,15 +139,15 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 			errno = 0;
 			o->jobs = strtol(v, &end, 10);
 			if (end == v || *end || errno || o->jobs < 1 || o->jobs > 4096) {
-				fprintf(stderr, "%s: -j needs a number of processes from 1 to 4096, not '%s'\n", argv[0], v);
+				fprintf(err, "%s: -j needs a number of processes from 1 to 4096, not '%s'\n", argv[0], v);
 				return 2;
 			}
 		} else if (a[0] == '-' && a[1] != '\0') {
-			fprintf(stderr, "%s: unknown or incomplete option '%s'\n%s", argv[0], a, usage);
+			fprintf(err, "%s: unknown or incomplete option '%s'\n%s", argv[0], a, usage);
 			return 2;
 		} else {
 			if (*npos_out >= npos) {
-				fprintf(stderr, "%s: too many arguments\n%s", argv[0], usage);
+				fprintf(err, "%s: too many arguments\n%s", argv[0], usage);
 				return 2;
 			}
 			pos[(*npos_out)++] = i;

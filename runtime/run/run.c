@@ -111,14 +111,20 @@ static stop run_alloc(session *S)
 	return stop_kind_only(STOP_END);
 }
 
+double csf_run_kmax(const csf_prog *p)
+{
+	/* the last k with k*by <= till, allowing for till/by's rounding */
+	double kmax = floor(p->till / p->by);
+	if ((kmax + 1) * p->by <= p->till * (1 + 1e-12)) kmax += 1;
+	return kmax;
+}
+
 /* The output times, and the method (with --method auto, the pair). */
 static stop run_method(session *S, csf_opts *o)
 {
 	run *r = &S->r;
 	const csf_prog *p = r->p;
-	/* The last k with k*by <= till, allowing for till/by's rounding. */
-	S->kmax = floor(p->till / p->by);
-	if ((S->kmax + 1) * p->by <= p->till * (1 + 1e-12)) S->kmax += 1;
+	S->kmax = csf_run_kmax(p);
 	r->tend = S->kmax * p->by;
 	if (!p->ny) return stop_kind_only(STOP_END);
 	/* a dense method steps as far as its error control allows (--hmax caps it), the others
