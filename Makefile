@@ -165,6 +165,10 @@ $(BUILD)/fuzz-bytecode: tests/fuzz_bytecode.c $(BUILD)/libcsfrt.a
 $(BUILD)/code-words: tests/code_words.c $(RT_H) $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
 
+# libcsf's API driven from C (tests/api_test.c), linked with libcsfrt.a: it runs under the sanitizers too
+$(BUILD)/api-test: tests/api_test.c $(RT_H) $(BUILD)/libcsfrt.a
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+
 # the fuzz targets (tests/fuzz/) replayed on the regression corpus by an ordinary main()
 FUZZ_DEFS = -DCSF_FUZZ_STDLIB='"$(CURDIR)/stdlib"'
 
@@ -179,11 +183,11 @@ $(BUILD)/fuzz-replay-csfb: tests/fuzz/fuzz_csfb.c tests/fuzz/replay.c $(BUILD)/l
 # the MPI sweep test runs where Open MPI is installed (tests/sweep/check.sh says SKIP otherwise)
 # test-progs: what the tests run, built alone so that make check builds it nproc at a time
 test-progs: all $(BUILD)/unit-tests $(BUILD)/fuzz-bytecode $(BUILD)/code-words $(BUILD)/fuzz-replay-csfc \
-	$(BUILD)/fuzz-replay-csfb $(if $(HAVE_MPICC),$(BUILD)/csfvm-mpi)
+	$(BUILD)/fuzz-replay-csfb $(BUILD)/api-test $(if $(HAVE_MPICC),$(BUILD)/csfvm-mpi)
 
 test: test-progs
 	CSF_STDLIB=$(CURDIR)/stdlib $(BUILD)/unit-tests
-	CSF_BUILD=$(BUILD) CFLAGS="$(CFLAGS) $(SANFLAGS)" sh tests/run.sh
+	CSF_BUILD=$(BUILD) CSF_SAN=$(SAN) CFLAGS="$(CFLAGS) $(SANFLAGS)" sh tests/run.sh
 	sh tests/layout/check.sh $(BUILD)
 
 # the programs are built nproc at a time; tests/run.sh and tests/layout/check.sh run their
@@ -275,7 +279,12 @@ demo: deps
 	$(BUILD)/csfvm $(BUILD)/projectile.csfb | $(BUILD)/csfview --scene examples/projectile.csf -o $(BUILD)/projectile.html
 	@echo "the run, plotted and animated: $(abspath $(BUILD)/projectile.html)"
 
-install: all
+# where Debian's python3 finds the package: /usr/lib/python3/dist-packages for PREFIX=/usr, else
+# PREFIX/lib/python3.X/dist-packages (site's directory for /usr/local)
+PY_VERSION = $(shell $(PYTHON) -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null || echo 3)
+PYTHON_DIR = $(if $(filter /usr,$(PREFIX)),$(PREFIX)/lib/python3/dist-packages,$(PREFIX)/lib/python$(PY_VERSION)/dist-packages)
+
+install: all $(if $(SAN),,install-python)
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/csf \
 		$(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/man/man5
 	install -m 755 $(BUILD)/csfc $(BUILD)/csfvm $(DESTDIR)$(PREFIX)/bin/
@@ -296,6 +305,18 @@ install: all
 		'Version: 0.1.0' 'Requires.private: gsl' 'Cflags: -I$${includedir}/csf -ffp-contract=off' \
 		'Libs: -L$${libdir} -lcsfrt -lgsl -lgslcblas -lm' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/csfrt.pc
 
+# libcsf.so, its header, the Python package (its _paths.py naming the installed library and programs)
+# and csf-python(7); not with SAN=1 (no libcsf.so there)
+install-python: python
+	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/csf $(DESTDIR)$(PREFIX)/share/man/man7 \
+		$(DESTDIR)$(PYTHON_DIR)/csf
+	install -m 755 $(BUILD)/$(SO_NAME) $(DESTDIR)$(PREFIX)/lib/
+	ln -sf $(SO_NAME) $(DESTDIR)$(PREFIX)/lib/libcsf.so
+	install -m 644 runtime/api/csf_api.h $(DESTDIR)$(PREFIX)/include/csf/
+	install -m 644 man/csf-python.7 $(DESTDIR)$(PREFIX)/share/man/man7/
+	install -m 644 $(PY_SRC) $(DESTDIR)$(PYTHON_DIR)/csf/
+	$(call py_paths,$(PREFIX)/lib,$(PREFIX)/bin) >$(DESTDIR)$(PYTHON_DIR)/csf/_paths.py
+
 # removes exactly what install put there (and the directories it made, when empty)
 uninstall:
 	rm -f $(DESTDIR)$(PREFIX)/bin/csfc $(DESTDIR)$(PREFIX)/bin/csfvm $(DESTDIR)$(PREFIX)/bin/csfview \
@@ -305,7 +326,11 @@ uninstall:
 		$(DESTDIR)$(PREFIX)/include/csf/csf.h $(DESTDIR)$(PREFIX)/include/csf/csf_ops.h \
 		$(DESTDIR)$(PREFIX)/include/csf/opcodes.def \
 		$(DESTDIR)$(PREFIX)/share/man/man1/csfc.1 $(DESTDIR)$(PREFIX)/share/man/man1/csfvm.1 \
-		$(DESTDIR)$(PREFIX)/share/man/man5/csf.5
+		$(DESTDIR)$(PREFIX)/share/man/man5/csf.5 $(DESTDIR)$(PREFIX)/share/man/man7/csf-python.7 \
+		$(DESTDIR)$(PREFIX)/lib/$(SO_NAME) $(DESTDIR)$(PREFIX)/lib/libcsf.so $(DESTDIR)$(PREFIX)/include/csf/csf_api.h \
+		$(DESTDIR)$(PYTHON_DIR)/csf/_paths.py $(addprefix $(DESTDIR)$(PYTHON_DIR)/csf/,$(notdir $(PY_SRC)))
+	rm -rf $(DESTDIR)$(PYTHON_DIR)/csf/__pycache__
+	-rmdir $(DESTDIR)$(PYTHON_DIR)/csf $(DESTDIR)$(PREFIX)/share/man/man7 2>/dev/null
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics/,$(notdir $(wildcard stdlib/mechanics/*.csf)))
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/share/doc/csf/examples/,$(notdir $(wildcard examples/*.csf)))
 	-rmdir $(DESTDIR)$(PREFIX)/include/csf $(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics $(DESTDIR)$(PREFIX)/share/csf/viewer \
@@ -321,4 +346,4 @@ bench-peers: all deps-peers
 clean:
 	rm -rf build build-san build-fuzz
 
-.PHONY: all deps deps-mpi deps-peers deps-cvode deps-box2d deps-view deps-chromium deps-fuzz demo test test-progs check check-piles fuzz fuzz-targets install uninstall bench bench-peers clean
+.PHONY: python install-python all deps deps-mpi deps-peers deps-cvode deps-box2d deps-view deps-chromium deps-fuzz demo test test-progs check check-piles fuzz fuzz-targets install uninstall bench bench-peers clean

@@ -120,6 +120,7 @@ typedef struct csf_opts {
 	const char *sweep_file; /* --sweep-file FILE.csv */
 	const char *summary;    /* --sweep-summary EXPR */
 	const char *out_dir;    /* --out-dir DIR */
+	int sweep_binary;       /* --sweep-binary: a sweep's rows as doubles after the header line */
 	long jobs;              /* -j N: worker processes of a sweep (0: the number of online CPUs) */
 	const csf_overlay *init; /* initial values over p->mem0 (-D; a sweep's variant), NULL: none; not
 	                            csf_parse_opts', and not freed by csf_opts_free */

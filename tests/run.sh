@@ -35,7 +35,9 @@
 #     hostile sources refused in bounded time and memory, failed writes that
 #     keep what was there, and the fuzz targets' regression corpus
 #     (tests/fuzz/regress/, replayed by fuzz-replay-csfc and fuzz-replay-csfb),
-#     constraints (tests/constraints/), the cone of influence and --every (tests/cone/).
+#     constraints (tests/constraints/), the cone of influence and --every (tests/cone/),
+#     libcsf's API from C (tests/api_test.c) and the Python package csf (tests/python/, pytest;
+#     a SKIP line without numpy and pytest, and under the sanitizers).
 # A test that fails prints "FAIL: " and its name; one that does not finish
 # (its shell killed) counts as failed. The last line is "N passed, N failed".
 set -u
@@ -572,7 +574,7 @@ t_fuzz_regress() {
 
 # 5e. make install into a staging directory; the installed csfc finds the standard library
 t_install() {
-	if make -s install BUILD="${CSF_BUILD:-build}" PREFIX=/usr DESTDIR="$T/stage" >/dev/null 2>"$T/err" &&
+	if make -s install BUILD="${CSF_BUILD:-build}" SAN="${CSF_SAN:-}" PREFIX=/usr DESTDIR="$T/stage" >/dev/null 2>"$T/err" &&
 		(cd "$T" && "$T/stage/usr/bin/csfc" "$TOP/examples/projectile.csf" -o "$T/p.csfb") 2>"$T/err" &&
 		"$T/stage/usr/bin/csfvm" "$T/p.csfb" >/dev/null 2>>"$T/err" &&
 		[ -f "$T/stage/usr/share/man/man5/csf.5" ] && [ -f "$T/stage/usr/lib/libcsfrt.a" ] &&
@@ -584,10 +586,53 @@ t_install() {
 		PKG_CONFIG_SYSROOT_DIR="$T/stage" PKG_CONFIG_PATH="$T/stage/usr/lib/pkgconfig" \
 			sh -c 'cc ${CFLAGS:-} "$1" -o "$2" $(pkg-config --cflags --libs csfrt)' sh "$T/p.c" "$T/pexe2" 2>>"$T/err" &&
 		"$T/pexe2" >"$T/p3.out" && cmp -s "$T/p1.out" "$T/p3.out"; then ok; else bad "installed --emit-c / pkg-config: $(head -n 2 "$T/err")"; fi
+	# libcsf.so, csf_api.h, csf-python(7) and the package where Debian's python3 finds it; the package, told
+	# where the staged library is, finds the staged csfc beside it and runs a model (not with the sanitizers)
+	if [ -z "${CSF_SAN:-}" ]; then
+		pkg=$T/stage/usr/lib/python3/dist-packages
+		if [ -f "$T/stage/usr/lib/libcsf.so.1" ] && [ -f "$T/stage/usr/include/csf/csf_api.h" ] &&
+			[ -f "$T/stage/usr/share/man/man7/csf-python.7" ] && [ -f "$pkg/csf/__init__.py" ] &&
+			grep -qx 'LIBCSF = "/usr/lib/libcsf.so.1"' "$pkg/csf/_paths.py"; then ok
+		else bad "make install: libcsf.so.1, csf_api.h, csf-python.7 or the package csf missing"; fi
+		if /usr/bin/python3 -c 'import numpy' 2>/dev/null; then
+			if (cd "$T" && CSF_LIBCSF="$T/stage/usr/lib/libcsf.so.1" PYTHONPATH="$pkg" PYTHONDONTWRITEBYTECODE=1 \
+				timeout "$LIMIT" /usr/bin/python3 -c 'import csf, sys; m = csf.compile(sys.argv[1]); assert len(m.run()) == 21; print(csf._lib.program("csfc"))' \
+				"$TOP/examples/projectile.csf") >"$T/py" 2>"$T/err" && grep -qx "$T/stage/usr/bin/csfc" "$T/py"; then ok
+			else bad "the installed package csf: $(tail -n 1 "$T/err")"; fi
+		fi
+	fi
 	# the installed csfview writes a page from its own copy of the viewer
 	if "$T/stage/usr/bin/csfview" -o "$T/p.html" "$T/p1.out" 2>"$T/err" && grep -q '^/\* view.js - ' "$T/p.html" &&
 		[ -f "$T/stage/usr/share/man/man1/csfview.1" ] && [ -f "$T/stage/usr/share/csf/viewer/view.js" ]; then ok
 	else bad "installed csfview: $(head -n 1 "$T/err")"; fi
+}
+
+# 5s. libcsf's API from C (tests/api_test.c; under the sanitizers with make check): the columns and
+#     parameters, runs against csf_run's CSV, the messages, hostile bytes, stops, 2000 runs
+t_api() {
+	if "$CSFC" examples/projectile.csf -o "$T/p.csfb" 2>"$T/err" && timeout "$LIMIT" "$B/api-test" "$T/p.csfb" >"$T/api" 2>&1
+	then ok; else bad "api: $(grep -m 3 -e FAIL -e ERROR "$T/api" "$T/err")"; fi
+}
+
+# 5t. the Python package csf (tests/python/, pytest, with Debian's python3): the projectile, the
+#     oscillator and the Kepler orbit bit for bit as csfvm's CSV and within 1e-9 of the closed forms,
+#     sweeps as -D runs, the errors' messages, 10 000 runs in bounded memory, Ctrl-C. A SKIP line
+#     without numpy or pytest, and under the sanitizers: their build has no libcsf.so (python3 would
+#     need libasan preloaded before a sanitized library; tests/api_test.c drives the API there)
+t_python() {
+	py=${CSF_PYTHON:-/usr/bin/python3}
+	if [ -n "${CSF_SAN:-}" ]; then
+		echo "SKIP: python: the sanitizer build has no libcsf.so (python3 would need libasan preloaded); the API is tested from C (api)"
+	elif ! "$py" -c 'import numpy, pytest' 2>/dev/null; then
+		echo "SKIP: python: $py has no numpy or pytest (make deps installs python3-numpy python3-pandas python3-pytest)"
+	elif [ ! -f "$B/libcsf.so.1" ] || [ ! -f "$B/python/csf/__init__.py" ]; then
+		bad "python: no $B/libcsf.so.1 or $B/python/csf (make python)"
+	elif CSF_BUILD="$B" CSF_TEST_LIMIT="$LIMIT" PYTHONDONTWRITEBYTECODE=1 timeout "$LIMIT" "$py" -m pytest -q \
+		-p no:cacheprovider --basetemp="$T/pytest" tests/python >"$T/py.out" 2>&1; then
+		ok
+	else
+		bad "python: $(grep -m 3 -e '^FAILED' -e '^ERROR' -e 'Error' "$T/py.out")"
+	fi
 }
 
 # ---- the jobs ----
@@ -634,6 +679,7 @@ done
 	echo constraints
 	echo cone
 	echo sweep
+	echo python
 	echo slide_stop
 	echo box
 	echo contacts_drop
@@ -662,6 +708,7 @@ done
 	echo max_rows
 	echo failed_write
 	echo install
+	echo api
 	# 4. and 4a.
 	for m in tests/e2e/*.csf examples/*.csf tests/runtime/*.csf; do
 		[ -f "$m" ] || continue

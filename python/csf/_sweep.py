@@ -1,4 +1,5 @@
-"""Sweeps: csfvm --sweep as a child process (no fork in this one), its rows read back exactly."""
+"""Sweeps: csfvm --sweep as a child process (no fork in this one), its rows read back as the doubles
+themselves (--sweep-binary: the CSV's header line, then the rows as doubles)."""
 import ctypes
 import itertools
 import os
@@ -61,23 +62,26 @@ def _check_options(model, args):
         lib.csf_api_run_free(r)
 
 
-def _table(text, complete):
-    """The header's names and units, and the rows (complete lines only unless complete) as a 2-D array
-    of the exact doubles (numpy's string to float conversion is correctly rounded, as float() is)."""
-    nl = text.find("\n")
+def _table(out):
+    """csfvm --sweep-binary's output: the header's names and units, and the rows (whole rows only: an
+    interrupted sweep's last may be cut) as a 2-D array."""
+    nl = out.find(b"\n")
     if nl < 0:
         return [], [], np.empty((0, 0))
     names, units = [], []
-    for cell in text[:nl].split(","):
+    for cell in out[:nl].decode().split(","):
         name, sep, unit = cell.partition(" [")
         names.append(name)
         units.append(unit[:-1] if sep else "")
-    body = text[nl + 1:]
-    if not complete:
-        body = body[:body.rfind("\n") + 1]
-    cells = body.replace("\n", ",").split(",")[:-1] if body else []
-    data = np.array(cells, dtype=np.float64).reshape(-1, len(names))
-    return names, units, data
+    if "t" in names:
+        units[names.index("t")] = "s"
+        for k in range(names.index("t")):  # a swept value that is also a column: "NAME (swept)"
+            if names[k] in names[k + 1:]:
+                names[k] += " (swept)"
+    width = 8 * len(names)
+    body = memoryview(out)[nl + 1:]
+    body = body[:len(body) - len(body) % width]
+    return names, units, np.frombuffer(body, dtype=np.float64).reshape(-1, len(names)).copy()
 
 
 def _frame(names, units, data, as_frame):
@@ -120,7 +124,7 @@ def sweep(model, axes, params=None, *, jobs=None, summary=None, as_frame=None, t
         model.parse_value(name, value)
     oargs = run_options(**opts)
     _check_options(model, oargs)
-    args = [_lib.program("csfvm")] + oargs
+    args = [_lib.program("csfvm"), "--sweep-binary"] + oargs
     for a in defs:
         args += ["-D", a]
     for name, g in grid_axes:
@@ -144,7 +148,7 @@ def sweep(model, axes, params=None, *, jobs=None, summary=None, as_frame=None, t
         except KeyboardInterrupt:  # csfvm ends after the rows in progress: those before them are kept
             p.send_signal(signal.SIGINT)
             out, err = p.communicate(timeout=10)
-            names, units, data = _table(out.decode(), False)
+            names, units, data = _table(out)
             raise Interrupted("csf: sweep interrupted after %d rows (the exception's .result)" % len(data),
                               _frame(names, units, data, as_frame)) from None
         except BaseException:
@@ -154,7 +158,7 @@ def sweep(model, axes, params=None, *, jobs=None, summary=None, as_frame=None, t
     finally:
         if tmp:
             os.unlink(tmp)
-    names, units, data = _table(out.decode(), True)
+    names, units, data = _table(out)
     table = _frame(names, units, data, as_frame)
     if p.returncode != 0:
         msg = err.decode("utf-8", "replace").rstrip("\n")

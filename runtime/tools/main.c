@@ -50,6 +50,8 @@ static const char vm_usage[] =
 	"  --sweep-summary 'max(COL) from T, mean(COL), ...'  one row per variant: final,\n"
 	"                 max, min, mean or rms of columns, optionally over 'from T'/'to T'\n"
 	"  --out-dir DIR  one CSV per variant, DIR/run-00001.csv..., and DIR/index.csv\n"
+	"  --sweep-binary the rows (or summaries) as 8-byte doubles in the machine's byte\n"
+	"                 order after the CSV header line (for programs: csf-python(7))\n"
 	"  -j N           N worker processes for a sweep (default: every CPU)\n"
 	"  --help, --version\n";
 
@@ -60,7 +62,8 @@ static const char exe_usage[] =
 	"  --atol A       absolute local error bound, in the model's units (as csfvm(1))\n"
 	"  --hmax H, --fixed, --step H, --every K, --stats, --progress, --no-progress,\n"
 	"  --compare-methods, -D NAME=VALUE, --sweep 'NAME=FROM:TO:COUNT [UNIT]',\n"
-	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, -j N: as csfvm(1)\n"
+	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, --sweep-binary, -j N:\n"
+	"                 as csfvm(1)\n"
 	"  --help, --version\n";
 
 /* Text (no NUL or other control bytes but white space in the first 4 KiB), as a .csf file is. */
@@ -86,8 +89,10 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 	}
 	const char *prog = image ? argv[0] : "csfvm";
 	int sweep = o.nsweeps || o.sweep_file;
-	if ((!image && npos != 1) || (!sweep && (o.summary || o.out_dir)) || (sweep && o.compare)) {
-		if (!sweep && (o.summary || o.out_dir)) fprintf(stderr, "%s: --sweep-summary and --out-dir need --sweep or --sweep-file\n", prog);
+	int sweep_only = o.summary || o.out_dir || o.sweep_binary;
+	if ((!image && npos != 1) || (!sweep && sweep_only) || (sweep && o.compare)) {
+		if (!sweep && sweep_only)
+			fprintf(stderr, "%s: --sweep-summary, --sweep-binary and --out-dir need --sweep or --sweep-file\n", prog);
 		else if (sweep && o.compare) fprintf(stderr, "%s: --compare-methods runs one scene, not a sweep\n", prog);
 		else fputs(usage, stderr);
 		csf_opts_free(&o);

@@ -433,7 +433,8 @@ static void sweep_free(csf_sweep *S)
 
 int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char *prog, FILE *out, FILE *err)
 {
-	csf_sweep S = { .p = p, .exec = exec, .o = *o, .prog = prog, .out = out, .err = err, .out_dir = o->out_dir };
+	csf_sweep S = { .p = p, .exec = exec, .o = *o, .prog = prog, .out = out, .err = err, .out_dir = o->out_dir,
+	                .binary = o->sweep_binary };
 	S.o.progress = CSF_PROGRESS_OFF;
 	S.o.stats = 0;
 	int st = 2;
@@ -441,6 +442,10 @@ int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const
 	for (int k = 0; k < o->nsweeps; k++)
 		if (parse_grid(&S, o->sweeps[k])) goto out;
 	if (o->summary && parse_summary(&S, o->summary)) goto out;
+	if (S.binary && S.out_dir) {
+		csf_sweep_err(&S, "--sweep-binary writes one stream, not --out-dir's files");
+		goto out;
+	}
 	if (S.nax > 64) {
 		csf_sweep_err(&S, "more than 64 sweeps");
 		goto out;

@@ -28,6 +28,7 @@ struct csf_sweep {
 	sumcol *sum;
 	size_t nvar;
 	const char *out_dir;
+	int binary;       /* --sweep-binary: a variant's text is the header line, then its rows as doubles */
 	FILE *index;
 	FILE *out, *err;
 	int status, header_done;

@@ -2,7 +2,9 @@
  * sweep_variant.c - one variant of a sweep (sweep.c): its values set over
  * the program's initial memory, its run, its text (rows with the values as
  * leading columns, or its summary row), and the message that carries its
- * result to the one writer, which takes the messages in variant order.
+ * result to the one writer, which takes the messages in variant order. With
+ * --sweep-binary the text is the header line and then each row's values as
+ * doubles (the run's rows taken from its sink, never formatted).
  */
 #include <errno.h>
 #include <math.h>
@@ -20,6 +22,15 @@ static void entries(const csf_sweep *S, size_t i, size_t *e)
 		e[a] = i % S->ax[a].count;
 		i /= S->ax[a].count;
 	}
+}
+
+/* Variant i's swept values into v[0 .. S->npar). */
+static void values_of(const csf_sweep *S, size_t i, double *v)
+{
+	size_t e[64];
+	entries(S, i, e);
+	for (int a = 0, j = 0; a < S->nax; a++)
+		for (int k = 0; k < S->ax[a].n; k++) v[j++] = S->ax[a].vals[e[a] * (size_t)S->ax[a].n + (size_t)k];
 }
 
 /* Variant i's values: VALS_ROW "v1,v2," (the leading cells of its rows), VALS_INDEX ",v1,v2", VALS_NAMED "a=v1, b=v2". */
@@ -72,15 +83,59 @@ static double summary(const sumacc *a, const sumcol *c)
 	return c->func == SUM_RMS ? sqrt(acc) : acc;
 }
 
-/* A run's summaries, made by its row sink. */
-typedef struct summaries { const csf_sweep *S; sumacc *acc; } summaries;
+/* A run's summaries, made by its row sink; with --sweep-binary and no summaries, its rows (n values each). */
+typedef struct summaries {
+	const csf_sweep *S;
+	sumacc *acc;
+	double *rows;
+	size_t nrows, cap;
+} summaries;
 
 static int summary_row(void *ctx, const double *v, size_t n)
 {
 	summaries *u = ctx;
-	(void)n;
 	for (int k = 0; k < u->S->nsum; k++) sum_row(&u->acc[k], &u->S->sum[k], v[0], v[u->S->sum[k].col]);
+	if (!u->S->binary || u->S->nsum) return 0;
+	if (u->nrows == u->cap) {
+		size_t cap = u->cap ? 2 * u->cap : 64;
+		double *r = realloc(u->rows, cap * n * sizeof *r);
+		if (!r) return -1; /* (errno ENOMEM: the run reports it) */
+		u->rows = r, u->cap = cap;
+	}
+	memcpy(u->rows + u->nrows++ * n, v, n * sizeof *v);
 	return 0;
+}
+
+/*
+ * --sweep-binary: variant i's text, the header line of the CSV (always, also when the run failed
+ * before its first row), then each row as doubles: its swept values, then t and the columns (or
+ * the summaries: one row).
+ */
+static void variant_binary(const csf_sweep *S, size_t i, const summaries *u, FILE *f)
+{
+	const csf_prog *p = S->p;
+	for (int k = 0; k < S->npar; k++) fprintf(f, "%s%s", k ? "," : "", S->par[k].head);
+	if (S->nsum)
+		for (int k = 0; k < S->nsum; k++) fprintf(f, ",%s", S->sum[k].head);
+	else
+		for (uint32_t c = 0; c <= p->ncols; c++) fprintf(f, ",%s", csf_sweep_col_head(p, c));
+	fputc('\n', f);
+	double *v = malloc(((size_t)S->npar + 1) * sizeof *v);
+	if (!v) return; /* (the message's length tells the writer) */
+	values_of(S, i, v);
+	if (S->nsum) {
+		fwrite(v, sizeof *v, (size_t)S->npar, f);
+		for (int k = 0; k < S->nsum; k++) {
+			double x = summary(&u->acc[k], &S->sum[k]);
+			fwrite(&x, sizeof x, 1, f);
+		}
+	}
+	size_t n = (size_t)p->ncols + 1;
+	for (size_t r = 0; !S->nsum && r < u->nrows; r++) {
+		fwrite(v, sizeof *v, (size_t)S->npar, f);
+		fwrite(u->rows + r * n, sizeof *u->rows, n, f);
+	}
+	free(v);
 }
 
 /* The text of variant i from its run's output: rows prefixed by its values, or its summary row. */
@@ -129,21 +184,23 @@ unsigned char *csf_sweep_run(csf_sweep *S, size_t i, size_t *len)
 			                                        S->ax[a].vals[e[a] * (size_t)S->ax[a].n + (size_t)k] };
 	char *out = NULL, *err = NULL, *text = NULL;
 	size_t olen = 0, elen = 0, tlen = 0;
-	FILE *fo = open_memstream(&out, &olen), *fe = open_memstream(&err, &elen);
+	/* the run's CSV, but with --sweep-binary (whose rows come from the sink alone) */
+	FILE *fo = S->binary ? NULL : open_memstream(&out, &olen), *fe = open_memstream(&err, &elen);
 	int st = 2;
-	summaries u = { S, S->nsum ? malloc((size_t)S->nsum * sizeof *u.acc) : NULL };
+	summaries u = { S, S->nsum ? malloc((size_t)S->nsum * sizeof *u.acc) : NULL, NULL, 0, 0 };
 	for (int k = 0; u.acc && k < S->nsum; k++) sum_start(&u.acc[k]);
-	if (fo && fe && (u.acc || !S->nsum)) {
+	if ((fo || S->binary) && fe && (u.acc || !S->nsum)) {
 		csf_opts o = S->o;
 		o.init = &S->init;
 		csf_sink sink = { summary_row, &u };
-		st = csf_run_sink(S->p, S->exec, &o, fo, S->nsum ? &sink : NULL, fe);
+		st = csf_run_sink(S->p, S->exec, &o, fo, S->nsum || S->binary ? &sink : NULL, fe);
 	}
 	if (fo) fclose(fo);
 	if (fe) fclose(fe);
-	FILE *ft = out ? open_memstream(&text, &tlen) : NULL;
+	FILE *ft = out || S->binary ? open_memstream(&text, &tlen) : NULL;
 	if (ft) {
-		variant_text(S, i, out, u.acc, ft);
+		if (S->binary) variant_binary(S, i, &u, ft);
+		else variant_text(S, i, out, u.acc, ft);
 		fclose(ft);
 	}
 	unsigned char *m = text && err ? malloc(MSG_HEAD + tlen + elen) : NULL;
@@ -160,6 +217,7 @@ unsigned char *csf_sweep_run(csf_sweep *S, size_t i, size_t *len)
 	free(err);
 	free(text);
 	free(u.acc);
+	free(u.rows);
 	return m;
 }
 
