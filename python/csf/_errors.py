@@ -56,3 +56,7 @@ class CompileWarning(UserWarning):
 
 class RunWarning(UserWarning):
     """A warning csfvm wrote during a run that succeeded."""
+
+for _c in (CSFError, CompileError, BytecodeError, ParameterError, OptionError, RunError, Interrupted, CompileWarning,
+           RunWarning):
+    _c.__module__ = "csf"  # as the package names them: csf.RunError

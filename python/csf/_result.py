@@ -128,6 +128,29 @@ class Result:
         df.attrs["units"] = {n: self._index.units[n] for n in names}
         return df
 
+    def plot(self, names=None, ax=None):
+        """The watched columns (or names) against t with matplotlib, one panel per unit with the unit on
+        its axis; returns the figure."""
+        import matplotlib.pyplot as plt
+        cols = [c.name for c in self.columns] if names is None else list(names)
+        units = []
+        for n in cols:
+            if self.units.get(n, "") not in units:
+                units.append(self.units.get(n, ""))
+        if ax is None:
+            fig, axes = plt.subplots(len(units), 1, sharex=True, squeeze=False, figsize=(7, 2.2 * len(units) + 0.6))
+            axes = axes[:, 0]
+        else:
+            axes, fig = [ax] * len(units), ax.figure
+        for a, u in zip(axes, units):
+            for n in cols:
+                if self.units.get(n, "") == u:
+                    a.plot(self.t, self[n], label=n)
+            a.set_ylabel("[%s]" % u if u else "")
+            a.legend(loc="best", fontsize="small")
+        axes[-1].set_xlabel("t [s]")
+        return fig
+
     def to_dict(self):
         """{name: 1-D array} of t and every column."""
         return {n: self.data[:, j] for n, j in self._index.col.items()}
