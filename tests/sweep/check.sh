@@ -9,6 +9,7 @@
 #    -j 2 byte-identical; every variant byte-identical to its -D run;
 #  - --out-dir, --sweep-file, --sweep-summary, a failing variant (exit 1,
 #    the others written);
+#  - --sweep-binary: the same rows as doubles, a failing variant's and a summary's too;
 #  - a generated program (csfc --emit-c) takes -D and --sweep and writes
 #    csfvm's bytes;
 #  - under mpirun -np 3 (BUILD/csfvm-mpi, where Open MPI is installed; SKIP
@@ -198,6 +199,42 @@ st=$?
 if [ $st -eq 1 ] && grep -q "^csfvm: run 2 (ball.x=1.5): .*assertion failed" "$T/fail.err" && grep -q "^csfvm: run 3 (ball.x=2): " "$T/fail.err" &&
 	[ "$(grep -c '^1,' "$T/fail.csv")" -eq 3 ]; then ok
 else bad "failing variant: exit $st, $(head -n 1 "$T/fail.err")"; fi
+
+# --sweep-binary: the CSV's header line, then the rows as doubles, the same rows as the CSV (the values
+# to 1e-15 here, read back by od; bit for bit in tests/python), with -j 2, a failing variant (its rows
+# up to the failure) and a summary; exit 1 as the CSV's sweep; usage errors
+bincheck() { # what CSV OPTIONS...: the binary sweep of OPTIONS has CSV's header and values
+	what=$1 csv=$2
+	shift 2
+	"$CSFVM" --sweep-binary "$@" >"$T/b.bin" 2>"$T/b.err"
+	bst=$?
+	n=$(head -n 1 "$csv" | awk -F, '{ print NF }')
+	hl=$(head -n 1 "$T/b.bin" | wc -c)
+	if [ "$(head -n 1 "$T/b.bin")" = "$(head -n 1 "$csv")" ] &&
+		tail -c +$((hl + 1)) "$T/b.bin" | od -An -v -tf8 -w8 | awk -v n="$n" '{ printf "%s%s", $1, ++k % n ? "," : "\n" }' >"$T/b.txt" &&
+		awk -F, 'NR == FNR { if (FNR > 1) row[FNR - 1] = $0; next }
+			{ m = split(row[FNR], w, ","); if (m != NF) { print "row " FNR ": " NF " values, the CSV " m; exit 1 }
+			  for (i = 1; i <= NF; i++) { d = $i - w[i]; if (d < 0) d = -d; a = w[i] < 0 ? -w[i] : w[i]
+				if (d > 1e-15 * a) { print "row " FNR " value " i ": " $i ", the CSV " w[i]; exit 1 } } }' \
+			"$csv" "$T/b.txt" >"$T/b.chk" && [ "$(wc -l <"$T/b.txt")" -eq $(($(wc -l <"$csv") - 1)) ]; then
+		echo "$bst"
+	else
+		echo "bad: $(cat "$T/b.err" "$T/b.chk" 2>/dev/null | head -n 1)"
+	fi
+}
+# shellcheck disable=SC2086
+r=$(bincheck "100 variants" "$T/j1.csv" $SW -j 2 "$L")
+if [ "$r" = 0 ]; then ok; else bad "--sweep-binary of 100 variants: $r"; fi
+r=$(bincheck "a failing variant" "$T/fail.csv" --sweep 'ball.x=1:2:3 m' -j 2 "$F")
+if [ "$r" = 1 ]; then ok; else bad "--sweep-binary with a failing variant: $r"; fi
+r=$(bincheck "a summary" "$T/win.csv" --sweep u=1:3:3 --sweep-summary 'mean(p.x) from 2 s to 6 s, rms(p.x) from 2 s to 6000 ms, max(p.x) from 1 s to 3 s, min(p.x) from 0.05 min, final(p.x) to 4 s, mean(p.x)' "$R")
+if [ "$r" = 0 ]; then ok; else bad "--sweep-binary with --sweep-summary: $r"; fi
+"$CSFVM" --sweep-binary "$L" >/dev/null 2>"$T/b.err"
+st=$?
+"$CSFVM" --sweep-binary --sweep v0=1:2:2 --out-dir "$T/bdir" "$L" >/dev/null 2>"$T/b2.err"
+if [ $st -eq 2 ] && grep -q "need --sweep or --sweep-file" "$T/b.err" &&
+	grep -q "csfvm: --sweep-binary writes one stream, not --out-dir's files" "$T/b2.err" && [ ! -e "$T/bdir" ]; then ok
+else bad "--sweep-binary's usage errors: $(cat "$T/b.err" "$T/b2.err" | head -n 2)"; fi
 
 # a generated program: -D and --sweep as csfvm
 if timeout 120 "$CSFC" --emit-c "$HERE/launch.csf" -o "$T/launch" 2>"$T/ec.err"; then
