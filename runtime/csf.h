@@ -161,11 +161,15 @@ int csf_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, FILE *e
  * A row sink (csf_run_sink): row receives each row's values as its CSV row
  * shows them, v[0] = t and then the p->ncols columns (n = ncols + 1). It
  * returns 0, or -1 to end the run after that row as a failed write does
- * (errno set).
+ * (errno set). place, when not NULL, says where the row's n values are to
+ * be written (the run writes them there, then calls row with that
+ * pointer), so that they go straight into the embedder's array; NULL from
+ * it ends the run as a failed write (ENOBUFS).
  */
 typedef struct csf_sink {
 	int (*row)(void *ctx, const double *v, size_t n);
 	void *ctx;
+	double *(*place)(void *ctx);
 } csf_sink;
 
 /*

@@ -89,7 +89,7 @@ static stop run_alloc(session *S)
 		r->cw = malloc(2 * (p->ny ? p->ny : 1) * sizeof *r->cw);
 		r->cy = r->cw + (p->ny ? p->ny : 1);
 	}
-	if (S->sink) S->v = malloc((p->ncols + 1) * sizeof *S->v);
+	if (S->sink && !S->sink->place) S->v = malloc((p->ncols + 1) * sizeof *S->v);
 	S->vec = calloc(p->ny ? p->ny : 1, sizeof *S->vec);
 	for (uint32_t i = 0; S->vec && i < p->nprops; i++) { /* a vector in the state: its components, together */
 		const csf_prop *q = &p->props[i];
@@ -97,7 +97,7 @@ static stop run_alloc(session *S)
 			for (uint32_t k = 0; k < 3; k++) S->vec[q->slot - p->ystart + k] = q->slot - p->ystart + 1;
 	}
 	if (!r->m || !S->y || ((S->events || S->autom_on || p->ncons) && !S->work) || r->nomem || (p->ncrules && !r->cs) || (p->ncons && (!r->cons || !r->cw)) ||
-	    (S->sink && !S->v) || !S->vec)
+	    (S->sink && !S->sink->place && !S->v) || !S->vec)
 		return stop_kind_only(STOP_NOMEM);
 	memcpy(r->m, p->mem0, p->nmem * sizeof(double));
 	if (p->ncons) r->m[p->cons[0].want] = r->ncg ? 1 : 0; /* one-sided constraints' guards read g */
@@ -346,9 +346,14 @@ static int emit_row(session *S, double tk)
 	const csf_prog *p = S->r.p;
 	if (S->out && csf_run_write_row(p, S->r.m, tk, S->out)) return -1;
 	if (!S->sink) return 0;
-	S->v[0] = tk;
-	for (uint32_t i = 0; i < p->ncols; i++) S->v[i + 1] = S->r.m[p->cols[i].slot];
-	return S->sink->row(S->sink->ctx, S->v, (size_t)p->ncols + 1);
+	double *v = S->sink->place ? S->sink->place(S->sink->ctx) : S->v;
+	if (!v) {
+		errno = ENOBUFS;
+		return -1;
+	}
+	v[0] = tk;
+	for (uint32_t i = 0; i < p->ncols; i++) v[i + 1] = S->r.m[p->cols[i].slot];
+	return S->sink->row(S->sink->ctx, v, (size_t)p->ncols + 1);
 }
 
 /* Row k, at tk: the OUT section, its assertions, finiteness, and the CSV row (with --every, only

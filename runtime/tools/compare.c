@@ -67,7 +67,7 @@ static rows *capture(const csf_prog *p, csf_exec_fn exec, const csf_overlay *ini
 	o->fixed = fixed;
 	o->max_rhs = budget;
 	o->init = init;
-	csf_sink sink = { keep_row, R };
+	csf_sink sink = { keep_row, R, NULL };
 	*st = csf_run_sink(p, exec, o, NULL, &sink, e);
 	fclose(e);
 	free(ebuf);

@@ -192,7 +192,7 @@ unsigned char *csf_sweep_run(csf_sweep *S, size_t i, size_t *len)
 	if ((fo || S->binary) && fe && (u.acc || !S->nsum)) {
 		csf_opts o = S->o;
 		o.init = &S->init;
-		csf_sink sink = { summary_row, &u };
+		csf_sink sink = { summary_row, &u, NULL };
 		st = csf_run_sink(S->p, S->exec, &o, fo, S->nsum || S->binary ? &sink : NULL, fe);
 	}
 	if (fo) fclose(fo);
