@@ -76,6 +76,15 @@ static char *rows_text(const double *v, size_t n, size_t w)
 	return text;
 }
 
+/* The test's model, or NULL after saying why. */
+static csf_api_model *load(void)
+{
+	char err[512];
+	csf_api_model *m = csf_api_load(bytes, nbytes, err, sizeof err);
+	if (!m) printf("FAIL: the model does not load: %s\n", err);
+	return m;
+}
+
 static void test_model(void)
 {
 	char err[512];
@@ -134,9 +143,8 @@ static void one_run(csf_api_model *m, const char *const *argv, int argc)
 
 static void test_runs(void)
 {
-	char err[512];
-	csf_api_model *m = csf_api_load(bytes, nbytes, err, sizeof err);
-	CHECK(m, "%s", err);
+	csf_api_model *m = load();
+	CHECK(m, "the model does not load");
 	const char *a0[] = { "--method", "dop853" };
 	const char *a1[] = { "-D", "ball.v=(3, 0, 4) m/s", "-Dball.b=200 g/s", "--tol=1e-10" };
 	const char *a2[] = { "--method", "rk4", "--fixed", "--every", "3" };
@@ -164,8 +172,8 @@ static void test_runs(void)
 static void test_errors(void)
 {
 	char err[512];
-	csf_api_model *m = csf_api_load(bytes, nbytes, err, sizeof err);
-	CHECK(m, "%s", err);
+	csf_api_model *m = load();
+	CHECK(m, "the model does not load");
 	csf_api_run *r = csf_api_run_new(m);
 	static const struct { const char *set, *msg; } bad[] = {
 		{ "ball.k=3", "-D ball.k=3: unknown name 'ball.k': object 'ball' has no property 'k' that the run uses" },
@@ -236,9 +244,8 @@ static int sigint_at(void *ctx, double t, size_t rows)
 
 static void test_stops(void)
 {
-	char err[512];
-	csf_api_model *m = csf_api_load(bytes, nbytes, err, sizeof err);
-	CHECK(m, "%s", err);
+	csf_api_model *m = load();
+	CHECK(m, "the model does not load");
 	csf_api_run *r = csf_api_run_new(m);
 	size_t rows = csf_api_run_rows(r);
 	double *out = malloc(rows * 7 * sizeof *out), at = 1.0;
