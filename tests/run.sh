@@ -598,7 +598,7 @@ t_install() {
 			if (cd "$T" && CSF_LIBCSF="$T/stage/usr/lib/libcsf.so.1" PYTHONPATH="$pkg" PYTHONDONTWRITEBYTECODE=1 \
 				timeout "$LIMIT" /usr/bin/python3 -c 'import csf, sys; m = csf.compile(sys.argv[1]); assert len(m.run()) == 21; print(csf._lib.program("csfc"))' \
 				"$TOP/examples/projectile.csf") >"$T/py" 2>"$T/err" && grep -qx "$T/stage/usr/bin/csfc" "$T/py"; then ok
-			else bad "the installed package csf: $(tail -n 1 "$T/err")"; fi
+			else bad "the installed package csf: $(tail -n 1 "$T/err") (csfc: $(cat "$T/py"))"; fi
 		fi
 	fi
 	# the installed csfview writes a page from its own copy of the viewer

@@ -125,7 +125,7 @@ def program(name):
         dirs.append(_paths.BINDIR)
     try:
         libdir = os.path.dirname(os.path.realpath(lib_path()))
-        dirs += [libdir, os.path.join(libdir, os.pardir, "bin")]
+        dirs += [libdir, os.path.normpath(os.path.join(libdir, os.pardir, "bin"))]
     except ImportError:
         pass
     for d in dirs:
