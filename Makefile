@@ -50,7 +50,8 @@ LDFLAGS_SAN = $(if $(SAN),-fsanitize=address$(,)undefined)
 # libcsfrt, but the programs' main files.
 RT_DIRS = runtime $(patsubst %/,%,$(sort $(dir $(wildcard runtime/*/*.c))))
 CC_DIRS = compiler $(patsubst %/,%,$(sort $(dir $(wildcard compiler/*/*.c compiler/*/*.y))))
-RT_MAINS = runtime/tools/csfvm.c runtime/tools/sweep_mpi.c
+# (and fmt_gen.c, run at build time: it writes the table of powers of ten of fmt.c)
+RT_MAINS = runtime/tools/csfvm.c runtime/tools/sweep_mpi.c runtime/run/fmt_gen.c
 RT_SRC = $(filter-out $(RT_MAINS),$(wildcard runtime/*.c runtime/*/*.c))
 RT_H = $(wildcard runtime/*.h runtime/*/*.h) runtime/opcodes.def
 RT_OBJ = $(RT_SRC:runtime/%.c=$(BUILD)/rt/%.o)
@@ -64,6 +65,17 @@ all: $(BUILD)/csfc $(BUILD)/csfvm $(BUILD)/libcsfrt.a $(BUILD)/csfview $(if $(MP
 $(BUILD)/rt/%.o: runtime/%.c $(RT_H)
 	@mkdir -p $(@D)
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
+
+# fmt.c's table of powers of ten, computed exactly at build time (part of libcsfrt.a through fmt.o);
+# the generator is built without CFLAGS and sanitizers: it runs here, whatever the library is for
+$(BUILD)/fmt_gen: runtime/run/fmt_gen.c runtime/run/fmt_log.h
+	@mkdir -p $(@D)
+	$(CC) -std=c11 -Wall -Wextra -O1 -o $@ $<
+
+$(BUILD)/fmt_pow10.h: $(BUILD)/fmt_gen
+	$(BUILD)/fmt_gen >$@.tmp && mv $@.tmp $@
+
+$(BUILD)/rt/run/fmt.o: $(BUILD)/fmt_pow10.h
 
 $(BUILD)/libcsfrt.a: $(RT_OBJ)
 	rm -f $@
