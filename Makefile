@@ -147,10 +147,18 @@ $(BUILD)/fuzz-replay-csfb: tests/fuzz/fuzz_csfb.c tests/fuzz/replay.c $(BUILD)/l
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ tests/fuzz/fuzz_csfb.c tests/fuzz/replay.c \
 		$(BUILD)/libcsfrt.a $(LDLIBS_GSL)
 
+$(BUILD)/fuzz-replay-fmt: tests/fuzz/fuzz_fmt.c tests/fmt_ref.h tests/fuzz/replay.c $(BUILD)/libcsfrt.a
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ tests/fuzz/fuzz_fmt.c tests/fuzz/replay.c \
+		$(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+
+# csf_fmt_double against the snprintf/strtod loop it replaced, value by value (tests/fmt_double.c)
+$(BUILD)/fmt-test: tests/fmt_double.c tests/fmt_ref.h $(BUILD)/libcsfrt.a
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+
 # the MPI sweep test runs where Open MPI is installed (tests/sweep/check.sh says SKIP otherwise)
 # test-progs: what the tests run, built alone so that make check builds it nproc at a time
 test-progs: all $(BUILD)/unit-tests $(BUILD)/fuzz-bytecode $(BUILD)/code-words $(BUILD)/fuzz-replay-csfc \
-	$(BUILD)/fuzz-replay-csfb $(if $(HAVE_MPICC),$(BUILD)/csfvm-mpi)
+	$(BUILD)/fuzz-replay-csfb $(BUILD)/fuzz-replay-fmt $(BUILD)/fmt-test $(if $(HAVE_MPICC),$(BUILD)/csfvm-mpi)
 
 test: test-progs
 	CSF_STDLIB=$(CURDIR)/stdlib $(BUILD)/unit-tests
@@ -192,7 +200,11 @@ $(BUILD)/fuzz-csfb: tests/fuzz/fuzz_csfb.c $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -fsanitize=fuzzer $(LDFLAGS_SAN) -o $@ $< \
 		$(BUILD)/libcsfrt.a $(LDLIBS_GSL)
 
-fuzz-targets: $(BUILD)/csfc $(BUILD)/fuzz-csfc $(BUILD)/fuzz-csfb
+$(BUILD)/fuzz-fmt: tests/fuzz/fuzz_fmt.c tests/fmt_ref.h $(BUILD)/libcsfrt.a
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -fsanitize=fuzzer $(LDFLAGS_SAN) -o $@ $< \
+		$(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+
+fuzz-targets: $(BUILD)/csfc $(BUILD)/fuzz-csfc $(BUILD)/fuzz-csfb $(BUILD)/fuzz-fmt
 
 fuzz:
 	$(MAKE) BUILD=$(FUZZ_BUILD) CC=$(FUZZ_CC) SAN=1 CFLAGS="-O1 -g -fsanitize=fuzzer-no-link" fuzz-targets
