@@ -18,7 +18,7 @@
  * bits (the first 20); the harness shows first that a deliberate one is
  * caught. Also prints the time per value of both (informational).
  *
- *   fmt-test [N]   (N = 400000 by default: 1.1e6 random values in all)
+ *   fmt-test [N]   (N = 500000 by default: 1.1e6 random values in all)
  */
 #include <float.h>
 #include <math.h>
@@ -109,7 +109,7 @@ static double time_per_value(void (*fmt)(char buf[32], double x), const double *
 
 int main(int argc, char **argv)
 {
-	long n = argc > 1 ? atol(argv[1]) : 400000;
+	long n = argc > 1 ? atol(argv[1]) : 500000;
 	char msg[200], s[64];
 
 	/* the harness: a deliberate mismatch is caught, with the bits */

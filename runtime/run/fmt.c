@@ -37,7 +37,7 @@
  *  - subnormals below 1e-309 (x 10^324 < 1e15): %.15g always reads back
  *    (its error, 5e-325 at most, is within the half ulp, 2.5e-324), and its
  *    digits are computed exactly: c 5^K in 32-bit limbs, shifted. Slower
- *    (some 200 ns), and such values do not occur in a run's rows.
+ *    (some 300 ns), and such values do not occur in a run's rows.
  */
 #include <math.h>
 #include <stdint.h>
@@ -158,7 +158,7 @@ static inline int zeros_after(uint64_t w)
  * dropped), at dst (32 bytes): its length. n's 17 digits are one digit and
  * two words of eight (ascii8), stored where they go, the point put in
  * between by storing the tail again, shifted; every store stays within
- * dst's 32 bytes (25 at most are meant). Nothing is read back.
+ * dst's 32 bytes (the text is 24 at most). Nothing is read back.
  */
 static int put(char *dst, int neg, uint64_t n, int e10, int P)
 {
