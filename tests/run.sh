@@ -35,8 +35,9 @@
 #     hostile sources refused in bounded time and memory, failed writes that
 #     keep what was there, and the fuzz targets' regression corpus
 #     (tests/fuzz/regress/, replayed by fuzz-replay-csfc, fuzz-replay-csfb and
-#     fuzz-replay-fmt), constraints (tests/constraints/), the number formatter
-#     against the loop it replaced (fmt-test).
+#     fuzz-replay-fmt), constraints (tests/constraints/), the cone of influence
+#     and --every (tests/cone/), the number formatter against the loop it
+#     replaced (fmt-test).
 # A test that fails prints "FAIL: " and its name; one that does not finish
 # (its shell killed) counts as failed. The last line is "N passed, N failed".
 set -u
@@ -464,6 +465,12 @@ t_constraints() {
 	suite "constraints" sh tests/constraints/check.sh "$CSFC" "$CSFVM" "$T"
 }
 
+# 5r. the cone of influence: objects nothing watched depends on are left out, with the same rows;
+#     bodies that can touch or are constrained to a kept one are kept; --every (tests/cone/check.sh)
+t_cone() {
+	suite "cone" sh tests/cone/check.sh "$CSFC" "$CSFVM" "$T"
+}
+
 # 5o. parameters and sweeps: -D with units against the closed form, the errors, a sweep of 100
 #     variants (-j 1 = -j 2 = each variant's -D run), --out-dir, --sweep-file, --sweep-summary,
 #     a generated program, mpirun -np 3 where Open MPI is installed (tests/sweep/check.sh)
@@ -635,6 +642,7 @@ done
 	fi
 	echo methods_tol
 	echo constraints
+	echo cone
 	echo sweep
 	echo slide_stop
 	echo box

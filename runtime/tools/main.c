@@ -35,6 +35,8 @@ static const char vm_usage[] =
 	"  --fixed        no error control: internal steps of 'by' (or --step H); a step\n"
 	"                 past the method's stability limit for the scene is refused\n"
 	"  --step H       fixed internal steps of at most H seconds\n"
+	"  --every K      write every K-th row (t = 0, K by, 2K by, ...) and the last; the\n"
+	"                 run and its assertions are those of every row\n"
 	"  --stats        steps, evaluations, time, auto's switches and the fastest time\n"
 	"                 scale on stderr\n"
 	"  --progress, --no-progress  a progress line on stderr (default: on a terminal)\n"
@@ -57,7 +59,7 @@ static const char exe_usage[] =
 	"Runs the CSF model compiled into this program and writes its watched variables as CSV on stdout.\n"
 	METHOD_TOL_HELP
 	"  --atol A       absolute local error bound, in the model's units (as csfvm(1))\n"
-	"  --hmax H, --fixed, --step H, --stats, --progress, --no-progress,\n"
+	"  --hmax H, --fixed, --step H, --every K, --stats, --progress, --no-progress,\n"
 	"  --compare-methods, -D NAME=VALUE, --sweep 'NAME=FROM:TO:COUNT [UNIT]',\n"
 	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, -j N: as csfvm(1)\n"
 	"  --help, --version\n";
