@@ -34,10 +34,12 @@
 #     where Open MPI is installed, else a SKIP line).
 #     hostile sources refused in bounded time and memory, failed writes that
 #     keep what was there, and the fuzz targets' regression corpus
-#     (tests/fuzz/regress/, replayed by fuzz-replay-csfc and fuzz-replay-csfb),
-#     constraints (tests/constraints/), the cone of influence and --every (tests/cone/),
-#     libcsf's API from C (tests/api_test.c) and the Python package csf (tests/python/, pytest;
-#     a SKIP line without numpy and pytest, and under the sanitizers).
+#     (tests/fuzz/regress/, replayed by fuzz-replay-csfc, fuzz-replay-csfb and
+#     fuzz-replay-fmt), constraints (tests/constraints/), the cone of influence
+#     and --every (tests/cone/), the number formatter against the loop it
+#     replaced (fmt-test), libcsf's API from C (tests/api_test.c) and the
+#     Python package csf (tests/python/, pytest; a SKIP line without numpy and
+#     pytest, and under the sanitizers).
 # A test that fails prints "FAIL: " and its name; one that does not finish
 # (its shell killed) counts as failed. The last line is "N passed, N failed".
 set -u
@@ -572,6 +574,14 @@ t_fuzz_regress() {
 	if timeout "$LIMIT" "$B/fuzz-replay-$t" "$@" >"$T/rp" 2>&1; then ok; else bad "fuzz regressions of $t: $(tail -n 3 "$T/rp")"; fi
 }
 
+# 5s. csf_fmt_double, every CSV cell, against the snprintf/strtod loop it replaced, byte for byte:
+#     every power of two, powers of ten, the %g exponent switch, halfway cases, 1.1e6 random
+#     values (tests/fmt_double.c)
+t_fmt() {
+	suite "number formatting" timeout "$LIMIT" "$B/fmt-test"
+	grep '^ns per value' "$T/suite.out"
+}
+
 # 5e. make install into a staging directory; the installed csfc finds the standard library
 t_install() {
 	if make -s install BUILD="${CSF_BUILD:-build}" SAN="${CSF_SAN:-}" PREFIX=/usr DESTDIR="$T/stage" >/dev/null 2>"$T/err" &&
@@ -607,14 +617,14 @@ t_install() {
 	else bad "installed csfview: $(head -n 1 "$T/err")"; fi
 }
 
-# 5s. libcsf's API from C (tests/api_test.c; under the sanitizers with make check): the columns and
+# 5t. libcsf's API from C (tests/api_test.c; under the sanitizers with make check): the columns and
 #     parameters, runs against csf_run's CSV, the messages, hostile bytes, stops, 2000 runs
 t_api() {
 	if "$CSFC" examples/projectile.csf -o "$T/p.csfb" 2>"$T/err" && timeout "$LIMIT" "$B/api-test" "$T/p.csfb" >"$T/api" 2>&1
 	then ok; else bad "api: $(grep -m 3 -e FAIL -e ERROR "$T/api" "$T/err")"; fi
 }
 
-# 5t. the Python package csf (tests/python/, pytest, with Debian's python3): the projectile, the
+# 5u. the Python package csf (tests/python/, pytest, with Debian's python3): the projectile, the
 #     oscillator and the Kepler orbit bit for bit as csfvm's CSV and within 1e-9 of the closed forms,
 #     sweeps as -D runs, the errors' messages, 10 000 runs in bounded memory, Ctrl-C. A SKIP line
 #     without numpy or pytest, and under the sanitizers: their build has no libcsf.so (python3 would
@@ -692,7 +702,8 @@ done
 	echo docs
 	echo compare_methods
 	echo n300
-	for t in csfc csfb; do echo "fuzz_regress $t"; done
+	for t in csfc csfb fmt; do echo "fuzz_regress $t"; done
+	echo fmt
 	echo hostile_bytecode
 	echo hostile_bytecode_contacts
 	echo hostile_vm

@@ -41,6 +41,7 @@ typedef struct session {
 	double *v;          /* with a sink: a row's values */
 	const csf_overlay *init; /* initial values over p->mem0 (csf_opts.init) */
 	int werr;           /* a row's write error (errno) */
+	time_t flushed;     /* the second of the clock at which out was last flushed */
 	char msg[256];      /* the integrator's words */
 } session;
 
@@ -340,11 +341,33 @@ static stop run_advance(session *S, double *t, double *tk, int *last)
 	return advance_stop(S, st, *t, *tk);
 }
 
-/* The row at tk to the CSV output and to the sink. 0, or -1 (errno set) when either failed. */
+/* CLOCK_MONOTONIC to the tick of the kernel (a few ms), where there is one: read at every row */
+#ifdef CLOCK_MONOTONIC_COARSE
+#define ROW_CLOCK CLOCK_MONOTONIC_COARSE
+#else
+#define ROW_CLOCK CLOCK_MONOTONIC
+#endif
+
+/*
+ * The row at tk to the CSV output and to the sink. 0, or -1 (errno set) when
+ * either failed. The rows reach out within a second (whose buffer may hold
+ * 1 MiB: csf_main), so that a slow run can be watched with tail(1).
+ */
 static int emit_row(session *S, double tk)
 {
 	const csf_prog *p = S->r.p;
-	if (S->out && csf_run_write_row(p, S->r.m, tk, S->out)) return -1;
+	if (S->out) {
+		struct timespec now;
+		if (csf_run_write_row(p, S->r.m, tk, S->out)) return -1;
+		clock_gettime(ROW_CLOCK, &now);
+		if (now.tv_sec != S->flushed) {
+			S->flushed = now.tv_sec;
+			csf_out_begin();
+			int bad = fflush(S->out) != 0;
+			csf_out_end();
+			if (bad) return -1;
+		}
+	}
 	if (!S->sink) return 0;
 	double *v = S->sink->place ? S->sink->place(S->sink->ctx) : S->v;
 	if (!v) {

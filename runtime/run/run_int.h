@@ -198,6 +198,8 @@ void csf_run_progress(run *r, double t);
 void csf_run_progress_off(run *r);
 
 /* fmt.c */
+/* csf_fmt_double's text and its NUL at dst, which has room for 32 bytes (all may be written): its length (24 at most) */
+int csf_fmt_put(char *dst, double x);
 double csf_run_round_down(double x);
 void csf_run_fmt_ratio(char buf[32], double x);
 

@@ -10,6 +10,7 @@
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "csf_int.h"
 
@@ -133,6 +134,9 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 			csf_opts_free(&o);
 			return 2;
 		}
+	/* rows go out in writes of 1 MiB to a file or a pipe (to a terminal, line by line, as they come) */
+	static char out_buf[1 << 20];
+	if (!isatty(fileno(stdout))) setvbuf(stdout, out_buf, _IOFBF, sizeof out_buf);
 	/* a write to a closed pipe is an error csf_run sees (EPIPE), and ends quietly */
 	signal(SIGPIPE, SIG_IGN);
 	/* SIGINT, SIGTERM: csf_run ends after the current row (csf_signal), or the watchdog ends it */
