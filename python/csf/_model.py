@@ -121,11 +121,11 @@ def format_value(v):
 
 
 def assignments(params):
-    """NAME=VALUE strings (-D's) of a dict or of (name, value) pairs."""
+    """NAME=VALUE strings (-D's) of a dict, of (name, value) pairs, or of such strings themselves."""
     if params is None:
         return []
     items = params.items() if hasattr(params, "items") else params
-    return ["%s=%s" % (name, format_value(value)) for name, value in items]
+    return [x if isinstance(x, str) else "%s=%s" % (x[0], format_value(x[1])) for x in items]
 
 
 def run_options(method=None, tol=None, atol=None, hmax=None, fixed=False, step=None, every=None, stats=False,

@@ -50,6 +50,11 @@ def test_projectile_parameters(csf, tmp_path):
                          params, method="dop853", tol=1e-10)
     pos, v = projectile(r.t, 0.75, 0.2, (3, 0, 4))
     assert near(r["ball.pos"], pos) and near(r["ball.v"], v)
+    # the same as -D's strings, as pairs, and with numpy's numbers
+    import numpy
+    for p in (["ball.v=(3, 0, 4) m/s", "ball.b=200 g/s", "ball.m=0.75"],
+              [("ball.v", numpy.array([3.0, 0, 4])), ("ball.b", (numpy.float64(0.2), "kg/s")), ("ball.m", 0.75)]):
+        assert same_bits(m.run(params=p, method="dop853", tol=1e-10).data, r.data)
 
 
 def test_oscillator(csf, tmp_path):
