@@ -2,10 +2,11 @@
 """python_bench.py - the Python side of python.sh (bench/README.md, "Python"); run with the package
 of BUILD/python on sys.path. One CSV line per measurement on standard output: case,what,value.
 
-    python_bench.py sweep LAUNCH.csf VARIANTS_THETA VARIANTS_V0 JOBS REPS
-        m.sweep(...) of the launch scene: the median wall seconds of the call (the model compiled
-        before), and of the whole call with compiling; the sweep's rows and their largest error
-        from the closed form.
+    python_bench.py sweep LAUNCH.csf VARIANTS_THETA VARIANTS_V0 JOBS REPS CSFVM OUTFILE
+        m.sweep(...) of the launch scene (the model compiled before), and in turn CSFVM --sweep alone
+        writing its CSV to OUTFILE (a child process, as a shell starts it): the median and the least
+        wall seconds of each; m.sweep with compiling; the sweep's rows and their largest error from
+        the closed form.
     python_bench.py run MODEL.csfb REPS
         m.run() of a model (loaded before) and r["pos"], after one run to warm up: the median wall
         seconds.
@@ -40,11 +41,26 @@ def median_time(f, reps):
     return statistics.median(ts)
 
 
-def sweep(path, nth, nv, jobs, reps):
+def sweep(path, nth, nv, jobs, reps, csfvm, outfile):
+    import subprocess
     axes = {"theta": csf.grid(0, 90, nth, "deg"), "v0": csf.grid(5, 50, nv)}
     m = csf.compile(path)
+    m.save(outfile + ".csfb")
+    alone = [csfvm, "--sweep", "theta=0:90:%ddeg" % nth, "--sweep", "v0=5:50:%d" % nv, "-j", str(jobs), outfile + ".csfb"]
     m.sweep(axes, jobs=jobs)  # warm: the page cache, the allocator
-    print("sweep,call,%.6f" % median_time(lambda: m.sweep(axes, jobs=jobs), reps))
+    tp, tc = [], []
+    for _ in range(reps):  # in turn, so that the machine's load weighs on both alike
+        with open(outfile, "wb") as f:
+            t0 = time.perf_counter()
+            subprocess.run(alone, stdout=f, check=True)
+            tc.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        m.sweep(axes, jobs=jobs)
+        tp.append(time.perf_counter() - t0)
+    print("sweep,csfvm,%.6f" % statistics.median(tc))
+    print("sweep,csfvm_least,%.6f" % min(tc))
+    print("sweep,call,%.6f" % statistics.median(tp))
+    print("sweep,call_least,%.6f" % min(tp))
     print("sweep,compile_and_call,%.6f" % median_time(lambda: csf.compile(path).sweep(axes, jobs=jobs), reps))
     df = m.sweep(axes, jobs=jobs)
     x, z = exact(df["theta"].to_numpy(), df["v0"].to_numpy(), df["t"].to_numpy())
@@ -98,7 +114,8 @@ def scipy_sweep(nth, nv, rtol, reps):
 if __name__ == "__main__":
     what = sys.argv[1]
     if what == "sweep":
-        sweep(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), int(sys.argv[5]), int(sys.argv[6]))
+        sweep(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), int(sys.argv[5]), int(sys.argv[6]), sys.argv[7],
+              sys.argv[8])
     elif what == "run":
         run(sys.argv[2], int(sys.argv[3]))
     elif what == "scipy":
