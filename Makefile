@@ -23,7 +23,8 @@ CC ?= cc
 CFLAGS ?= -O2 -g
 SAN ?=
 
-DEB_PACKAGES = gcc make libgsl-dev check re2c bison pkg-config gnuplot-nox $(VIEW_PACKAGES)
+DEB_PACKAGES = gcc make libgsl-dev check re2c bison pkg-config gnuplot-nox libhdf5-dev python3-h5py $(VIEW_PACKAGES)
+# libhdf5-dev: -o RUN.h5 (serial HDF5, runtime/run/h5.c); python3-h5py: only for its test (SKIP without it)
 # what csfview needs at run time: the JavaScript it inlines into its pages
 # (gnuplot-nox, for its static plots, is above)
 VIEW_PACKAGES = libjs-three libjs-dygraphs
@@ -43,6 +44,11 @@ SANFLAGS = $(if $(SAN),-fsanitize=address$(,)undefined$(,)float-cast-overflow -f
 CSF_CFLAGS = -std=c11 -Wall -Wextra -ffp-contract=off -D_DEFAULT_SOURCE $(SANFLAGS)
 CPPFLAGS_ALL = $(addprefix -I,$(RT_DIRS) $(CC_DIRS)) -I$(BUILD)
 LDLIBS_GSL = $(shell pkg-config --libs gsl 2>/dev/null || echo -lgsl -lgslcblas) -lm
+# serial HDF5, for runtime/run/h5.c alone
+H5_CFLAGS = $(shell pkg-config --cflags hdf5-serial 2>/dev/null)
+LDLIBS_H5 = $(shell pkg-config --libs hdf5-serial 2>/dev/null || echo -lhdf5)
+# what a program that links libcsfrt.a links too
+LDLIBS_RT = $(LDLIBS_H5) $(LDLIBS_GSL)
 LDFLAGS_SAN = $(if $(SAN),-fsanitize=address$(,)undefined)
 
 # The sources, by stage (README.md, "How the code is laid out"): every .c of
@@ -65,6 +71,10 @@ $(BUILD)/rt/%.o: runtime/%.c $(RT_H)
 	@mkdir -p $(@D)
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
 
+$(BUILD)/rt/run/h5.o: CPPFLAGS_ALL += $(H5_CFLAGS)
+# csfc links a generated program with libcsfrt, GSL and these (compiler/back/cc.c)
+$(BUILD)/cc/back/cc.o: CPPFLAGS_ALL += -DCSF_LDLIBS_H5='"$(LDLIBS_H5)"'
+
 $(BUILD)/libcsfrt.a: $(RT_OBJ)
 	rm -f $@
 	ar rcs $@ $^
@@ -86,10 +96,10 @@ $(BUILD)/cc/%.o: $(BUILD)/%.c $(CC_H) $(RT_H) $(BUILD)/parse.h
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
 
 $(BUILD)/csfc: $(CC_OBJ) $(BUILD)/cc/main.o $(BUILD)/libcsfrt.a
-	$(CC) $(LDFLAGS_SAN) -o $@ $(CC_OBJ) $(BUILD)/cc/main.o $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+	$(CC) $(LDFLAGS_SAN) -o $@ $(CC_OBJ) $(BUILD)/cc/main.o $(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 $(BUILD)/csfvm: $(BUILD)/rt/csfvm.o $(BUILD)/libcsfrt.a
-	$(CC) $(LDFLAGS_SAN) -o $@ $^ $(LDLIBS_GSL)
+	$(CC) $(LDFLAGS_SAN) -o $@ $^ $(LDLIBS_RT)
 
 $(BUILD)/rt/csfvm.o: runtime/tools/csfvm.c $(RT_H)
 	@mkdir -p $(@D)
@@ -97,7 +107,7 @@ $(BUILD)/rt/csfvm.o: runtime/tools/csfvm.c $(RT_H)
 
 # csfvm-mpi: csfvm with sweeps across MPI ranks; only this program needs MPI
 $(BUILD)/csfvm-mpi: runtime/tools/sweep_mpi.c $(RT_H) $(BUILD)/libcsfrt.a
-	$(MPICC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+	$(MPICC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 # csfview, a shell script: the in-tree copy reads its page template from viewer/
 $(BUILD)/csfview: viewer/csfview.sh
@@ -115,25 +125,25 @@ $(BUILD)/tests/%.o: tests/unit/%.c tests/unit/*.h $(CC_H) $(RT_H) $(BUILD)/parse
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -Itests/unit -c $< -o $@
 
 $(BUILD)/unit-tests: $(TEST_OBJ) $(CC_OBJ) $(BUILD)/libcsfrt.a
-	$(CC) $(LDFLAGS_SAN) -o $@ $(TEST_OBJ) $(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_CHECK) $(LDLIBS_GSL)
+	$(CC) $(LDFLAGS_SAN) -o $@ $(TEST_OBJ) $(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_CHECK) $(LDLIBS_RT)
 
 $(BUILD)/fuzz-bytecode: tests/fuzz_bytecode.c $(BUILD)/libcsfrt.a
-	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 # the sizes of a compiled program's code sections (tests/many/code_size.sh)
 $(BUILD)/code-words: tests/code_words.c $(RT_H) $(BUILD)/libcsfrt.a
-	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 # the fuzz targets (tests/fuzz/) replayed on the regression corpus by an ordinary main()
 FUZZ_DEFS = -DCSF_FUZZ_STDLIB='"$(CURDIR)/stdlib"'
 
 $(BUILD)/fuzz-replay-csfc: tests/fuzz/fuzz_csfc.c tests/fuzz/replay.c $(CC_OBJ) $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(FUZZ_DEFS) $(LDFLAGS_SAN) -o $@ tests/fuzz/fuzz_csfc.c \
-		tests/fuzz/replay.c $(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+		tests/fuzz/replay.c $(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 $(BUILD)/fuzz-replay-csfb: tests/fuzz/fuzz_csfb.c tests/fuzz/replay.c $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ tests/fuzz/fuzz_csfb.c tests/fuzz/replay.c \
-		$(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+		$(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 # the MPI sweep test runs where Open MPI is installed (tests/sweep/check.sh says SKIP otherwise)
 # test-progs: what the tests run, built alone so that make check builds it nproc at a time
@@ -174,11 +184,11 @@ FUZZ_CC ?= clang
 
 $(BUILD)/fuzz-csfc: tests/fuzz/fuzz_csfc.c $(CC_OBJ) $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(FUZZ_DEFS) -fsanitize=fuzzer $(LDFLAGS_SAN) -o $@ $< \
-		$(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+		$(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 $(BUILD)/fuzz-csfb: tests/fuzz/fuzz_csfb.c $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -fsanitize=fuzzer $(LDFLAGS_SAN) -o $@ $< \
-		$(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+		$(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 fuzz-targets: $(BUILD)/csfc $(BUILD)/fuzz-csfc $(BUILD)/fuzz-csfb
 
@@ -253,7 +263,7 @@ install: all
 	printf '%s\n' 'prefix=$(PREFIX)' 'libdir=$${prefix}/lib' 'includedir=$${prefix}/include' '' \
 		'Name: csfrt' 'Description: CSF runtime library (integrator driver, loader, output) for generated models' \
 		'Version: 0.1.0' 'Requires.private: gsl' 'Cflags: -I$${includedir}/csf -ffp-contract=off' \
-		'Libs: -L$${libdir} -lcsfrt -lgsl -lgslcblas -lm' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/csfrt.pc
+		'Libs: -L$${libdir} -lcsfrt $(LDLIBS_H5) -lgsl -lgslcblas -lm' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/csfrt.pc
 
 # removes exactly what install put there (and the directories it made, when empty)
 uninstall:

@@ -118,6 +118,10 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 			o->summary = v;
 		} else if (csf_opt_value(argc, argv, &i, "--out-dir", &v)) {
 			o->out_dir = v;
+		} else if (csf_opt_value(argc, argv, &i, "-o", &v) || csf_opt_value(argc, argv, &i, "--output", &v)) {
+			o->output = v;
+		} else if (csf_opt_value(argc, argv, &i, "--dump", &v)) {
+			o->dump = v;
 		} else if ((strncmp(a, "-j", 2) == 0 && (a[2] || i + 1 < argc)) || csf_opt_value(argc, argv, &i, "--jobs", &v)) {
 			if (strncmp(a, "-j", 2) == 0) v = a[2] ? a + 2 : argv[++i];
 			char *end;
