@@ -31,7 +31,8 @@
 #     the README's example against the program (tests/docs/),
 #     csfview's pages and plots (tests/view/; in headless Chromium where it
 #     is installed, else a SKIP line), parameters and sweeps (tests/sweep/; MPI
-#     where Open MPI is installed, else a SKIP line).
+#     where Open MPI is installed, else a SKIP line), HDF5 output (tests/h5/;
+#     read with h5py where it is installed, else a SKIP line).
 #     hostile sources refused in bounded time and memory, failed writes that
 #     keep what was there, and the fuzz targets' regression corpus
 #     (tests/fuzz/regress/, replayed by fuzz-replay-csfc and fuzz-replay-csfb),
@@ -471,6 +472,14 @@ t_sweep() {
 	grep '^SKIP' "$T/suite.out"
 }
 
+# 5p. HDF5 output: -o RUN.h5 and --dump against the CSV, byte for byte; read with h5py (SKIP without
+#     it), bit for bit; a failed assertion, write errors, SIGINT and SIGKILL; a generated program's
+#     file (tests/h5/check.sh)
+t_h5() {
+	suite "HDF5 output" timeout "$LIMIT" sh tests/h5/check.sh "$CSFC" "$CSFVM" "$T" "$B"
+	grep '^SKIP' "$T/suite.out"
+}
+
 # 5n. csfview: the page, the static plots, decimation; the page in headless Chromium (tests/view/check.sh)
 t_view() {
 	suite "csfview" sh tests/view/check.sh "$CSFC" "$CSFVM" "$CSFVIEW" "$T"
@@ -627,6 +636,7 @@ done
 	echo methods_tol
 	echo constraints
 	echo sweep
+	echo h5
 	echo slide_stop
 	echo box
 	echo contacts_drop
