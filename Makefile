@@ -46,7 +46,7 @@ CPPFLAGS_ALL = $(addprefix -I,$(RT_DIRS) $(CC_DIRS)) -I$(BUILD)
 LDLIBS_GSL = $(shell pkg-config --libs gsl 2>/dev/null || echo -lgsl -lgslcblas) -lm
 # serial HDF5, for runtime/run/h5.c alone
 H5_CFLAGS = $(shell pkg-config --cflags hdf5-serial 2>/dev/null)
-LDLIBS_H5 = $(shell pkg-config --libs hdf5-serial 2>/dev/null || echo -lhdf5)
+LDLIBS_H5 = $(strip $(shell pkg-config --libs hdf5-serial 2>/dev/null || echo -lhdf5))
 # what a program that links libcsfrt.a links too
 LDLIBS_RT = $(LDLIBS_H5) $(LDLIBS_GSL)
 LDFLAGS_SAN = $(if $(SAN),-fsanitize=address$(,)undefined)

@@ -580,12 +580,14 @@ t_install() {
 		"$T/stage/usr/bin/csfvm" "$T/p.csfb" >/dev/null 2>>"$T/err" &&
 		[ -f "$T/stage/usr/share/man/man5/csf.5" ] && [ -f "$T/stage/usr/lib/libcsfrt.a" ] &&
 		[ -f "$T/stage/usr/include/csf/csf.h" ] && [ -f "$T/stage/usr/lib/pkgconfig/csfrt.pc" ]; then ok; else bad "make install: $(head -n 1 "$T/err")"; fi
-	# the installed csfc builds an executable; the generated source builds with pkg-config alone
+	# the installed csfc builds an executable; the generated source builds with pkg-config alone (the
+	# staged prefix for csfrt's, the system's for the libraries it names: HDF5's own directory)
 	if (cd "$T" && "$T/stage/usr/bin/csfc" --emit-c "$TOP/examples/projectile.csf" -o "$T/pexe" &&
 		"$T/stage/usr/bin/csfc" --emit-c "$TOP/examples/projectile.csf" -o "$T/p.c") 2>"$T/err" &&
 		"$T/pexe" >"$T/p1.out" && "$T/stage/usr/bin/csfvm" "$T/p.csfb" >"$T/p2.out" && cmp -s "$T/p1.out" "$T/p2.out" &&
-		PKG_CONFIG_SYSROOT_DIR="$T/stage" PKG_CONFIG_PATH="$T/stage/usr/lib/pkgconfig" \
-			sh -c 'cc ${CFLAGS:-} "$1" -o "$2" $(pkg-config --cflags --libs csfrt)' sh "$T/p.c" "$T/pexe2" 2>>"$T/err" &&
+		PKG_CONFIG_PATH="$T/stage/usr/lib/pkgconfig" \
+			sh -c 'cc ${CFLAGS:-} "$1" -o "$2" $(pkg-config --define-variable=prefix="$3" --cflags --libs csfrt)' sh \
+			"$T/p.c" "$T/pexe2" "$T/stage/usr" 2>>"$T/err" &&
 		"$T/pexe2" >"$T/p3.out" && cmp -s "$T/p1.out" "$T/p3.out"; then ok; else bad "installed --emit-c / pkg-config: $(head -n 2 "$T/err")"; fi
 	# the installed csfview writes a page from its own copy of the viewer
 	if "$T/stage/usr/bin/csfview" -o "$T/p.html" "$T/p1.out" 2>"$T/err" && grep -q '^/\* view.js - ' "$T/p.html" &&

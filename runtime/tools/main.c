@@ -50,6 +50,9 @@ static const char vm_usage[] =
 	"                 max, min, mean or rms of columns, optionally over 'from T'/'to T'\n"
 	"  --out-dir DIR  one CSV per variant, DIR/run-00001.csv..., and DIR/index.csv\n"
 	"  -j N           N worker processes for a sweep (default: every CPU)\n"
+	"  -o FILE        the output to FILE: a run's rows in HDF5 when it ends in .h5 or\n"
+	"                 .hdf5 (a dataset per watched value), else the CSV\n"
+	"  --dump RUN.h5  print the rows of a file of -o RUN.h5 as the run's CSV\n"
 	"  --help, --version\n";
 
 static const char exe_usage[] =
@@ -59,7 +62,8 @@ static const char exe_usage[] =
 	"  --atol A       absolute local error bound, in the model's units (as csfvm(1))\n"
 	"  --hmax H, --fixed, --step H, --stats, --progress, --no-progress,\n"
 	"  --compare-methods, -D NAME=VALUE, --sweep 'NAME=FROM:TO:COUNT [UNIT]',\n"
-	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, -j N: as csfvm(1)\n"
+	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, -j N, -o FILE,\n"
+	"  --dump RUN.h5: as csfvm(1)\n"
 	"  --help, --version\n";
 
 /* Text (no NUL or other control bytes but white space in the first 4 KiB), as a .csf file is. */

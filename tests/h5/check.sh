@@ -11,7 +11,8 @@
 #  - -o to a path that cannot be made, and a write that fails (a file size
 #    limit): exit 2 with a message; --sweep with -o RUN.h5: exit 2;
 #  - a run ended by SIGINT, and one killed, leave a file --dump reads;
-#  - a generated program (csfc --emit-c) writes the same file.
+#  - a generated program (csfc --emit-c) writes the same file;
+#  - csfview shows RUN.h5 as it shows the CSV (BUILD/csfview).
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3 B=$4
 HERE=$(dirname "$0")
@@ -130,5 +131,10 @@ EOF
 else
 	bad "csfc --emit-c projectile.csf: $(head -n 1 "$T/ec.err")"
 fi
+# csfview reads RUN.h5 as its CSV: the same page, from a file or standard input
+if "$B/csfview" -o "$T/v1.html" "$T/p.csv" 2>"$T/v.err" && "$B/csfview" -o "$T/v2.html" "$T/p.h5" 2>>"$T/v.err" &&
+	cmp -s "$T/v1.html" "$T/v2.html" && "$B/csfview" -o "$T/v3.html" <"$T/p.csv" 2>>"$T/v.err" &&
+	"$B/csfview" -o "$T/v4.html" <"$T/p.h5" 2>>"$T/v.err" && cmp -s "$T/v3.html" "$T/v4.html"; then ok
+else bad "csfview RUN.h5: not the page of its CSV: $(head -n 1 "$T/v.err")"; fi
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
