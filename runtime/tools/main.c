@@ -24,7 +24,8 @@
 	"                 (default 1e-12 for dop853, 1e-10 for the others)\n"
 
 static const char vm_usage[] =
-	"usage: csfvm [--method NAME] [--tol EPS] [--atol A] MODEL.csfb  (- reads standard input)\n"
+	"usage: csfvm [--method NAME] [--tol EPS] [--atol A] [-o FILE] MODEL.csfb  (- reads standard input)\n"
+	"       csfvm --dump RUN.h5\n"
 	"Runs a compiled CSF model and writes its watched variables as CSV on stdout.\n"
 	METHOD_TOL_HELP
 	"  --atol A       absolute local error bound, in the model's units, for every state\n"
@@ -134,7 +135,7 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		return exit_status(st);
 	}
 	int sweep = o.nsweeps || o.sweep_file;
-	int h5 = o.output && h5_name(o.output);
+	int h5 = o.output && h5_name(o.output) && !csf_quiet;
 	if (h5 && (sweep || o.compare)) {
 		fprintf(stderr, sweep ? "%s: --sweep writes CSV; -o FILE.h5 is for one run\n"
 		                      : "%s: --compare-methods writes a table; -o FILE.h5 is for one run\n", prog);

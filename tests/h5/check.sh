@@ -94,6 +94,14 @@ st=$?
 if [ $st -eq 2 ] && grep -q "^csfvm: cannot read $T/p.csv: " "$T/e.err" && [ ! -s "$T/e.out" ]; then ok
 else bad "--dump of a CSV: exit $st, $(head -n 1 "$T/e.err")"; fi
 
+# csfvm-mpi: rank 0 alone opens -o FILE.csv (where Open MPI is installed; tests/sweep/ says SKIP otherwise)
+if [ -x "$B/csfvm-mpi" ] && command -v mpirun >/dev/null 2>&1; then
+	if ASAN_OPTIONS=detect_leaks=0 timeout 120 mpirun --allow-run-as-root --oversubscribe -np 3 "$B/csfvm-mpi" \
+		--sweep 'ball.m=1:2:5 kg' -o "$T/mpi.csv" "$T/p.csfb" >"$T/mpi.out" 2>"$T/mpi.err" && [ ! -s "$T/mpi.out" ] &&
+		"$CSFVM" --sweep 'ball.m=1:2:5 kg' "$T/p.csfb" | cmp -s - "$T/mpi.csv"; then ok
+	else bad "mpirun csfvm-mpi --sweep -o FILE.csv: not the sweep's CSV: $(head -n 2 "$T/mpi.err")"; fi
+fi
+
 # a run ended by SIGINT keeps its rows; a killed one leaves the rows of its last block, readable
 # (BUILD/csfvm itself: CSFVM may be a script that runs it)
 printf 'global k = 1 1/s\nobject p: x = 1\nrule: x'"'"' = -k * x\ninc t till 100 s by 1 s watch x\n' >"$T/slow.csf"
@@ -104,10 +112,13 @@ st=$?
 n=$(wc -l <"$T/int.csv")
 if [ $st -eq 0 ] && [ "$n" -gt 1 ] && [ "$n" -lt 101 ] && [ "$(head -n 2 "$T/int.csv" | tr '\n' ' ')" = "t,p.x 0,1 " ]; then ok
 else bad "a run ended by SIGINT: --dump exit $st, $n lines, $(head -n 1 "$T/int.err")"; fi
-timeout -s KILL 0.3 "$B/csfvm" -o "$T/kill.h5" "$T/long.csfb" 2>/dev/null
-"$CSFVM" "$T/long.csfb" >"$T/long.csv"
-if "$CSFVM" --dump "$T/kill.h5" >"$T/kill.csv" 2>"$T/kill.err" && head -n "$(wc -l <"$T/kill.csv")" "$T/long.csv" | cmp -s - "$T/kill.csv"
+printf 'object p: x = 1\nrule: x'"'"' = 1\ninc t till 1e7 by 1 watch x\n' >"$T/long7.csf"
+"$CSFC" "$T/long7.csf" -o "$T/long7.csfb"
+timeout -s KILL 0.3 "$B/csfvm" -o "$T/kill.h5" "$T/long7.csfb" 2>/dev/null
+if "$CSFVM" --dump "$T/kill.h5" >"$T/kill.csv" 2>"$T/kill.err" &&
+	"$CSFVM" "$T/long7.csfb" 2>/dev/null | head -n "$(wc -l <"$T/kill.csv")" | cmp -s - "$T/kill.csv"
 then ok; else bad "a killed run: --dump: $(head -n 1 "$T/kill.err")"; fi
+rm -f "$T/kill.h5"
 
 # a generated program writes the file csfvm writes (but for the command line)
 if (cd "$TOP/examples" && timeout 120 "$CSFC" --emit-c projectile.csf -o "$T/pexe") 2>"$T/ec.err"; then
