@@ -56,7 +56,8 @@ LDFLAGS_SAN = $(if $(SAN),-fsanitize=address$(,)undefined)
 # libcsfrt, but the programs' main files.
 RT_DIRS = runtime $(patsubst %/,%,$(sort $(dir $(wildcard runtime/*/*.c))))
 CC_DIRS = compiler $(patsubst %/,%,$(sort $(dir $(wildcard compiler/*/*.c compiler/*/*.y))))
-RT_MAINS = runtime/tools/csfvm.c runtime/tools/sweep_mpi.c
+# (and fmt_gen.c, run at build time: it writes the table of powers of ten of fmt.c)
+RT_MAINS = runtime/tools/csfvm.c runtime/tools/sweep_mpi.c runtime/run/fmt_gen.c
 RT_SRC = $(filter-out $(RT_MAINS),$(wildcard runtime/*.c runtime/*/*.c))
 RT_H = $(wildcard runtime/*.h runtime/*/*.h) runtime/opcodes.def
 RT_OBJ = $(RT_SRC:runtime/%.c=$(BUILD)/rt/%.o)
@@ -74,6 +75,17 @@ $(BUILD)/rt/%.o: runtime/%.c $(RT_H)
 $(BUILD)/rt/run/h5.o: CPPFLAGS_ALL += $(H5_CFLAGS)
 # csfc links a generated program with libcsfrt, GSL and these (compiler/back/cc.c)
 $(BUILD)/cc/back/cc.o: CPPFLAGS_ALL += -DCSF_LDLIBS_H5='"$(LDLIBS_H5)"'
+
+# fmt.c's table of powers of ten, computed exactly at build time (part of libcsfrt.a through fmt.o);
+# the generator is built without CFLAGS and sanitizers: it runs here, whatever the library is for
+$(BUILD)/fmt_gen: runtime/run/fmt_gen.c runtime/run/fmt_log.h
+	@mkdir -p $(@D)
+	$(CC) -std=c11 -Wall -Wextra -O1 -o $@ $<
+
+$(BUILD)/fmt_pow10.h: $(BUILD)/fmt_gen
+	$(BUILD)/fmt_gen >$@.tmp && mv $@.tmp $@
+
+$(BUILD)/rt/run/fmt.o: $(BUILD)/fmt_pow10.h
 
 $(BUILD)/libcsfrt.a: $(RT_OBJ)
 	rm -f $@
@@ -145,10 +157,18 @@ $(BUILD)/fuzz-replay-csfb: tests/fuzz/fuzz_csfb.c tests/fuzz/replay.c $(BUILD)/l
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ tests/fuzz/fuzz_csfb.c tests/fuzz/replay.c \
 		$(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
+$(BUILD)/fuzz-replay-fmt: tests/fuzz/fuzz_fmt.c tests/fmt_ref.h tests/fuzz/replay.c $(BUILD)/libcsfrt.a
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ tests/fuzz/fuzz_fmt.c tests/fuzz/replay.c \
+		$(BUILD)/libcsfrt.a $(LDLIBS_RT)
+
+# csf_fmt_double against the snprintf/strtod loop it replaced, value by value (tests/fmt_double.c)
+$(BUILD)/fmt-test: tests/fmt_double.c tests/fmt_ref.h $(BUILD)/libcsfrt.a
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_RT)
+
 # the MPI sweep test runs where Open MPI is installed (tests/sweep/check.sh says SKIP otherwise)
 # test-progs: what the tests run, built alone so that make check builds it nproc at a time
 test-progs: all $(BUILD)/unit-tests $(BUILD)/fuzz-bytecode $(BUILD)/code-words $(BUILD)/fuzz-replay-csfc \
-	$(BUILD)/fuzz-replay-csfb $(if $(HAVE_MPICC),$(BUILD)/csfvm-mpi)
+	$(BUILD)/fuzz-replay-csfb $(BUILD)/fuzz-replay-fmt $(BUILD)/fmt-test $(if $(HAVE_MPICC),$(BUILD)/csfvm-mpi)
 
 test: test-progs
 	CSF_STDLIB=$(CURDIR)/stdlib $(BUILD)/unit-tests
@@ -190,7 +210,11 @@ $(BUILD)/fuzz-csfb: tests/fuzz/fuzz_csfb.c $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -fsanitize=fuzzer $(LDFLAGS_SAN) -o $@ $< \
 		$(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
-fuzz-targets: $(BUILD)/csfc $(BUILD)/fuzz-csfc $(BUILD)/fuzz-csfb
+$(BUILD)/fuzz-fmt: tests/fuzz/fuzz_fmt.c tests/fmt_ref.h $(BUILD)/libcsfrt.a
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -fsanitize=fuzzer $(LDFLAGS_SAN) -o $@ $< \
+		$(BUILD)/libcsfrt.a $(LDLIBS_RT)
+
+fuzz-targets: $(BUILD)/csfc $(BUILD)/fuzz-csfc $(BUILD)/fuzz-csfb $(BUILD)/fuzz-fmt
 
 fuzz:
 	$(MAKE) BUILD=$(FUZZ_BUILD) CC=$(FUZZ_CC) SAN=1 CFLAGS="-O1 -g -fsanitize=fuzzer-no-link" fuzz-targets

@@ -16,6 +16,7 @@
 #include "csf_int.h"
 #include "emit_c.h"
 #include "explain.h"
+#include "cone.h"
 
 static const char usage[] =
 	"usage: csfc [options] MODEL.csf   (- reads standard input)\n"
@@ -24,6 +25,7 @@ static const char usage[] =
 	"  -I DIR             add DIR to the search path of 'using'\n"
 	"  --units SYSTEM     mks (default), cgs or fps: the units of bare numbers and of the output\n"
 	"  --explain          print what every rule solves for, and what is left out\n"
+	"  --keep-all         compile every object, also those nothing watched depends on\n"
 	"  --dump-bytecode    print the compiled code as a listing\n"
 	"  -Werror            make every warning an error; -w: no warnings\n"
 	"  --max-rows N       allow 'till/by' to ask for up to N rows of output (default 1e7)\n"
@@ -112,7 +114,7 @@ static int write_stdout(const unsigned char *buf, size_t len)
 /* csfc's command line. */
 typedef struct cli {
 	const char *in, *out;
-	int explain, dump, emit;
+	int explain, dump, emit, keep_all;
 } cli;
 
 /* Reads the options into c (and opts); -1 to go on, else csfc's exit status. */
@@ -156,6 +158,8 @@ static int parse_args(int argc, char **argv, cli *c)
 				        CSF_FORMAT_MAX_ROWS, n);
 				return 2;
 			}
+		} else if (!strcmp(a, "--keep-all")) {
+			c->keep_all = 1;
 		} else if (!strcmp(a, "--explain")) {
 			c->explain = 1;
 		} else if (!strcmp(a, "--dump-bytecode")) {
@@ -184,6 +188,30 @@ static int parse_args(int argc, char **argv, cli *c)
 	return -1;
 }
 
+/*
+ * The model without the objects that nothing watched, asserted or stopped on
+ * depends on (mid/cone.c), resolved again, with a warning for each (the
+ * first three; then how many more); M itself if every object is needed.
+ */
+static Model *leave_out(Stmt *stmts, Model *M)
+{
+	char *drop = cone_dropped(M);
+	Model *P = drop ? sema_run(stmts, drop) : NULL;
+	if (!P) return M;
+	int shown = 0;
+	for (int i = 0; i < P->objects.n; i++) {
+		Object *o = P->objects.v[i];
+		if (!o->dropped) continue;
+		if (shown++ < 3) warn_at(o->loc, "object '%s' affects nothing watched: it is left out (csfc --keep-all keeps it)", o->name);
+		else {
+			warn_at(o->loc, "and %d more objects from '%s' on affect nothing watched: they are left out (csfc --explain "
+			                "lists them)", P->ndropped - 3, o->name);
+			break;
+		}
+	}
+	return P;
+}
+
 /* Reads, resolves and generates the model in c->in into p, with --explain's text; 0 or an exit status. */
 static int compile(const cli *c, csf_prog *p)
 {
@@ -201,8 +229,12 @@ static int compile(const cli *c, csf_prog *p)
 	if (!strcmp(in, "-")) ((Source *)sources.v[0])->path = "<stdin>";
 	Stmt *stmts = parse_file(0);
 	if (diag_errors) return 1;
-	Model *M = sema_run(stmts);
+	Model *M = sema_run(stmts, NULL);
 	if (diag_errors) return 1;
+	if (!c->keep_all) {
+		M = leave_out(stmts, M);
+		cone_idle_states(M);
+	}
 	if (gen_program(M, p)) {
 		csf_prog_free(p);
 		return 1;

@@ -109,6 +109,7 @@ typedef struct csf_opts {
 	int stats;          /* --stats: a summary on stderr at the end */
 	int progress;       /* CSF_PROGRESS_AUTO (on a terminal), _ON (--progress), _OFF (--no-progress) */
 	int compare;        /* --compare-methods */
+	unsigned long every; /* --every K: write the rows k = 0, K, 2K, ... and the last (0 or 1: every row) */
 	unsigned long max_rhs; /* stop (exit 1) past this many right-hand side evaluations (0: no limit;
 	                          --compare-methods' budget for each of its runs) */
 	/* parameters and sweeps (param.c, sweep.c); the strings are argv's, the arrays malloc'd (csf_opts_free) */

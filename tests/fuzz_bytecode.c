@@ -44,7 +44,7 @@ static int try_one(const unsigned char *buf, size_t len, int must_fail, long *re
 		memcpy(m, p.mem0, p.nmem * sizeof *m);
 		/* the contact routine's tables too: the candidates at this state, settled */
 		csf_contacts *cs = p.ncrules ? csf_contacts_new(&p) : NULL;
-		csf_exec_ctx x = { cs };
+		csf_exec_ctx x = { .contacts = cs };
 		if (cs) {
 			const double *ys[1] = { m + p.ystart };
 			if (csf_contacts_find(cs, m, ys, 1) >= 0) csf_contacts_commit(cs, m, NULL, NULL, 0);

@@ -35,8 +35,10 @@
 #     read with h5py where it is installed, else a SKIP line).
 #     hostile sources refused in bounded time and memory, failed writes that
 #     keep what was there, and the fuzz targets' regression corpus
-#     (tests/fuzz/regress/, replayed by fuzz-replay-csfc and fuzz-replay-csfb),
-#     constraints (tests/constraints/).
+#     (tests/fuzz/regress/, replayed by fuzz-replay-csfc, fuzz-replay-csfb and
+#     fuzz-replay-fmt), constraints (tests/constraints/), the cone of influence
+#     and --every (tests/cone/), the number formatter against the loop it
+#     replaced (fmt-test).
 # A test that fails prints "FAIL: " and its name; one that does not finish
 # (its shell killed) counts as failed. The last line is "N passed, N failed".
 set -u
@@ -464,6 +466,12 @@ t_constraints() {
 	suite "constraints" sh tests/constraints/check.sh "$CSFC" "$CSFVM" "$T"
 }
 
+# 5r. the cone of influence: objects nothing watched depends on are left out, with the same rows;
+#     bodies that can touch or are constrained to a kept one are kept; --every (tests/cone/check.sh)
+t_cone() {
+	suite "cone" sh tests/cone/check.sh "$CSFC" "$CSFVM" "$T"
+}
+
 # 5o. parameters and sweeps: -D with units against the closed form, the errors, a sweep of 100
 #     variants (-j 1 = -j 2 = each variant's -D run), --out-dir, --sweep-file, --sweep-summary,
 #     a generated program, mpirun -np 3 where Open MPI is installed (tests/sweep/check.sh)
@@ -573,6 +581,14 @@ t_fuzz_regress() {
 	if timeout "$LIMIT" "$B/fuzz-replay-$t" "$@" >"$T/rp" 2>&1; then ok; else bad "fuzz regressions of $t: $(tail -n 3 "$T/rp")"; fi
 }
 
+# 5s. csf_fmt_double, every CSV cell, against the snprintf/strtod loop it replaced, byte for byte:
+#     every power of two, powers of ten, the %g exponent switch, halfway cases, 1.1e6 random
+#     values (tests/fmt_double.c)
+t_fmt() {
+	suite "number formatting" timeout "$LIMIT" "$B/fmt-test"
+	grep '^ns per value' "$T/suite.out"
+}
+
 # 5e. make install into a staging directory; the installed csfc finds the standard library
 t_install() {
 	if make -s install BUILD="${CSF_BUILD:-build}" PREFIX=/usr DESTDIR="$T/stage" >/dev/null 2>"$T/err" &&
@@ -637,6 +653,7 @@ done
 	fi
 	echo methods_tol
 	echo constraints
+	echo cone
 	echo sweep
 	echo h5
 	echo slide_stop
@@ -651,7 +668,8 @@ done
 	echo docs
 	echo compare_methods
 	echo n300
-	for t in csfc csfb; do echo "fuzz_regress $t"; done
+	for t in csfc csfb fmt; do echo "fuzz_regress $t"; done
+	echo fmt
 	echo hostile_bytecode
 	echo hostile_bytecode_contacts
 	echo hostile_vm

@@ -93,7 +93,7 @@ static void gen_run(Gen *G, Model *M, csf_prog *p)
 		Object *o = M->objects.v[i];
 		for (int j = 0; j < o->props.n; j++) {
 			Var *v = o->props.v[j];
-			if (v->state) var_slot(G, v);
+			if (var_integrated(v)) var_slot(G, v);
 		}
 	}
 	p->ny = G->nmem - p->ystart;

@@ -19,10 +19,10 @@
  */
 static Var *pair_velocity(Inst *I)
 {
-	if (!I->isderiv) return NULL;
+	if (!I->isderiv || I->idle) return NULL;
 	Assign *a = I->then.v[0];
 	Var *x = a->var, *v = a->e->k == R_VAR ? a->e->var : NULL;
-	return v && v->state && v != x && v->isvec == x->isvec ? v : NULL;
+	return v && var_integrated(v) && v != x && v->isvec == x->isvec ? v : NULL;
 }
 
 /* Does v's derivative depend on the slots marked in act (after depends from them)? */

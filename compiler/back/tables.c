@@ -24,15 +24,15 @@ void gen_state_scales(Model *M, csf_prog *p)
 	for (int i = 0; i < M->objects.n; i++) {
 		Object *o = M->objects.v[i];
 		for (int j = 0; j < o->props.n; j++) {
-			Var *v = o->props.v[j], *w = v->state ? map_get(&largest, v->name) : NULL;
-			if (v->state && (!w || init_mag(v) > init_mag(w))) map_put(&largest, v->name, v);
+			Var *v = o->props.v[j], *w = var_integrated(v) ? map_get(&largest, v->name) : NULL;
+			if (var_integrated(v) && (!w || init_mag(v) > init_mag(w))) map_put(&largest, v->name, v);
 		}
 	}
 	for (int i = 0; i < M->objects.n; i++) {
 		Object *o = M->objects.v[i];
 		for (int j = 0; j < o->props.n; j++) {
 			Var *v = o->props.v[j];
-			if (!v->state) continue;
+			if (!var_integrated(v)) continue;
 			/* one SI unit of v, in the system's units; smaller when the property starts
 			   smaller in every object (so that a 1e-20 m orbit keeps the relative accuracy
 			   of a 1 m one), but not because it starts near zero in this one (a normal
@@ -124,7 +124,7 @@ void gen_contact_tables(Gen *G, Model *M, csf_prog *p)
 			Var *v = b->f[f];
 			pb->s[f] = v ? var_slot(G, v) : p->tslot;
 			/* the radius, or a plane's or an anchor's geometry, computed or integrated: not known from positions */
-			if (v && (f == CSF_CF_R || (b->kind && (f == CSF_CF_POS || f == CSF_CF_V))) && (v->state || v->det))
+			if (v && (f == CSF_CF_R || (b->kind && (f == CSF_CF_POS || f == CSF_CF_V))) && (var_integrated(v) || v->det))
 				pb->varies = 1;
 		}
 	}

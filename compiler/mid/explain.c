@@ -143,16 +143,21 @@ void explain_model(Model *Mo, FILE *f)
 		}
 		n += explain_contacts(Mo, s, f);
 		n += explain_constraints(Mo, s, f);
-		if (!n) fprintf(f, "  applies to no %s\n", s->call ? "pair that can touch" : "object");
+		if (!n && Mo->ndropped) fprintf(f, "  left out: it applies only to objects left out\n");
+		else if (!n) fprintf(f, "  applies to no %s\n", s->call ? "pair that can touch" : "object");
 	}
 	if (!Mo->shaped && *Mo->unshaped_why) fprintf(f, "rules compiled once per object, not per shape: %s\n", Mo->unshaped_why);
 	for (int i = 0; i < Mo->objects.n; i++) {
 		Object *o = Mo->objects.v[i];
+		if (o->dropped) {
+			fprintf(f, "object %s: left out: nothing watched, asserted or stopped on depends on it (csfc --keep-all keeps it)\n", o->name);
+			continue;
+		}
 		fprintf(f, "object %s:", o->name);
 		for (int j = 0; j < o->props.n; j++) {
 			Var *v = o->props.v[j], *r = sema_canon(v);
 			fprintf(f, "%s %s (%s)", j ? "," : "", v->name,
-			        r->state ? "state" : r->det ? xprintf("computed, line %d", r->det->st->loc.line) : "constant");
+			        r->state ? (var_integrated(r) ? "state" : "state, left out: nothing needs it") : r->det ? xprintf("computed, line %d", r->det->st->loc.line) : "constant");
 		}
 		fputc('\n', f);
 	}

@@ -71,7 +71,7 @@ void lint_model(Model *M)
 		for (int j = 0; j < o->props.n; j++) {
 			Var *p = o->props.v[j];
 			if (p->from_kind || p->state || vec_has(&read, sema_canon(p)) || !users(p->loc)) continue;
-			if (!first_at(&seen, p->loc)) continue;
+			if (!o->dropped && !first_at(&seen, p->loc)) continue;
 			const char **c = xalloc(((size_t)o->props.n + 1) * sizeof *c);
 			int nc = 0;
 			for (int k = 0; k < o->props.n; k++) {
@@ -79,6 +79,8 @@ void lint_model(Model *M)
 				if (q != p && (q->from_kind || vec_has(&read, sema_canon(q)) || q->state)) c[nc++] = q->name;
 			}
 			const char *s = csf_suggest_name(p->name, c, nc);
+			/* of an object left out, nothing is read: only a misspelling is worth a word */
+			if (o->dropped && (!s || !first_at(&seen, p->loc))) continue;
 			if (s) warn_at(p->loc, "property '%s' of object '%s' is never read; did you mean '%s'?", p->name, o->name, s);
 			else warn_at(p->loc, "property '%s' of object '%s' is never read", p->name, o->name);
 		}

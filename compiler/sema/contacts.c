@@ -186,7 +186,7 @@ static Body *contact_bodies(Stmt *s)
 		for (int k = 0; k < 2; k++) {
 			Var *geo[2];
 			Object *o = sema.M->objects.v[i];
-			if (!contact_geo(s, o, k, geo) || (!k && is_anchor(o, geo))) continue;
+			if (o->dropped || !contact_geo(s, o, k, geo) || (!k && is_anchor(o, geo))) continue;
 			CPair c = { 0 };
 			c.a = c.b = o;
 			c.kind = k ? body_kind(o, geo) : CSF_CB_POINT;

@@ -180,6 +180,7 @@ int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 				else error_at(r->loc, "there is no object number %d (objects are numbered from 0)", r->index);
 				return -1;
 			}
+			if (o->dropped) return 0; /* left out (mid/cone.c), and so is the rule for it */
 			for (int j = 0; j < i; j++)
 				if (bind[j] == o) {
 					error_at(r->loc, "object '%s' is named twice in 'for'", o->name);
@@ -206,6 +207,7 @@ int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 		for (int i = 0; i < nobj; i++) {
 			/* by shape: the representatives, and for $1 the second members */
 			if (sema.shaped && ((Object *)sema.M->objects.v[i])->sidx > (j ? 1 : 0)) continue;
+			if (((Object *)sema.M->objects.v[i])->dropped) continue;
 			T.cur[j] = sema.M->objects.v[i];
 			if (stmt_applies(s, T.cur, k + 1, &missing)) T.fit[j][T.nfit[j]++] = i;
 			T.cur[j] = NULL;
@@ -224,6 +226,7 @@ int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 		bind_from(&T, 1, -1);
 	}
 	if (T.failed) return -1;
+	if (T.count == 0 && sema.M->ndropped) return 0; /* it applied to objects left out (mid/cone.c) */
 	if (T.count == 0 && !s->call) { /* contact rules: a scene may have no pair that can touch */
 		/* the name to report is the one the last tuple lacks: ($0, $1, ..., $k) = (last, last - k, ..., last - 1) */
 		missing = NULL;

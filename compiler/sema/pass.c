@@ -42,6 +42,8 @@
 
 /* The state of the pass: one resolution at a time (sema_reset). */
 Sema sema;
+/* sema_run's drop: the objects left out, by index (NULL: none) */
+static const char *drop_objects;
 
 /* Starts a resolution: nothing defined yet, a new model; shaped: once per shape. */
 static void sema_reset(int shaped)
@@ -122,6 +124,8 @@ static Model *resolve(Stmt *stmts, int shaped)
 	predefine();
 	check_sections(stmts);
 	build_objects(stmts);
+	for (int i = 0; drop_objects && i < sema.M->objects.n; i++)
+		if (drop_objects[i]) ((Object *)sema.M->objects.v[i])->dropped = 1, sema.M->ndropped++;
 
 	Stmt *start = NULL;
 	Vec rules = { 0 };
@@ -233,27 +237,41 @@ static Model *resolve(Stmt *stmts, int shaped)
 /*
  * Resolves by shape first, silently; a model that cannot be resolved that way
  * (unshape), or that has an error, is resolved again object by object, which
- * reports the errors as they have always been reported.
+ * reports the errors as they have always been reported. With drop (a model
+ * already resolved whole, now without the objects mid/cone.c leaves out),
+ * both are silent, and an error returns NULL: the whole model stands.
  */
-Model *sema_run(Stmt *stmts)
+Model *sema_run(Stmt *stmts, const char *drop)
 {
 	FILE *saved = diag_out, *null = fopen("/dev/null", "w");
 	int errors = diag_errors, stop = diag_stop;
 	const char *why = "";
+	Model *m = NULL;
+	if (drop && !null) return NULL;
+	drop_objects = drop;
 	if (null) {
 		diag_out = null;
-		Model *m = resolve(stmts, 1);
-		diag_out = saved;
-		fclose(null);
-		if (!sema.unshaped && diag_errors == errors) {
-			m->shaped = 1;
-			return m;
+		m = resolve(stmts, 1);
+		if (!sema.unshaped && diag_errors == errors) m->shaped = 1;
+		else {
+			why = sema.unshaped ? sema.unshaped : "";
+			diag_errors = errors;
+			diag_stop = stop;
+			m = NULL;
 		}
-		why = sema.unshaped ? sema.unshaped : "";
-		diag_errors = errors;
-		diag_stop = stop;
+		diag_out = drop ? null : saved;
 	}
-	Model *m = resolve(stmts, 0);
-	m->unshaped_why = why;
+	if (!m) {
+		m = resolve(stmts, 0);
+		m->unshaped_why = why;
+		if (drop && diag_errors != errors) {
+			diag_errors = errors;
+			diag_stop = stop;
+			m = NULL;
+		}
+	}
+	diag_out = saved;
+	if (null) fclose(null);
+	drop_objects = NULL;
 	return m;
 }

@@ -67,6 +67,7 @@ struct Object {
 	Map props_by_name; /* the same, by name */
 	Shape *shape;
 	int sidx;        /* its index among the shape's members */
+	int dropped;     /* left out: nothing watched depends on it (mid/cone.c); no rule applies to it */
 };
 
 typedef enum RKind { R_CONST, R_VAR, R_RF, R_OP, R_COMP } RKind;
@@ -130,6 +131,8 @@ struct Inst {
 	int assert_index;
 	char *why;       /* for --explain: what it solves for and why */
 	int acc;         /* gen.c: a $1 F rule's sums over $1, an array of vectors (slot, -1 before) */
+	int idle;        /* a derivative whose state variable nothing watched depends on: not integrated
+	                    (mid/cone.c) */
 };
 
 /* A body of the contact routine: a mass point, a plane or an anchor, with the properties the routine reads. */
@@ -196,18 +199,24 @@ typedef struct Model {
 	Vec shapes;      /* of Shape* */
 	int shaped;      /* rules compiled once per shape; 0: once per object */
 	const char *unshaped_why; /* why not, for --explain */
+	int ndropped;    /* objects left out (Object.dropped) */
 } Model;
 
 /* A statement in the source table (what runtime errors name). */
 typedef struct SrcEntry { Loc loc; char *text; } SrcEntry;
 
-/* Builds and resolves the model from the statement list. Errors are reported; check diag_errors. */
-Model *sema_run(Stmt *stmts);
+/* Builds and resolves the model from the statement list. Errors are reported; check diag_errors.
+ * drop (NULL: none): by object index, the objects to leave out (no rule, contact or watch of all
+ * objects applies to them; mid/cone.c), resolved silently. */
+Model *sema_run(Stmt *stmts, const char *drop);
 
 /* The variable standing for v in the code: the representative's property of v's name. */
 Var *sema_canon(Var *v);
 /* Object o's property name, or NULL. */
 static inline Var *prop_of_obj(Object *o, const char *name) { return map_get(&o->props_by_name, name); }
+
+/* Is v integrated: a state variable whose derivative is not idle (mid/cone.c)? */
+static inline int var_integrated(const Var *v) { return v->state && !(v->deriv && v->deriv->idle); }
 
 /* Is v an array over its shape's members (a property, or a temporary of one object)? */
 int sema_per_member(const Var *v);

@@ -52,7 +52,7 @@ void build_shapes(Stmt *start)
 		Object *o = sema.M->objects.v[i];
 		char *sig = NULL;
 		ArenaMark mark = arena_mark();
-		if (sema.shaped && !map_get(&named, o->name)) {
+		if (sema.shaped && !map_get(&named, o->name) && !o->dropped) {
 			/* each property: its name, then type, dimension kind and dimension as hex digits */
 			size_t len = 0;
 			for (int j = 0; j < o->props.n; j++) len += strlen(((Var *)o->props.v[j])->name) + 1 + 2 * (2 + CSF_NDIM * 8);

@@ -59,7 +59,7 @@ void build_watch(Stmt *st)
 	if (!st || !st->has_watch) {
 		for (int i = 0; i < sema.M->objects.n; i++) {
 			Object *o = sema.M->objects.v[i];
-			for (int j = 0; j < o->props.n; j++) add_col(o->props.v[j], var_label(o->props.v[j]), 0);
+			for (int j = 0; j < o->props.n && !o->dropped; j++) add_col(o->props.v[j], var_label(o->props.v[j]), 0);
 		}
 		return;
 	}
@@ -77,7 +77,7 @@ void build_watch(Stmt *st)
 			}
 			for (int j = 0; j < sema.M->objects.n; j++) {
 				Object *o = sema.M->objects.v[j];
-				Var *v = watch_var(o, c.prop, &member);
+				Var *v = o->dropped ? NULL : watch_var(o, c.prop, &member);
 				if (v) add_comp(&c, v, xprintf("%s.%s", o->name, c.prop), member);
 			}
 			continue;
@@ -111,7 +111,7 @@ void build_watch(Stmt *st)
 		int found = 0;
 		for (int j = 0; j < sema.M->objects.n; j++) {
 			Object *o = sema.M->objects.v[j];
-			Var *v = watch_var(o, w->prop, &member);
+			Var *v = o->dropped ? NULL : watch_var(o, w->prop, &member);
 			if (v) {
 				add_col(v, xprintf("%s.%s", o->name, w->prop), member);
 				found = 1;

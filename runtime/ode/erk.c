@@ -85,7 +85,7 @@ int csf_erk_apply(void *vstate, size_t dim, double t, double h, double y[], doub
 	int again = !dydt_in && st->ok && t == st->t0 && memcmp(y, st->y0, dim * sizeof *y) == 0;
 	if (fsal) memcpy(st->k[0], st->k[end], dim * sizeof *y);
 	/* from here on, k, y0 and y1 are this step's: what they held is gone */
-	st->ok = st->have_end = st->dense = 0;
+	st->ok = st->have_end = st->stages = st->dense = 0;
 	memcpy(st->y0, y, dim * sizeof *y);
 	if (dydt_in)
 		memcpy(st->k[0], dydt_in, dim * sizeof *dydt_in);
@@ -118,7 +118,7 @@ int csf_erk_reset(void *vstate, size_t dim)
 {
 	csf_erk_state *st = vstate;
 	memset(st->k[0], 0, nvectors(st->m) * (dim ? dim : 1) * sizeof *st->k[0]);
-	st->ok = st->have_end = st->dense = 0;
+	st->ok = st->have_end = st->stages = st->dense = 0;
 	st->t0 = st->h = 0;
 	return GSL_SUCCESS;
 }
@@ -145,7 +145,39 @@ void csf_erk_set_scale(gsl_odeiv2_step *s, const double *scale)
 	if (st) st->scale = scale;
 }
 
-int csf_erk_dense_prepare(gsl_odeiv2_step *s, const gsl_odeiv2_system *sys)
+void csf_erk_set_rows(gsl_odeiv2_step *s, const uint32_t *rows, size_t n)
+{
+	csf_erk_state *st = state_of(s);
+	if (!st) return;
+	st->rows = rows;
+	st->nrows = n;
+	st->dense = DENSE_NONE;
+}
+
+/* F0..F(2+nd) of component i: F(3+r) as csf_erk_combine sums them, the same operations in the same order. */
+static void extension(csf_erk_state *st, size_t i)
+{
+	const csf_erk_method *m = st->m;
+	const double h = st->h;
+	double *const *f = st->f;
+	f[0][i] = st->y1[i] - st->y0[i];
+	f[1][i] = h * st->k[0][i] - f[0][i];
+	f[2][i] = f[0][i] - h * st->k[m->nstage][i] - f[1][i];
+	for (int r = 0; r < m->nd; r++) {
+		const double *w = m->d + (size_t)r * (size_t)m->nk;
+		double acc = 0;
+		int first = 1;
+		for (int j = 0; j < m->nk; j++) {
+			if (w[j] == 0) continue;
+			if (first) acc = w[j] * st->k[j][i];
+			else acc += w[j] * st->k[j][i];
+			first = 0;
+		}
+		f[3 + r][i] = acc * h;
+	}
+}
+
+int csf_erk_dense_prepare(gsl_odeiv2_step *s, const gsl_odeiv2_system *sys, int some)
 {
 	csf_erk_state *st = state_of(s);
 	const csf_erk_method *m = st ? st->m : NULL;
@@ -153,21 +185,16 @@ int csf_erk_dense_prepare(gsl_odeiv2_step *s, const gsl_odeiv2_system *sys)
 	/* sys may be NULL for a method whose extension has no stages of its own */
 	if (!st || (sys ? sys->dimension != st->dim : m->nk > end + 1)) return GSL_EINVAL;
 	if (!st->ok) return GSL_EFAILED;
-	if (st->dense) return GSL_SUCCESS;
-	for (int j = end + 1; j < m->nk; j++)
+	int want = some && st->rows ? DENSE_ROWS : DENSE_ALL;
+	if (st->dense >= want) return GSL_SUCCESS;
+	for (int j = end + 1; j < m->nk && !st->stages; j++)
 		if ((status = stage(st, sys, j, st->t0, st->h)) != GSL_SUCCESS) return status;
-	const double h = st->h;
-	double *const *f = st->f;
-	for (size_t i = 0; i < st->dim; i++) {
-		f[0][i] = st->y1[i] - st->y0[i];
-		f[1][i] = h * st->k[0][i] - f[0][i];
-		f[2][i] = f[0][i] - h * st->k[end][i] - f[1][i];
-	}
-	for (int r = 0; r < m->nd; r++) {
-		csf_erk_combine(st->dim, m->d + (size_t)r * (size_t)m->nk, m->nk, st->k, f[3 + r]);
-		for (size_t i = 0; i < st->dim; i++) f[3 + r][i] *= h;
-	}
-	st->dense = 1;
+	st->stages = 1;
+	if (want == DENSE_ROWS)
+		for (size_t q = 0; q < st->nrows; q++) extension(st, st->rows[q]);
+	else
+		for (size_t i = 0; i < st->dim; i++) extension(st, i);
+	st->dense = want;
 	return GSL_SUCCESS;
 }
 
@@ -179,25 +206,31 @@ int csf_erk_dense_prepare(gsl_odeiv2_step *s, const gsl_odeiv2_system *sys)
  * exact at its own end (y0 + 0, y1 - 0), where the other would add the
  * rounding of F0 = y1 - y0.
  */
-void csf_erk_dense_eval(const gsl_odeiv2_step *s, double theta, double *y)
+/* Component i of the extension at theta (s1 = 1 - theta). */
+static double dense_at(const csf_erk_state *st, size_t i, double theta, double s1)
+{
+	const int last = 2 + st->m->nd;
+	double *const *f = st->f;
+	double p = f[last][i];
+	for (int r = last; r > 1; r--) p = f[r - 1][i] + (r % 2 ? s1 : theta) * p;
+	if (theta <= 0.5) return st->y0[i] + theta * (f[0][i] + s1 * p);
+	return st->y1[i] - s1 * (f[0][i] - theta * p);
+}
+
+void csf_erk_dense_eval(const gsl_odeiv2_step *s, double theta, double *y, int some)
 {
 	const csf_erk_state *st = state_of(s);
 	if (!st) return;
-	if (!st->dense) { /* misuse: no value rather than a stale one */
+	int rows = some && st->rows && st->dense == DENSE_ROWS;
+	if (!st->dense || (st->dense == DENSE_ROWS && !rows)) { /* misuse: no value rather than a stale one */
 		for (size_t i = 0; i < st->dim; i++) y[i] = NAN;
 		return;
 	}
 	const double s1 = 1.0 - theta;
-	const int last = 2 + st->m->nd;
-	double *const *f = st->f;
-	for (size_t i = 0; i < st->dim; i++) {
-		double p = f[last][i];
-		for (int r = last; r > 1; r--) p = f[r - 1][i] + (r % 2 ? s1 : theta) * p;
-		if (theta <= 0.5)
-			y[i] = st->y0[i] + theta * (f[0][i] + s1 * p);
-		else
-			y[i] = st->y1[i] - s1 * (f[0][i] - theta * p);
-	}
+	if (rows)
+		for (size_t q = 0; q < st->nrows; q++) y[st->rows[q]] = dense_at(st, st->rows[q], theta, s1);
+	else
+		for (size_t i = 0; i < st->dim; i++) y[i] = dense_at(st, i, theta, s1);
 }
 
 void csf_erk_last_step(const gsl_odeiv2_step *s, double *t0, double *h)

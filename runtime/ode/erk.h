@@ -5,6 +5,7 @@
 #ifndef CSF_ERK_H
 #define CSF_ERK_H
 
+#include <stdint.h>
 #include <gsl/gsl_odeiv2.h>
 
 struct csf_erk_state;
@@ -40,8 +41,13 @@ typedef struct csf_erk_state {
 	double t0, h;       /* the last successful step */
 	int ok;             /* k, y0, y1 belong to (t0, h): the last apply succeeded */
 	int have_end;       /* k(nstage) is f(t0 + h, y1) */
-	int dense;          /* f[] is ready */
+	int stages;         /* the extension's own stages are evaluated */
+	int dense;          /* f[] is ready: DENSE_ROWS, for the components rows[] alone; DENSE_ALL, for all */
+	const uint32_t *rows; /* the components the rows need (csf_erk_set_rows), or NULL: all */
+	size_t nrows;
 } csf_erk_state;
+
+enum { DENSE_NONE, DENSE_ROWS, DENSE_ALL };
 
 /* out[i] = sum over j < n of w[j] k[j][i], the nonzero w[j] only, j ascending. */
 void csf_erk_combine(size_t dim, const double *w, int n, double *const *k, double *out);
@@ -64,11 +70,16 @@ void csf_erk_free(void *state);
  * GSL_EFAILED when the last apply failed; sys may be NULL when no stage is
  * needed) and evaluated at t0 + theta h
  * (theta = 0 and 1 give y0 and y1 exactly; NaN before a prepare); and that
- * step's t0 and h.
+ * step's t0 and h. With rows set (csf_erk_set_rows: the components the
+ * output rows need, ascending; the array must outlive the stepper), a
+ * prepare and an eval for the rows (some = 1) compute those components
+ * alone, bit for bit as a whole one does; the others of y are left as
+ * they were.
  */
 void csf_erk_set_scale(gsl_odeiv2_step *s, const double *scale);
-int csf_erk_dense_prepare(gsl_odeiv2_step *s, const gsl_odeiv2_system *sys);
-void csf_erk_dense_eval(const gsl_odeiv2_step *s, double theta, double *y);
+void csf_erk_set_rows(gsl_odeiv2_step *s, const uint32_t *rows, size_t n);
+int csf_erk_dense_prepare(gsl_odeiv2_step *s, const gsl_odeiv2_system *sys, int some);
+void csf_erk_dense_eval(const gsl_odeiv2_step *s, double theta, double *y, int some);
 void csf_erk_last_step(const gsl_odeiv2_step *s, double *t0, double *h);
 
 #endif

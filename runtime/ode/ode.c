@@ -20,8 +20,8 @@
 #include "erk.h"
 #include "ode_int.h"
 
-static int erk_dense_eval(csf_ode *o, double tc, double *out);
-static const struct dense erk_dense = { csf_erk_set_scale, erk_dense_eval };
+static int erk_dense_eval(csf_ode *o, double tc, double *out, int some);
+static const struct dense erk_dense = { csf_erk_set_scale, csf_erk_set_rows, erk_dense_eval };
 
 #define STEP(T) &gsl_odeiv2_step_##T
 static const struct method methods[] = {
@@ -277,16 +277,23 @@ int csf_ode_first_step(csf_ode *o, double t, const double *y)
 	return 0;
 }
 
-int csf_ode_dense_eval(csf_ode *o, double tc, double *out) { return o->m->dense->eval(o, tc, out); }
+int csf_ode_dense_eval(csf_ode *o, double tc, double *out) { return o->m->dense->eval(o, tc, out, 0); }
 
-static int erk_dense_eval(csf_ode *o, double tc, double *out)
+int csf_ode_dense_rows(csf_ode *o, double tc, double *out) { return o->m->dense->eval(o, tc, out, 1); }
+
+void csf_ode_set_rows(csf_ode *o, const uint32_t *rows, size_t n)
+{
+	if (o->m->dense && o->drv) o->m->dense->set_rows(o->drv->s, rows, n);
+}
+
+static int erk_dense_eval(csf_ode *o, double tc, double *out, int some)
 {
 	double t0, h;
 	gsl_odeiv2_step *s = o->drv->s;
 	csf_erk_last_step(s, &t0, &h);
-	if (csf_erk_dense_prepare(s, &o->sys) != GSL_SUCCESS) return 1;
+	if (csf_erk_dense_prepare(s, &o->sys, some) != GSL_SUCCESS) return 1;
 	double theta = h != 0 ? (tc - t0) / h : 1;
-	csf_erk_dense_eval(s, theta < 0 ? 0 : theta > 1 ? 1 : theta, out);
+	csf_erk_dense_eval(s, theta < 0 ? 0 : theta > 1 ? 1 : theta, out, some);
 	return 0;
 }
 

@@ -76,6 +76,15 @@ int csf_ode_first_step(csf_ode *o, double t, const double *y);
 int csf_ode_dense_eval(csf_ode *o, double tc, double *out);
 
 /*
+ * The same for the components the rows need (csf_ode_set_rows: ascending
+ * indices, an array that outlives o; NULL: all), bit for bit as
+ * csf_ode_dense_eval gives them; the other components of out are left as
+ * they were. Only these are interpolated, and only these prepared.
+ */
+int csf_ode_dense_rows(csf_ode *o, double tc, double *out);
+void csf_ode_set_rows(csf_ode *o, const uint32_t *rows, size_t n);
+
+/*
  * Advances (*t, y) to exactly t1 in equal steps of at most h, without error
  * control (rk4 is the classical four-stage method; the other one-step
  * methods take GSL's step without using its error estimate). Returns as

@@ -27,7 +27,8 @@ typedef int fixed_fn(csf_ode *o, double t, double h, double *y, char *err, size_
 /* A continuous extension (erk.c's): its error norm's scale, and the state at tc within the last step. */
 struct dense {
 	void (*set_scale)(gsl_odeiv2_step *s, const double *scale);
-	int (*eval)(csf_ode *o, double tc, double *out);
+	void (*set_rows)(gsl_odeiv2_step *s, const uint32_t *rows, size_t n);
+	int (*eval)(csf_ode *o, double tc, double *out, int some);
 };
 
 /*

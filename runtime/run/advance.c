@@ -195,6 +195,6 @@ int csf_run_advance_dense(run *r, double tk, double *y, char *msg, size_t msglen
 		if ((st = chatter(&same, ta, te, msg, msglen))) return st;
 	}
 	if (tk == r->ti) memcpy(y, r->yi, n * sizeof *y);
-	else if (csf_ode_dense_eval(ode, tk, y)) return CSF_ODE_STOPPED;
+	else if (csf_ode_dense_rows(ode, tk, y)) return CSF_ODE_STOPPED;
 	return CSF_ODE_OK;
 }

@@ -5,10 +5,12 @@
  */
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "run_int.h"
 #include "constraint.h"
+#include "insn.h"
 
 int csf_run_rhs(double t, const double *y, double *dydt, void *ctx)
 {
@@ -93,4 +95,35 @@ int csf_run_jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx
 		}
 	}
 	return 0;
+}
+
+uint32_t *csf_run_row_state(const csf_prog *p, size_t *n)
+{
+	const uint32_t *code = p->code[CSF_SEC_OUT];
+	uint64_t y0 = p->ystart, y1 = (uint64_t)p->ystart + p->ny;
+	unsigned char *need = p->ncrules || p->ncons ? NULL : calloc(p->ny ? p->ny : 1, 1);
+	uint32_t cnt[CSF_LOOP_MAX + 1] = { 0 }; /* the counts of the loops open, by level */
+	if (!need) return NULL;
+	for (uint32_t pc = 0; pc < p->ncode[CSF_SEC_OUT]; pc += csf_insn_len(code[pc])) {
+		const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
+		if (code[pc] == CSF_OP_LOOP) cnt[code[pc + 1]] = code[pc + 2];
+		for (int k = 0; k < oi->nops; k++) {
+			if (!csf_kind_slot(oi->kind[k])) continue;
+			uint32_t w = code[pc + 1 + k], r = csf_reg(w);
+			uint64_t lo = w & CSF_SLOT_MASK, hi = csf_operand_end(w, csf_kind_width(oi->kind[k]), r ? cnt[csf_reg_level(r)] : 1);
+			for (uint64_t s = lo > y0 ? lo : y0; s < hi && s < y1; s++) need[s - y0] = 1;
+		}
+	}
+	for (uint32_t i = 0; i < p->ncols; i++)
+		if (p->cols[i].slot >= y0 && p->cols[i].slot < y1) need[p->cols[i].slot - y0] = 1;
+	size_t k = 0;
+	for (uint32_t i = 0; i < p->ny; i++) k += need[i];
+	uint32_t *rows = k < p->ny ? malloc((k ? k : 1) * sizeof *rows) : NULL;
+	if (rows) {
+		*n = 0;
+		for (uint32_t i = 0; i < p->ny; i++)
+			if (need[i]) rows[(*n)++] = i;
+	}
+	free(need);
+	return rows;
 }

@@ -98,6 +98,15 @@ int csf_parse_opts(int argc, char **argv, int first, csf_opts *o, int *pos, int 
 			o->fixed = 1;
 		} else if (csf_opt_value(argc, argv, &i, "--hmax", &v)) {
 			if (positive(argv[0], v, "--hmax", " of seconds", &o->hmax)) return 2;
+		} else if (csf_opt_value(argc, argv, &i, "--every", &v)) {
+			char *end;
+			errno = 0;
+			long k = strtol(v, &end, 10);
+			if (end == v || *end || errno || k < 1) {
+				fprintf(stderr, "%s: --every needs a whole number of rows, 1 or more, not '%s'\n", argv[0], v);
+				return 2;
+			}
+			o->every = (unsigned long)k;
 		} else if (strcmp(a, "--fixed") == 0) {
 			o->fixed = 1;
 		} else if (strcmp(a, "--stats") == 0) {

@@ -8,18 +8,27 @@
 
 #include "run_int.h"
 
+/*
+ * A row: built in a buffer (each cell by csf_fmt_put, which needs room for 32
+ * bytes) and written with one fwrite, or one per ROW_BUF bytes of a very
+ * wide row.
+ */
 int csf_run_write_row(const csf_prog *p, const double *m, double t, FILE *out)
 {
-	char b[32];
+	enum { ROW_BUF = 8192, CELL = 1 + 32 };
+	char row[ROW_BUF];
 	csf_out_begin();
-	csf_fmt_double(b, t);
-	fputs(b, out);
+	size_t n = (size_t)csf_fmt_put(row, t);
 	for (uint32_t i = 0; i < p->ncols; i++) {
-		csf_fmt_double(b, m[p->cols[i].slot]);
-		putc(',', out);
-		fputs(b, out);
+		if (n + CELL > sizeof row) {
+			fwrite(row, 1, n, out);
+			n = 0;
+		}
+		row[n++] = ',';
+		n += (size_t)csf_fmt_put(row + n, m[p->cols[i].slot]);
 	}
-	putc('\n', out);
+	row[n++] = '\n';
+	fwrite(row, 1, n, out);
 	csf_out_end();
 	return ferror(out) ? -1 : 0;
 }

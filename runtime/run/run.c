@@ -33,6 +33,7 @@ typedef struct session {
 	uint32_t *vec;      /* the state's vectors, for the error control (csf_ode_vectors) */
 	csf_ode *ode;
 	double kmax;        /* the last output time is kmax * by */
+	double every;       /* --every: the rows written are those of k a multiple of it, and the last */
 	double fixed_h;     /* the fixed step */
 	struct timespec t0; /* when the run started */
 	FILE *out;          /* the CSV rows, or NULL */
@@ -40,6 +41,7 @@ typedef struct session {
 	double *v;          /* with a sink: a row's values */
 	const csf_overlay *init; /* initial values over p->mem0 (csf_opts.init) */
 	int werr;           /* a row's write error (errno) */
+	time_t flushed;     /* the second of the clock at which out was last flushed */
 	char msg[256];      /* the integrator's words */
 } session;
 
@@ -129,6 +131,7 @@ static stop run_method(session *S, csf_opts *o)
 	S->ode = csf_ode_new(S->method, o->fixed, p->ny, p->by, hmax, o->tol, o->atol, p->yatol, p->yscale, p->vpair, csf_run_rhs,
 	                     p->jtan ? csf_run_jac : NULL, r, S->msg, sizeof S->msg);
 	if (S->ode) csf_ode_vectors(S->ode, S->vec);
+	if (S->ode && (r->row_y = csf_run_row_state(p, &r->nrow_y))) csf_ode_set_rows(S->ode, r->row_y, r->nrow_y);
 	if (S->ode && S->autom_on) { /* the implicit method ends its steps on the rows: at most by */
 		S->au.m[0] = S->ode;
 		S->au.m[1] = csf_ode_new(AUTO_STIFF, 0, p->ny, p->by, o->hmax > 0 && o->hmax < p->by ? o->hmax : p->by,
@@ -332,19 +335,42 @@ static stop run_advance(session *S, double *t, double *tk, int *last)
 	return advance_stop(S, st, *t, *tk);
 }
 
-/* The row at tk to the CSV output and to the sink. 0, or -1 (errno set) when either failed. */
+/* CLOCK_MONOTONIC to the tick of the kernel (a few ms), where there is one: read at every row */
+#ifdef CLOCK_MONOTONIC_COARSE
+#define ROW_CLOCK CLOCK_MONOTONIC_COARSE
+#else
+#define ROW_CLOCK CLOCK_MONOTONIC
+#endif
+
+/*
+ * The row at tk to the CSV output and to the sink. 0, or -1 (errno set) when
+ * either failed. The rows reach out within a second (whose buffer may hold
+ * 1 MiB: csf_main), so that a slow run can be watched with tail(1).
+ */
 static int emit_row(session *S, double tk)
 {
 	const csf_prog *p = S->r.p;
-	if (S->out && csf_run_write_row(p, S->r.m, tk, S->out)) return -1;
+	if (S->out) {
+		struct timespec now;
+		if (csf_run_write_row(p, S->r.m, tk, S->out)) return -1;
+		clock_gettime(ROW_CLOCK, &now);
+		if (now.tv_sec != S->flushed) {
+			S->flushed = now.tv_sec;
+			csf_out_begin();
+			int bad = fflush(S->out) != 0;
+			csf_out_end();
+			if (bad) return -1;
+		}
+	}
 	if (!S->sink) return 0;
 	S->v[0] = tk;
 	for (uint32_t i = 0; i < p->ncols; i++) S->v[i + 1] = S->r.m[p->cols[i].slot];
 	return S->sink->row(S->sink->ctx, S->v, (size_t)p->ncols + 1);
 }
 
-/* The row at tk: the OUT section, its assertions, finiteness, and the CSV row. */
-static stop run_row(session *S, double tk, int *last)
+/* Row k, at tk: the OUT section, its assertions, finiteness, and the CSV row (with --every, only
+   that of every K-th and of the last row). */
+static stop run_row(session *S, double k, double tk, int *last)
 {
 	run *r = &S->r;
 	const csf_prog *p = r->p;
@@ -374,7 +400,7 @@ static stop run_row(session *S, double tk, int *last)
 		csf_vm_exec(p, &r->x, CSF_SEC_OUT, r->m, r->m + p->ystart, r->m + p->dstart); /* every value, for the report */
 		return stop_at(STOP_NONFINITE_ROW, tk);
 	}
-	if (emit_row(S, tk)) {
+	if ((fmod(k, S->every) == 0 || k == S->kmax || r->stopped) && emit_row(S, tk)) {
 		S->werr = errno;
 		*last = 1;
 		return stop_kind_only(STOP_END);
@@ -400,7 +426,7 @@ static stop run_rows(session *S)
 			if (s.kind != STOP_END || last) return s;
 		}
 		t = tk;
-		stop s = run_row(S, tk, &last);
+		stop s = run_row(S, k, tk, &last);
 		if (s.kind != STOP_END || last) return s;
 	}
 	return stop_kind_only(STOP_END);
@@ -510,6 +536,7 @@ static void run_free(session *S)
 	free(r->gl);
 	free(S->work);
 	free(S->y);
+	free(S->r.row_y);
 	free(S->v);
 	free(S->vec);
 	free(r->yi);
@@ -518,7 +545,8 @@ static void run_free(session *S)
 
 int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, const csf_sink *sink, FILE *err)
 {
-	session S = { .r = { .p = p, .exec = exec, .max_rhs = o->max_rhs }, .out = out, .sink = sink, .init = o->init };
+	session S = { .r = { .p = p, .exec = exec, .max_rhs = o->max_rhs }, .out = out, .sink = sink, .init = o->init,
+	              .every = o->every > 1 ? (double)o->every : 1 };
 	S.wc.r = S.wc_stiff.r = &S.r;
 	/* --method auto (the default, but for fixed steps and large scenes: dop853) is dop853 with
 	   AUTO_STIFF beside it */

@@ -18,6 +18,8 @@
 
 typedef struct run {
 	const csf_prog *p;
+	uint32_t *row_y; /* the state components the rows need (csf_run_row_state), or NULL: all */
+	size_t nrow_y;
 	csf_exec_fn exec;
 	double *m;
 	double fail_t; /* time of a non-finite derivative */
@@ -196,11 +198,22 @@ void csf_run_progress(run *r, double t);
 void csf_run_progress_off(run *r);
 
 /* fmt.c */
+/* csf_fmt_double's text and its NUL at dst, which has room for 32 bytes (all may be written): its length (24 at most) */
+int csf_fmt_put(char *dst, double x);
 double csf_run_round_down(double x);
 void csf_run_fmt_ratio(char buf[32], double x);
 
 /* eval.c */
 int csf_run_rhs(double t, const double *y, double *dydt, void *ctx);
+
+/*
+ * The state components the rows need, ascending, their number in *n: those
+ * the OUT section reads (an operand relative to a loop index: all that it
+ * reaches) and the watched columns that are state. NULL when that is every
+ * one, or when the section runs the contact routine or the constraints
+ * (which read the whole state), or memory ran out: the rows need all.
+ */
+uint32_t *csf_run_row_state(const csf_prog *p, size_t *n);
 int csf_run_jac(double t, const double *y, double *dfdy, double *dfdt, void *ctx);
 
 /* report.c */

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <unistd.h>
 
 #include "csf_int.h"
 
@@ -36,6 +37,8 @@ static const char vm_usage[] =
 	"  --fixed        no error control: internal steps of 'by' (or --step H); a step\n"
 	"                 past the method's stability limit for the scene is refused\n"
 	"  --step H       fixed internal steps of at most H seconds\n"
+	"  --every K      write every K-th row (t = 0, K by, 2K by, ...) and the last; the\n"
+	"                 run and its assertions are those of every row\n"
 	"  --stats        steps, evaluations, time, auto's switches and the fastest time\n"
 	"                 scale on stderr\n"
 	"  --progress, --no-progress  a progress line on stderr (default: on a terminal)\n"
@@ -61,7 +64,7 @@ static const char exe_usage[] =
 	"Runs the CSF model compiled into this program and writes its watched variables as CSV on stdout.\n"
 	METHOD_TOL_HELP
 	"  --atol A       absolute local error bound, in the model's units (as csfvm(1))\n"
-	"  --hmax H, --fixed, --step H, --stats, --progress, --no-progress,\n"
+	"  --hmax H, --fixed, --step H, --every K, --stats, --progress, --no-progress,\n"
 	"  --compare-methods, -D NAME=VALUE, --sweep 'NAME=FROM:TO:COUNT [UNIT]',\n"
 	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, -j N, -o FILE,\n"
 	"  --dump RUN.h5: as csfvm(1)\n"
@@ -95,6 +98,13 @@ static int h5_name(const char *path)
 	return (n > 3 && strcasecmp(path + n - 3, ".h5") == 0) || (n > 5 && strcasecmp(path + n - 5, ".hdf5") == 0);
 }
 
+/* Rows go out in writes of 1 MiB to a file or a pipe (to a terminal, line by line, as they come). */
+static void out_buffer(FILE *out)
+{
+	static char buf[1 << 20];
+	if (!isatty(fileno(out))) setvbuf(out, buf, _IOFBF, sizeof buf);
+}
+
 /* --dump FILE.h5: its rows as CSV on stdout or -o FILE. */
 static int dump(const csf_opts *o, const char *prog)
 {
@@ -107,6 +117,7 @@ static int dump(const csf_opts *o, const char *prog)
 		fprintf(stderr, "%s: cannot write %s: %s\n", prog, o->output, strerror(errno));
 		return 2;
 	}
+	out_buffer(out);
 	signal(SIGPIPE, SIG_IGN);
 	int st = csf_h5_dump(o->dump, out, stderr, prog);
 	if (out != stdout && fclose(out) && st != 2) {
@@ -197,6 +208,7 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		csf_opts_free(&o);
 		return 2;
 	}
+	out_buffer(out);
 	/* a write to a closed pipe is an error csf_run sees (EPIPE), and ends quietly */
 	signal(SIGPIPE, SIG_IGN);
 	/* SIGINT, SIGTERM: csf_run ends after the current row (csf_signal), or the watchdog ends it */

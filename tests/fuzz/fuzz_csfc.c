@@ -45,7 +45,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	int f = src_add_n("fuzz.csf", (const char *)data, size);
 	Stmt *s = parse_file(f);
 	if (!diag_errors) {
-		Model *M = sema_run(s);
+		Model *M = sema_run(s, NULL);
 		if (!diag_errors) {
 			csf_prog p;
 			gen_program(M, &p);

@@ -1,9 +1,9 @@
 #!/bin/sh
 # tests/fuzz/run.sh BUILD SECONDS [RUNS] - runs each fuzz target (BUILD/fuzz-csfc,
-# BUILD/fuzz-csfb, made by `make fuzz`) with libFuzzer for SECONDS (or RUNS
+# BUILD/fuzz-csfb, BUILD/fuzz-fmt, made by `make fuzz`) with libFuzzer for SECONDS (or RUNS
 # executions, if given), one process at a time, at nice 19. Seeds: every
 # .csf of examples/, tests/ and stdlib/, the same compiled to .csfb, and the
-# regression corpus tests/fuzz/regress/. The growing corpus stays in
+# regression corpus tests/fuzz/regress/ (fuzz-fmt: regress/fmt alone). The growing corpus stays in
 # BUILD/corpus-TARGET, out of the source tree; a finding is written to
 # BUILD/findings-TARGET/ and the script exits 1. A finding, once fixed, is
 # minimised (fuzz-TARGET -minimize_crash=1 FILE) and kept in
@@ -14,7 +14,7 @@ SECONDS_EACH=$2
 RUNS=${3:--1}
 TOP=$(pwd)
 status=0
-mkdir -p "$B/seeds-csfc" "$B/seeds-csfb"
+mkdir -p "$B/seeds-csfc" "$B/seeds-csfb" "$B/seeds-fmt"
 for f in examples/*.csf tests/*/*.csf tests/*.csf stdlib/*/*.csf; do
 	[ -f "$f" ] || continue
 	n=$(echo "$f" | tr '/' '_')
@@ -24,7 +24,7 @@ for f in examples/*.csf tests/*/*.csf tests/*.csf stdlib/*/*.csf; do
 			-o "$TOP/$B/seeds-csfb/${n%.csf}.csfb") >/dev/null 2>&1
 	fi
 done
-for t in csfc csfb; do
+for t in csfc csfb fmt; do
 	mkdir -p "$B/corpus-$t" "$B/findings-$t"
 	dict=
 	[ "$t" = csfc ] && dict=-dict=tests/fuzz/csf.dict

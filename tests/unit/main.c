@@ -22,7 +22,7 @@ int compile_string(const char *text, csf_prog *p, char **diag)
 	Stmt *s = parse_file(f);
 	int errs = diag_errors;
 	if (!errs) {
-		Model *M = sema_run(s);
+		Model *M = sema_run(s, NULL);
 		errs = diag_errors;
 		if (!errs) {
 			gen_program(M, p);

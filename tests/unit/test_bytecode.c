@@ -260,7 +260,7 @@ START_TEST(test_contact_routine)
 	/* it touches the ramp at rest, pressed into it: it comes to rest in contact, sticking */
 	csf_contacts *cs = contacts_at(&p, m);
 	ck_assert_uint_eq(csf_contacts_count(cs), 1);
-	eval_ctx e = { &p, m, { cs } };
+	eval_ctx e = { &p, m, { .contacts = cs } };
 	ck_assert_int_eq(csf_contact_settle(&p, cs, m, 5e-7, 1e-10, eval_rhs, &e), 0);
 	ck_assert_int_eq(csf_vm_exec(&p, &e.x, CSF_SEC_RHS, m, m + p.ystart, m + p.dstart), -1);
 	double g = 9.80665, mg = 2 * g, s30 = 0.5, c30 = 0.8660254037844386;

@@ -59,7 +59,7 @@ static void read_tableau(tableau *tb)
 	double y[NK] = { 0 }, yerr[NK], dydt[NK];
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 1, y, yerr, NULL, dydt, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(p.calls, NSTAGE + 1);
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
 	ck_assert_int_eq(p.calls, NK);
 	for (int n = 0; n < NK; n++) {
 		tb->c[n] = p.t[n];
@@ -72,7 +72,7 @@ static void read_tableau(tableau *tb)
 	}
 	for (int k = 0; k < NTHETA; k++) {
 		double yt[NK];
-		csf_erk_dense_eval(s, thetas[k], yt);
+		csf_erk_dense_eval(s, thetas[k], yt, 0);
 		for (int j = 0; j < NK; j++) tb->bt[k][j] = yt[j];
 	}
 	gsl_odeiv2_step_free(s);
@@ -392,23 +392,23 @@ static double dense_error(int osc, double lambda, double t0, double h)
 	csf_erk_last_step(s, &tl, &hl);
 	ck_assert(tl == t0 && hl == h);
 	int calls = n.calls;
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
 	ck_assert_int_eq(n.calls, calls + 3);
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
 	ck_assert_int_eq(n.calls, calls + 3);
 	double err = 0;
 	for (int k = 1; k <= 100; k++) {
 		double theta = k / 101.0, t = t0 + theta * h;
-		csf_erk_dense_eval(s, theta, yt);
+		csf_erk_dense_eval(s, theta, yt, 0);
 		if (osc)
 			osc_exact(lambda, t, ex);
 		else
 			ex[0] = exp(lambda * t);
 		for (size_t i = 0; i < sys.dimension; i++) err = fmax(err, fabs(yt[i] - ex[i]) / fabs(y0[0]));
 	}
-	csf_erk_dense_eval(s, 0, yt);
+	csf_erk_dense_eval(s, 0, yt, 0);
 	for (size_t i = 0; i < sys.dimension; i++) ck_assert(yt[i] == y0[i]);
-	csf_erk_dense_eval(s, 1, yt);
+	csf_erk_dense_eval(s, 1, yt, 0);
 	for (size_t i = 0; i < sys.dimension; i++) ck_assert(yt[i] == y[i]);
 	gsl_odeiv2_step_free(s);
 	return err;
@@ -524,12 +524,12 @@ START_TEST(test_evolve_dense)
 		double t0, hs;
 		csf_erk_last_step(s, &t0, &hs);
 		ck_assert(t0 == tb && tb + hs == t);
-		ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
-		csf_erk_dense_eval(s, 0, ym);
+		ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
+		csf_erk_dense_eval(s, 0, ym, 0);
 		ck_assert(ym[0] == yb[0] && ym[1] == yb[1]);
-		csf_erk_dense_eval(s, 1, ym);
+		csf_erk_dense_eval(s, 1, ym, 0);
 		ck_assert(ym[0] == y[0] && ym[1] == y[1]);
-		csf_erk_dense_eval(s, 0.5, ym);
+		csf_erk_dense_eval(s, 0.5, ym, 0);
 		osc_exact(1.0, t0 + 0.5 * hs, ex);
 		worst = fmax(worst, fmax(fabs(ym[0] - ex[0]), fabs(ym[1] - ex[1])));
 		steps++;
@@ -558,7 +558,7 @@ START_TEST(test_failing_evaluation)
 	ck_assert(memcmp(y, y0, sizeof y) == 0);
 	ck_assert(yerr[0] == 7 && yerr[1] == 7 && dydt[0] == 7 && dydt[1] == 7);
 	/* no continuous extension of a step that failed */
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_EFAILED);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_EFAILED);
 	gsl_odeiv2_step_free(s);
 }
 END_TEST
@@ -573,13 +573,51 @@ START_TEST(test_failing_dense_stage)
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, y, yerr, NULL, dydt, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(gsl_odeiv2_step_apply(r, 0, 0.5, yr, yerr, NULL, dydt, &sys), GSL_SUCCESS);
 	n.fail_at = n.calls + _i; /* one of the 3 dense stages */
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_EBADFUNC);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_EBADFUNC);
 	n.fail_at = -1;
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
-	ck_assert_int_eq(csf_erk_dense_prepare(r, &sys), GSL_SUCCESS);
-	csf_erk_dense_eval(s, 0.3, a);
-	csf_erk_dense_eval(r, 0.3, b);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(r, &sys, 0), GSL_SUCCESS);
+	csf_erk_dense_eval(s, 0.3, a, 0);
+	csf_erk_dense_eval(r, 0.3, b, 0);
 	ck_assert(a[0] == b[0] && a[1] == b[1]);
+	gsl_odeiv2_step_free(s);
+	gsl_odeiv2_step_free(r);
+}
+END_TEST
+
+/*
+ * The extension of the rows' components alone (csf_erk_set_rows): each is bit for bit the whole
+ * extension's, the others are left as they were, the dense stages are evaluated once a step
+ * (a whole prepare after it costs no evaluation), and a whole evaluation after a prepare of the
+ * rows alone is NaN, not a stale value.
+ */
+START_TEST(test_dense_rows)
+{
+	counter n = { 1.0, 0, -1 };
+	gsl_odeiv2_system sys = { osc_f, NULL, 2, &n };
+	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(csf_step_dop853, 2), *r = gsl_odeiv2_step_alloc(csf_step_dop853, 2);
+	static const uint32_t rows[1] = { 1 };
+	double y[2] = { 0.6, -0.8 }, yr[2] = { 0.6, -0.8 }, yerr[2], a[2], b[2];
+	csf_erk_set_rows(s, rows, 1);
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, y, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(gsl_odeiv2_step_apply(r, 0, 0.5, yr, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 1), GSL_SUCCESS);
+	int calls = n.calls;
+	ck_assert_int_eq(csf_erk_dense_prepare(r, &sys, 0), GSL_SUCCESS);
+	for (double theta = 0; theta <= 1; theta += 0.125) {
+		a[0] = 7, a[1] = 7;
+		csf_erk_dense_eval(s, theta, a, 1);
+		csf_erk_dense_eval(r, theta, b, 0);
+		ck_assert(a[0] == 7 && memcmp(&a[1], &b[1], sizeof b[1]) == 0);
+	}
+	csf_erk_dense_eval(s, 0.5, a, 0);
+	ck_assert(isnan(a[0]) && isnan(a[1]));
+	calls = n.calls;
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
+	ck_assert_int_eq(n.calls, calls);
+	csf_erk_dense_eval(s, 0.3, a, 0);
+	csf_erk_dense_eval(r, 0.3, b, 0);
+	ck_assert(memcmp(a, b, sizeof a) == 0);
 	gsl_odeiv2_step_free(s);
 	gsl_odeiv2_step_free(r);
 }
@@ -599,7 +637,7 @@ START_TEST(test_fsal)
 	double y[2] = { 0.6, -0.8 }, yr[2] = { 0.6, -0.8 }, yerr[2], a[2], b[2];
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, y, yerr, NULL, NULL, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(n.calls, NSTAGE + 1);
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
 	ck_assert_int_eq(n.calls, NSTAGE + 4);
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0.5, 0.5, y, yerr, NULL, NULL, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(n.calls, 2 * NSTAGE + 4);
@@ -614,14 +652,14 @@ START_TEST(test_fsal)
 	gsl_odeiv2_step_reset(r);
 	ck_assert_int_eq(gsl_odeiv2_step_apply(r, 0.5, 0.5, yr, yerr, NULL, NULL, &sys), GSL_SUCCESS);
 	ck_assert(y[0] == yr[0] && y[1] == yr[1]);
-	ck_assert_int_eq(csf_erk_dense_prepare(r, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(r, &sys, 0), GSL_SUCCESS);
 	gsl_odeiv2_step_reset(s);
 	double ys[2] = { 0.6, -0.8 };
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, ys, yerr, NULL, NULL, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0.5, 0.5, ys, yerr, NULL, NULL, &sys), GSL_SUCCESS);
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
-	csf_erk_dense_eval(s, 0.7, a);
-	csf_erk_dense_eval(r, 0.7, b);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
+	csf_erk_dense_eval(s, 0.7, a, 0);
+	csf_erk_dense_eval(r, 0.7, b, 0);
 	ck_assert(a[0] == b[0] && a[1] == b[1]);
 	gsl_odeiv2_step_free(s);
 	gsl_odeiv2_step_free(r);
@@ -667,6 +705,7 @@ Suite *dop853_suite(void)
 	tcase_add_test(tc, test_evolve_dense);
 	tcase_add_loop_test(tc, test_failing_evaluation, 0, 2 * NSTAGE + 1);
 	tcase_add_loop_test(tc, test_failing_dense_stage, 0, 3);
+	tcase_add_test(tc, test_dense_rows);
 	tcase_add_test(tc, test_fsal);
 	tcase_add_test(tc, test_failing_driver);
 	suite_add_tcase(s, tc);

@@ -59,7 +59,7 @@ static void read_tableau(tableau *tb)
 	double y[NK] = { 0 }, yerr[NK], dydt[NK];
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 1, y, yerr, NULL, dydt, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(p.calls, NSTAGE + 1);
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
 	ck_assert_int_eq(p.calls, NK); /* the extension costs no evaluation */
 	for (int n = 0; n < NK; n++) {
 		tb->c[n] = p.t[n];
@@ -73,7 +73,7 @@ static void read_tableau(tableau *tb)
 	}
 	for (int k = 0; k < NTHETA; k++) {
 		double yt[NK];
-		csf_erk_dense_eval(s, thetas[k], yt);
+		csf_erk_dense_eval(s, thetas[k], yt, 0);
 		for (int j = 0; j < NK; j++) tb->bt[k][j] = yt[j];
 	}
 	gsl_odeiv2_step_free(s);
@@ -389,22 +389,22 @@ static double dense_error(int osc, double lambda, double t0, double h)
 	csf_erk_last_step(s, &tl, &hl);
 	ck_assert(tl == t0 && hl == h);
 	int calls = n.calls;
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
-	ck_assert_int_eq(csf_erk_dense_prepare(s, NULL), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, NULL, 0), GSL_SUCCESS);
 	ck_assert_int_eq(n.calls, calls);
 	double err = 0;
 	for (int k = 1; k <= 100; k++) {
 		double theta = k / 101.0, t = t0 + theta * h;
-		csf_erk_dense_eval(s, theta, yt);
+		csf_erk_dense_eval(s, theta, yt, 0);
 		if (osc)
 			osc_exact(lambda, t, ex);
 		else
 			ex[0] = exp(lambda * t);
 		for (size_t i = 0; i < sys.dimension; i++) err = fmax(err, fabs(yt[i] - ex[i]) / fabs(y0[0]));
 	}
-	csf_erk_dense_eval(s, 0, yt);
+	csf_erk_dense_eval(s, 0, yt, 0);
 	for (size_t i = 0; i < sys.dimension; i++) ck_assert(yt[i] == y0[i]);
-	csf_erk_dense_eval(s, 1, yt);
+	csf_erk_dense_eval(s, 1, yt, 0);
 	for (size_t i = 0; i < sys.dimension; i++) ck_assert(yt[i] == y[i]);
 	gsl_odeiv2_step_free(s);
 	return err;
@@ -493,13 +493,13 @@ START_TEST(test_evolve_dense)
 		csf_erk_last_step(s, &t0, &hs);
 		ck_assert(t0 == tb && tb + hs == t);
 		int calls = n.calls;
-		ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
+		ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
 		ck_assert_int_eq(n.calls, calls);
-		csf_erk_dense_eval(s, 0, ym);
+		csf_erk_dense_eval(s, 0, ym, 0);
 		ck_assert(ym[0] == yb[0] && ym[1] == yb[1]);
-		csf_erk_dense_eval(s, 1, ym);
+		csf_erk_dense_eval(s, 1, ym, 0);
 		ck_assert(ym[0] == y[0] && ym[1] == y[1]);
-		csf_erk_dense_eval(s, 0.5, ym);
+		csf_erk_dense_eval(s, 0.5, ym, 0);
 		osc_exact(1.0, t0 + 0.5 * hs, ex);
 		worst = fmax(worst, fmax(fabs(ym[0] - ex[0]), fabs(ym[1] - ex[1])));
 		steps++;
@@ -528,7 +528,7 @@ START_TEST(test_failing_evaluation)
 	ck_assert(memcmp(y, y0, sizeof y) == 0);
 	ck_assert(yerr[0] == 7 && yerr[1] == 7 && dydt[0] == 7 && dydt[1] == 7);
 	/* no continuous extension of a step that failed */
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_EFAILED);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_EFAILED);
 	gsl_odeiv2_step_free(s);
 }
 END_TEST
@@ -545,7 +545,7 @@ START_TEST(test_failing_after_success)
 	n.fail_at = n.calls + 3;
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0.5, 0.5, y, yerr, NULL, NULL, &sys), GSL_EBADFUNC);
 	ck_assert(y[0] == y1[0] && y[1] == y1[1]);
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_EFAILED);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_EFAILED);
 	n.fail_at = -1;
 	int calls = n.calls;
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0.5, 0.5, y, yerr, NULL, NULL, &sys), GSL_SUCCESS);
@@ -553,10 +553,10 @@ START_TEST(test_failing_after_success)
 	double yr[2] = { y1[0], y1[1] };
 	ck_assert_int_eq(gsl_odeiv2_step_apply(r, 0.5, 0.5, yr, yerr, NULL, NULL, &sys), GSL_SUCCESS);
 	ck_assert(y[0] == yr[0] && y[1] == yr[1]);
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
-	ck_assert_int_eq(csf_erk_dense_prepare(r, &sys), GSL_SUCCESS);
-	csf_erk_dense_eval(s, 0.3, a);
-	csf_erk_dense_eval(r, 0.3, b);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(r, &sys, 0), GSL_SUCCESS);
+	csf_erk_dense_eval(s, 0.3, a, 0);
+	csf_erk_dense_eval(r, 0.3, b, 0);
 	ck_assert(a[0] == b[0] && a[1] == b[1]);
 	gsl_odeiv2_step_free(s);
 	gsl_odeiv2_step_free(r);
@@ -569,11 +569,11 @@ START_TEST(test_misuse)
 	counter n = { 1.0, 0, -1 };
 	gsl_odeiv2_system sys = { osc_f, NULL, 2, &n }, sys1 = { growth_f, NULL, 1, &n };
 	gsl_odeiv2_step *rk = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rkf45, 2), *s = gsl_odeiv2_step_alloc(csf_step_dopri5, 2);
-	ck_assert_int_eq(csf_erk_dense_prepare(rk, &sys), GSL_EINVAL);
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys1), GSL_EINVAL);
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_EFAILED);
+	ck_assert_int_eq(csf_erk_dense_prepare(rk, &sys, 0), GSL_EINVAL);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys1, 0), GSL_EINVAL);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_EFAILED);
 	double y[2] = { 1, 2 };
-	csf_erk_dense_eval(s, 0.5, y); /* not prepared: NaN, not a stale value */
+	csf_erk_dense_eval(s, 0.5, y, 0); /* not prepared: NaN, not a stale value */
 	ck_assert(isnan(y[0]) && isnan(y[1]));
 	double t0 = 1, h = 1;
 	csf_erk_last_step(rk, &t0, &h);
@@ -597,7 +597,7 @@ START_TEST(test_fsal)
 	double y[2] = { 0.6, -0.8 }, yr[2] = { 0.6, -0.8 }, yerr[2], a[2], b[2];
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, y, yerr, NULL, NULL, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(n.calls, NSTAGE + 1);
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
 	ck_assert_int_eq(n.calls, NSTAGE + 1);
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0.5, 0.5, y, yerr, NULL, NULL, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(n.calls, 2 * NSTAGE + 1);
@@ -616,14 +616,14 @@ START_TEST(test_fsal)
 	gsl_odeiv2_step_reset(r);
 	ck_assert_int_eq(gsl_odeiv2_step_apply(r, 0.5, 0.5, yr, yerr, NULL, NULL, &sys), GSL_SUCCESS);
 	ck_assert(y[0] == yr[0] && y[1] == yr[1]);
-	ck_assert_int_eq(csf_erk_dense_prepare(r, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(r, &sys, 0), GSL_SUCCESS);
 	gsl_odeiv2_step_reset(s);
 	double ys[2] = { 0.6, -0.8 };
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, ys, yerr, NULL, NULL, &sys), GSL_SUCCESS);
 	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0.5, 0.5, ys, yerr, NULL, NULL, &sys), GSL_SUCCESS);
-	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys), GSL_SUCCESS);
-	csf_erk_dense_eval(s, 0.7, a);
-	csf_erk_dense_eval(r, 0.7, b);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
+	csf_erk_dense_eval(s, 0.7, a, 0);
+	csf_erk_dense_eval(r, 0.7, b, 0);
 	ck_assert(a[0] == b[0] && a[1] == b[1]);
 	gsl_odeiv2_step_free(s);
 	gsl_odeiv2_step_free(r);
