@@ -2,7 +2,8 @@
 # tests/h5/check.sh CSFC CSFVM DIR BUILD - HDF5 output (-o RUN.h5) and --dump:
 #  - a run with -o RUN.h5 and --dump RUN.h5 writes the CSV of the run
 #    byte for byte (vectors, scalars named OBJECT.x, a column watched
-#    twice, a global vector named xyz, a run that fails an assertion);
+#    twice, a global vector named xyz, a run that fails an assertion,
+#    --every);
 #    -o RUN.csv writes the bytes of standard output;
 #  - read with h5py (tests/h5/read.py; SKIP without python3-h5py): every
 #    value the CSV's number read by float(), bit for bit; the units; a
@@ -53,6 +54,8 @@ run() {
 run p 0 21 -D ball.m=0.25 --method rk8pd --tol 1e-9
 run s 0 5
 run a 1 15
+cp "$T/p.csfb" "$T/e.csfb"
+run e 0 5 --every 5
 
 # the root's attributes: what ran
 if [ $H5PY -eq 1 ]; then
