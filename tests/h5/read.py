@@ -51,8 +51,8 @@ while i < len(head):
         name, _, unit = head[i].partition(" [")
         cols.append((name, None, unit[:-1]))
         i += 1
-# a name taken before is NAME (2), NAME (3), ...
-taken = {"t": 1, "xyz": 1}
+# a name taken before is NAME (2), NAME (3), ...: t, xyz (the scale of the vectors, when one is watched)
+taken = {"t": 1, "xyz": int(any(k is not None for _, k, _ in cols))}
 mapped = []
 last = None
 for name, k, unit in cols:
