@@ -25,7 +25,9 @@ CC ?= cc
 CFLAGS ?= -O2 -g
 SAN ?=
 
-DEB_PACKAGES = gcc make libgsl-dev check re2c bison pkg-config gnuplot-nox $(VIEW_PACKAGES) $(PYTHON_PACKAGES)
+DEB_PACKAGES = gcc make libgsl-dev check re2c bison pkg-config gnuplot-nox libhdf5-dev python3-h5py $(VIEW_PACKAGES) \
+	$(PYTHON_PACKAGES)
+# libhdf5-dev: -o RUN.h5 (serial HDF5, runtime/run/h5.c); python3-h5py: only for its test (SKIP without it)
 # the Python package csf (python/csf: numpy, pandas optional) and its tests (pytest), for Debian's python3
 PYTHON_PACKAGES = python3-numpy python3-pandas python3-pytest
 PYTHON = /usr/bin/python3
@@ -48,6 +50,11 @@ SANFLAGS = $(if $(SAN),-fsanitize=address$(,)undefined$(,)float-cast-overflow -f
 CSF_CFLAGS = -std=c11 -Wall -Wextra -ffp-contract=off -D_DEFAULT_SOURCE $(SANFLAGS)
 CPPFLAGS_ALL = $(addprefix -I,$(RT_DIRS) $(CC_DIRS)) -I$(BUILD)
 LDLIBS_GSL = $(shell pkg-config --libs gsl 2>/dev/null || echo -lgsl -lgslcblas) -lm
+# serial HDF5, for runtime/run/h5.c alone
+H5_CFLAGS = $(shell pkg-config --cflags hdf5-serial 2>/dev/null)
+LDLIBS_H5 = $(strip $(shell pkg-config --libs hdf5-serial 2>/dev/null || echo -lhdf5))
+# what a program that links libcsfrt.a links too
+LDLIBS_RT = $(LDLIBS_H5) $(LDLIBS_GSL)
 LDFLAGS_SAN = $(if $(SAN),-fsanitize=address$(,)undefined)
 
 # The sources, by stage (README.md, "How the code is laid out"): every .c of
@@ -71,6 +78,10 @@ all: $(BUILD)/csfc $(BUILD)/csfvm $(BUILD)/libcsfrt.a $(BUILD)/csfview $(if $(MP
 $(BUILD)/rt/%.o: runtime/%.c $(RT_H)
 	@mkdir -p $(@D)
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
+
+$(BUILD)/rt/run/h5.o $(BUILD)/pic/run/h5.o: CPPFLAGS_ALL += $(H5_CFLAGS)
+# csfc links a generated program with libcsfrt, GSL and these (compiler/back/cc.c)
+$(BUILD)/cc/back/cc.o: CPPFLAGS_ALL += -DCSF_LDLIBS_H5='"$(LDLIBS_H5)"'
 
 # fmt.c's table of powers of ten, computed exactly at build time (part of libcsfrt.a through fmt.o);
 # the generator is built without CFLAGS and sanitizers: it runs here, whatever the library is for
@@ -100,7 +111,7 @@ $(BUILD)/pic/%.o: runtime/%.c $(RT_H)
 
 $(BUILD)/$(SO_NAME): $(PIC_OBJ) runtime/api/csf_api.map
 	$(CC) -shared -Wl,-soname,$(SO_NAME) -Wl,--version-script=runtime/api/csf_api.map -Wl,-z,defs -o $@ \
-		$(PIC_OBJ) $(LDLIBS_GSL)
+		$(PIC_OBJ) $(LDLIBS_RT)
 
 $(BUILD)/libcsf.so: $(BUILD)/$(SO_NAME)
 	ln -sf $(SO_NAME) $@
@@ -139,10 +150,10 @@ $(BUILD)/cc/%.o: $(BUILD)/%.c $(CC_H) $(RT_H) $(BUILD)/parse.h
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -c $< -o $@
 
 $(BUILD)/csfc: $(CC_OBJ) $(BUILD)/cc/main.o $(BUILD)/libcsfrt.a
-	$(CC) $(LDFLAGS_SAN) -o $@ $(CC_OBJ) $(BUILD)/cc/main.o $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+	$(CC) $(LDFLAGS_SAN) -o $@ $(CC_OBJ) $(BUILD)/cc/main.o $(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 $(BUILD)/csfvm: $(BUILD)/rt/csfvm.o $(BUILD)/libcsfrt.a
-	$(CC) $(LDFLAGS_SAN) -o $@ $^ $(LDLIBS_GSL)
+	$(CC) $(LDFLAGS_SAN) -o $@ $^ $(LDLIBS_RT)
 
 $(BUILD)/rt/csfvm.o: runtime/tools/csfvm.c $(RT_H)
 	@mkdir -p $(@D)
@@ -150,7 +161,7 @@ $(BUILD)/rt/csfvm.o: runtime/tools/csfvm.c $(RT_H)
 
 # csfvm-mpi: csfvm with sweeps across MPI ranks; only this program needs MPI
 $(BUILD)/csfvm-mpi: runtime/tools/sweep_mpi.c $(RT_H) $(BUILD)/libcsfrt.a
-	$(MPICC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+	$(MPICC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 # csfview, a shell script: the in-tree copy reads its page template from viewer/
 $(BUILD)/csfview: viewer/csfview.sh
@@ -168,37 +179,37 @@ $(BUILD)/tests/%.o: tests/unit/%.c tests/unit/*.h $(CC_H) $(RT_H) $(BUILD)/parse
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -Itests/unit -c $< -o $@
 
 $(BUILD)/unit-tests: $(TEST_OBJ) $(CC_OBJ) $(BUILD)/libcsfrt.a
-	$(CC) $(LDFLAGS_SAN) -o $@ $(TEST_OBJ) $(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_CHECK) $(LDLIBS_GSL)
+	$(CC) $(LDFLAGS_SAN) -o $@ $(TEST_OBJ) $(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_CHECK) $(LDLIBS_RT)
 
 $(BUILD)/fuzz-bytecode: tests/fuzz_bytecode.c $(BUILD)/libcsfrt.a
-	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 # the sizes of a compiled program's code sections (tests/many/code_size.sh)
 $(BUILD)/code-words: tests/code_words.c $(RT_H) $(BUILD)/libcsfrt.a
-	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 # libcsf's API driven from C (tests/api_test.c), linked with libcsfrt.a: it runs under the sanitizers too
 $(BUILD)/api-test: tests/api_test.c $(RT_H) $(BUILD)/libcsfrt.a
-	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 # the fuzz targets (tests/fuzz/) replayed on the regression corpus by an ordinary main()
 FUZZ_DEFS = -DCSF_FUZZ_STDLIB='"$(CURDIR)/stdlib"'
 
 $(BUILD)/fuzz-replay-csfc: tests/fuzz/fuzz_csfc.c tests/fuzz/replay.c $(CC_OBJ) $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(FUZZ_DEFS) $(LDFLAGS_SAN) -o $@ tests/fuzz/fuzz_csfc.c \
-		tests/fuzz/replay.c $(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+		tests/fuzz/replay.c $(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 $(BUILD)/fuzz-replay-csfb: tests/fuzz/fuzz_csfb.c tests/fuzz/replay.c $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ tests/fuzz/fuzz_csfb.c tests/fuzz/replay.c \
-		$(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+		$(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 $(BUILD)/fuzz-replay-fmt: tests/fuzz/fuzz_fmt.c tests/fmt_ref.h tests/fuzz/replay.c $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ tests/fuzz/fuzz_fmt.c tests/fuzz/replay.c \
-		$(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+		$(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 # csf_fmt_double against the snprintf/strtod loop it replaced, value by value (tests/fmt_double.c)
 $(BUILD)/fmt-test: tests/fmt_double.c tests/fmt_ref.h $(BUILD)/libcsfrt.a
-	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(LDFLAGS_SAN) -o $@ $< $(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 # the MPI sweep test runs where Open MPI is installed (tests/sweep/check.sh says SKIP otherwise)
 # test-progs: what the tests run, built alone so that make check builds it nproc at a time
@@ -239,15 +250,15 @@ FUZZ_CC ?= clang
 
 $(BUILD)/fuzz-csfc: tests/fuzz/fuzz_csfc.c $(CC_OBJ) $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) $(FUZZ_DEFS) -fsanitize=fuzzer $(LDFLAGS_SAN) -o $@ $< \
-		$(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+		$(CC_OBJ) $(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 $(BUILD)/fuzz-csfb: tests/fuzz/fuzz_csfb.c $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -fsanitize=fuzzer $(LDFLAGS_SAN) -o $@ $< \
-		$(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+		$(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 $(BUILD)/fuzz-fmt: tests/fuzz/fuzz_fmt.c tests/fmt_ref.h $(BUILD)/libcsfrt.a
 	$(CC) $(CSF_CFLAGS) $(CFLAGS) $(CPPFLAGS_ALL) -fsanitize=fuzzer $(LDFLAGS_SAN) -o $@ $< \
-		$(BUILD)/libcsfrt.a $(LDLIBS_GSL)
+		$(BUILD)/libcsfrt.a $(LDLIBS_RT)
 
 fuzz-targets: $(BUILD)/csfc $(BUILD)/fuzz-csfc $(BUILD)/fuzz-csfb $(BUILD)/fuzz-fmt
 
@@ -327,7 +338,7 @@ install: all $(if $(SAN),,install-python)
 	printf '%s\n' 'prefix=$(PREFIX)' 'libdir=$${prefix}/lib' 'includedir=$${prefix}/include' '' \
 		'Name: csfrt' 'Description: CSF runtime library (integrator driver, loader, output) for generated models' \
 		'Version: 0.1.0' 'Requires.private: gsl' 'Cflags: -I$${includedir}/csf -ffp-contract=off' \
-		'Libs: -L$${libdir} -lcsfrt -lgsl -lgslcblas -lm' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/csfrt.pc
+		'Libs: -L$${libdir} -lcsfrt $(LDLIBS_H5) -lgsl -lgslcblas -lm' > $(DESTDIR)$(PREFIX)/lib/pkgconfig/csfrt.pc
 
 # libcsf.so, its header, the Python package (its _paths.py naming the installed library and programs)
 # and csf-python(7); not with SAN=1 (no libcsf.so there)

@@ -121,6 +121,8 @@ typedef struct csf_opts {
 	const char *summary;    /* --sweep-summary EXPR */
 	const char *out_dir;    /* --out-dir DIR */
 	int sweep_binary;       /* --sweep-binary: a sweep's rows as doubles after the header line */
+	const char *output;     /* -o FILE: the rows as HDF5 (FILE.h5, FILE.hdf5) or CSV (any other name; -: stdout) */
+	const char *dump;       /* --dump FILE.h5: that file's rows as CSV, and no run */
 	long jobs;              /* -j N: worker processes of a sweep (0: the number of online CPUs) */
 	const csf_overlay *init; /* initial values over p->mem0 (-D; a sweep's variant), NULL: none; not
 	                            csf_parse_opts', and not freed by csf_opts_free */

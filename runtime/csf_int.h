@@ -418,6 +418,8 @@ int csf_sweep_take(csf_sweep *s, size_t i, const unsigned char *msg, size_t len)
  * its -j workers instead), -1 after an error. NULL in csfvm.
  */
 extern int (*csf_sweep_distribute)(csf_sweep *s);
+/* Set on csfvm-mpi's ranks but rank 0, which write nothing: csf_main opens no -o FILE.csv there. */
+extern int csf_quiet;
 /*
  * csfvm --sweep / --sweep-file: runs the variants of p (each with o->init, -D's
  * values, and then its own in an overlay of its own; p is not changed) with -j worker processes and writes one CSV to out
@@ -431,6 +433,26 @@ int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const
 
 
 
+
+/*
+ * -o RUN.h5 (h5.c): the rows of a run of p in a new HDF5 file at path, its
+ * layout described in h5.c and csfvm(1); the root's attributes from o, model
+ * (the source's name) and the command line. NULL with the reason in err
+ * ("cannot create PATH: ...") when the file cannot be made. csf_h5_row is
+ * a csf_sink's row function (ctx: the csf_h5): it keeps the rows and writes
+ * them a block at a time; -1 (errno set) when a write failed, and every
+ * row after is refused. csf_h5_close writes the rows kept and closes the
+ * file, which then holds every row given before a failed write; it frees
+ * h and returns 0, or -1 (errno set) for a failure the rows did not
+ * already report.
+ */
+typedef struct csf_h5 csf_h5;
+csf_h5 *csf_h5_create(const char *path, const csf_prog *p, const csf_opts *o, const char *model, int argc, char **argv,
+                      char *err, size_t errlen);
+int csf_h5_row(void *h, const double *v, size_t n);
+int csf_h5_close(csf_h5 *h);
+/* --dump FILE.h5: the rows of a file of csf_h5_create on out as the run's CSV, byte for byte; an exit status. */
+int csf_h5_dump(const char *path, FILE *out, FILE *err, const char *prog);
 
 /*
  * csfvm --compare-methods: runs p with a range of methods and tolerances,

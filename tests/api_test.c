@@ -189,6 +189,7 @@ static void test_errors(void)
 		{ "--every", "0", "--every needs a whole number of rows, 1 or more, not '0'" },
 		{ "--sweep", "ball.m=1:2:3", "--sweep is not an option of one run" },
 		{ "--compare-methods", NULL, "--compare-methods is not an option of one run" },
+		{ "-o", "run.h5", "-o is not an option of one run" },
 		{ "--help", NULL, "--help and --version are not options of a run" },
 		{ "--no-such", NULL, "unknown or incomplete option '--no-such'" },
 		{ "x.csfb", NULL, "'x.csfb': a run takes options, not a file name" },

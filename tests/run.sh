@@ -31,7 +31,8 @@
 #     the README's example against the program (tests/docs/),
 #     csfview's pages and plots (tests/view/; in headless Chromium where it
 #     is installed, else a SKIP line), parameters and sweeps (tests/sweep/; MPI
-#     where Open MPI is installed, else a SKIP line).
+#     where Open MPI is installed, else a SKIP line), HDF5 output (tests/h5/;
+#     read with h5py where it is installed, else a SKIP line).
 #     hostile sources refused in bounded time and memory, failed writes that
 #     keep what was there, and the fuzz targets' regression corpus
 #     (tests/fuzz/regress/, replayed by fuzz-replay-csfc, fuzz-replay-csfb and
@@ -481,6 +482,14 @@ t_sweep() {
 	grep '^SKIP' "$T/suite.out"
 }
 
+# 5p. HDF5 output: -o RUN.h5 and --dump against the CSV, byte for byte; read with h5py (SKIP without
+#     it), bit for bit; a failed assertion, write errors, SIGINT and SIGKILL; a generated program's
+#     file (tests/h5/check.sh)
+t_h5() {
+	suite "HDF5 output" timeout "$LIMIT" sh tests/h5/check.sh "$CSFC" "$CSFVM" "$T" "$B"
+	grep '^SKIP' "$T/suite.out"
+}
+
 # 5n. csfview: the page, the static plots, decimation; the page in headless Chromium (tests/view/check.sh)
 t_view() {
 	suite "csfview" sh tests/view/check.sh "$CSFC" "$CSFVM" "$CSFVIEW" "$T"
@@ -589,12 +598,14 @@ t_install() {
 		"$T/stage/usr/bin/csfvm" "$T/p.csfb" >/dev/null 2>>"$T/err" &&
 		[ -f "$T/stage/usr/share/man/man5/csf.5" ] && [ -f "$T/stage/usr/lib/libcsfrt.a" ] &&
 		[ -f "$T/stage/usr/include/csf/csf.h" ] && [ -f "$T/stage/usr/lib/pkgconfig/csfrt.pc" ]; then ok; else bad "make install: $(head -n 1 "$T/err")"; fi
-	# the installed csfc builds an executable; the generated source builds with pkg-config alone
+	# the installed csfc builds an executable; the generated source builds with pkg-config alone (the
+	# staged prefix for csfrt's, the system's for the libraries it names: HDF5's own directory)
 	if (cd "$T" && "$T/stage/usr/bin/csfc" --emit-c "$TOP/examples/projectile.csf" -o "$T/pexe" &&
 		"$T/stage/usr/bin/csfc" --emit-c "$TOP/examples/projectile.csf" -o "$T/p.c") 2>"$T/err" &&
 		"$T/pexe" >"$T/p1.out" && "$T/stage/usr/bin/csfvm" "$T/p.csfb" >"$T/p2.out" && cmp -s "$T/p1.out" "$T/p2.out" &&
-		PKG_CONFIG_SYSROOT_DIR="$T/stage" PKG_CONFIG_PATH="$T/stage/usr/lib/pkgconfig" \
-			sh -c 'cc ${CFLAGS:-} "$1" -o "$2" $(pkg-config --cflags --libs csfrt)' sh "$T/p.c" "$T/pexe2" 2>>"$T/err" &&
+		PKG_CONFIG_PATH="$T/stage/usr/lib/pkgconfig" \
+			sh -c 'cc ${CFLAGS:-} "$1" -o "$2" $(pkg-config --define-variable=prefix="$3" --cflags --libs csfrt)' sh \
+			"$T/p.c" "$T/pexe2" "$T/stage/usr" 2>>"$T/err" &&
 		"$T/pexe2" >"$T/p3.out" && cmp -s "$T/p1.out" "$T/p3.out"; then ok; else bad "installed --emit-c / pkg-config: $(head -n 2 "$T/err")"; fi
 	# libcsf.so, csf_api.h, csf-python(7) and the package where Debian's python3 finds it; the package, told
 	# where the staged library is, finds the staged csfc beside it and runs a model (not with the sanitizers)
@@ -689,6 +700,7 @@ done
 	echo constraints
 	echo cone
 	echo sweep
+	echo h5
 	echo python
 	echo slide_stop
 	echo box

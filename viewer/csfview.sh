@@ -5,10 +5,11 @@
 #
 #   csfview [-o PAGE.html] [--svg FILE.svg] [--png FILE.png] [--term]
 #           [--scene MODEL.csf] [--title TEXT] [--note TEXT] [--log FILE]
-#           [--plane X,Y,Z,NX,NY,NZ]... [--radius OBJECT=R]... [--max-rows N] [CSV]
+#           [--plane X,Y,Z,NX,NY,NZ]... [--radius OBJECT=R]... [--max-rows N] [CSV | RUN.h5]
 #
 # Design: a POSIX shell script over installed pieces. The CSV (a file, or
-# standard input copied to a temporary file) is read twice by awk: once to
+# standard input copied to a temporary file; an HDF5 file of csfvm -o RUN.h5
+# becomes the run's CSV by csfvm --dump) is read twice by awk: once to
 # count the rows, to find the constant columns and the range of every pos
 # column, once to keep every k-th row (k = ceil(rows / --max-rows); the last
 # row always) for display. The page is the template viewer/view.html with
@@ -42,9 +43,10 @@ usage() {
 	cat >&2 <<'EOF'
 usage: csfview [-o PAGE.html] [--svg FILE.svg] [--png FILE.png] [--term]
                [--scene MODEL.csf] [--title TEXT] [--note TEXT] [--log FILE]
-               [--plane X,Y,Z,NX,NY,NZ]... [--radius OBJECT=R]... [--max-rows N] [CSV]
-Reads a run's CSV (standard input when no CSV or -) and writes an HTML page
-(to PAGE.html, or to standard output when no other output is asked for).
+               [--plane X,Y,Z,NX,NY,NZ]... [--radius OBJECT=R]... [--max-rows N] [CSV | RUN.h5]
+Reads a run's CSV, or its HDF5 file (csfvm -o RUN.h5; standard input when
+none or -), and writes an HTML page (to PAGE.html, or to standard output
+when no other output is asked for).
 See csfview(1).
 EOF
 	exit 2
@@ -122,6 +124,16 @@ else
 	name=${name%.csv}
 fi
 [ -s "$in" ] || { echo "csfview: ${csv:-standard input}: empty, no CSV header" >&2; exit 1; }
+# an HDF5 file (its first 8 bytes), as csfvm -o RUN.h5 writes one: its CSV, from csfvm --dump
+# (the csfvm beside this script, else the one on the PATH)
+if [ "$(head -c 8 "$in" | od -An -tx1 | tr -d ' \n')" = 894844460d0a1a0a ]; then
+	vm=$(dirname "$0")/csfvm
+	[ -x "$vm" ] || vm=csfvm
+	"$vm" --dump "$in" >"$T/dump.csv" || { echo "csfview: ${csv:-standard input}: not a file csfvm --dump reads" >&2; exit 1; }
+	in=$T/dump.csv
+	name=${name%.h5}
+	name=${name%.hdf5}
+fi
 [ -z "$scene" ] || [ -r "$scene" ] || die "cannot read $scene"
 [ -z "$log" ] || [ -r "$log" ] || die "cannot read $log"
 if [ -n "$scene" ]; then

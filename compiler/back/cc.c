@@ -1,7 +1,7 @@
 /*
  * cc.c - builds an executable from the C that emit_c wrote: finds the
  * runtime (csf.h and libcsfrt.a) next to csfc, installed or in the build
- * tree, and runs $CC $CFLAGS on it with libcsfrt and GSL.
+ * tree, and runs $CC $CFLAGS on it with libcsfrt, HDF5 and GSL.
  */
 #include <errno.h>
 #include <limits.h>
@@ -15,6 +15,10 @@
 #include "emit_c.h"
 
 extern char **environ;
+
+#ifndef CSF_LDLIBS_H5 /* the Makefile's: the serial HDF5 libraries */
+#define CSF_LDLIBS_H5 "-lhdf5"
+#endif
 
 /* Directory of the running csfc. */
 static char *exe_dir(void)
@@ -97,6 +101,7 @@ int emit_c_executable(const char *csource, const char *out)
 	vec_push(&a, (void *)out);
 	vec_push(&a, xprintf("-L%s", lib));
 	vec_push(&a, "-lcsfrt");
+	split_words(&a, CSF_LDLIBS_H5); /* -o RUN.h5: HDF5, as the Makefile found it */
 	vec_push(&a, "-lgsl");
 	vec_push(&a, "-lgslcblas");
 	vec_push(&a, "-lm");

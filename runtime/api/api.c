@@ -236,6 +236,8 @@ static const char *not_for_a_run(const csf_opts *o)
 	if (o->summary) return "--sweep-summary";
 	if (o->out_dir) return "--out-dir";
 	if (o->sweep_binary) return "--sweep-binary";
+	if (o->output) return "-o"; /* (the rows are the caller's arrays) */
+	if (o->dump) return "--dump";
 	if (o->jobs) return "-j";
 	if (o->compare) return "--compare-methods";
 	if (o->progress == CSF_PROGRESS_ON) return "--progress";

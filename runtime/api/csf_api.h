@@ -124,8 +124,9 @@ CSF_API int csf_api_run_set(csf_api_run *r, const char *assign);
  * --method NAME, --tol EPS, --atol A, --hmax H, --fixed, --step H,
  * --every K, --stats (its lines in the diagnostics), -D NAME=VALUE. Each
  * call replaces the options of the one before (not the parameters). The
- * options of sweeps, --compare-methods, --help, --version, file names and
- * options this csfvm does not know are errors. Returns 0, or -1 with the
+ * options of sweeps, --compare-methods, -o and --dump (the rows are the
+ * caller's array), --help, --version, file names and options this csfvm
+ * does not know are errors. Returns 0, or -1 with the
  * message (csf_api_run_error).
  */
 CSF_API int csf_api_run_options(csf_api_run *r, int argc, const char *const *argv);

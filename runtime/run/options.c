@@ -135,6 +135,10 @@ int csf_parse_opts_to(int argc, char **argv, int first, csf_opts *o, int *pos, i
 			o->out_dir = v;
 		} else if (strcmp(a, "--sweep-binary") == 0) {
 			o->sweep_binary = 1;
+		} else if (csf_opt_value(argc, argv, &i, "-o", &v) || csf_opt_value(argc, argv, &i, "--output", &v)) {
+			o->output = v;
+		} else if (csf_opt_value(argc, argv, &i, "--dump", &v)) {
+			o->dump = v;
 		} else if ((strncmp(a, "-j", 2) == 0 && (a[2] || i + 1 < argc)) || csf_opt_value(argc, argv, &i, "--jobs", &v)) {
 			if (strncmp(a, "-j", 2) == 0) v = a[2] ? a + 2 : argv[++i];
 			char *end;

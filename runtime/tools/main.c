@@ -10,6 +10,7 @@
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <unistd.h>
 
 #include "csf_int.h"
@@ -24,7 +25,8 @@
 	"                 (default 1e-12 for dop853, 1e-10 for the others)\n"
 
 static const char vm_usage[] =
-	"usage: csfvm [--method NAME] [--tol EPS] [--atol A] MODEL.csfb  (- reads standard input)\n"
+	"usage: csfvm [--method NAME] [--tol EPS] [--atol A] [-o FILE] MODEL.csfb  (- reads standard input)\n"
+	"       csfvm --dump RUN.h5\n"
 	"Runs a compiled CSF model and writes its watched variables as CSV on stdout.\n"
 	METHOD_TOL_HELP
 	"  --atol A       absolute local error bound, in the model's units, for every state\n"
@@ -54,6 +56,9 @@ static const char vm_usage[] =
 	"  --sweep-binary the rows (or summaries) as 8-byte doubles in the machine's byte\n"
 	"                 order after the CSV header line (for programs: csf-python(7))\n"
 	"  -j N           N worker processes for a sweep (default: every CPU)\n"
+	"  -o FILE        the output to FILE: a run's rows in HDF5 when it ends in .h5 or\n"
+	"                 .hdf5 (a dataset per watched value), else the CSV\n"
+	"  --dump RUN.h5  print the rows of a file of -o RUN.h5 as the run's CSV\n"
 	"  --help, --version\n";
 
 static const char exe_usage[] =
@@ -63,8 +68,8 @@ static const char exe_usage[] =
 	"  --atol A       absolute local error bound, in the model's units (as csfvm(1))\n"
 	"  --hmax H, --fixed, --step H, --every K, --stats, --progress, --no-progress,\n"
 	"  --compare-methods, -D NAME=VALUE, --sweep 'NAME=FROM:TO:COUNT [UNIT]',\n"
-	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, --sweep-binary, -j N:\n"
-	"                 as csfvm(1)\n"
+	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, --sweep-binary, -j N,\n"
+	"  -o FILE, --dump RUN.h5: as csfvm(1)\n"
 	"  --help, --version\n";
 
 /* Text (no NUL or other control bytes but white space in the first 4 KiB), as a .csf file is. */
@@ -74,6 +79,54 @@ static int looks_like_source(const unsigned char *b, size_t len)
 	for (size_t i = 0; i < len && i < 4096; i++)
 		if (b[i] < 0x20 && b[i] != '\n' && b[i] != '\t' && b[i] != '\r') return 0;
 	return 1;
+}
+
+int csf_quiet;
+
+/* The process's exit status st; 128 + SIGPIPE: as cat, killed by the signal the closed pipe sent. */
+static int exit_status(int st)
+{
+	if (st == 128 + SIGPIPE) {
+		signal(SIGPIPE, SIG_DFL);
+		raise(SIGPIPE);
+	}
+	return st;
+}
+
+/* Does path name an HDF5 file (-o): does it end in .h5 or .hdf5? */
+static int h5_name(const char *path)
+{
+	size_t n = strlen(path);
+	return (n > 3 && strcasecmp(path + n - 3, ".h5") == 0) || (n > 5 && strcasecmp(path + n - 5, ".hdf5") == 0);
+}
+
+/* Rows go out in writes of 1 MiB to a file or a pipe (to a terminal, line by line, as they come). */
+static void out_buffer(FILE *out)
+{
+	static char buf[1 << 20];
+	if (!isatty(fileno(out))) setvbuf(out, buf, _IOFBF, sizeof buf);
+}
+
+/* --dump FILE.h5: its rows as CSV on stdout or -o FILE. */
+static int dump(const csf_opts *o, const char *prog)
+{
+	if (o->output && h5_name(o->output)) {
+		fprintf(stderr, "%s: --dump writes CSV: -o FILE.csv, or standard output\n", prog);
+		return 2;
+	}
+	FILE *out = o->output && strcmp(o->output, "-") ? fopen(o->output, "w") : stdout;
+	if (!out) {
+		fprintf(stderr, "%s: cannot write %s: %s\n", prog, o->output, strerror(errno));
+		return 2;
+	}
+	out_buffer(out);
+	signal(SIGPIPE, SIG_IGN);
+	int st = csf_h5_dump(o->dump, out, stderr, prog);
+	if (out != stdout && fclose(out) && st != 2) {
+		fprintf(stderr, "error: cannot write output: %s\n", strerror(errno));
+		st = 2;
+	}
+	return st;
 }
 
 int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len, csf_exec_fn exec)
@@ -89,7 +142,19 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		return st == 1 ? 0 : 2;
 	}
 	const char *prog = image ? argv[0] : "csfvm";
+	if (o.dump) {
+		st = npos ? (fputs(usage, stderr), 2) : dump(&o, prog);
+		csf_opts_free(&o);
+		return exit_status(st);
+	}
 	int sweep = o.nsweeps || o.sweep_file;
+	int h5 = o.output && h5_name(o.output) && !csf_quiet;
+	if (h5 && (sweep || o.compare)) {
+		fprintf(stderr, sweep ? "%s: --sweep writes CSV; -o FILE.h5 is for one run\n"
+		                      : "%s: --compare-methods writes a table; -o FILE.h5 is for one run\n", prog);
+		csf_opts_free(&o);
+		return 2;
+	}
 	int sweep_only = o.summary || o.out_dir || o.sweep_binary;
 	if ((!image && npos != 1) || (!sweep && sweep_only) || (sweep && o.compare)) {
 		if (!sweep && sweep_only)
@@ -134,21 +199,35 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 			csf_opts_free(&o);
 			return 2;
 		}
-	/* rows go out in writes of 1 MiB to a file or a pipe (to a terminal, line by line, as they come) */
-	static char out_buf[1 << 20];
-	if (!isatty(fileno(stdout))) setvbuf(stdout, out_buf, _IOFBF, sizeof out_buf);
+	/* -o: the rows to an HDF5 file, or the CSV to a file (not on csfvm-mpi's quiet ranks) */
+	FILE *out = stdout;
+	csf_h5 *h = NULL;
+	if (h5 && !(h = csf_h5_create(o.output, &p, &o, p.nfiles ? csf_str(&p, p.files[0]) : path, argc, argv, err, sizeof err)))
+		fprintf(stderr, "%s: %s\n", prog, err);
+	else if (!h5 && o.output && strcmp(o.output, "-") && !csf_quiet && !(out = fopen(o.output, "w")))
+		fprintf(stderr, "%s: cannot write %s: %s\n", prog, o.output, strerror(errno));
+	if ((h5 && !h) || !out) {
+		csf_overlay_free(&init);
+		csf_prog_free(&p);
+		csf_opts_free(&o);
+		return 2;
+	}
+	out_buffer(out);
 	/* a write to a closed pipe is an error csf_run sees (EPIPE), and ends quietly */
 	signal(SIGPIPE, SIG_IGN);
 	/* SIGINT, SIGTERM: csf_run ends after the current row (csf_signal), or the watchdog ends it */
-	csf_signals_install(stdout, prog);
-	if (sweep) st = csf_sweep_main(&p, exec, &o, prog, stdout, stderr);
-	else st = o.compare ? csf_compare_methods(&p, exec, &init, stdout, stderr) : csf_run(&p, exec, &o, stdout, stderr);
+	csf_signals_install(out, prog);
+	csf_sink sink = { csf_h5_row, h, NULL };
+	if (sweep) st = csf_sweep_main(&p, exec, &o, prog, out, stderr);
+	else if (o.compare) st = csf_compare_methods(&p, exec, &init, out, stderr);
+	else st = h ? csf_run_sink(&p, exec, &o, NULL, &sink, stderr) : csf_run(&p, exec, &o, out, stderr);
+	/* the rows kept and the file closed: every row written survives a run that failed */
+	if ((h && csf_h5_close(h)) || (out != stdout && fclose(out) && st != 2)) {
+		fprintf(stderr, "error: cannot write output: %s\n", strerror(errno));
+		st = 2;
+	}
 	csf_overlay_free(&init);
 	csf_prog_free(&p);
 	csf_opts_free(&o);
-	if (st == 128 + SIGPIPE) { /* as cat: killed by the signal the closed pipe sent */
-		signal(SIGPIPE, SIG_DFL);
-		raise(SIGPIPE);
-	}
-	return st;
+	return exit_status(st);
 }

@@ -112,6 +112,7 @@ int main(int argc, char **argv)
 	MPI_Comm_rank(MPI_COMM_WORLD, &rank);
 	if (rank != 0) { /* rank 0 writes the output and the diagnostics */
 		if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) MPI_Abort(MPI_COMM_WORLD, 2);
+		csf_quiet = 1;
 	}
 	csf_sweep_distribute = distribute;
 	int st = csf_main(argc, argv, NULL, 0, csf_vm_exec);

@@ -1,0 +1,622 @@
+/*
+ * h5.c - a run's rows in an HDF5 file (-o RUN.h5), and such a file back to
+ * the CSV the run would have written (--dump).
+ *
+ * The file's root group holds, in creation order (csfvm(1), HDF5 OUTPUT):
+ *   t      (rows,)    the output times, unit "s";
+ *   xyz    (3,)       the strings "x", "y", "z", when a vector is watched;
+ *   NAME   (rows,)    a watched scalar, the CSV's column NAME [UNIT];
+ *   NAME   (rows, 3)  a watched vector, the CSV's columns NAME.x, NAME.y, NAME.z [UNIT];
+ * each number an IEEE double, each watched dataset with the attribute unit
+ * (the CSV header's brackets, "" when none). t and xyz are dimension scales
+ * attached to the watched datasets' axes, so that xarray (h5netcdf) names
+ * the axes t and xyz. A name taken before (a column watched twice) is
+ * followed by " (2)", " (3)", ... The root's attributes say what ran:
+ * model, method, tolerance, defines (-D), command_line, csf_version, till,
+ * by, and columns, the CSV header's fields.
+ *
+ * The datasets are chunked and extendable, a chunk of B rows (as many as
+ * fit BLOCK_BYTES, at most 1024): the rows are gathered in a buffer of B
+ * rows, each dataset's apart, and written a block at a time, the file
+ * flushed after each, so that memory stays bounded and a run that ends
+ * early (or is killed) leaves a readable file of the rows before.
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <hdf5.h>
+
+#include "run_int.h"
+
+enum { BLOCK_BYTES = 32 << 20, BLOCK_ROWS = 1024 };
+#define MAX_FIXED 1e9
+
+/* A dataset of rows: its name, unit and width (1, or 3 for a vector), its place in a block of rows. */
+typedef struct h5var {
+	char *name, *unit;
+	uint32_t width;
+	size_t off; /* its values in a block: buf[off + r * width + k], row r, component k */
+	hid_t ds;
+} h5var;
+
+/* The datasets of rows (t first) and the buffer of a block of B rows. */
+typedef struct h5rows {
+	h5var *var;
+	size_t nvar, ncol;
+	size_t *coff; /* column c (t: 0) at buf[coff[c] + r * cw[c]] */
+	uint32_t *cw;
+	size_t B;
+	hsize_t max; /* the rows a dataset can hold */
+	double *buf;
+} h5rows;
+
+struct csf_h5 {
+	hid_t file;
+	h5rows R;
+	size_t nb;    /* rows in the buffer */
+	hsize_t rows; /* rows in the file */
+	int werr;     /* a failed write's errno (0: none) */
+};
+
+/* The offsets of the datasets and the columns in a block, and the buffer; -1 when memory runs out. */
+static int rows_alloc(h5rows *R, size_t maxrows)
+{
+	size_t w = 0, c = 0;
+	for (size_t d = 0; d < R->nvar; d++) w += R->var[d].width;
+	R->B = BLOCK_BYTES / (w * sizeof(double));
+	R->B = R->B < 1 ? 1 : R->B > maxrows ? maxrows : R->B;
+	R->ncol = w;
+	R->coff = malloc(w * sizeof *R->coff);
+	R->cw = malloc(w * sizeof *R->cw);
+	R->buf = malloc(R->B * w * sizeof *R->buf);
+	if (!R->coff || !R->cw || !R->buf) return -1;
+	size_t off = 0;
+	for (size_t d = 0; d < R->nvar; d++) {
+		h5var *x = &R->var[d];
+		x->off = off;
+		for (uint32_t k = 0; k < x->width; k++, c++) R->coff[c] = off + k, R->cw[c] = x->width;
+		off += R->B * x->width;
+	}
+	return 0;
+}
+
+static void rows_free(h5rows *R)
+{
+	for (size_t d = 0; d < R->nvar; d++) {
+		if (R->var[d].ds > 0) H5Dclose(R->var[d].ds);
+		free(R->var[d].name);
+		free(R->var[d].unit);
+	}
+	free(R->var);
+	free(R->coff);
+	free(R->cw);
+	free(R->buf);
+}
+
+/* The hyperslab of rows [r0, r0 + n) of dataset x: its file space (*fs) and a memory space of its shape; -1 on failure. */
+static int slab(const h5var *x, hsize_t r0, hsize_t n, hid_t *fs, hid_t *ms)
+{
+	hsize_t start[2] = { r0, 0 }, count[2] = { n, x->width };
+	*ms = -1;
+	*fs = H5Dget_space(x->ds);
+	if (*fs < 0 || H5Sselect_hyperslab(*fs, H5S_SELECT_SET, start, NULL, count, NULL) < 0) return -1;
+	*ms = H5Screate_simple(x->width > 1 ? 2 : 1, count, NULL);
+	return *ms < 0 ? -1 : 0;
+}
+
+static void close_spaces(hid_t fs, hid_t ms)
+{
+	if (fs >= 0) H5Sclose(fs);
+	if (ms >= 0) H5Sclose(ms);
+}
+
+/*
+ * HDF5's words for its last failure: the innermost entry of its error stack
+ * (where the failure was found), kept by the library's automatic error
+ * report (H5Eset_auto2), which runs as the failed call returns, before
+ * the next call clears the stack. The only state of this file outside a
+ * csf_h5; one process writes or reads one file at a time.
+ */
+static char h5_failure[128];
+
+static herr_t innermost(unsigned n, const H5E_error2_t *e, void *data)
+{
+	(void)data;
+	if (n == 0 && e->desc && *e->desc) snprintf(h5_failure, sizeof h5_failure, "HDF5: %s", e->desc);
+	return 0;
+}
+
+static herr_t keep_failure(hid_t stack, void *data)
+{
+	(void)data;
+	H5Ewalk2(stack, H5E_WALK_UPWARD, innermost, NULL);
+	return 0;
+}
+
+/*
+ * Reports HDF5's failures to keep_failure alone, from none yet. And no
+ * clean-up of the library at exit: after a file's close failed (a write
+ * error), HDF5 1.10's would close it again and crash; the file is closed
+ * here on every path, and the system frees the rest.
+ */
+static void h5_quiet(void)
+{
+	H5dont_atexit();
+	H5Eset_auto2(H5E_DEFAULT, keep_failure, NULL);
+	snprintf(h5_failure, sizeof h5_failure, "HDF5 failed");
+}
+
+/* Why the last call failed: the system's error e, or else HDF5's words. */
+static const char *h5_why(int e) { return e ? strerror(e) : h5_failure; }
+
+/* ---- writing ---- */
+
+/* A column's name and unit: "NAME [UNIT]", or NAME alone (unit ""). */
+static void split_col(const char *col, size_t *namelen, const char **unit, size_t *unitlen)
+{
+	size_t n = strlen(col);
+	const char *b = n && col[n - 1] == ']' ? strstr(col, " [") : NULL;
+	*namelen = b ? (size_t)(b - col) : n;
+	*unit = b ? b + 2 : "";
+	*unitlen = b ? (size_t)(col + n - 1 - *unit) : 0;
+}
+
+/*
+ * Is column i NAME.c [UNIT] with c = 'x' + k, a vector's component? NAME is OBJECT.PROP (a dot
+ * in it), or a vector global: OBJECT.x is the object's scalar property x. Its unit into *u.
+ */
+static int component(const csf_prog *p, uint32_t i, int k, size_t *nl, const char **u, size_t *ul)
+{
+	const char *c = csf_str(p, p->cols[i].name);
+	split_col(c, nl, u, ul);
+	if (*nl < 3 || c[*nl - 2] != '.' || c[*nl - 1] != 'x' + k) return 0;
+	if (memchr(c, '.', *nl - 2)) return 1;
+	for (uint32_t g = 0; g < p->nglobals; g++)
+		if (p->globals[g].width == 3 && strlen(csf_str(p, p->globals[g].name)) == *nl - 2 &&
+		    !strncmp(csf_str(p, p->globals[g].name), c, *nl - 2))
+			return 1;
+	return 0;
+}
+
+/* The width of the dataset whose first column is column i: 3 when columns i..i+2 are one vector's x, y, z. */
+static uint32_t width_at(const csf_prog *p, uint32_t i)
+{
+	size_t nl[3], ul[3];
+	const char *u[3];
+	if (i + 3 > p->ncols) return 1;
+	for (int k = 0; k < 3; k++)
+		if (!component(p, i + (uint32_t)k, k, &nl[k], &u[k], &ul[k])) return 1;
+	const char *a = csf_str(p, p->cols[i].name);
+	for (int k = 1; k < 3; k++) {
+		const char *b = csf_str(p, p->cols[i + (uint32_t)k].name);
+		if (nl[k] != nl[0] || strncmp(a, b, nl[0] - 1) || ul[k] != ul[0] || strncmp(u[0], u[k], ul[0])) return 1;
+	}
+	return 3;
+}
+
+static char *strndup_or_null(const char *s, size_t n)
+{
+	char *d = malloc(n + 1);
+	if (d) memcpy(d, s, n), d[n] = '\0';
+	return d;
+}
+
+/* The datasets of p's columns: t, then one per scalar or vector. -1 when memory runs out. */
+static int plan(const csf_prog *p, h5rows *R)
+{
+	R->var = calloc((size_t)p->ncols + 1, sizeof *R->var);
+	if (!R->var) return -1;
+	R->var[R->nvar++] = (h5var){ .name = strndup_or_null("t", 1), .unit = strndup_or_null("s", 1), .width = 1 };
+	for (uint32_t i = 0; i < p->ncols; i += R->var[R->nvar++].width) {
+		size_t nl, ul;
+		const char *u;
+		h5var *x = &R->var[R->nvar];
+		x->width = width_at(p, i);
+		split_col(csf_str(p, p->cols[i].name), &nl, &u, &ul);
+		x->name = strndup_or_null(csf_str(p, p->cols[i].name), x->width > 1 ? nl - 2 : nl); /* NAME of NAME.x */
+		x->unit = strndup_or_null(u, ul);
+	}
+	for (size_t d = 0; d < R->nvar; d++)
+		if (!R->var[d].name || !R->var[d].unit) return -1;
+	/*
+	 * At most till/by + 2 rows (k*by <= till, and one for till/by's rounding): the datasets'
+	 * limit, a fixed one, that readers see as a dimension of fixed size (h5netcdf sizes an
+	 * unlimited one from every dataset attached to its scale, for each dataset: time quadratic
+	 * in the datasets); past MAX_FIXED rows, none. A short run's rows in one chunk.
+	 */
+	double rows = floor(p->till / p->by) + 2;
+	R->max = rows <= MAX_FIXED ? (hsize_t)rows : H5S_UNLIMITED;
+	return rows_alloc(R, rows < BLOCK_ROWS ? (size_t)rows : BLOCK_ROWS);
+}
+
+/* Attribute name of loc: n strings (scalar: n < 0, one string), UTF-8. */
+static int attr_strs(hid_t loc, const char *name, const char *const *s, long n)
+{
+	hsize_t dim = n < 0 ? 1 : (hsize_t)n;
+	hid_t t = H5Tcopy(H5T_C_S1), sp = n < 0 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &dim, NULL), a = -1;
+	int bad = t < 0 || sp < 0 || H5Tset_size(t, H5T_VARIABLE) < 0 || H5Tset_cset(t, H5T_CSET_UTF8) < 0 ||
+	          (a = H5Acreate2(loc, name, t, sp, H5P_DEFAULT, H5P_DEFAULT)) < 0 || (dim && H5Awrite(a, t, s) < 0);
+	if (a >= 0) H5Aclose(a);
+	if (sp >= 0) H5Sclose(sp);
+	if (t >= 0) H5Tclose(t);
+	return bad ? -1 : 0;
+}
+
+static int attr_str(hid_t loc, const char *name, const char *s) { return attr_strs(loc, name, &s, -1); }
+
+static int attr_double(hid_t loc, const char *name, double x)
+{
+	hid_t sp = H5Screate(H5S_SCALAR), a = -1;
+	int bad = sp < 0 || (a = H5Acreate2(loc, name, H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT)) < 0 ||
+	          H5Awrite(a, H5T_NATIVE_DOUBLE, &x) < 0;
+	if (a >= 0) H5Aclose(a);
+	if (sp >= 0) H5Sclose(sp);
+	return bad ? -1 : 0;
+}
+
+/* The command line as a shell reads it: an argument but of safe characters in single quotes. */
+static char *command_line(int argc, char **argv)
+{
+	size_t n = 1;
+	for (int i = 0; i < argc; i++) n += 4 * strlen(argv[i]) + 3;
+	char *s = malloc(n), *q = s;
+	for (int i = 0; s && i < argc; i++) {
+		const char *a = argv[i];
+		int plain = *a && strspn(a, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./=:+,-@%") == strlen(a);
+		if (i) *q++ = ' ';
+		if (!plain) *q++ = '\'';
+		for (; *a; a++)
+			if (*a == '\'' && !plain) memcpy(q, "'\\''", 4), q += 4;
+			else *q++ = *a;
+		if (!plain) *q++ = '\'';
+	}
+	if (s) *q = '\0';
+	return s;
+}
+
+/* The root's attributes: what ran, and the CSV header's fields. */
+static int root_attrs(hid_t f, const csf_prog *p, const csf_opts *o, const char *model, int argc, char **argv)
+{
+	const char **cols = malloc(((size_t)p->ncols + 1) * sizeof *cols);
+	char *cl = command_line(argc, argv);
+	int bad = !cols || !cl;
+	if (!bad) {
+		cols[0] = "t";
+		for (uint32_t i = 0; i < p->ncols; i++) cols[i + 1] = csf_str(p, p->cols[i].name);
+		const char *m = o->method ? o->method : "auto";
+		bad = attr_str(f, "model", model) || attr_str(f, "method", m) ||
+		      attr_double(f, "tolerance", o->tol > 0 ? o->tol : csf_method_tol(strcmp(m, "auto") ? m : NULL)) ||
+		      attr_strs(f, "defines", o->defs, o->ndefs) || attr_str(f, "command_line", cl) ||
+		      attr_str(f, "csf_version", CSF_VERSION_STRING) || attr_double(f, "till", p->till) ||
+		      attr_double(f, "by", p->by) || attr_strs(f, "columns", cols, (long)p->ncols + 1);
+	}
+	free(cols);
+	free(cl);
+	return bad ? -1 : 0;
+}
+
+/* A fixed-length, NUL-terminated ASCII string attribute, as a dimension scale's CLASS and NAME are. */
+static int attr_fixed(hid_t loc, const char *name, const char *s)
+{
+	hid_t t = H5Tcopy(H5T_C_S1), sp = H5Screate(H5S_SCALAR), a = -1;
+	int bad = t < 0 || sp < 0 || H5Tset_size(t, strlen(s) + 1) < 0 ||
+	          (a = H5Acreate2(loc, name, t, sp, H5P_DEFAULT, H5P_DEFAULT)) < 0 || H5Awrite(a, t, s) < 0;
+	if (a >= 0) H5Aclose(a);
+	if (sp >= 0) H5Sclose(sp);
+	if (t >= 0) H5Tclose(t);
+	return bad ? -1 : 0;
+}
+
+/* Makes dataset ds the dimension scale name (as H5DSset_scale does). */
+static int set_scale(hid_t ds, const char *name)
+{
+	return attr_fixed(ds, "CLASS", "DIMENSION_SCALE") || attr_fixed(ds, "NAME", name) ? -1 : 0;
+}
+
+/*
+ * The datasets each scale is attached to, and the axis (the dimension
+ * scales' REFERENCE_LIST: the compound H5DSattach_scale writes). Written once
+ * for all: H5DSattach_scale rewrites the whole list at each attachment,
+ * which takes time quadratic in the datasets.
+ */
+typedef struct dsref { hobj_ref_t ds; int dim; } dsref;
+
+static int reference_list(hid_t scale, const dsref *r, size_t n)
+{
+	hsize_t dim = n;
+	hid_t t = H5Tcreate(H5T_COMPOUND, sizeof(dsref)), sp = H5Screate_simple(1, &dim, NULL), a = -1;
+	int bad = t < 0 || sp < 0 || H5Tinsert(t, "dataset", HOFFSET(dsref, ds), H5T_STD_REF_OBJ) < 0 ||
+	          H5Tinsert(t, "dimension", HOFFSET(dsref, dim), H5T_NATIVE_INT) < 0 ||
+	          (a = H5Acreate2(scale, "REFERENCE_LIST", t, sp, H5P_DEFAULT, H5P_DEFAULT)) < 0 || H5Awrite(a, t, r) < 0;
+	if (a >= 0) H5Aclose(a);
+	if (sp >= 0) H5Sclose(sp);
+	if (t >= 0) H5Tclose(t);
+	return bad ? -1 : 0;
+}
+
+/* The scales of dataset ds's axes, one each (its DIMENSION_LIST, as H5DSattach_scale makes it). */
+static int dimension_list(hid_t ds, hid_t vlen, hobj_ref_t *scales, int rank)
+{
+	hsize_t dim = (hsize_t)rank;
+	hvl_t l[2] = { { 1, &scales[0] }, { 1, &scales[1] } };
+	hid_t sp = H5Screate_simple(1, &dim, NULL), a = -1;
+	int bad = sp < 0 || (a = H5Acreate2(ds, "DIMENSION_LIST", vlen, sp, H5P_DEFAULT, H5P_DEFAULT)) < 0 ||
+	          H5Awrite(a, vlen, l) < 0;
+	if (a >= 0) H5Aclose(a);
+	if (sp >= 0) H5Sclose(sp);
+	return bad ? -1 : 0;
+}
+
+/* The dimension scale xyz: the strings "x", "y", "z" (open; -1 on failure). */
+static hid_t xyz_scale(hid_t f)
+{
+	static const char *const xyz[3] = { "x", "y", "z" };
+	hsize_t three = 3;
+	hid_t t = H5Tcopy(H5T_C_S1), sp = H5Screate_simple(1, &three, NULL), dcpl = H5Pcreate(H5P_DATASET_CREATE), ds = -1;
+	int bad = t < 0 || sp < 0 || dcpl < 0 || H5Pset_obj_track_times(dcpl, 0) < 0 || H5Tset_size(t, H5T_VARIABLE) < 0 ||
+	          H5Tset_cset(t, H5T_CSET_UTF8) < 0 ||
+	          (ds = H5Dcreate2(f, "xyz", t, sp, H5P_DEFAULT, dcpl, H5P_DEFAULT)) < 0 ||
+	          H5Dwrite(ds, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, xyz) < 0 || set_scale(ds, "xyz");
+	if (dcpl >= 0) H5Pclose(dcpl);
+	if (sp >= 0) H5Sclose(sp);
+	if (t >= 0) H5Tclose(t);
+	if (bad && ds >= 0) H5Dclose(ds), ds = -1;
+	return ds;
+}
+
+/*
+ * Creates dataset x (rows,) or (rows, 3), chunks of B rows, under a name not taken:
+ * NAME, else NAME (2), NAME (3), ... (x->name becomes the name taken).
+ */
+static int create_var(hid_t f, h5var *x, const h5rows *R, hid_t dcpl, hid_t dapl)
+{
+	hsize_t dims[2] = { 0, 3 }, maxd[2] = { R->max, 3 }, chunk[2] = { R->B, 3 };
+	int rank = x->width > 1 ? 2 : 1;
+	char *base = x->name;
+	for (int k = 2; H5Lexists(f, x->name, H5P_DEFAULT) > 0; k++) {
+		size_t n = strlen(base) + 24;
+		char *alt = malloc(n);
+		if (!alt) return -1;
+		snprintf(alt, n, "%s (%d)", base, k);
+		if (x->name != base) free(x->name);
+		x->name = alt;
+	}
+	if (x->name != base) free(base);
+	hid_t sp = H5Screate_simple(rank, dims, maxd);
+	if (sp < 0 || H5Pset_chunk(dcpl, rank, chunk) < 0) return -1;
+	x->ds = H5Dcreate2(f, x->name, H5T_IEEE_F64LE, sp, H5P_DEFAULT, dcpl, dapl);
+	H5Sclose(sp);
+	return x->ds < 0 ? -1 : 0;
+}
+
+/* The datasets, their units, and the dimension scales t and xyz attached to their axes. */
+static int create_vars(hid_t f, h5rows *R)
+{
+	hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE), dapl = H5Pcreate(H5P_DATASET_ACCESS), xyz = -1;
+	hid_t vlen = H5Tvlen_create(H5T_STD_REF_OBJ);
+	dsref *rt = malloc(R->nvar * sizeof *rt), *rx = malloc(R->nvar * sizeof *rx);
+	size_t nt = 0, nx = 0;
+	hobj_ref_t sc[2] = { 0, 0 }; /* the scales t and xyz */
+	int vectors = 0;
+	for (size_t d = 0; d < R->nvar; d++) vectors |= R->var[d].width > 1;
+	/* no times in the objects (a run's file is the same bytes every time); whole chunks are written, uncached */
+	int bad = !rt || !rx || dcpl < 0 || dapl < 0 || vlen < 0 || H5Pset_obj_track_times(dcpl, 0) < 0 ||
+	          H5Pset_fill_time(dcpl, H5D_FILL_TIME_NEVER) < 0 || H5Pset_chunk_cache(dapl, 0, 0, 1) < 0 ||
+	          create_var(f, &R->var[0], R, dcpl, dapl) || set_scale(R->var[0].ds, "t") ||
+	          attr_str(R->var[0].ds, "unit", R->var[0].unit) || H5Rcreate(&sc[0], f, "t", H5R_OBJECT, -1) < 0 ||
+	          (vectors && ((xyz = xyz_scale(f)) < 0 || H5Rcreate(&sc[1], f, "xyz", H5R_OBJECT, -1) < 0));
+	for (size_t d = 1; d < R->nvar && !bad; d++) {
+		h5var *x = &R->var[d];
+		bad = create_var(f, x, R, dcpl, dapl) || attr_str(x->ds, "unit", x->unit) ||
+		      dimension_list(x->ds, vlen, sc, x->width > 1 ? 2 : 1) || H5Rcreate(&rt[nt].ds, f, x->name, H5R_OBJECT, -1) < 0;
+		rt[nt++].dim = 0;
+		if (x->width > 1) rx[nx++] = (dsref){ rt[nt - 1].ds, 1 };
+	}
+	bad = bad || (nt && reference_list(R->var[0].ds, rt, nt)) || (nx && reference_list(xyz, rx, nx));
+	free(rt);
+	free(rx);
+	if (xyz >= 0) H5Dclose(xyz);
+	if (vlen >= 0) H5Tclose(vlen);
+	if (dapl >= 0) H5Pclose(dapl);
+	if (dcpl >= 0) H5Pclose(dcpl);
+	return bad ? -1 : 0;
+}
+
+csf_h5 *csf_h5_create(const char *path, const csf_prog *p, const csf_opts *o, const char *model, int argc, char **argv,
+                      char *err, size_t errlen)
+{
+	h5_quiet(); /* the failures are ours to report */
+	csf_h5 *h = calloc(1, sizeof *h);
+	hid_t fcpl = H5Pcreate(H5P_FILE_CREATE), fapl = H5Pcreate(H5P_FILE_ACCESS);
+	if (!h || fcpl < 0 || fapl < 0) {
+		snprintf(err, errlen, "out of memory");
+		free(h);
+		return NULL;
+	}
+	/* the datasets in creation order: the columns' (--dump), as netCDF-4 keeps them */
+	H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
+	/*
+	 * HDF5 1.8's format: attributes of any size (columns, t's list of the datasets it scales).
+	 * Not 1.10's: its files stay marked open after a process that was killed writing them, and
+	 * no reader opens them then (but after h5clear -s); its index of chunks takes 3/4 of the
+	 * memory and time for 10000 datasets.
+	 */
+	H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
+	errno = 0;
+	h->file = H5Fcreate(path, H5F_ACC_TRUNC, fcpl, fapl);
+	int e = errno;
+	H5Pclose(fcpl);
+	H5Pclose(fapl);
+	if (h->file < 0) {
+		snprintf(err, errlen, "cannot create %s: %s", path, h5_why(e));
+		free(h);
+		return NULL;
+	}
+	errno = 0;
+	if (plan(p, &h->R) || root_attrs(h->file, p, o, model, argc, argv) || create_vars(h->file, &h->R) ||
+	    H5Fflush(h->file, H5F_SCOPE_LOCAL) < 0) {
+		e = errno;
+		snprintf(err, errlen, "cannot write %s: %s", path, h5_why(e));
+		rows_free(&h->R);
+		H5Fclose(h->file);
+		free(h);
+		return NULL;
+	}
+	return h;
+}
+
+/* Writes the rows in the buffer to the end of every dataset and flushes the file. 0, or -1 (errno set). */
+static int flush_rows(csf_h5 *h)
+{
+	if (h->werr) return errno = h->werr, -1;
+	if (!h->nb) return 0;
+	int bad = 0;
+	errno = 0;
+	csf_out_begin(); /* the watchdog of a signal waits for a whole block */
+	for (size_t d = 0; d < h->R.nvar && !bad; d++) {
+		h5var *x = &h->R.var[d];
+		hsize_t dims[2] = { h->rows + h->nb, 3 };
+		hid_t fs = -1, ms = -1;
+		bad = H5Dset_extent(x->ds, dims) < 0 || slab(x, h->rows, h->nb, &fs, &ms) ||
+		      H5Dwrite(x->ds, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, h->R.buf + x->off) < 0;
+		close_spaces(fs, ms);
+	}
+	bad = bad || H5Fflush(h->file, H5F_SCOPE_LOCAL) < 0;
+	csf_out_end();
+	if (bad) {
+		h->werr = errno ? errno : EIO;
+		errno = h->werr;
+		return -1;
+	}
+	h->rows += h->nb;
+	h->nb = 0;
+	return 0;
+}
+
+int csf_h5_row(void *ctx, const double *v, size_t n)
+{
+	csf_h5 *h = ctx;
+	h5rows *R = &h->R;
+	for (size_t c = 0; c < n && c < R->ncol; c++) R->buf[R->coff[c] + h->nb * R->cw[c]] = v[c];
+	return ++h->nb == R->B ? flush_rows(h) : 0;
+}
+
+int csf_h5_close(csf_h5 *h)
+{
+	int seen = h->werr; /* the run saw that error (the row that failed) */
+	int bad = flush_rows(h) != 0;
+	rows_free(&h->R);
+	errno = 0;
+	bad |= H5Fclose(h->file) < 0;
+	int e = h->werr ? h->werr : errno ? errno : EIO;
+	free(h);
+	if (!bad || seen) return 0;
+	errno = e;
+	return -1;
+}
+
+/* ---- reading (--dump) ---- */
+
+/* The strings of attribute name of loc (a 1-D array of variable-length strings): *n of them, or NULL. */
+static char **read_strs(hid_t loc, const char *name, size_t *n)
+{
+	hid_t a = H5Aopen(loc, name, H5P_DEFAULT), sp = a < 0 ? -1 : H5Aget_space(a), t = a < 0 ? -1 : H5Aget_type(a);
+	char **s = NULL;
+	hssize_t np = sp < 0 ? -1 : H5Sget_simple_extent_npoints(sp);
+	if (np > 0 && t >= 0 && H5Tget_class(t) == H5T_STRING && H5Tis_variable_str(t) > 0 &&
+	    (s = calloc((size_t)np, sizeof *s)) && H5Aread(a, t, s) < 0) {
+		free(s);
+		s = NULL;
+	}
+	*n = s ? (size_t)np : 0;
+	if (t >= 0) H5Tclose(t);
+	if (sp >= 0) H5Sclose(sp);
+	if (a >= 0) H5Aclose(a);
+	return s;
+}
+
+/* The datasets of numbers in f, in creation order, into R (t first); each one's rows into *rows. -1 when not. */
+static int find_vars(hid_t f, h5rows *R, hsize_t *rows, const char **why)
+{
+	H5G_info_t gi;
+	*why = "not a file of csfvm -o FILE.h5";
+	if (H5Gget_info(f, &gi) < 0 || !(R->var = calloc(gi.nlinks + 1, sizeof *R->var))) return -1;
+	for (hsize_t i = 0; i < gi.nlinks; i++) {
+		char name[1024];
+		ssize_t n = H5Lget_name_by_idx(f, ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, i, name, sizeof name, H5P_DEFAULT);
+		hid_t ds = n > 0 && (size_t)n < sizeof name ? H5Dopen2(f, name, H5P_DEFAULT) : -1;
+		if (ds < 0) continue;
+		hid_t t = H5Dget_type(ds), sp = H5Dget_space(ds);
+		hsize_t dims[2] = { 0, 0 };
+		int rank = sp < 0 ? -1 : H5Sget_simple_extent_ndims(sp);
+		int num = t >= 0 && H5Tget_class(t) == H5T_FLOAT && (rank == 1 || rank == 2) &&
+		          H5Sget_simple_extent_dims(sp, dims, NULL) == rank && (rank == 1 || dims[1] == 3);
+		if (t >= 0) H5Tclose(t);
+		if (sp >= 0) H5Sclose(sp);
+		if (!num) {
+			H5Dclose(ds);
+			continue;
+		}
+		h5var *x = &R->var[R->nvar++];
+		x->ds = ds;
+		x->width = rank == 2 ? 3 : 1;
+		if (R->nvar == 1) *rows = dims[0];
+		if (dims[0] != *rows) {
+			*why = "its datasets have different numbers of rows";
+			return -1;
+		}
+	}
+	if (!R->nvar || R->var[0].width != 1) return -1;
+	return 0;
+}
+
+int csf_h5_dump(const char *path, FILE *out, FILE *err, const char *prog)
+{
+	h5_quiet();
+	errno = 0;
+	hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+	if (f < 0) {
+		fprintf(err, "%s: cannot read %s: %s\n", prog, path, h5_why(errno));
+		return 2;
+	}
+	h5rows R = { 0 };
+	hsize_t rows = 0;
+	size_t nh = 0;
+	const char *why = "out of memory";
+	char **head = read_strs(f, "columns", &nh);
+	int st = 2, bad = 0;
+	if (!head || find_vars(f, &R, &rows, &why) < 0 || rows_alloc(&R, BLOCK_ROWS) < 0 || R.ncol != nh) {
+		if (!head || R.ncol != nh) why = "not a file of csfvm -o FILE.h5 (no attribute columns naming its columns)";
+		fprintf(err, "%s: %s: %s\n", prog, path, why);
+		goto out;
+	}
+	for (size_t c = 0; c < nh; c++) fprintf(out, "%s%s", c ? "," : "", head[c]);
+	putc('\n', out);
+	for (hsize_t r0 = 0; r0 < rows && !bad && !ferror(out); r0 += R.B) {
+		hsize_t nb = rows - r0 < R.B ? rows - r0 : R.B;
+		for (size_t d = 0; d < R.nvar && !bad; d++) {
+			hid_t fs, ms;
+			bad = slab(&R.var[d], r0, nb, &fs, &ms) ||
+			      H5Dread(R.var[d].ds, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, R.buf + R.var[d].off) < 0;
+			close_spaces(fs, ms);
+		}
+		for (hsize_t r = 0; r < nb && !bad; r++)
+			for (size_t c = 0; c < R.ncol; c++) {
+				char b[32];
+				csf_fmt_double(b, R.buf[R.coff[c] + r * R.cw[c]]);
+				if (c) putc(',', out);
+				fputs(b, out);
+				if (c + 1 == R.ncol) putc('\n', out);
+			}
+	}
+	if (bad) fprintf(err, "%s: %s: cannot read its rows\n", prog, path);
+	st = csf_run_finish(out, err, bad ? 2 : 0, 0);
+out:
+	for (size_t c = 0; c < nh; c++) H5free_memory(head[c]);
+	free(head);
+	rows_free(&R);
+	H5Fclose(f);
+	return st;
+}

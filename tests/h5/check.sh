@@ -1,0 +1,155 @@
+#!/bin/sh
+# tests/h5/check.sh CSFC CSFVM DIR BUILD - HDF5 output (-o RUN.h5) and --dump:
+#  - a run with -o RUN.h5 and --dump RUN.h5 writes the CSV of the run
+#    byte for byte (vectors, scalars named OBJECT.x, a column watched
+#    twice, a global vector named xyz, a run that fails an assertion,
+#    --every);
+#    -o RUN.csv writes the bytes of standard output;
+#  - read with h5py (tests/h5/read.py; SKIP without python3-h5py): every
+#    value the CSV's number read by float(), bit for bit; the units; a
+#    vector a dataset of shape (rows, 3); the root's attributes; a run that
+#    fails an assertion keeps its 15 rows;
+#  - -o to a path that cannot be made, and a write that fails (a file size
+#    limit): exit 2 with a message; --sweep with -o RUN.h5: exit 2;
+#  - a run ended by SIGINT, and one killed, leave a file --dump reads;
+#  - a generated program (csfc --emit-c) writes the same file;
+#  - csfview shows RUN.h5 as it shows the CSV (BUILD/csfview).
+# Prints one line per failure and, last, "N passed, N failed".
+CSFC=$1 CSFVM=$2 T=$3 B=$4
+HERE=$(dirname "$0")
+TOP=$(cd "$HERE/../.." && pwd)
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+PY=/usr/bin/python3
+[ -x "$PY" ] || PY=python3
+if "$PY" -c 'import h5py' 2>/dev/null; then H5PY=1; else
+	H5PY=0
+	echo "SKIP: h5: reading the files with h5py: no python3-h5py (make deps installs it)"
+fi
+
+(cd "$TOP/examples" && "$CSFC" projectile.csf -o "$T/p.csfb") && "$CSFC" "$HERE/scalars.csf" -o "$T/s.csfb" &&
+	"$CSFC" "$TOP/tests/runtime/assert_fail.csf" -o "$T/a.csfb" || { echo "FAIL: the test scenes do not compile"; exit 1; }
+
+# run MODEL STATUS [ROWS] [OPTION...]: -o RUN.h5 as the CSV: --dump's bytes, h5py's values; -o RUN.csv
+run() {
+	m=$1 want=$2 rows=$3
+	shift 3
+	"$CSFVM" "$@" "$T/$m.csfb" >"$T/$m.csv" 2>"$T/$m.err"
+	st=$?
+	"$CSFVM" "$@" -o "$T/$m.h5" "$T/$m.csfb" >"$T/$m.out" 2>"$T/$m.h5err"
+	sh5=$?
+	if [ $st -ne "$want" ] || [ $sh5 -ne $st ] || [ -s "$T/$m.out" ] || ! cmp -s "$T/$m.err" "$T/$m.h5err"; then
+		bad "$m $*: exit $st, with -o $m.h5 $sh5, $(head -c 80 "$T/$m.out") $(head -n 1 "$T/$m.h5err")"
+		return
+	fi
+	if "$CSFVM" --dump "$T/$m.h5" >"$T/$m.dump" 2>"$T/$m.derr" && cmp -s "$T/$m.csv" "$T/$m.dump"; then ok
+	else bad "$m $*: --dump $m.h5 is not the CSV: $(cmp "$T/$m.csv" "$T/$m.dump" 2>&1) $(head -n 1 "$T/$m.derr")"; fi
+	"$CSFVM" "$@" -o "$T/$m.o.csv" "$T/$m.csfb" >"$T/$m.out" 2>/dev/null
+	if cmp -s "$T/$m.o.csv" "$T/$m.csv" && [ ! -s "$T/$m.out" ]; then ok; else bad "$m $*: -o $m.o.csv is not the CSV"; fi
+	[ $H5PY -eq 1 ] || return
+	if "$PY" "$HERE/read.py" "$T/$m.h5" "$T/$m.csv" $rows >"$T/$m.py" 2>&1; then ok
+	else bad "$m $*: h5py: $(head -n 3 "$T/$m.py" | tr '\n' ' ')"; fi
+}
+run p 0 21 -D ball.m=0.25 --method rk8pd --tol 1e-9
+run s 0 5
+run a 1 15
+cp "$T/p.csfb" "$T/e.csfb"
+run e 0 5 --every 5
+
+# the root's attributes: what ran
+if [ $H5PY -eq 1 ]; then
+	v=$("$CSFVM" --version | sed 's/.* //')
+	if "$PY" - "$T/p.h5" "$T/p.csfb" "$v" >"$T/attrs" 2>&1 <<'EOF'; then ok; else bad "the root's attributes: $(tail -n 1 "$T/attrs")"; fi
+import sys, h5py
+h5, csfb, version = sys.argv[1:]
+a = h5py.File(h5, "r").attrs
+want = {"model": "projectile.csf", "method": "rk8pd", "tolerance": 1e-9, "defines": ["ball.m=0.25"], "till": 2.0,
+        "by": 0.1, "csf_version": version}
+for k, v in want.items():
+    got = list(a[k]) if k == "defines" else a[k]
+    if got != v:
+        sys.exit(f"{k}: {got!r}, not {v!r}")
+if not a["command_line"].endswith(f" -D ball.m=0.25 --method rk8pd --tol 1e-9 -o {h5} {csfb}"):
+    sys.exit(f"command_line: {a['command_line']!r}")
+EOF
+fi
+
+# errors: a path that cannot be made, a write that fails, a sweep, --dump of what is not such a file
+"$CSFVM" -o "$T/no/such/dir/r.h5" "$T/p.csfb" >"$T/e.out" 2>"$T/e.err"
+st=$?
+if [ $st -eq 2 ] && grep -q "^csfvm: cannot create $T/no/such/dir/r.h5: No such file or directory" "$T/e.err" && [ ! -s "$T/e.out" ]; then ok
+else bad "-o to a path that cannot be made: exit $st, $(head -n 1 "$T/e.err")"; fi
+printf 'object p: x = 1\nrule: x'"'"' = 1\ninc t till 100000 by 1 watch x\n' >"$T/long.csf"
+"$CSFC" "$T/long.csf" -o "$T/long.csfb"
+(trap '' XFSZ; ulimit -f 200; exec "$CSFVM" -o "$T/big.h5" "$T/long.csfb") 2>"$T/e.err"
+st=$?
+if [ $st -eq 2 ] && grep -q "^error: cannot write output: File too large" "$T/e.err"; then ok
+else bad "-o RUN.h5 past the file size limit: exit $st, $(head -n 1 "$T/e.err")"; fi
+"$CSFVM" --sweep 'ball.m=1:2:2 kg' -o "$T/sw.h5" "$T/p.csfb" 2>"$T/e.err"
+st=$?
+if [ $st -eq 2 ] && grep -q "^csfvm: --sweep writes CSV; -o FILE.h5 is for one run" "$T/e.err" && [ ! -e "$T/sw.h5" ]; then ok
+else bad "--sweep -o FILE.h5: exit $st, $(head -n 1 "$T/e.err")"; fi
+if "$CSFVM" --sweep 'ball.m=1:2:2 kg' -o "$T/sw.csv" "$T/p.csfb" && "$CSFVM" --sweep 'ball.m=1:2:2 kg' "$T/p.csfb" | cmp -s - "$T/sw.csv"; then ok
+else bad "--sweep -o FILE.csv is not the sweep's standard output"; fi
+"$CSFVM" --dump "$T/p.csv" >"$T/e.out" 2>"$T/e.err"
+st=$?
+if [ $st -eq 2 ] && grep -q "^csfvm: cannot read $T/p.csv: " "$T/e.err" && [ ! -s "$T/e.out" ]; then ok
+else bad "--dump of a CSV: exit $st, $(head -n 1 "$T/e.err")"; fi
+
+# csfvm-mpi: rank 0 alone makes the file of -o (where Open MPI is installed; tests/sweep/ says SKIP
+# otherwise); ranks that all made it would find it locked
+if [ -x "$B/csfvm-mpi" ] && command -v mpirun >/dev/null 2>&1; then
+	if ASAN_OPTIONS=detect_leaks=0 timeout 120 mpirun --allow-run-as-root --oversubscribe -np 3 "$B/csfvm-mpi" \
+		-o "$T/mpi.h5" "$T/s.csfb" >"$T/mpi.out" 2>"$T/mpi.err" && [ ! -s "$T/mpi.out" ] &&
+		"$CSFVM" --dump "$T/mpi.h5" | cmp -s - "$T/s.csv"; then ok
+	else bad "mpirun csfvm-mpi -o RUN.h5: $(head -n 1 "$T/mpi.err")"; fi
+fi
+
+# a run ended by SIGINT keeps its rows; a killed one leaves the rows of its last block, readable
+# (BUILD/csfvm itself: CSFVM may be a script that runs it)
+printf 'global k = 1 1/s\nobject p: x = 1\nrule: x'"'"' = -k * x\ninc t till 100 s by 1 s watch x\n' >"$T/slow.csf"
+"$CSFC" "$T/slow.csf" -o "$T/slow.csfb"
+timeout -s INT 1 "$B/csfvm" --method rk4 --step 1e-6 -o "$T/int.h5" "$T/slow.csfb" 2>"$T/int.err"
+"$CSFVM" --dump "$T/int.h5" >"$T/int.csv" 2>>"$T/int.err"
+st=$?
+n=$(wc -l <"$T/int.csv")
+if [ $st -eq 0 ] && [ "$n" -gt 1 ] && [ "$n" -lt 101 ] && [ "$(head -n 2 "$T/int.csv" | tr '\n' ' ')" = "t,p.x 0,1 " ]; then ok
+else bad "a run ended by SIGINT: --dump exit $st, $n lines, $(head -n 1 "$T/int.err")"; fi
+printf 'object p: x = 1\nrule: x'"'"' = 1\ninc t till 1e7 by 1 watch x\n' >"$T/long7.csf"
+"$CSFC" "$T/long7.csf" -o "$T/long7.csfb"
+timeout -s KILL 0.3 "$B/csfvm" -o "$T/kill.h5" "$T/long7.csfb" 2>/dev/null
+if "$CSFVM" --dump "$T/kill.h5" >"$T/kill.csv" 2>"$T/kill.err" &&
+	"$CSFVM" "$T/long7.csfb" 2>/dev/null | head -n "$(wc -l <"$T/kill.csv")" | cmp -s - "$T/kill.csv"
+then ok; else bad "a killed run: --dump: $(head -n 1 "$T/kill.err")"; fi
+rm -f "$T/kill.h5"
+
+# a generated program writes the file csfvm writes (but for the command line)
+if (cd "$TOP/examples" && timeout 120 "$CSFC" --emit-c projectile.csf -o "$T/pexe") 2>"$T/ec.err"; then
+	timeout 60 "$T/pexe" -D ball.m=0.25 --method rk8pd --tol 1e-9 -o "$T/c.h5" >"$T/c.out" 2>&1
+	st=$?
+	if [ $st -eq 0 ] && [ ! -s "$T/c.out" ] && "$CSFVM" --dump "$T/c.h5" | cmp -s - "$T/p.csv"; then ok
+	else bad "generated program -o c.h5: exit $st, $(head -n 1 "$T/c.out")"; fi
+	if [ $H5PY -eq 1 ]; then
+		if "$PY" - "$T/p.h5" "$T/c.h5" >"$T/same" 2>&1 <<'EOF'; then ok; else bad "generated program: $(head -n 2 "$T/same")"; fi
+import sys, h5py
+v, c = (h5py.File(x, "r") for x in sys.argv[1:])
+assert list(v) == list(c), f"datasets {list(v)} and {list(c)}"
+for k in v:
+    assert v[k][()].tobytes() == c[k][()].tobytes() and v[k].shape == c[k].shape, k
+    assert v[k].attrs.get("unit") == c[k].attrs.get("unit"), k
+for k in v.attrs:
+    if k != "command_line":
+        assert str(v.attrs[k]) == str(c.attrs[k]), f"attribute {k}: {v.attrs[k]!r} and {c.attrs[k]!r}"
+EOF
+	fi
+else
+	bad "csfc --emit-c projectile.csf: $(head -n 1 "$T/ec.err")"
+fi
+# csfview reads RUN.h5 as its CSV: the same page, from a file or standard input
+if "$B/csfview" -o "$T/v1.html" "$T/p.csv" 2>"$T/v.err" && "$B/csfview" -o "$T/v2.html" "$T/p.h5" 2>>"$T/v.err" &&
+	cmp -s "$T/v1.html" "$T/v2.html" && "$B/csfview" -o "$T/v3.html" <"$T/p.csv" 2>>"$T/v.err" &&
+	"$B/csfview" -o "$T/v4.html" <"$T/p.h5" 2>>"$T/v.err" && cmp -s "$T/v3.html" "$T/v4.html"; then ok
+else bad "csfview RUN.h5: not the page of its CSV: $(head -n 1 "$T/v.err")"; fi
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]
