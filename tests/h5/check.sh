@@ -170,34 +170,21 @@ then ok; else bad "a killed run: --dump: $(head -n 1 "$T/kill.err")"; fi
 rm -f "$T/kill.h5"
 
 # a generated program writes the file csfvm writes (but for the command line)
-if (cd "$TOP/examples" && timeout 120 "$CSFC" --emit-c projectile.csf -o "$T/pexe") 2>"$T/ec.err"; then
-	timeout 60 "$T/pexe" -D ball.m=0.25 --method rk8pd --tol 1e-9 -o "$T/c.h5" >"$T/c.out" 2>&1
-	st=$?
-	if [ $st -eq 0 ] && [ ! -s "$T/c.out" ] && "$CSFVM" --dump "$T/c.h5" | cmp -s - "$T/p.csv"; then ok
-	else bad "generated program -o c.h5: exit $st, $(head -n 1 "$T/c.out")"; fi
-	if [ $H5PY -eq 1 ]; then
-		if "$PY" - "$T/p.h5" "$T/c.h5" >"$T/same" 2>&1 <<'EOF'; then ok; else bad "generated program: $(head -n 2 "$T/same")"; fi
-import sys, h5py
-v, c = (h5py.File(x, "r") for x in sys.argv[1:])
-assert list(v) == list(c), f"datasets {list(v)} and {list(c)}"
-for k in v:
-    assert v[k][()].tobytes() == c[k][()].tobytes() and v[k].shape == c[k].shape, k
-    assert v[k].attrs.get("unit") == c[k].attrs.get("unit"), k
-for k in v.attrs:
-    if k != "command_line":
-        assert str(v.attrs[k]) == str(c.attrs[k]), f"attribute {k}: {v.attrs[k]!r} and {c.attrs[k]!r}"
-EOF
+# generated DIR MODEL M [OPTION...]: csfc --emit-c DIR/MODEL's program -o M.c.h5 is M.h5
+generated() {
+	d=$1 src=$2 m=$3
+	shift 3
+	if (cd "$d" && timeout 120 "$CSFC" --emit-c "$src" -o "$T/$m.exe") 2>"$T/ec.err"; then
+		timeout 60 "$T/$m.exe" "$@" -o "$T/$m.c.h5" >"$T/c.out" 2>&1
+		st=$?
+		if [ $st -eq 0 ] && [ ! -s "$T/c.out" ] && "$CSFVM" --dump "$T/$m.c.h5" | cmp -s - "$T/$m.csv"; then ok
+		else bad "generated program of $src -o $m.c.h5: exit $st, $(head -n 1 "$T/c.out")"; fi
+	else
+		bad "csfc --emit-c $src: $(head -n 1 "$T/ec.err")"
+		return
 	fi
-else
-	bad "csfc --emit-c projectile.csf: $(head -n 1 "$T/ec.err")"
-fi
-if timeout 120 "$CSFC" --emit-c "$HERE/groups.csf" -o "$T/gexe" 2>"$T/ec.err"; then
-	timeout 60 "$T/gexe" -o "$T/cg.h5" >"$T/c.out" 2>&1
-	st=$?
-	if [ $st -eq 0 ] && [ ! -s "$T/c.out" ] && "$CSFVM" --dump "$T/cg.h5" | cmp -s - "$T/g.csv"; then ok
-	else bad "generated program -o cg.h5: exit $st, $(head -n 1 "$T/c.out")"; fi
-	if [ $H5PY -eq 1 ]; then
-		if "$PY" - "$T/g.h5" "$T/cg.h5" >"$T/same" 2>&1 <<'EOF'; then ok; else bad "generated program: $(head -n 2 "$T/same")"; fi
+	[ $H5PY -eq 1 ] || return
+	if "$PY" - "$T/$m.h5" "$T/$m.c.h5" >"$T/same" 2>&1 <<'EOF'; then ok; else bad "generated program of $src: $(head -n 2 "$T/same")"; fi
 import sys, h5py
 v, c = (h5py.File(x, "r") for x in sys.argv[1:])
 assert list(v) == list(c), f"datasets {list(v)} and {list(c)}"
@@ -205,11 +192,13 @@ for k in v:
     assert v[k][()].tobytes() == c[k][()].tobytes() and v[k].shape == c[k].shape, k
     for a in ("unit", "columns"):
         assert str(v[k].attrs.get(a)) == str(c[k].attrs.get(a)), f"{k}: {a}"
+for k in v.attrs:
+    if k != "command_line":
+        assert str(v.attrs[k]) == str(c.attrs[k]), f"attribute {k}: {v.attrs[k]!r} and {c.attrs[k]!r}"
 EOF
-	fi
-else
-	bad "csfc --emit-c groups.csf: $(head -n 1 "$T/ec.err")"
-fi
+}
+generated "$TOP/examples" projectile.csf p -D ball.m=0.25 --method rk8pd --tol 1e-9
+generated . "$HERE/groups.csf" g
 # csfview reads RUN.h5 as its CSV: the same page, from a file or standard input
 if "$B/csfview" -o "$T/v1.html" "$T/p.csv" 2>"$T/v.err" && "$B/csfview" -o "$T/v2.html" "$T/p.h5" 2>>"$T/v.err" &&
 	cmp -s "$T/v1.html" "$T/v2.html" && "$B/csfview" -o "$T/v3.html" <"$T/p.csv" 2>>"$T/v.err" &&
