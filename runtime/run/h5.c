@@ -3,26 +3,37 @@
  * the CSV the run would have written (--dump).
  *
  * The file's root group holds, in creation order (csfvm(1), HDF5 OUTPUT):
- *   t      (rows,)    the output times, unit "s";
- *   xyz    (3,)       the strings "x", "y", "z", when a vector is watched;
- *   NAME   (rows,)    a watched scalar, the CSV's column NAME [UNIT];
- *   NAME   (rows, 3)  a watched vector, the CSV's columns NAME.x, NAME.y, NAME.z [UNIT];
- * each number an IEEE double, each watched dataset with the attribute unit
- * (the CSV header's brackets, "" when none). t and xyz are dimension scales
- * attached to the watched datasets' axes, so that xarray (h5netcdf) names
- * the axes t and xyz. A name taken before (a column watched twice) is
- * followed by " (2)", " (3)", ... The root's attributes say what ran:
- * model, method, tolerance, defines (-D), command_line, csf_version, till,
- * by, and columns, the CSV header's fields.
+ *   t        (rows,)             the output times, unit "s";
+ *   xyz      (3,)                the strings "x", "y", "z", when a vector is watched;
+ *   objects  (n,)                the names of the objects of a property watched for
+ *                                several (objects_PROP for a second list of objects, ...);
+ *   PROP     (rows, n) or (rows, n, 3)  a property watched for n > 1 objects, scalar or
+ *                                vector: the CSV's columns OBJECT.PROP [UNIT] or OBJECT.PROP.x,
+ *                                .y, .z [UNIT], object k at [:, k]; the attribute columns
+ *                                holds each object's column in the CSV (its x's);
+ *   NAME     (rows,)             any other watched scalar, the CSV's column NAME [UNIT];
+ *   NAME     (rows, 3)           any other watched vector, the columns NAME.x, .y, .z [UNIT];
+ * the watched datasets in the order of their first columns; each number an
+ * IEEE double, each watched dataset with the attribute unit (the CSV
+ * header's brackets, "" when none). One property is one dataset when it has
+ * one width and one unit; a column of an object watched twice is, the
+ * second time, a dataset NAME of its own. t, objects and xyz are dimension
+ * scales attached to the watched datasets' axes, so that xarray (h5netcdf)
+ * names the axes t, objects and xyz. A name taken before (a column watched
+ * twice) is followed by " (2)", " (3)", ... The root's attributes say what
+ * ran: model, method, tolerance, defines (-D), command_line, csf_version,
+ * till, by, and columns, the CSV header's fields.
  *
  * The datasets are chunked and extendable, a chunk of B rows (as many as
- * fit BLOCK_BYTES, at most 1024): the rows are gathered in a buffer of B
- * rows, each dataset's apart, and written a block at a time, the file
- * flushed after each, so that memory stays bounded and a run that ends
- * early (or is killed) leaves a readable file of the rows before.
+ * fit BLOCK_BYTES, at most 1024) and of as many objects as fit CHUNK_BYTES:
+ * the rows are gathered in a buffer of B rows, each dataset's apart, and
+ * written a block at a time, the file flushed after each, so that memory
+ * stays bounded and a run that ends early (or is killed) leaves a readable
+ * file of the rows before.
  */
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -30,21 +41,36 @@
 
 #include "run_int.h"
 
-enum { BLOCK_BYTES = 32 << 20, BLOCK_ROWS = 1024 };
+enum { BLOCK_BYTES = 32 << 20, BLOCK_ROWS = 1024, CHUNK_BYTES = 1 << 20 };
 #define MAX_FIXED 1e9
 
-/* A dataset of rows: its name, unit and width (1, or 3 for a vector), its place in a block of rows. */
+/*
+ * A dataset of rows: its name, unit and width (1, or 3 for a vector), its place in a block of
+ * rows. A property's of n objects (col: each one's first column, t being column 0; scale: its
+ * dimension scale of objects, an index in h5rows's), else n = 1 and col NULL.
+ */
 typedef struct h5var {
 	char *name, *unit;
-	uint32_t width;
-	size_t off; /* its values in a block: buf[off + r * width + k], row r, component k */
+	uint32_t width, n;
+	uint32_t *col;
+	size_t scale;
+	size_t off; /* its values in a block: buf[off + (r * n + j) * width + k], row r, object j, component k */
 	hid_t ds;
 } h5var;
 
-/* The datasets of rows (t first) and the buffer of a block of B rows. */
+/* A dimension scale of objects: its name and the objects'. */
+typedef struct h5objs {
+	char *name;
+	char **obj;
+	uint32_t n;
+} h5objs;
+
+/* The datasets of rows (t first), the scales of objects and the buffer of a block of B rows. */
 typedef struct h5rows {
 	h5var *var;
 	size_t nvar, ncol;
+	h5objs *scale;
+	size_t nscale;
 	size_t *coff; /* column c (t: 0) at buf[coff[c] + r * cw[c]] */
 	uint32_t *cw;
 	size_t B;
@@ -60,24 +86,42 @@ struct csf_h5 {
 	int werr;     /* a failed write's errno (0: none) */
 };
 
-/* The offsets of the datasets and the columns in a block, and the buffer; -1 when memory runs out. */
-static int rows_alloc(h5rows *R, size_t maxrows)
+/*
+ * The offsets of the datasets and the ncol columns in a block, and the buffer: a property's
+ * columns where its col says, the other datasets' the columns left, in order. -1 when memory
+ * runs out, -2 when the datasets are not ncol columns, each one once.
+ */
+static int rows_alloc(h5rows *R, size_t maxrows, size_t ncol)
 {
-	size_t w = 0, c = 0;
-	for (size_t d = 0; d < R->nvar; d++) w += R->var[d].width;
+	size_t w = 0, next = 0;
+	for (size_t d = 0; d < R->nvar; d++) w += (size_t)R->var[d].width * R->var[d].n;
+	if (w != ncol || !w) return -2;
 	R->B = BLOCK_BYTES / (w * sizeof(double));
 	R->B = R->B < 1 ? 1 : R->B > maxrows ? maxrows : R->B;
 	R->ncol = w;
 	R->coff = malloc(w * sizeof *R->coff);
-	R->cw = malloc(w * sizeof *R->cw);
+	R->cw = calloc(w, sizeof *R->cw); /* 0: a column not placed yet */
 	R->buf = malloc(R->B * w * sizeof *R->buf);
 	if (!R->coff || !R->cw || !R->buf) return -1;
 	size_t off = 0;
 	for (size_t d = 0; d < R->nvar; d++) {
 		h5var *x = &R->var[d];
 		x->off = off;
-		for (uint32_t k = 0; k < x->width; k++, c++) R->coff[c] = off + k, R->cw[c] = x->width;
-		off += R->B * x->width;
+		off += R->B * x->n * x->width;
+		for (uint32_t j = 0; x->col && j < x->n; j++)
+			for (uint32_t k = 0; k < x->width; k++) {
+				size_t c = (size_t)x->col[j] + k;
+				if (!c || c >= w || R->cw[c]) return -2; /* t is no object's */
+				R->coff[c] = x->off + (size_t)j * x->width + k, R->cw[c] = x->n * x->width;
+			}
+	}
+	for (size_t d = 0; d < R->nvar; d++) {
+		h5var *x = &R->var[d];
+		for (uint32_t k = 0; !x->col && k < x->width; k++, next++) {
+			while (next < w && R->cw[next]) next++;
+			if (next == w) return -2;
+			R->coff[next] = x->off + k, R->cw[next] = x->width;
+		}
 	}
 	return 0;
 }
@@ -88,21 +132,39 @@ static void rows_free(h5rows *R)
 		if (R->var[d].ds > 0) H5Dclose(R->var[d].ds);
 		free(R->var[d].name);
 		free(R->var[d].unit);
+		free(R->var[d].col);
+	}
+	for (size_t s = 0; s < R->nscale; s++) {
+		for (uint32_t j = 0; j < R->scale[s].n; j++) free(R->scale[s].obj[j]);
+		free(R->scale[s].obj);
+		free(R->scale[s].name);
 	}
 	free(R->var);
+	free(R->scale);
 	free(R->coff);
 	free(R->cw);
 	free(R->buf);
 }
 
+/* Dataset x's rank and the shape of n of its rows: (n,), (n, 3), (n, objects) or (n, objects, 3). */
+static int shape(const h5var *x, hsize_t n, hsize_t *dims)
+{
+	int rank = 0;
+	dims[rank++] = n;
+	if (x->col) dims[rank++] = x->n;
+	if (x->width > 1) dims[rank++] = x->width;
+	return rank;
+}
+
 /* The hyperslab of rows [r0, r0 + n) of dataset x: its file space (*fs) and a memory space of its shape; -1 on failure. */
 static int slab(const h5var *x, hsize_t r0, hsize_t n, hid_t *fs, hid_t *ms)
 {
-	hsize_t start[2] = { r0, 0 }, count[2] = { n, x->width };
+	hsize_t start[3] = { r0, 0, 0 }, count[3];
+	int rank = shape(x, n, count);
 	*ms = -1;
 	*fs = H5Dget_space(x->ds);
 	if (*fs < 0 || H5Sselect_hyperslab(*fs, H5S_SELECT_SET, start, NULL, count, NULL) < 0) return -1;
-	*ms = H5Screate_simple(x->width > 1 ? 2 : 1, count, NULL);
+	*ms = H5Screate_simple(rank, count, NULL);
 	return *ms < 0 ? -1 : 0;
 }
 
@@ -203,23 +265,173 @@ static char *strndup_or_null(const char *s, size_t n)
 	return d;
 }
 
-/* The datasets of p's columns: t, then one per scalar or vector. -1 when memory runs out. */
+/*
+ * A watched value as plan() finds it: NAME [UNIT] at column col (t: 0), width 1 or 3; NAME is
+ * OBJECT.PROP with the dot at obj, or a global (obj 0); def: OBJECT's place in the definition
+ * order. A property's dataset's first object (lead), or another of its objects (in: 1), or a
+ * dataset of its own (neither).
+ */
+typedef struct pval {
+	const char *name, *unit;
+	size_t nl, ul, obj;
+	uint32_t col, width, def;
+	struct pval *lead;
+	int in;
+} pval;
+
+static int cmp_str(const char *a, size_t na, const char *b, size_t nb)
+{
+	int c = memcmp(a, b, na < nb ? na : nb);
+	return c ? c : (na > nb) - (na < nb);
+}
+
+/* The property, width and unit of a and b: which is first (0: the same). */
+static int cmp_prop(const pval *a, const pval *b)
+{
+	int c = cmp_str(a->name + a->obj + 1, a->nl - a->obj - 1, b->name + b->obj + 1, b->nl - b->obj - 1);
+	if (!c) c = (a->width > b->width) - (a->width < b->width);
+	return c ? c : cmp_str(a->unit, a->ul, b->unit, b->ul);
+}
+
+static int cmp_obj(const pval *a, const pval *b) { return cmp_str(a->name, a->obj, b->name, b->obj); }
+
+/* By property, width, unit, object, column. */
+static int by_prop(const void *pa, const void *pb)
+{
+	const pval *a = *(pval *const *)pa, *b = *(pval *const *)pb;
+	int c = cmp_prop(a, b);
+	if (!c) c = cmp_obj(a, b);
+	return c ? c : (a->col > b->col) - (a->col < b->col);
+}
+
+/* By the objects' definition order, then column. */
+static int by_def(const void *pa, const void *pb)
+{
+	const pval *a = *(pval *const *)pa, *b = *(pval *const *)pb;
+	return a->def != b->def ? (a->def > b->def) - (a->def < b->def) : (a->col > b->col) - (a->col < b->col);
+}
+
+/* An object's name and its place in the definition order. */
+typedef struct defobj {
+	const char *name;
+	uint32_t def;
+} defobj;
+
+static int by_name(const void *pa, const void *pb) { return strcmp(((const defobj *)pa)->name, ((const defobj *)pb)->name); }
+
+/* Each value's object's place in p's definition order (past the objects when p has not its name). -1 when memory runs out. */
+static int definition_order(const csf_prog *p, pval *v, size_t nv)
+{
+	defobj *o = malloc(((size_t)p->nobjects + 1) * sizeof *o);
+	if (!o) return -1;
+	for (uint32_t i = 0; i < p->nobjects; i++) o[i] = (defobj){ csf_str(p, p->objects[i]), i };
+	qsort(o, p->nobjects, sizeof *o, by_name);
+	for (size_t i = 0; i < nv; i++) {
+		size_t lo = 0, hi = p->nobjects;
+		while (lo < hi) { /* the first name not before v[i]'s object */
+			size_t mid = lo + (hi - lo) / 2;
+			if (cmp_str(o[mid].name, strlen(o[mid].name), v[i].name, v[i].obj) < 0) lo = mid + 1;
+			else hi = mid;
+		}
+		int found = v[i].obj && lo < p->nobjects && !cmp_str(o[lo].name, strlen(o[lo].name), v[i].name, v[i].obj);
+		v[i].def = found ? o[lo].def : p->nobjects;
+	}
+	free(o);
+	return 0;
+}
+
+/*
+ * The properties watched for more than one object: each object's first value of the property
+ * (one width, one unit) in the property's dataset, lead the first in the CSV; the others keep a
+ * dataset of their own. 0, or -1 when memory runs out.
+ */
+static int group(pval *v, size_t nv)
+{
+	pval **s = malloc((nv ? nv : 1) * sizeof *s), **e = malloc((nv ? nv : 1) * sizeof *e);
+	size_t ns = 0;
+	if (!s || !e) return free(s), free(e), -1;
+	for (size_t i = 0; i < nv; i++)
+		if (v[i].obj) s[ns++] = &v[i];
+	qsort(s, ns, sizeof *s, by_prop);
+	for (size_t i = 0, j; i < ns; i = j) {
+		size_t ne = 0;
+		for (j = i; j < ns && !cmp_prop(s[i], s[j]); j++)
+			if (j == i || cmp_obj(s[j - 1], s[j])) e[ne++] = s[j]; /* an object's first column */
+		if (ne < 2) continue;
+		pval *lead = e[0];
+		for (size_t k = 1; k < ne; k++)
+			if (e[k]->col < lead->col) lead = e[k];
+		for (size_t k = 0; k < ne; k++) e[k]->lead = lead, e[k]->in = e[k] != lead;
+	}
+	free(s);
+	free(e);
+	return 0;
+}
+
+/* The dimension scale of x's objects: one of R's with their names, else a new one; -1 when memory runs out. */
+static int objects_scale(h5rows *R, h5var *x, pval *const *e)
+{
+	size_t s = 0;
+	for (; s < R->nscale; s++) {
+		uint32_t j = 0;
+		if (R->scale[s].n != x->n) continue;
+		while (j < x->n && !cmp_str(R->scale[s].obj[j], strlen(R->scale[s].obj[j]), e[j]->name, e[j]->obj)) j++;
+		if (j == x->n) break;
+	}
+	x->scale = s;
+	if (s < R->nscale) return 0;
+	h5objs *o = &R->scale[R->nscale++];
+	size_t nn = strlen(x->name) + 9;
+	if (!(o->name = malloc(nn)) || !(o->obj = calloc(x->n, sizeof *o->obj))) return -1;
+	snprintf(o->name, nn, s ? "objects_%s" : "objects", x->name);
+	for (; o->n < x->n; o->n++)
+		if (!(o->obj[o->n] = strndup_or_null(e[o->n]->name, e[o->n]->obj))) return -1;
+	return 0;
+}
+
+/* The datasets of p's columns: t, then one per property watched for several objects, scalar or vector. -1 when memory runs out. */
 static int plan(const csf_prog *p, h5rows *R)
 {
+	pval *v = calloc((size_t)p->ncols + 1, sizeof *v), **e = malloc(((size_t)p->ncols + 1) * sizeof *e);
+	size_t nv = 0;
 	R->var = calloc((size_t)p->ncols + 1, sizeof *R->var);
-	if (!R->var) return -1;
-	R->var[R->nvar++] = (h5var){ .name = strndup_or_null("t", 1), .unit = strndup_or_null("s", 1), .width = 1 };
-	for (uint32_t i = 0; i < p->ncols; i += R->var[R->nvar++].width) {
-		size_t nl, ul;
-		const char *u;
-		h5var *x = &R->var[R->nvar];
+	R->scale = calloc((size_t)p->ncols + 1, sizeof *R->scale);
+	if (!v || !e || !R->var || !R->scale) return free(v), free(e), -1;
+	for (uint32_t i = 0; i < p->ncols; i += v[nv++].width) {
+		pval *x = &v[nv];
+		const char *dot;
+		x->col = i + 1;
 		x->width = width_at(p, i);
-		split_col(csf_str(p, p->cols[i].name), &nl, &u, &ul);
-		x->name = strndup_or_null(csf_str(p, p->cols[i].name), x->width > 1 ? nl - 2 : nl); /* NAME of NAME.x */
-		x->unit = strndup_or_null(u, ul);
+		x->name = csf_str(p, p->cols[i].name);
+		split_col(x->name, &x->nl, &x->unit, &x->ul);
+		if (x->width > 1) x->nl -= 2; /* NAME of NAME.x */
+		dot = memchr(x->name, '.', x->nl);
+		x->obj = dot ? (size_t)(dot - x->name) : 0;
 	}
-	for (size_t d = 0; d < R->nvar; d++)
-		if (!R->var[d].name || !R->var[d].unit) return -1;
+	int bad = definition_order(p, v, nv) || group(v, nv) || !(R->var[R->nvar++] = (h5var){ .name = strndup_or_null("t", 1),
+	                                                          .unit = strndup_or_null("s", 1), .width = 1, .n = 1 }).name;
+	for (size_t i = 0; i < nv && !bad; i++) {
+		h5var *x = &R->var[R->nvar];
+		if (v[i].in) continue;
+		R->nvar++;
+		x->width = v[i].width;
+		x->unit = strndup_or_null(v[i].unit, v[i].ul);
+		if (!v[i].lead) {
+			x->n = 1;
+			x->name = strndup_or_null(v[i].name, v[i].nl);
+			bad = !x->name || !x->unit;
+			continue;
+		}
+		x->name = strndup_or_null(v[i].name + v[i].obj + 1, v[i].nl - v[i].obj - 1); /* PROP */
+		for (size_t k = i; k < nv; k++)
+			if (v[k].lead == &v[i]) e[x->n++] = &v[k];
+		qsort(e, x->n, sizeof *e, by_def); /* the objects in their definition order */
+		bad = !x->name || !x->unit || !(x->col = malloc(x->n * sizeof *x->col)) || objects_scale(R, x, e);
+		for (uint32_t j = 0; !bad && j < x->n; j++) x->col[j] = e[j]->col;
+	}
+	free(v);
+	free(e);
+	if (bad) return -1;
 	/*
 	 * At most till/by + 2 rows (k*by <= till, and one for till/by's rounding): the datasets'
 	 * limit, a fixed one, that readers see as a dimension of fixed size (h5netcdf sizes an
@@ -228,7 +440,7 @@ static int plan(const csf_prog *p, h5rows *R)
 	 */
 	double rows = floor(p->till / p->by) + 2;
 	R->max = rows <= MAX_FIXED ? (hsize_t)rows : H5S_UNLIMITED;
-	return rows_alloc(R, rows < BLOCK_ROWS ? (size_t)rows : BLOCK_ROWS);
+	return rows_alloc(R, rows < BLOCK_ROWS ? (size_t)rows : BLOCK_ROWS, (size_t)p->ncols + 1) ? -1 : 0;
 }
 
 /* Attribute name of loc: n strings (scalar: n < 0, one string), UTF-8. */
@@ -340,7 +552,7 @@ static int reference_list(hid_t scale, const dsref *r, size_t n)
 static int dimension_list(hid_t ds, hid_t vlen, hobj_ref_t *scales, int rank)
 {
 	hsize_t dim = (hsize_t)rank;
-	hvl_t l[2] = { { 1, &scales[0] }, { 1, &scales[1] } };
+	hvl_t l[3] = { { 1, &scales[0] }, { 1, &scales[1] }, { 1, &scales[2] } };
 	hid_t sp = H5Screate_simple(1, &dim, NULL), a = -1;
 	int bad = sp < 0 || (a = H5Acreate2(ds, "DIMENSION_LIST", vlen, sp, H5P_DEFAULT, H5P_DEFAULT)) < 0 ||
 	          H5Awrite(a, vlen, l) < 0;
@@ -349,16 +561,30 @@ static int dimension_list(hid_t ds, hid_t vlen, hobj_ref_t *scales, int rank)
 	return bad ? -1 : 0;
 }
 
-/* The dimension scale xyz: the strings "x", "y", "z" (open; -1 on failure). */
-static hid_t xyz_scale(hid_t f)
+/* *name, or if taken, *name followed by " (2)", " (3)", ... (*name becomes the one not taken). */
+static int name_not_taken(hid_t f, char **name)
 {
-	static const char *const xyz[3] = { "x", "y", "z" };
-	hsize_t three = 3;
-	hid_t t = H5Tcopy(H5T_C_S1), sp = H5Screate_simple(1, &three, NULL), dcpl = H5Pcreate(H5P_DATASET_CREATE), ds = -1;
+	char *base = *name;
+	for (int k = 2; H5Lexists(f, *name, H5P_DEFAULT) > 0; k++) {
+		size_t n = strlen(base) + 24;
+		char *alt = malloc(n);
+		if (!alt) return -1;
+		snprintf(alt, n, "%s (%d)", base, k);
+		if (*name != base) free(*name);
+		*name = alt;
+	}
+	if (*name != base) free(base);
+	return 0;
+}
+
+/* The dimension scale name: n strings (open; -1 on failure). */
+static hid_t string_scale(hid_t f, const char *name, const char *const *s, hsize_t n)
+{
+	hid_t t = H5Tcopy(H5T_C_S1), sp = H5Screate_simple(1, &n, NULL), dcpl = H5Pcreate(H5P_DATASET_CREATE), ds = -1;
 	int bad = t < 0 || sp < 0 || dcpl < 0 || H5Pset_obj_track_times(dcpl, 0) < 0 || H5Tset_size(t, H5T_VARIABLE) < 0 ||
 	          H5Tset_cset(t, H5T_CSET_UTF8) < 0 ||
-	          (ds = H5Dcreate2(f, "xyz", t, sp, H5P_DEFAULT, dcpl, H5P_DEFAULT)) < 0 ||
-	          H5Dwrite(ds, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, xyz) < 0 || set_scale(ds, "xyz");
+	          (ds = H5Dcreate2(f, name, t, sp, H5P_DEFAULT, dcpl, H5P_DEFAULT)) < 0 ||
+	          H5Dwrite(ds, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, s) < 0 || set_scale(ds, name);
 	if (dcpl >= 0) H5Pclose(dcpl);
 	if (sp >= 0) H5Sclose(sp);
 	if (t >= 0) H5Tclose(t);
@@ -366,24 +592,40 @@ static hid_t xyz_scale(hid_t f)
 	return ds;
 }
 
+/* The dimension scale xyz: the strings "x", "y", "z" (open; -1 on failure). */
+static hid_t xyz_scale(hid_t f)
+{
+	static const char *const xyz[3] = { "x", "y", "z" };
+	return string_scale(f, "xyz", xyz, 3);
+}
+
+/* The attribute columns of a property's dataset x: each object's first column in the CSV. */
+static int attr_cols(const h5var *x)
+{
+	hsize_t n = x->n;
+	hid_t sp = H5Screate_simple(1, &n, NULL), a = -1;
+	int bad = sp < 0 || (a = H5Acreate2(x->ds, "columns", H5T_STD_U32LE, sp, H5P_DEFAULT, H5P_DEFAULT)) < 0 ||
+	          H5Awrite(a, H5T_NATIVE_UINT32, x->col) < 0;
+	if (a >= 0) H5Aclose(a);
+	if (sp >= 0) H5Sclose(sp);
+	return bad ? -1 : 0;
+}
+
 /*
- * Creates dataset x (rows,) or (rows, 3), chunks of B rows, under a name not taken:
- * NAME, else NAME (2), NAME (3), ... (x->name becomes the name taken).
+ * Creates dataset x (rows,), (rows, 3), (rows, n) or (rows, n, 3), chunks of B rows and of as
+ * many objects as fit CHUNK_BYTES, under a name not taken (x->name becomes it).
  */
 static int create_var(hid_t f, h5var *x, const h5rows *R, hid_t dcpl, hid_t dapl)
 {
-	hsize_t dims[2] = { 0, 3 }, maxd[2] = { R->max, 3 }, chunk[2] = { R->B, 3 };
-	int rank = x->width > 1 ? 2 : 1;
-	char *base = x->name;
-	for (int k = 2; H5Lexists(f, x->name, H5P_DEFAULT) > 0; k++) {
-		size_t n = strlen(base) + 24;
-		char *alt = malloc(n);
-		if (!alt) return -1;
-		snprintf(alt, n, "%s (%d)", base, k);
-		if (x->name != base) free(x->name);
-		x->name = alt;
+	hsize_t dims[3], maxd[3], chunk[3];
+	int rank = shape(x, 0, dims);
+	shape(x, R->max, maxd);
+	shape(x, R->B, chunk);
+	if (x->col) {
+		hsize_t per = CHUNK_BYTES / (R->B * x->width * sizeof(double));
+		chunk[1] = per < 1 ? 1 : per < x->n ? per : x->n;
 	}
-	if (x->name != base) free(base);
+	if (name_not_taken(f, &x->name)) return -1;
 	hid_t sp = H5Screate_simple(rank, dims, maxd);
 	if (sp < 0 || H5Pset_chunk(dcpl, rank, chunk) < 0) return -1;
 	x->ds = H5Dcreate2(f, x->name, H5T_IEEE_F64LE, sp, H5P_DEFAULT, dcpl, dapl);
@@ -391,32 +633,52 @@ static int create_var(hid_t f, h5var *x, const h5rows *R, hid_t dcpl, hid_t dapl
 	return x->ds < 0 ? -1 : 0;
 }
 
-/* The datasets, their units, and the dimension scales t and xyz attached to their axes. */
+/* The datasets, their units, and the dimension scales t, objects and xyz attached to their axes. */
 static int create_vars(hid_t f, h5rows *R)
 {
 	hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE), dapl = H5Pcreate(H5P_DATASET_ACCESS), xyz = -1;
-	hid_t vlen = H5Tvlen_create(H5T_STD_REF_OBJ);
-	dsref *rt = malloc(R->nvar * sizeof *rt), *rx = malloc(R->nvar * sizeof *rx);
+	hid_t vlen = H5Tvlen_create(H5T_STD_REF_OBJ), *os = calloc(R->nscale + 1, sizeof *os);
+	dsref *rt = malloc(R->nvar * sizeof *rt), *rx = malloc(R->nvar * sizeof *rx), *ro = malloc(R->nvar * sizeof *ro);
 	size_t nt = 0, nx = 0;
-	hobj_ref_t sc[2] = { 0, 0 }; /* the scales t and xyz */
+	hobj_ref_t st = 0, sx = 0, *so = calloc(R->nscale + 1, sizeof *so); /* the scales t, xyz, objects */
 	int vectors = 0;
 	for (size_t d = 0; d < R->nvar; d++) vectors |= R->var[d].width > 1;
 	/* no times in the objects (a run's file is the same bytes every time); whole chunks are written, uncached */
-	int bad = !rt || !rx || dcpl < 0 || dapl < 0 || vlen < 0 || H5Pset_obj_track_times(dcpl, 0) < 0 ||
-	          H5Pset_fill_time(dcpl, H5D_FILL_TIME_NEVER) < 0 || H5Pset_chunk_cache(dapl, 0, 0, 1) < 0 ||
-	          create_var(f, &R->var[0], R, dcpl, dapl) || set_scale(R->var[0].ds, "t") ||
-	          attr_str(R->var[0].ds, "unit", R->var[0].unit) || H5Rcreate(&sc[0], f, "t", H5R_OBJECT, -1) < 0 ||
-	          (vectors && ((xyz = xyz_scale(f)) < 0 || H5Rcreate(&sc[1], f, "xyz", H5R_OBJECT, -1) < 0));
+	int bad = !os || !rt || !rx || !ro || !so || dcpl < 0 || dapl < 0 || vlen < 0 ||
+	          H5Pset_obj_track_times(dcpl, 0) < 0 || H5Pset_fill_time(dcpl, H5D_FILL_TIME_NEVER) < 0 ||
+	          H5Pset_chunk_cache(dapl, 0, 0, 1) < 0 || create_var(f, &R->var[0], R, dcpl, dapl) ||
+	          set_scale(R->var[0].ds, "t") || attr_str(R->var[0].ds, "unit", R->var[0].unit) ||
+	          H5Rcreate(&st, f, "t", H5R_OBJECT, -1) < 0 ||
+	          (vectors && ((xyz = xyz_scale(f)) < 0 || H5Rcreate(&sx, f, "xyz", H5R_OBJECT, -1) < 0));
+	for (size_t s = 0; s < R->nscale && !bad; s++) {
+		h5objs *o = &R->scale[s];
+		bad = name_not_taken(f, &o->name) || (os[s] = string_scale(f, o->name, (const char *const *)o->obj, o->n)) < 0 ||
+		      H5Rcreate(&so[s], f, o->name, H5R_OBJECT, -1) < 0;
+	}
 	for (size_t d = 1; d < R->nvar && !bad; d++) {
 		h5var *x = &R->var[d];
-		bad = create_var(f, x, R, dcpl, dapl) || attr_str(x->ds, "unit", x->unit) ||
-		      dimension_list(x->ds, vlen, sc, x->width > 1 ? 2 : 1) || H5Rcreate(&rt[nt].ds, f, x->name, H5R_OBJECT, -1) < 0;
+		hobj_ref_t sc[3] = { st, x->col ? so[x->scale] : sx, sx };
+		int rank = 1 + !!x->col + (x->width > 1);
+		bad = create_var(f, x, R, dcpl, dapl) || attr_str(x->ds, "unit", x->unit) || (x->col && attr_cols(x)) ||
+		      dimension_list(x->ds, vlen, sc, rank) || H5Rcreate(&rt[nt].ds, f, x->name, H5R_OBJECT, -1) < 0;
 		rt[nt++].dim = 0;
-		if (x->width > 1) rx[nx++] = (dsref){ rt[nt - 1].ds, 1 };
+		if (x->width > 1) rx[nx++] = (dsref){ rt[nt - 1].ds, rank - 1 };
 	}
 	bad = bad || (nt && reference_list(R->var[0].ds, rt, nt)) || (nx && reference_list(xyz, rx, nx));
+	/* each scale of objects: the datasets of its objects, their axis 1 */
+	for (size_t s = 0; s < R->nscale && !bad; s++) {
+		size_t no = 0;
+		for (size_t d = 1; d < R->nvar; d++)
+			if (R->var[d].col && R->var[d].scale == s) ro[no++] = (dsref){ rt[d - 1].ds, 1 };
+		bad = reference_list(os[s], ro, no);
+	}
+	for (size_t s = 0; os && s < R->nscale; s++)
+		if (os[s] > 0) H5Dclose(os[s]);
+	free(os);
+	free(so);
 	free(rt);
 	free(rx);
+	free(ro);
 	if (xyz >= 0) H5Dclose(xyz);
 	if (vlen >= 0) H5Tclose(vlen);
 	if (dapl >= 0) H5Pclose(dapl);
@@ -477,8 +739,9 @@ static int flush_rows(csf_h5 *h)
 	csf_out_begin(); /* the watchdog of a signal waits for a whole block */
 	for (size_t d = 0; d < h->R.nvar && !bad; d++) {
 		h5var *x = &h->R.var[d];
-		hsize_t dims[2] = { h->rows + h->nb, 3 };
+		hsize_t dims[3];
 		hid_t fs = -1, ms = -1;
+		shape(x, h->rows + h->nb, dims);
 		bad = H5Dset_extent(x->ds, dims) < 0 || slab(x, h->rows, h->nb, &fs, &ms) ||
 		      H5Dwrite(x->ds, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, h->R.buf + x->off) < 0;
 		close_spaces(fs, ms);
@@ -537,7 +800,10 @@ static char **read_strs(hid_t loc, const char *name, size_t *n)
 	return s;
 }
 
-/* The datasets of numbers in f, in creation order, into R (t first); each one's rows into *rows. -1 when not. */
+/*
+ * The datasets of numbers in f, in creation order, into R (t first); each one's rows into *rows.
+ * A property's of n objects, (rows, n) or (rows, n, 3), has the attribute columns. -1 when not.
+ */
 static int find_vars(hid_t f, h5rows *R, hsize_t *rows, const char **why)
 {
 	H5G_info_t gi;
@@ -549,10 +815,11 @@ static int find_vars(hid_t f, h5rows *R, hsize_t *rows, const char **why)
 		hid_t ds = n > 0 && (size_t)n < sizeof name ? H5Dopen2(f, name, H5P_DEFAULT) : -1;
 		if (ds < 0) continue;
 		hid_t t = H5Dget_type(ds), sp = H5Dget_space(ds);
-		hsize_t dims[2] = { 0, 0 };
-		int rank = sp < 0 ? -1 : H5Sget_simple_extent_ndims(sp);
-		int num = t >= 0 && H5Tget_class(t) == H5T_FLOAT && (rank == 1 || rank == 2) &&
-		          H5Sget_simple_extent_dims(sp, dims, NULL) == rank && (rank == 1 || dims[1] == 3);
+		hsize_t dims[3] = { 0, 0, 0 };
+		int rank = sp < 0 ? -1 : H5Sget_simple_extent_ndims(sp), objs = H5Aexists(ds, "columns") > 0;
+		int num = t >= 0 && H5Tget_class(t) == H5T_FLOAT && rank >= 1 && rank <= 2 + objs &&
+		          H5Sget_simple_extent_dims(sp, dims, NULL) == rank && (rank == 1 + objs || dims[rank - 1] == 3) &&
+		          (!objs || (rank > 1 && dims[1] > 0 && dims[1] <= UINT32_MAX));
 		if (t >= 0) H5Tclose(t);
 		if (sp >= 0) H5Sclose(sp);
 		if (!num) {
@@ -561,14 +828,23 @@ static int find_vars(hid_t f, h5rows *R, hsize_t *rows, const char **why)
 		}
 		h5var *x = &R->var[R->nvar++];
 		x->ds = ds;
-		x->width = rank == 2 ? 3 : 1;
+		x->width = rank > 1 + objs ? 3 : 1;
+		x->n = objs ? (uint32_t)dims[1] : 1;
+		if (objs) {
+			hid_t a = H5Aopen(ds, "columns", H5P_DEFAULT), as = a < 0 ? -1 : H5Aget_space(a);
+			int ok = as >= 0 && H5Sget_simple_extent_npoints(as) == (hssize_t)x->n &&
+			         (x->col = malloc(x->n * sizeof *x->col)) && H5Aread(a, H5T_NATIVE_UINT32, x->col) >= 0;
+			if (as >= 0) H5Sclose(as);
+			if (a >= 0) H5Aclose(a);
+			if (!ok) return -1;
+		}
 		if (R->nvar == 1) *rows = dims[0];
 		if (dims[0] != *rows) {
 			*why = "its datasets have different numbers of rows";
 			return -1;
 		}
 	}
-	if (!R->nvar || R->var[0].width != 1) return -1;
+	if (!R->nvar || R->var[0].width != 1 || R->var[0].col) return -1;
 	return 0;
 }
 
@@ -587,8 +863,10 @@ int csf_h5_dump(const char *path, FILE *out, FILE *err, const char *prog)
 	const char *why = "out of memory";
 	char **head = read_strs(f, "columns", &nh);
 	int st = 2, bad = 0;
-	if (!head || find_vars(f, &R, &rows, &why) < 0 || rows_alloc(&R, BLOCK_ROWS) < 0 || R.ncol != nh) {
-		if (!head || R.ncol != nh) why = "not a file of csfvm -o FILE.h5 (no attribute columns naming its columns)";
+	int al = 0;
+	if (!head || find_vars(f, &R, &rows, &why) < 0 || (al = rows_alloc(&R, BLOCK_ROWS, nh)) < 0) {
+		if (al == -1) why = "out of memory";
+		else if (!head || al == -2) why = "not a file of csfvm -o FILE.h5 (no attribute columns naming its columns)";
 		fprintf(err, "%s: %s: %s\n", prog, path, why);
 		goto out;
 	}

@@ -3,16 +3,21 @@
 #  - a run with -o RUN.h5 and --dump RUN.h5 writes the CSV of the run
 #    byte for byte (vectors, scalars named OBJECT.x, a column watched
 #    twice, a global vector named xyz, a run that fails an assertion,
-#    --every);
+#    --every; properties watched for several objects, alone (watch pos, v;
+#    watch q.v, b.v) and among values watched for one object, globals and
+#    values watched twice: groups.csf);
 #    -o RUN.csv writes the bytes of standard output;
 #  - read with h5py (tests/h5/read.py; SKIP without python3-h5py): every
 #    value the CSV's number read by float(), bit for bit; the units; a
-#    vector a dataset of shape (rows, 3); the root's attributes; a run that
-#    fails an assertion keeps its 15 rows;
+#    vector a dataset of shape (rows, 3); a property of several objects one
+#    dataset (rows, objects) or (rows, objects, 3), the objects in their
+#    definition order its dimension scale, its attribute columns; the
+#    root's attributes; a run that fails an assertion keeps its 15 rows;
+#    xarray's variables, dimensions and coordinates for groups.csf;
 #  - -o to a path that cannot be made, and a write that fails (a file size
 #    limit): exit 2 with a message; --sweep with -o RUN.h5: exit 2;
 #  - a run ended by SIGINT, and one killed, leave a file --dump reads;
-#  - a generated program (csfc --emit-c) writes the same file;
+#  - a generated program (csfc --emit-c) writes the same file (projectile.csf, groups.csf);
 #  - csfview shows RUN.h5 as it shows the CSV (BUILD/csfview).
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3 B=$4
@@ -29,7 +34,10 @@ if "$PY" -c 'import h5py' 2>/dev/null; then H5PY=1; else
 fi
 
 (cd "$TOP/examples" && "$CSFC" projectile.csf -o "$T/p.csfb") && "$CSFC" "$HERE/scalars.csf" -o "$T/s.csfb" &&
-	"$CSFC" "$TOP/tests/runtime/assert_fail.csf" -o "$T/a.csfb" || { echo "FAIL: the test scenes do not compile"; exit 1; }
+	"$CSFC" "$TOP/tests/runtime/assert_fail.csf" -o "$T/a.csfb" && "$CSFC" "$HERE/groups.csf" -o "$T/g.csfb" &&
+	sed 's/ watch .*/ watch pos, v/' "$HERE/groups.csf" >"$T/gp.csf" && "$CSFC" "$T/gp.csf" -o "$T/gp.csfb" 2>"$T/gp.warn" &&
+	sed 's/ watch .*/ watch q.v, b.v/' "$HERE/groups.csf" >"$T/gi.csf" && "$CSFC" "$T/gi.csf" -o "$T/gi.csfb" 2>"$T/gi.warn" ||
+	{ echo "FAIL: the test scenes do not compile"; exit 1; }
 
 # run MODEL STATUS [ROWS] [OPTION...]: -o RUN.h5 as the CSV: --dump's bytes, h5py's values; -o RUN.csv
 run() {
@@ -56,6 +64,43 @@ run s 0 5
 run a 1 15
 cp "$T/p.csfb" "$T/e.csfb"
 run e 0 5 --every 5
+run g 0 9
+run gp 0 9
+run gi 0 9 --method rk4
+
+# the datasets of groups.csf: a property's of several objects, in the objects' definition order
+if [ $H5PY -eq 1 ]; then
+	if "$PY" - "$T/g.h5" "$T/gp.h5" "$T/gi.h5" >"$T/layout" 2>&1 <<'EOF'; then ok; else bad "groups.csf's datasets: $(tail -n 1 "$T/layout")"; fi
+import sys, h5py
+g, gp, gi = (h5py.File(x, "r") for x in sys.argv[1:])
+def check(f, name, shape, unit, columns, scale, objects):
+    d = f[name]
+    assert d.shape == shape and d.attrs["unit"] == unit, f"{name}: {d.shape}, {d.attrs['unit']!r}"
+    assert list(d.attrs["columns"]) == columns, f"{name}: columns {list(d.attrs['columns'])}"
+    assert d.dims[1].keys() == [scale], f"{name}: scale {d.dims[1].keys()}"
+    assert [x.decode() for x in f[scale][:]] == objects, f"{scale}: {f[scale][:]}"
+check(g, "v", (9, 3, 3), "m/s", [19, 4, 1], "objects", ["a", "b", "q"])
+check(g, "pos", (9, 3, 3), "m", [7, 10, 13], "objects", ["a", "b", "q"])
+check(g, "pos (2)", (9, 2), "m", [16, 17], "objects_pos", ["d", "r"])
+for n, shape in (("a.m", (9,)), ("b.v", (9, 3)), ("q.v", (9, 3)), ("b.pos", (9, 3)), ("k", (9,)), ("g", (9, 3)), ("r.w", (9,))):
+    assert g[n].shape == shape and "columns" not in g[n].attrs, n
+assert (g["v"][:, 2, :] == g["q.v"][:]).all() and (g["pos"][:, 1, :] == g["b.pos"][:]).all()
+check(gp, "pos", (9, 3, 3), "m", [1, 4, 7], "objects", ["a", "b", "q"])
+check(gp, "pos (2)", (9, 2), "m", [10, 11], "objects_pos", ["d", "r"])
+check(gp, "v", (9, 3, 3), "m/s", [12, 15, 18], "objects", ["a", "b", "q"])
+check(gi, "v", (9, 2, 3), "m/s", [4, 1], "objects", ["b", "q"])
+assert sorted(gi) == ["objects", "t", "v", "xyz"], sorted(gi)
+try:
+    import xarray
+except ImportError:
+    sys.exit(0)
+ds = xarray.open_dataset(sys.argv[1], engine="h5netcdf")
+assert list(ds.coords) == ["t", "xyz", "objects", "objects_pos"], list(ds.coords)
+assert list(ds.data_vars) == ["v", "pos", "pos (2)", "a.m", "b.v", "q.v", "b.pos", "k", "g", "r.w"], list(ds.data_vars)
+assert ds["v"].dims == ("t", "objects", "xyz") and ds["pos (2)"].dims == ("t", "objects_pos"), ds["v"].dims
+assert (ds["v"].sel(objects="q").values == g["q.v"][:]).all()
+EOF
+fi
 
 # the root's attributes: what ran
 if [ $H5PY -eq 1 ]; then
@@ -125,27 +170,35 @@ then ok; else bad "a killed run: --dump: $(head -n 1 "$T/kill.err")"; fi
 rm -f "$T/kill.h5"
 
 # a generated program writes the file csfvm writes (but for the command line)
-if (cd "$TOP/examples" && timeout 120 "$CSFC" --emit-c projectile.csf -o "$T/pexe") 2>"$T/ec.err"; then
-	timeout 60 "$T/pexe" -D ball.m=0.25 --method rk8pd --tol 1e-9 -o "$T/c.h5" >"$T/c.out" 2>&1
-	st=$?
-	if [ $st -eq 0 ] && [ ! -s "$T/c.out" ] && "$CSFVM" --dump "$T/c.h5" | cmp -s - "$T/p.csv"; then ok
-	else bad "generated program -o c.h5: exit $st, $(head -n 1 "$T/c.out")"; fi
-	if [ $H5PY -eq 1 ]; then
-		if "$PY" - "$T/p.h5" "$T/c.h5" >"$T/same" 2>&1 <<'EOF'; then ok; else bad "generated program: $(head -n 2 "$T/same")"; fi
+# generated DIR MODEL M [OPTION...]: csfc --emit-c DIR/MODEL's program -o M.c.h5 is M.h5
+generated() {
+	d=$1 src=$2 m=$3
+	shift 3
+	if (cd "$d" && timeout 120 "$CSFC" --emit-c "$src" -o "$T/$m.exe") 2>"$T/ec.err"; then
+		timeout 60 "$T/$m.exe" "$@" -o "$T/$m.c.h5" >"$T/c.out" 2>&1
+		st=$?
+		if [ $st -eq 0 ] && [ ! -s "$T/c.out" ] && "$CSFVM" --dump "$T/$m.c.h5" | cmp -s - "$T/$m.csv"; then ok
+		else bad "generated program of $src -o $m.c.h5: exit $st, $(head -n 1 "$T/c.out")"; fi
+	else
+		bad "csfc --emit-c $src: $(head -n 1 "$T/ec.err")"
+		return
+	fi
+	[ $H5PY -eq 1 ] || return
+	if "$PY" - "$T/$m.h5" "$T/$m.c.h5" >"$T/same" 2>&1 <<'EOF'; then ok; else bad "generated program of $src: $(head -n 2 "$T/same")"; fi
 import sys, h5py
 v, c = (h5py.File(x, "r") for x in sys.argv[1:])
 assert list(v) == list(c), f"datasets {list(v)} and {list(c)}"
 for k in v:
     assert v[k][()].tobytes() == c[k][()].tobytes() and v[k].shape == c[k].shape, k
-    assert v[k].attrs.get("unit") == c[k].attrs.get("unit"), k
+    for a in ("unit", "columns"):
+        assert str(v[k].attrs.get(a)) == str(c[k].attrs.get(a)), f"{k}: {a}"
 for k in v.attrs:
     if k != "command_line":
         assert str(v.attrs[k]) == str(c.attrs[k]), f"attribute {k}: {v.attrs[k]!r} and {c.attrs[k]!r}"
 EOF
-	fi
-else
-	bad "csfc --emit-c projectile.csf: $(head -n 1 "$T/ec.err")"
-fi
+}
+generated "$TOP/examples" projectile.csf p -D ball.m=0.25 --method rk8pd --tol 1e-9
+generated . "$HERE/groups.csf" g
 # csfview reads RUN.h5 as its CSV: the same page, from a file or standard input
 if "$B/csfview" -o "$T/v1.html" "$T/p.csv" 2>"$T/v.err" && "$B/csfview" -o "$T/v2.html" "$T/p.h5" 2>>"$T/v.err" &&
 	cmp -s "$T/v1.html" "$T/v2.html" && "$B/csfview" -o "$T/v3.html" <"$T/p.csv" 2>>"$T/v.err" &&
