@@ -819,6 +819,8 @@ static csf_h5 *file_new(const char *path, char *err, size_t errlen)
 	}
 	/* the datasets in creation order: the columns' (--dump), as netCDF-4 keeps them */
 	H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED);
+	/* no times in the root group either: a file is the same bytes whenever it is written */
+	H5Pset_obj_track_times(fcpl, 0);
 	/*
 	 * HDF5 1.8's format: attributes of any size (columns, t's list of the datasets it scales).
 	 * Not 1.10's: its files stay marked open after a process that was killed writing them, and
