@@ -3,7 +3,8 @@
 #  - a projectile over its launch angle and speed that lands (stop when) or
 #    fails an assertion (launch.csf), 9 variants and 600 (blocks of them),
 #    with -j 1 and -j 2: exit status and diagnostics those of the sweep to
-#    CSV, --dump's CSV its bytes;
+#    CSV, --dump's CSV its bytes; the two files the same bytes but for the
+#    command line;
 #  - read by sweep.py (SKIP without python3-h5py): every dataset with a
 #    leading axis of variants, the swept values on it, NaN past a variant's
 #    rows; each variant's rows against the closed form, and bit for bit its
@@ -44,6 +45,9 @@ sweeps() {
 		if "$CSFVM" --dump "$T/$m$j.h5" 2>&1 | cmp -s - "$T/$m.csv"; then ok
 		else bad "sweep $th, $v: --dump $m$j.h5 is not the sweep's CSV"; fi
 	done
+	# the two files differ in their command lines' two digits alone ("-j 1 -o NAME1.h5", "-j 2 -o NAME2.h5")
+	n=$(cmp -l "$T/${m}1.h5" "$T/${m}2.h5" | wc -l)
+	if [ "$n" -eq 2 ]; then ok; else bad "sweep $th, $v: -j 1 and -j 2 write files that differ in $n bytes, not 2"; fi
 }
 sweeps sw 15:75:3 10:30:3
 sweeps big 15:75:30 10:30:20
@@ -104,7 +108,9 @@ done
 st=$?
 if [ $st -eq 2 ] && grep -q "^csfvm: cannot create $T/no/such/dir/s.h5: No such file or directory" "$T/e.err" && [ ! -s "$T/e.out" ]; then ok
 else bad "--sweep -o to a path that cannot be made: exit $st, $(head -n 1 "$T/e.err")"; fi
-(trap '' XFSZ; ulimit -f 200; exec "$CSFVM" --sweep 'theta=15:75:30 deg' --sweep 'v0=10:30:20 m/s' -o "$T/big.h5" "$T/l.csfb") 2>"$T/e.err"
+# (no leak check: HDF5 1.10 does not free the buffer of a chunk whose write failed)
+(trap '' XFSZ; ulimit -f 200; ASAN_OPTIONS=detect_leaks=0 exec "$CSFVM" --sweep 'theta=15:75:30 deg' --sweep 'v0=10:30:20 m/s' \
+	-o "$T/big.h5" "$T/l.csfb") 2>"$T/e.err"
 st=$?
 if [ $st -eq 2 ] && [ "$(grep -c "^error: cannot write output: File too large" "$T/e.err")" -eq 1 ]; then ok
 else bad "--sweep -o SWEEP.h5 past the file size limit: exit $st, $(grep -v assertion "$T/e.err" | head -n 1)"; fi
