@@ -128,15 +128,26 @@ class Result:
         df.attrs["units"] = {n: self._index.units[n] for n in names}
         return df
 
+    def _column_names(self, key):
+        """The columns of a name r[...] takes: a column, a vector's three, a property's of each object."""
+        if key in self._index.col:
+            return [key]
+        if key in self._index.vec:
+            return [key + "." + x for x in "xyz"]
+        if key in self._index.prop:
+            return [n for o in self.objects(key) for n in self._column_names(o + "." + key)]
+        raise KeyError(key)
+
     def plot(self, names=None, ax=None):
-        """The watched columns (or names) against t with matplotlib, one panel per unit with the unit on
-        its axis; returns the figure."""
+        """The watched columns (or names: columns, vectors, properties) against t with matplotlib, a line
+        per column, one panel per unit with the unit on its axis; returns the figure."""
         import matplotlib.pyplot as plt
-        cols = [c.name for c in self.columns] if names is None else list(names)
+        cols = ([c.name for c in self.columns] if names is None else
+                [n for key in names for n in self._column_names(key)])
         units = []
         for n in cols:
-            if self.units.get(n, "") not in units:
-                units.append(self.units.get(n, ""))
+            if self._index.units.get(n, "") not in units:
+                units.append(self._index.units.get(n, ""))
         if ax is None:
             fig, axes = plt.subplots(len(units), 1, sharex=True, squeeze=False, figsize=(7, 2.2 * len(units) + 0.6))
             axes = axes[:, 0]
