@@ -155,12 +155,30 @@ class Result:
             axes, fig = [ax] * len(units), ax.figure
         for a, u in zip(axes, units):
             for n in cols:
-                if self.units.get(n, "") == u:
+                if self._index.units.get(n, "") == u:
                     a.plot(self.t, self[n], label=n)
             a.set_ylabel("[%s]" % u if u else "")
             a.legend(loc="best", fontsize="small")
         axes[-1].set_xlabel("t [s]")
         return fig
+
+    def page(self, max_rows=10000, max_values=200000, title=None):
+        """csfview's page of the run (a whole HTML document: the 3-D animation and the plots, the rows
+        and the JavaScript inside it), of every k-th row and the last when the run has more than
+        max_rows intervals or max_values numbers (the page says so). RuntimeError with csfview's
+        message when it cannot (a run without rows, csfview or libjs-three missing)."""
+        from ._view import page
+        return page(self, max_rows, max_values, title)
+
+    def html(self, max_rows=10000, max_values=200000, height=None, title=None):
+        """page() as an HTML fragment for a notebook, an <iframe srcdoc=...> of its own; a run without
+        rows, or one csfview cannot draw, as its repr, the reason and its diagnostics."""
+        from ._view import fragment
+        return fragment(self, max_rows, max_values, height, title)
+
+    def _repr_html_(self):
+        """Jupyter's display of a result: html()."""
+        return self.html()
 
     def to_dict(self):
         """{name: 1-D array} of t and every column."""
