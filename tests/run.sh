@@ -40,7 +40,9 @@
 #     and --every (tests/cone/), the number formatter against the loop it
 #     replaced (fmt-test), libcsf's API from C (tests/api_test.c) and the
 #     Python package csf (tests/python/, pytest; a SKIP line without numpy and
-#     pytest, and under the sanitizers).
+#     pytest, and under the sanitizers), and the notebooks of examples/ run
+#     by nbclient (tests/notebook/run.py; a SKIP line without nbclient or a
+#     python3 kernel, and under the sanitizers).
 # A test that fails prints "FAIL: " and its name; one that does not finish
 # (its shell killed) counts as failed. The last line is "N passed, N failed".
 set -u
@@ -656,6 +658,31 @@ t_python() {
 	fi
 }
 
+# 5v. the notebooks of examples/ (examples/*.ipynb) through nbclient and Debian's python3 kernel, the
+#     build's package on PYTHONPATH, each cell within the time limit: no outputs committed, every cell
+#     runs (their asserts against closed forms), the result shown as csfview's page. A SKIP line
+#     without nbclient, nbformat, ipykernel or a python3 kernel, and under the sanitizers (no libcsf.so)
+t_notebook() {
+	py=${CSF_PYTHON:-/usr/bin/python3}
+	if [ -n "${CSF_SAN:-}" ]; then
+		echo "SKIP: notebook: the sanitizer build has no libcsf.so (the notebooks run in the other build)"
+	elif ! "$py" -c 'import numpy, pandas, nbclient, nbformat, ipykernel' 2>/dev/null; then
+		echo "SKIP: notebook: $py has no numpy, pandas, nbclient, nbformat or ipykernel (make deps installs python3-nbclient python3-nbformat python3-ipykernel)"
+	elif ! "$py" -c 'from jupyter_client.kernelspec import KernelSpecManager as M; M().get_kernel_spec("python3")' 2>/dev/null; then
+		echo "SKIP: notebook: no python3 Jupyter kernel (python3-ipykernel installs it)"
+	else
+		for nb in examples/*.ipynb; do
+			if PYTHONPATH="$B/python" PYTHONDONTWRITEBYTECODE=1 PYDEVD_DISABLE_FILE_VALIDATION=1 JUPYTER_RUNTIME_DIR="$T/rt" \
+				IPYTHONDIR="$T/ipython" MPLCONFIGDIR="$T/mpl" timeout "$LIMIT" "$py" tests/notebook/run.py "$nb" "$LIMIT" \
+				>"$T/nb.out" 2>"$T/nb.err"; then
+				ok
+			else
+				bad "$nb: $(grep -m 3 FAIL "$T/nb.out" || tail -n 3 "$T/nb.err")"
+			fi
+		done
+	fi
+}
+
 # ---- the jobs ----
 if [ "${1:-}" = --job ]; then
 	# tests/run.sh --job DIR N: the test on line N of DIR/jobs, in DIR/j/N
@@ -702,6 +729,7 @@ done
 	echo sweep
 	echo h5
 	echo python
+	echo notebook
 	echo slide_stop
 	echo box
 	echo contacts_drop
