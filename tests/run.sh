@@ -610,7 +610,8 @@ t_install() {
 			"$T/p.c" "$T/pexe2" "$T/stage/usr" 2>>"$T/err" &&
 		"$T/pexe2" >"$T/p3.out" && cmp -s "$T/p1.out" "$T/p3.out"; then ok; else bad "installed --emit-c / pkg-config: $(head -n 2 "$T/err")"; fi
 	# libcsf.so, csf_api.h, csf-python(7) and the package where Debian's python3 finds it; the package, told
-	# where the staged library is, finds the staged csfc beside it and runs a model (not with the sanitizers)
+	# where the staged library is, finds the staged csfc beside it and runs a model, and the staged csfview
+	# for the result's page in a notebook (not with the sanitizers)
 	if [ -z "${CSF_SAN:-}" ]; then
 		pkg=$T/stage/usr/lib/python3/dist-packages
 		if [ -f "$T/stage/usr/lib/libcsf.so.1" ] && [ -f "$T/stage/usr/include/csf/csf_api.h" ] &&
@@ -619,9 +620,12 @@ t_install() {
 		else bad "make install: libcsf.so.1, csf_api.h, csf-python.7 or the package csf missing"; fi
 		if /usr/bin/python3 -c 'import numpy' 2>/dev/null; then
 			if (cd "$T" && CSF_LIBCSF="$T/stage/usr/lib/libcsf.so.1" PYTHONPATH="$pkg" PYTHONDONTWRITEBYTECODE=1 \
-				timeout "$LIMIT" /usr/bin/python3 -c 'import csf, sys; m = csf.compile(sys.argv[1]); assert len(m.run()) == 21; print(csf._lib.program("csfc"))' \
-				"$TOP/examples/projectile.csf") >"$T/py" 2>"$T/err" && grep -qx "$T/stage/usr/bin/csfc" "$T/py"; then ok
-			else bad "the installed package csf: $(tail -n 1 "$T/err") (csfc: $(cat "$T/py"))"; fi
+				timeout "$LIMIT" /usr/bin/python3 -c 'import csf, sys; m = csf.compile(sys.argv[1]); r = m.run(); assert len(r) == 21
+assert r._repr_html_().startswith("<iframe class=\"csf-result\""), r._repr_html_()[:300]
+print(csf._lib.program("csfc")); print(csf._lib.program("csfview"))' \
+				"$TOP/examples/projectile.csf") >"$T/py" 2>"$T/err" && [ "$(cat "$T/py")" = "$T/stage/usr/bin/csfc
+$T/stage/usr/bin/csfview" ]; then ok
+			else bad "the installed package csf: $(tail -n 1 "$T/err") (csfc, csfview: $(cat "$T/py"))"; fi
 		fi
 	fi
 	# the installed csfview writes a page from its own copy of the viewer
