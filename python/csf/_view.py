@@ -82,12 +82,12 @@ def page(result, max_rows=MAX_ROWS, max_values=MAX_VALUES, title=None):
             args += ["--scene", os.fspath(model.path)]
         elif model.source is not None:
             scene = os.path.join(tmp, "scene.csf")
-            with open(scene, "w") as f:
+            with open(scene, "w", encoding="utf-8") as f:
                 f.write(model.source)
             args += ["--scene", scene]
         if result.diagnostics:
             log = os.path.join(tmp, "log")
-            with open(log, "w") as f:
+            with open(log, "w", encoding="utf-8") as f:
                 f.write(result.diagnostics)
             args += ["--log", log]
         try:
