@@ -26,10 +26,12 @@ CFLAGS ?= -O2 -g
 SAN ?=
 
 DEB_PACKAGES = gcc make libgsl-dev check re2c bison pkg-config gnuplot-nox libhdf5-dev python3-h5py $(VIEW_PACKAGES) \
-	$(PYTHON_PACKAGES)
+	$(PYTHON_PACKAGES) $(NOTEBOOK_PACKAGES)
 # libhdf5-dev: -o RUN.h5 (serial HDF5, runtime/run/h5.c); python3-h5py: only for its test (SKIP without it)
 # the Python package csf (python/csf: numpy, pandas optional) and its tests (pytest), for Debian's python3
 PYTHON_PACKAGES = python3-numpy python3-pandas python3-pytest
+# the notebooks of examples/ run through nbclient in a python3 kernel (tests/notebook/run.py; SKIP without them)
+NOTEBOOK_PACKAGES = python3-nbclient python3-nbformat python3-ipykernel
 PYTHON = /usr/bin/python3
 # what csfview needs at run time: the JavaScript it inlines into its pages
 # (gnuplot-nox, for its static plots, is above)
@@ -333,7 +335,7 @@ install: all $(if $(SAN),,install-python)
 	install -m 644 man/csfc.1 man/csfvm.1 man/csfview.1 $(DESTDIR)$(PREFIX)/share/man/man1/
 	install -m 644 man/csf.5 $(DESTDIR)$(PREFIX)/share/man/man5/
 	install -d $(DESTDIR)$(PREFIX)/share/doc/csf/examples
-	install -m 644 examples/*.csf $(DESTDIR)$(PREFIX)/share/doc/csf/examples/
+	install -m 644 examples/*.csf examples/*.ipynb $(DESTDIR)$(PREFIX)/share/doc/csf/examples/
 	install -d $(DESTDIR)$(PREFIX)/lib/pkgconfig
 	printf '%s\n' 'prefix=$(PREFIX)' 'libdir=$${prefix}/lib' 'includedir=$${prefix}/include' '' \
 		'Name: csfrt' 'Description: CSF runtime library (integrator driver, loader, output) for generated models' \
@@ -367,7 +369,7 @@ uninstall:
 	rm -rf $(DESTDIR)$(PYTHON_DIR)/csf/__pycache__
 	-rmdir $(DESTDIR)$(PYTHON_DIR)/csf $(DESTDIR)$(PREFIX)/share/man/man7 2>/dev/null
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics/,$(notdir $(wildcard stdlib/mechanics/*.csf)))
-	rm -f $(addprefix $(DESTDIR)$(PREFIX)/share/doc/csf/examples/,$(notdir $(wildcard examples/*.csf)))
+	rm -f $(addprefix $(DESTDIR)$(PREFIX)/share/doc/csf/examples/,$(notdir $(wildcard examples/*.csf examples/*.ipynb)))
 	-rmdir $(DESTDIR)$(PREFIX)/include/csf $(DESTDIR)$(PREFIX)/share/csf/stdlib/mechanics $(DESTDIR)$(PREFIX)/share/csf/viewer \
 		$(DESTDIR)$(PREFIX)/share/csf/stdlib $(DESTDIR)$(PREFIX)/share/csf \
 		$(DESTDIR)$(PREFIX)/share/doc/csf/examples $(DESTDIR)$(PREFIX)/share/doc/csf 2>/dev/null

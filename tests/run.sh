@@ -37,10 +37,12 @@
 #     keep what was there, and the fuzz targets' regression corpus
 #     (tests/fuzz/regress/, replayed by fuzz-replay-csfc, fuzz-replay-csfb and
 #     fuzz-replay-fmt), constraints (tests/constraints/), the cone of influence
-#     and --every (tests/cone/), the number formatter against the loop it
+#     and --every (tests/cone/), object arrays (tests/arrays/), the number formatter against the loop it
 #     replaced (fmt-test), libcsf's API from C (tests/api_test.c) and the
 #     Python package csf (tests/python/, pytest; a SKIP line without numpy and
-#     pytest, and under the sanitizers).
+#     pytest, and under the sanitizers), and the notebooks of examples/ run
+#     by nbclient (tests/notebook/run.py; a SKIP line without nbclient or a
+#     python3 kernel, and under the sanitizers).
 # A test that fails prints "FAIL: " and its name; one that does not finish
 # (its shell killed) counts as failed. The last line is "N passed, N failed".
 set -u
@@ -474,6 +476,13 @@ t_cone() {
 	suite "cone" sh tests/cone/check.sh "$CSFC" "$CSFVM" "$T"
 }
 
+# 5s. object arrays: 1e5 projectiles in an array against the closed form, the same from a data
+#     file and written object by object byte for byte, a ring of 1000 masses and springs written
+#     with neighbour rules and sums in its normal mode (tests/arrays/check.sh)
+t_arrays() {
+	suite "arrays" timeout "$LIMIT" sh tests/arrays/check.sh "$CSFC" "$CSFVM" "$T"
+}
+
 # 5o. parameters and sweeps: -D with units against the closed form, the errors, a sweep of 100
 #     variants (-j 1 = -j 2 = each variant's -D run), --out-dir, --sweep-file, --sweep-summary,
 #     a generated program, mpirun -np 3 where Open MPI is installed (tests/sweep/check.sh)
@@ -616,7 +625,8 @@ t_install() {
 			"$T/p.c" "$T/pexe2" "$T/stage/usr" 2>>"$T/err" &&
 		"$T/pexe2" >"$T/p3.out" && cmp -s "$T/p1.out" "$T/p3.out"; then ok; else bad "installed --emit-c / pkg-config: $(head -n 2 "$T/err")"; fi
 	# libcsf.so, csf_api.h, csf-python(7) and the package where Debian's python3 finds it; the package, told
-	# where the staged library is, finds the staged csfc beside it and runs a model (not with the sanitizers)
+	# where the staged library is, finds the staged csfc beside it and runs a model, and the staged csfview
+	# for the result's page in a notebook (not with the sanitizers)
 	if [ -z "${CSF_SAN:-}" ]; then
 		pkg=$T/stage/usr/lib/python3/dist-packages
 		if [ -f "$T/stage/usr/lib/libcsf.so.1" ] && [ -f "$T/stage/usr/include/csf/csf_api.h" ] &&
@@ -625,9 +635,12 @@ t_install() {
 		else bad "make install: libcsf.so.1, csf_api.h, csf-python.7 or the package csf missing"; fi
 		if /usr/bin/python3 -c 'import numpy' 2>/dev/null; then
 			if (cd "$T" && CSF_LIBCSF="$T/stage/usr/lib/libcsf.so.1" PYTHONPATH="$pkg" PYTHONDONTWRITEBYTECODE=1 \
-				timeout "$LIMIT" /usr/bin/python3 -c 'import csf, sys; m = csf.compile(sys.argv[1]); assert len(m.run()) == 21; print(csf._lib.program("csfc"))' \
-				"$TOP/examples/projectile.csf") >"$T/py" 2>"$T/err" && grep -qx "$T/stage/usr/bin/csfc" "$T/py"; then ok
-			else bad "the installed package csf: $(tail -n 1 "$T/err") (csfc: $(cat "$T/py"))"; fi
+				timeout "$LIMIT" /usr/bin/python3 -c 'import csf, sys; m = csf.compile(sys.argv[1]); r = m.run(); assert len(r) == 21
+assert r._repr_html_().startswith("<iframe class=\"csf-result\""), r._repr_html_()[:300]
+print(csf._lib.program("csfc")); print(csf._lib.program("csfview"))' \
+				"$TOP/examples/projectile.csf") >"$T/py" 2>"$T/err" && [ "$(cat "$T/py")" = "$T/stage/usr/bin/csfc
+$T/stage/usr/bin/csfview" ]; then ok
+			else bad "the installed package csf: $(tail -n 1 "$T/err") (csfc, csfview: $(cat "$T/py"))"; fi
 		fi
 	fi
 	# the installed csfview writes a page from its own copy of the viewer
@@ -661,6 +674,31 @@ t_python() {
 		ok
 	else
 		bad "python: $(grep -m 3 -e '^FAILED' -e '^ERROR' -e 'Error' "$T/py.out")"
+	fi
+}
+
+# 5v. the notebooks of examples/ (examples/*.ipynb) through nbclient and Debian's python3 kernel, the
+#     build's package on PYTHONPATH, each cell within the time limit: no outputs committed, every cell
+#     runs (their asserts against closed forms), the result shown as csfview's page. A SKIP line
+#     without nbclient, nbformat, ipykernel or a python3 kernel, and under the sanitizers (no libcsf.so)
+t_notebook() {
+	py=${CSF_PYTHON:-/usr/bin/python3}
+	if [ -n "${CSF_SAN:-}" ]; then
+		echo "SKIP: notebook: the sanitizer build has no libcsf.so (the notebooks run in the other build)"
+	elif ! "$py" -c 'import numpy, pandas, nbclient, nbformat, ipykernel' 2>/dev/null; then
+		echo "SKIP: notebook: $py has no numpy, pandas, nbclient, nbformat or ipykernel (make deps installs python3-nbclient python3-nbformat python3-ipykernel)"
+	elif ! "$py" -c 'from jupyter_client.kernelspec import KernelSpecManager as M; M().get_kernel_spec("python3")' 2>/dev/null; then
+		echo "SKIP: notebook: no python3 Jupyter kernel (python3-ipykernel installs it)"
+	else
+		for nb in examples/*.ipynb; do
+			if PYTHONPATH="$B/python" PYTHONDONTWRITEBYTECODE=1 PYDEVD_DISABLE_FILE_VALIDATION=1 JUPYTER_RUNTIME_DIR="$T/rt" \
+				IPYTHONDIR="$T/ipython" MPLCONFIGDIR="$T/mpl" timeout "$LIMIT" "$py" tests/notebook/run.py "$nb" "$LIMIT" \
+				>"$T/nb.out" 2>"$T/nb.err"; then
+				ok
+			else
+				bad "$nb: $(grep -m 3 FAIL "$T/nb.out" || tail -n 3 "$T/nb.err")"
+			fi
+		done
 	fi
 }
 
@@ -707,10 +745,12 @@ done
 	echo methods_tol
 	echo constraints
 	echo cone
+	echo arrays
 	echo sweep
 	echo h5
 	echo h5_sweep
 	echo python
+	echo notebook
 	echo slide_stop
 	echo box
 	echo contacts_drop

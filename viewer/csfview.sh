@@ -5,14 +5,17 @@
 #
 #   csfview [-o PAGE.html] [--svg FILE.svg] [--png FILE.png] [--term]
 #           [--scene MODEL.csf] [--title TEXT] [--note TEXT] [--log FILE]
-#           [--plane X,Y,Z,NX,NY,NZ]... [--radius OBJECT=R]... [--max-rows N] [CSV | RUN.h5]
+#           [--plane X,Y,Z,NX,NY,NZ]... [--radius OBJECT=R]... [--max-rows N]
+#           [--decimated ROWS,K] [CSV | RUN.h5]
 #
 # Design: a POSIX shell script over installed pieces. The CSV (a file, or
 # standard input copied to a temporary file; an HDF5 file of csfvm -o RUN.h5
 # becomes the run's CSV by csfvm --dump) is read twice by awk: once to
 # count the rows, to find the constant columns and the range of every pos
 # column, once to keep every k-th row (k = ceil(rows / --max-rows); the last
-# row always) for display. The page is the template viewer/view.html with
+# row always) for display (an input that is already every K-th row of a run
+# of ROWS, --decimated ROWS,K as the Python package writes a big run, is
+# said to be so: its rows are then every k*K-th of the run's). The page is the template viewer/view.html with
 # its marker lines replaced by the files they name: Debian's three.js and
 # dygraphs (libjs-three, libjs-dygraphs), the decimated CSV as the text of a
 # <script type=text/csv>, the scene's facts as a small JavaScript object
@@ -43,7 +46,8 @@ usage() {
 	cat >&2 <<'EOF'
 usage: csfview [-o PAGE.html] [--svg FILE.svg] [--png FILE.png] [--term]
                [--scene MODEL.csf] [--title TEXT] [--note TEXT] [--log FILE]
-               [--plane X,Y,Z,NX,NY,NZ]... [--radius OBJECT=R]... [--max-rows N] [CSV | RUN.h5]
+               [--plane X,Y,Z,NX,NY,NZ]... [--radius OBJECT=R]... [--max-rows N]
+               [--decimated ROWS,K] [CSV | RUN.h5]
 Reads a run's CSV, or its HDF5 file (csfvm -o RUN.h5; standard input when
 none or -), and writes an HTML page (to PAGE.html, or to standard output
 when no other output is asked for).
@@ -67,6 +71,8 @@ log=
 planes=
 radii=
 maxrows=10000
+runrows=
+pre=1
 csv=
 while [ $# -gt 0 ]; do
 	opt=$1
@@ -76,7 +82,7 @@ while [ $# -gt 0 ]; do
 	case $1 in
 	-h | --help) usage ;;
 	--term) term=1; shift; continue ;;
-	-o | --output | --svg | --png | --scene | --title | --note | --log | --plane | --radius | --max-rows)
+	-o | --output | --svg | --png | --scene | --title | --note | --log | --plane | --radius | --max-rows | --decimated)
 		[ $# -ge 2 ] || die "$1 needs a value"
 		case $1 in
 		-o | --output) out=$2 ;;
@@ -96,6 +102,11 @@ while [ $# -gt 0 ]; do
 		--max-rows)
 			echo "$2" | grep -Eq '^[0-9]+$' && [ "$2" -ge 2 ] || die "--max-rows $2: give a whole number of at least 2"
 			maxrows=$2 ;;
+		--decimated)
+			echo "$2" | grep -Eq '^[1-9][0-9]{0,14},[1-9][0-9]{0,14}$' ||
+				die "--decimated $2: give ROWS,K (the input is every K-th row and the last of a run of ROWS rows)"
+			runrows=${2%,*}
+			pre=${2#*,} ;;
 		esac
 		shift 2 ;;
 	-) [ -z "$csv" ] || usage; csv=-; shift ;;
@@ -199,6 +210,16 @@ rows=$(sed -n 's/^rows=//p' "$T/facts")
 last=$(sed -n 's/^last=//p' "$T/facts")
 stride=$(((rows - 1 + maxrows - 1) / maxrows))   # at most maxrows intervals
 [ "$stride" -ge 1 ] || stride=1
+# the run the page speaks of: the input's, or the one it was taken from (--decimated), whose
+# every pre-th row and last the input has (checked: as many rows as that leaves)
+if [ -n "$runrows" ]; then
+	want=$(((runrows - 1 + pre - 1) / pre + 1))
+	[ "$rows" -eq "$want" ] ||
+		die "--decimated $runrows,$pre: every ${pre}th row and the last of $runrows rows are $want rows, the input has $rows"
+else
+	runrows=$rows
+fi
+runstride=$((pre * stride))
 
 # The scene's source: planes (object P: plane, with its point, normal and
 # edge), radii (of objects and of the kinds they are made of), the end time
@@ -367,7 +388,7 @@ page() {
 	# it is drawn as; the radii (a NAME.radius column's first value, else the
 	# scene's); the box of every object's centre over the run (the CSV's pos
 	# columns, the fixed objects' scene positions); the fixed objects; the links
-	awk -F'\t' -v rows="$rows" -v stride="$stride" '
+	awk -F'\t' -v rows="$runrows" -v stride="$runstride" '
 		function factor(u) { return u in LEN ? LEN[u] : 1 }
 		function js(a, b, c) { return "[" a "," b "," c "]" }
 		function dot(a, b) { return a[1] * b[1] + a[2] * b[2] + a[3] * b[3] }
@@ -521,7 +542,8 @@ fi
 # the first column; gnuplot reads every stride-th row of the CSV.
 gp() { # TERMINAL-LINE OUTPUT
 	command -v gnuplot >/dev/null 2>&1 || die "gnuplot is missing: install gnuplot-nox (make deps)"
-	awk -F'\t' -v term="$1" -v out="$2" -v csv="$in" -v k="$stride" -v rows="$rows" -v title="$title" -v notefile="$T/note" '
+	awk -F'\t' -v term="$1" -v out="$2" -v csv="$in" -v k="$stride" -v rows="$runrows" -v kk="$runstride" -v title="$title" \
+		-v notefile="$T/note" '
 		NR == 1 { xcol = 1; xlabel = $3 == "" ? $2 : $2 " [" $3 "]"; next }
 		$4 == 1 { nconst++; next }
 		{
@@ -540,7 +562,7 @@ gp() { # TERMINAL-LINE OUTPUT
 			print "set grid"
 			t = title
 			if ((getline l < notefile) > 0) t = t " - " l
-			if (k > 1) t = t sprintf(" (every %dth of %d rows)", k, rows)
+			if (kk > 1) t = t sprintf(" (every %dth of %d rows)", kk, rows)
 			printf "set multiplot layout %d,1 title \"%s\"\n", ng, q(t)
 			for (g = 1; g <= ng; g++) {
 				printf "set xlabel \"%s\"\n", g == ng ? q(xlabel) : ""

@@ -12,7 +12,7 @@
    object is bound (0: compiled for its objects alone). */
 int inst_loops(const Model *M, const Inst *I)
 {
-	if (!M->shaped || I->st->has_for) return 0;
+	if (!M->shaped || I->st->has_for || I->st->once) return 0;
 	for (int b = 0; b < I->nbind; b++)
 		if (I->bind[b]->shape->n > 1) return I->nbind;
 	return 0;

@@ -18,7 +18,9 @@ typedef enum ExprKind {
 	E_UNIT,   /* a with unit */
 	E_BIN,    /* a op b; op is a token code */
 	E_NEG,    /* -a */
-	E_NOT     /* not a */
+	E_NOT,    /* not a */
+	E_INDEX,  /* name[a]: a member of the object array name */
+	E_SUM     /* sum(a for name): a summed over the members of the object array name */
 } ExprKind;
 
 typedef struct Expr Expr;
@@ -62,9 +64,16 @@ struct If {
 	int elif;      /* this block is an `elif` */
 };
 
-typedef struct ObjRef { Loc loc; char *name; int index; } ObjRef; /* name, or index >= 0 */
-/* obj may be NULL; comp: a vector's component (x, y or z), or NULL for the whole variable */
+/* name, or index >= 0; idx not NULL: the member name[idx] of an object array (idx may read the
+ * rule's index name: `for node[i], node[i+1]`) */
+typedef struct ObjRef { Loc loc; char *name; int index; Expr *idx; } ObjRef;
+/* obj may be NULL, an object, a member ("star[3]") or an object array (every member); comp: a vector's component (x, y or z), or NULL for the whole variable */
 typedef struct WatchItem { Loc loc; char *obj; char *prop; char *comp; } WatchItem;
+
+/* How an object statement names its object: one object, or members of an object array (DECISIONS §11):
+ * NAME[A..B] declares them, NAME[I] (I the index name) sets every member, NAME[K] one, NAME[] reads
+ * them from a data file. */
+enum { ARR_NONE, ARR_RANGE, ARR_EACH, ARR_ONE, ARR_FILE };
 
 typedef enum StmtKind { S_GLOBAL, S_PROP, S_OBJKIND, S_DEF, S_VECDECL, S_RULE, S_ASSERT, S_STOP, S_START } StmtKind;
 
@@ -80,11 +89,18 @@ struct Stmt {
 	int isvec;
 	Expr *value;
 	Expr *atol;   /* S_PROP of an object: `atol A` after the value, or NULL */
+	int arr;      /* S_OBJKIND, S_PROP: ARR_NONE, or how it names members of the array `name` */
+	long lo, hi;  /* ARR_RANGE: the indices A..B; ARR_ONE: the index K (lo) */
+	char *ivar;   /* ARR_EACH: the index name; a rule whose `for` list indexes members: its index name
+	                 (sema sets it) */
+	char *from;   /* ARR_FILE: the data file, as written */
 	Stmt *body;   /* S_DEF: its property lines (S_PROP with name NULL) */
 	Vec names;    /* S_VECDECL: char*; */
 	char *attr;
 	Vec fors;     /* of ObjRef* */
 	int has_for;
+	int once;     /* a rule, assertion or stop without `for` that reads nothing of an object it would bind
+	                 (globals, t, NAME.PROP, sums): it applies once, bound to the first object (sema) */
 	Expr *cond;   /* assertion, stop condition */
 	Eqn *eqns;    /* rule: its one step (an equation, or a conditional block) */
 	Expr *call;   /* a rule that calls a runtime routine: contact(...) */

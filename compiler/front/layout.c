@@ -424,7 +424,7 @@ int yylex(YYSTYPE *lval, YYLoc *lloc, Parser *P)
 	lloc->last_column = t.end_col > t.loc.col ? t.end_col : t.loc.col + 1;
 	switch (t.kind) {
 	case NUMBER: lval->num = t.num; break;
-	case IDENT: case PROTECTED: lval->str = t.text; break;
+	case IDENT: case PROTECTED: case STRING: lval->str = t.text; break;
 	case DOLLAR: lval->n = t.n; break;
 	default: break;
 	}

@@ -208,6 +208,13 @@ void lex_next(Lexer *L, Token *t)
 			L->bol = 1;
 			return;
 		}
+		digits / ".." { /* the A of A..B: an integer, not "A." */
+			set_loc(L, t, tok);
+			t->kind = NUMBER;
+			t->num = strtod(tok, NULL);
+			t->text = intern(tok, (size_t)(YYCURSOR - tok));
+			goto done;
+		}
 		number {
 			set_loc(L, t, tok);
 			t->kind = NUMBER;
@@ -253,11 +260,24 @@ void lex_next(Lexer *L, Token *t)
 			if (YYCURSOR - tok > 6) { L->cur = YYCURSOR; error_tok(L, t, tok, xstrdup("object number too large")); return; }
 			goto done;
 		}
+		".." { set_loc(L, t, tok); t->kind = DOTDOT; goto done; }
+		["] [^"\n]* ["] { /* a string: a data file's name (`from "grains.csv"`) */
+			set_loc(L, t, tok);
+			t->kind = STRING;
+			t->text = xstrndup(tok + 1, (size_t)(YYCURSOR - tok - 2));
+			goto done;
+		}
+		["] [^"\n]* {
+			set_loc(L, t, tok);
+			L->cur = YYCURSOR;
+			error_tok(L, t, tok, xstrdup("a string without its closing '\"'"));
+			return;
+		}
 		"==" { set_loc(L, t, tok); t->kind = EQEQ; goto done; }
 		"!=" { set_loc(L, t, tok); t->kind = NE; goto done; }
 		"<=" { set_loc(L, t, tok); t->kind = LE; goto done; }
 		">=" { set_loc(L, t, tok); t->kind = GE; goto done; }
-		[-+*/^()=,.:<>'] { set_loc(L, t, tok); t->kind = (unsigned char)*tok; goto done; }
+		[-+*/^()=,.:<>'[\]] { set_loc(L, t, tok); t->kind = (unsigned char)*tok; goto done; }
 		* {
 			unsigned char c = (unsigned char)*tok;
 			int n = is_control(c) ? 0 : lex_utf8_len((const unsigned char *)tok, (const unsigned char *)L->lim);

@@ -25,6 +25,8 @@ typedef struct YYLoc { int file, first_line, first_column, last_line, last_colum
 		} \
 	} while (0)
 typedef struct Parser Parser;
+/* How an object statement names its object (Stmt.arr). */
+typedef struct ObjName { char *name; YYLoc loc; int arr; long lo, hi; char *ivar; } ObjName;
 }
 
 %code provides {
@@ -40,6 +42,7 @@ int layout_reported(Parser *P, Loc l);
 
 %code {
 #include <ctype.h>
+#include <math.h>
 #include <string.h>
 static Loc LOC(YYLoc l) { return (Loc){ l.file, l.first_line, l.first_column }; }
 /* Sets e's depth from its children's; the first node past CSF_MAX_DEPTH is an error (the later
@@ -152,6 +155,30 @@ static Expr *call(ExprKind k, Expr *recv, char *name, Vec *args, YYLoc l)
 	return nest(e);
 }
 static void yyerror(YYLoc *l, Parser *P, const char *msg);
+
+
+/* An object statement of kind k naming n. */
+static Stmt *obj_stmt(StmtKind k, YYLoc l, ObjName *n)
+{
+	Stmt *s = stmt(k, l);
+	s->name = n->name;
+	s->name_loc = LOC(n->loc);
+	s->arr = n->arr;
+	s->lo = n->lo;
+	s->hi = n->hi;
+	s->ivar = n->ivar;
+	return s;
+}
+
+/* An index of an object array, written as a number: a whole number of at most 9 digits. */
+static long array_index(double x, YYLoc l)
+{
+	if (x != floor(x) || fabs(x) >= 1e9) {
+		error_at(LOC(l), "an object index must be a whole number of at most 9 digits");
+		return 0;
+	}
+	return (long)x;
+}
 }
 
 %define api.pure full
@@ -173,6 +200,8 @@ static void yyerror(YYLoc *l, Parser *P, const char *msg);
 	Stmt *stmt;
 	ObjRef *ref;
 	WatchItem *watch;
+	ObjName *oname;
+	long idx;
 	Vec vec;
 }
 
@@ -192,6 +221,8 @@ static void yyerror(YYLoc *l, Parser *P, const char *msg);
 %token IF "'if'" ELIF "'elif'" ELSE "'else'" ASSERT "'assert'" VECTOR "'vector'" INC "'inc'"
 %token TILL "'till'" BY "'by'" WATCH "'watch'" AND "'and'" OR "'or'" NOT "'not'"
 %token ATOL "'atol'"
+%token DOTDOT "'..'"
+%token <str> STRING "string"
 %token EQEQ "'=='" NE "'!='" LE "'<='" GE "'>='"
 
 %left OR
@@ -210,6 +241,8 @@ static void yyerror(YYLoc *l, Parser *P, const char *msg);
 %type <vec> args args1 names objrefs watches
 %type <ref> objref
 %type <watch> watch
+%type <oname> objname
+%type <idx> index
 %type <str> attr
 %type <expr> till by atol
 
@@ -231,15 +264,26 @@ stmt:
 	  GLOBAL IDENT '=' expr {
 		$$ = stmt(S_GLOBAL, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->value = $4;
 	}
-	| OBJECT IDENT ':' IDENT {
-		$$ = stmt(S_OBJKIND, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->prop = $4; $$->prop_loc = LOC(@4);
+	| OBJECT objname ':' IDENT {
+		$$ = obj_stmt(S_OBJKIND, @$, $2); $$->prop = $4; $$->prop_loc = LOC(@4);
 	}
-	| OBJECT IDENT ':' IDENT '=' expr atol {
-		$$ = stmt(S_PROP, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->prop = $4; $$->prop_loc = LOC(@4);
+	| OBJECT objname ':' IDENT STRING {
+		$$ = obj_stmt(S_OBJKIND, @$, $2); $$->prop = $4; $$->prop_loc = LOC(@4); $$->from = $5;
+		if (strcmp($4, "from") != 0) {
+			error_at(LOC(@4), "a string after ':' reads a data file: 'object %s[]: from \"%s\"'", $2->name, $5);
+			$$ = NULL;
+		} else if ($2->arr != ARR_FILE) {
+			error_at(LOC(@2), "the members read from a data file are numbered by its rows: 'object %s[]: from \"%s\"'",
+			         $2->name, $5);
+			$$ = NULL;
+		} /* else the members, one per data row: objects.c */
+	}
+	| OBJECT objname ':' IDENT '=' expr atol {
+		$$ = obj_stmt(S_PROP, @$, $2); $$->prop = $4; $$->prop_loc = LOC(@4);
 		$$->value = $6; $$->atol = $7;
 	}
-	| OBJECT IDENT ':' VECTOR IDENT '=' expr atol {
-		$$ = stmt(S_PROP, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->prop = $5; $$->prop_loc = LOC(@5);
+	| OBJECT objname ':' VECTOR IDENT '=' expr atol {
+		$$ = obj_stmt(S_PROP, @$, $2); $$->prop = $5; $$->prop_loc = LOC(@5);
 		$$->value = $7; $$->isvec = 1; $$->atol = $8;
 	}
 	| VECTOR names {
@@ -270,6 +314,24 @@ stmt:
 		$$ = stmt(S_START, @$); $$->var = $2; $$->name_loc = LOC(@2); $$->till = $3; $$->by = $4;
 		$$->watch = $6; $$->has_watch = 1;
 	}
+	;
+
+/* An object, or members of an object array (DECISIONS §11). */
+objname:
+	  IDENT                { $$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; }
+	| IDENT '[' index ']'  { $$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; $$->arr = ARR_ONE; $$->lo = $3; }
+	| IDENT '[' index DOTDOT index ']' {
+		$$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; $$->arr = ARR_RANGE; $$->lo = $3; $$->hi = $5;
+		if ($5 < $3) error_at(LOC(@5), "an object array 'NAME[A..B]' needs A <= B, not %ld..%ld", $3, $5);
+		else if ($5 - $3 >= 100000000) error_at(LOC(@5), "an object array has at most 100000000 members");
+	}
+	| IDENT '[' IDENT ']'  { $$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; $$->arr = ARR_EACH; $$->ivar = $3; }
+	| IDENT '[' ']'        { $$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; $$->arr = ARR_FILE; }
+	;
+
+index:
+	  NUMBER               { $$ = array_index($1, @1); }
+	| '-' NUMBER           { $$ = -array_index($2, @2); }
 	;
 
 till: %empty { $$ = NULL; } | TILL expr { $$ = $2; } ;
@@ -364,6 +426,7 @@ objref:
 	  IDENT  { $$ = xalloc(sizeof *$$); $$->loc = LOC(@1); $$->name = $1; $$->index = -1; }
 	| NUMBER { $$ = xalloc(sizeof *$$); $$->loc = LOC(@1); $$->index = $1 >= 0 && $1 < 1e9 ? (int)$1 : 1000000000;
 	           if ($$->index != $1) error_at($$->loc, "object number must be a whole number"); }
+	| IDENT '[' expr ']' { $$ = xalloc(sizeof *$$); $$->loc = LOC(@1); $$->name = $1; $$->index = -1; $$->idx = $3; }
 	;
 
 watches:
@@ -376,6 +439,12 @@ watch:
 	| IDENT '.' IDENT    { $$ = xalloc(sizeof *$$); $$->loc = LOC(@1); $$->obj = $1; $$->prop = $3; }
 	| IDENT '.' IDENT '.' IDENT {
 		$$ = xalloc(sizeof *$$); $$->loc = LOC(@1); $$->obj = $1; $$->prop = $3; $$->comp = $5;
+	}
+	| IDENT '[' index ']' '.' IDENT {
+		$$ = xalloc(sizeof *$$); $$->loc = LOC(@1); $$->obj = xprintf("%s[%ld]", $1, $3); $$->prop = $6;
+	}
+	| IDENT '[' index ']' '.' IDENT '.' IDENT {
+		$$ = xalloc(sizeof *$$); $$->loc = LOC(@1); $$->obj = xprintf("%s[%ld]", $1, $3); $$->prop = $6; $$->comp = $8;
 	}
 	;
 
@@ -411,6 +480,12 @@ primary:
 	| IDENT              { $$ = ast_expr(E_NAME, LOC(@1)); $$->name = $1; $$->depth = 1; }
 	| IDENT DOLLAR       { $$ = ast_expr(E_DOLLAR, LOC(@1)); $$->name = $1; $$->n = $2; $$->depth = 1; }
 	| IDENT '(' args ')' { $$ = call(E_CALL, NULL, $1, &$3, @1); }
+	| IDENT '(' expr FOR IDENT ')' {
+		/* sum(EXPR for NAME): over the members of an object array */
+		$$ = ast_expr(E_SUM, LOC(@1)); $$->name = $5; $$->a = $3; $$ = nest($$);
+		if (strcmp($1, "sum") != 0) error_at(LOC(@1), "'%s(... for %s)': only 'sum' runs over the members of an object array", $1, $5);
+	}
+	| IDENT '[' expr ']' { $$ = ast_expr(E_INDEX, LOC(@1)); $$->name = $1; $$->a = $3; $$ = nest($$); }
 	| IDENT '(' args ')' UNIT { $$ = with_unit(call(E_CALL, NULL, $1, &$3, @1), $5); }
 	| '(' expr ')'       { $$ = $2; }
 	| '(' expr ')' UNIT  { $$ = with_unit($2, $4); }

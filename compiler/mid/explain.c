@@ -118,8 +118,9 @@ void explain_model(Model *Mo, FILE *f)
 			if (I->st != s) continue;
 			n++;
 			if (I->top && !cond) cond = I;
-			Shape *S = Mo->shaped && !s->has_for ? I->bind[0]->shape : NULL;
-			fprintf(f, "  for %s", I->bind[0]->name);
+			Shape *S = Mo->shaped && !s->has_for && !s->once ? I->bind[0]->shape : NULL;
+			if (s->once) fprintf(f, "  once (it reads no property of an object of its own)");
+			else fprintf(f, "  for %s", I->bind[0]->name);
 			if (S && S->n > 1) fprintf(f, " and the %d other object%s of its shape", S->n - 1, S->n > 2 ? "s" : "");
 			for (int b = 1; b < I->nbind; b++) {
 				Object *o = I->bind[b];

@@ -120,6 +120,8 @@ void lint_model(Model *M)
 		for (int k = 0; k < I->targets.n; k++) {
 			Var *v = sema_canon(I->targets.v[k]);
 			if ((v->kind != V_PROP && v->kind != V_GLOBAL) || v->from_kind || v->state || !users(v->loc)) continue;
+			/* a global given 0 is declared for the rule to determine (a sum: `global E = 0 J`) */
+			if (v->kind == V_GLOBAL && v->init[0] == 0 && v->init[1] == 0 && v->init[2] == 0) continue;
 			/* once per statement and variable: the statement's line, the variable's place as the column */
 			Loc key = { I->st->loc.file, -I->st->loc.line, v->loc.line * 1000 + v->loc.col };
 			if (!first_at(&seen, key)) continue;

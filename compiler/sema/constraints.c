@@ -58,6 +58,8 @@ void inst_constraint(Stmt *s, Object **bind, int nbind)
 	C.rf = &rf;
 	C.pending = &pending;
 	C.key_nbind = s->has_for ? 1 : nbind;
+	C.ivar = sema.ivar;
+	C.idx = sema.idx;
 	Expr *l = s->call ? s->call->a : s->eqns->lhs, *r = s->call ? s->call->b : s->eqns->rhs;
 	K->st = s;
 	K->src = sema.cur_src;

@@ -274,17 +274,70 @@ static RExpr *build_coords(Ctx *C, Expr *x)
 	return e;
 }
 
+/* sum(EXPR for NAME): EXPR of each member of the array NAME, added pairwise (a tree of depth log2 of the members). */
+static RExpr *build_sum(Ctx *C, Expr *x)
+{
+	ObjArray *A = array_of(x->name);
+	if (!A) {
+		type_error(C, x->loc, xprintf("'sum(... for %s)': '%s' is not an object array", x->name, x->name));
+		return rconst(0, x->loc);
+	}
+	long n = A->hi - A->lo + 1;
+	RExpr **t = xalloc((size_t)n * sizeof *t);
+	for (long k = 0; k < n; k++) {
+		Ctx D = *C;
+		Vec reads = { 0 };
+		D.sum_obj = array_member(A, A->lo + k);
+		D.reads = C->reads ? &reads : NULL;
+		t[k] = build(&D, x->a);
+		for (int i = 0; i < reads.n; i++) {
+			add_unique(C->reads, reads.v[i]);
+			add_unique(C->summed, reads.v[i]);
+		}
+		if (!C->first_read) C->first_read = D.first_read;
+		if (D.failed) {
+			C->failed = D.failed;
+			return rconst(0, x->loc);
+		}
+		if (t[k]->isbool) {
+			type_error(C, x->a->loc, "'sum' adds numbers or vectors, not conditions");
+			return rconst(0, x->loc);
+		}
+	}
+	while (n > 1) {
+		long m = 0;
+		for (long k = 0; k + 1 < n; k += 2)
+			t[m++] = rop(t[k]->isvec ? CSF_OP_VADD : CSF_OP_ADD, t[k]->isvec, x->loc, t[k], t[k + 1], NULL);
+		if (n & 1) t[m++] = t[n - 1];
+		n = m;
+	}
+	return t[0];
+}
+
 RExpr *build(Ctx *C, Expr *x)
 {
 	Loc l = x->loc;
 	switch (x->kind) {
 	case E_NUM: return rconst(x->num, l);
-	case E_NAME: return build_name(C, x, x->name, C->init ? C->self : C->bind[0], 0);
+	case E_NAME:
+		if (C->ivar && !strcmp(x->name, C->ivar)) return rconst((double)C->idx, l); /* an index: a bare number */
+		if (C->sum_obj && strcmp(x->name, "t") != 0 && !map_get(&sema.globals_by_name, x->name))
+			return build_name(C, x, x->name, C->sum_obj, 1);
+		return build_name(C, x, x->name, C->init ? C->self : C->bind[0], 0);
+	case E_INDEX:
+		array_at(C, x->name, x->a, l);
+		if (!C->failed) type_error(C, l, xprintf("'%s[...]' is an object: name one of its properties ('%s[3].pos')", x->name, x->name));
+		return rconst(0, l);
+	case E_SUM: return build_sum(C, x);
 	case E_DOLLAR:
 		if (C->init) return type_error(C, l, "'$n' is only meaningful in rules"), rconst(0, l);
 		if (x->n >= C->nbind) return type_error(C, l, "no such object in this rule"), rconst(0, l);
 		return build_name(C, x, x->name, C->bind[x->n], 0);
 	case E_FIELD: {
+		if (x->a->kind == E_INDEX) {
+			Object *o = array_at(C, x->a->name, x->a->a, x->a->loc);
+			return o ? build_name(C, x, x->name, o, 1) : rconst(0, l);
+		}
 		if (x->a->kind == E_NAME) {
 			Object *o = map_get(&sema.objects_by_name, x->a->name);
 			if (o && !(C->bind && prop_of(C->bind[0], x->a->name)) && !map_get(&sema.globals_by_name, x->a->name))

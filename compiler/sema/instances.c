@@ -3,6 +3,7 @@
  * a rule, an assertion or a stop condition applies to, and what an instance
  * is; whether a variable is determined yet.
  */
+#include <limits.h>
 #include <string.h>
 
 #include "csfc.h"
@@ -62,6 +63,8 @@ int stmt_reads_rf(Stmt *s) { return !stmt_each(s, no_rf, NULL); }
 static int names_apply(Expr *x, Object **bind, int nbind, const char **missing)
 {
 	if (!x) return 1;
+	if (x->kind == E_SUM || x->kind == E_INDEX || (x->kind == E_FIELD && x->a->kind == E_INDEX)) return 1; /* members' */
+	if (x->kind == E_NAME && sema.ivar && !strcmp(x->name, sema.ivar)) return 1;
 	if (x->kind == E_NAME || x->kind == E_DOLLAR) {
 		Object *o = x->kind == E_DOLLAR ? (x->n < nbind ? bind[x->n] : NULL) : bind[0];
 		if (!o) return 1;
@@ -162,6 +165,54 @@ static double count_tuples(const Tuples *T)
 	return (double)T->nfit[0] * next[0];
 }
 
+/* Does x read nothing of a binding: only numbers, globals, t, the index name, NAME.PROP, NAME[K].PROP and sums? */
+static int binding_free(Expr *x, void *ctx)
+{
+	(void)ctx;
+	if (!x || x->kind == E_SUM || (x->kind == E_FIELD && x->a->kind == E_INDEX)) return 1;
+	if (x->kind == E_DOLLAR) return 0;
+	if (x->kind == E_NAME)
+		return !strcmp(x->name, "t") || map_get(&sema.globals_by_name, x->name) || (sema.ivar && !strcmp(x->name, sema.ivar));
+	if (x->kind == E_FIELD && x->a->kind == E_NAME && map_get(&sema.objects_by_name, x->a->name) &&
+	    !map_get(&sema.globals_by_name, x->a->name))
+		return 1;
+	if (!binding_free(x->a, NULL) || !binding_free(x->b, NULL)) return 0;
+	for (int i = 0; i < x->nargs; i++)
+		if (!binding_free(x->args[i], NULL)) return 0;
+	return 1;
+}
+
+/* The binding of rule s's `for` list (with the index binding of sema, if any): calls f; returns 1, 0 if
+ * the rule is left out with an object (mid/cone.c), -1 after an error. */
+static int bind_for(Stmt *s, void (*f)(Stmt *, Object **, int), int k)
+{
+	int n = s->fors.n;
+	const char *missing = NULL;
+	Object **bind = xalloc((size_t)n * sizeof *bind);
+	for (int i = 0; i < n; i++) {
+		ObjRef *r = s->fors.v[i];
+		Object *o = objref_object(r);
+		if (!o) return -1;
+		if (o->dropped) return 0; /* left out (mid/cone.c), and so is the rule for it */
+		for (int j = 0; j < i; j++)
+			if (bind[j] == o) {
+				error_at(r->loc, "object '%s' is named twice in 'for'", o->name);
+				return -1;
+			}
+		bind[i] = o;
+	}
+	if (k >= n) {
+		error_at(s->loc, "the rule reads $%d but 'for' names only %d object%s", k, n, n == 1 ? "" : "s");
+		return -1;
+	}
+	if (!stmt_applies(s, bind, n, &missing)) {
+		error_at(s->loc, "this rule reads '%s', which object '%s' does not have", missing, bind[0]->name);
+		return -1;
+	}
+	f(s, bind, n);
+	return 1;
+}
+
 /* Calls f for every binding the statement applies to; returns how many, -1 after an error. */
 int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 {
@@ -169,35 +220,29 @@ int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 	int nobj = sema.M->objects.n;
 	const char *missing = NULL;
 	if (s->has_for) {
-		int n = s->fors.n;
-		Object **bind = xalloc((size_t)n * sizeof *bind);
-		for (int i = 0; i < n; i++) {
-			ObjRef *r = s->fors.v[i];
-			Object *o = r->name ? map_get(&sema.objects_by_name, r->name)
-			                    : (r->index < nobj ? sema.M->objects.v[r->index] : NULL);
-			if (!o) {
-				if (r->name) error_at(r->loc, "unknown object '%s'", r->name);
-				else error_at(r->loc, "there is no object number %d (objects are numbered from 0)", r->index);
-				return -1;
-			}
-			if (o->dropped) return 0; /* left out (mid/cone.c), and so is the rule for it */
-			for (int j = 0; j < i; j++)
-				if (bind[j] == o) {
-					error_at(r->loc, "object '%s' is named twice in 'for'", o->name);
-					return -1;
-				}
-			bind[i] = o;
+		int ix = for_indexed(s);
+		long from = 0, to = 0, count = 0;
+		if (ix < 0 || (ix && !for_index_range(s, &from, &to))) return -1;
+		for (long i = from; i <= to; i++) {
+			sema.ivar = ix ? s->ivar : NULL;
+			sema.idx = i;
+			int before = diag_errors, r = bind_for(s, f, k);
+			sema.ivar = NULL;
+			if (r < 0 || diag_errors > before) return -1; /* one report, not one per member */
+			count += r;
 		}
-		if (k >= n) {
-			error_at(s->loc, "the rule reads $%d but 'for' names only %d object%s", k, n, n == 1 ? "" : "s");
-			return -1;
+		return count > INT_MAX ? INT_MAX : (int)count;
+	}
+	if (s->kind != S_RULE || !s->call) {
+		s->once = k == 0 && stmt_each(s, binding_free, NULL);
+		for (int i = 0; s->once && i < nobj; i++) {
+			Object *o = sema.M->objects.v[i];
+			if (o->dropped) continue;
+			Object **bind = xalloc(sizeof *bind);
+			bind[0] = o;
+			f(s, bind, 1);
+			return 1;
 		}
-		if (!stmt_applies(s, bind, n, &missing)) {
-			error_at(s->loc, "this rule reads '%s', which object '%s' does not have", missing, bind[0]->name);
-			return -1;
-		}
-		f(s, bind, n);
-		return 1;
 	}
 	Tuples T = { s, f, k, xalloc((size_t)(k + 1) * sizeof(int *)), xalloc((size_t)(k + 1) * sizeof(int)),
 		     xalloc((size_t)(k + 1) * sizeof(Object *)), 0, 0 };
@@ -260,6 +305,8 @@ Inst *new_inst(Stmt *s, Object **bind, int nbind)
 	I->nbind = nbind;
 	I->assert_index = -1;
 	I->isF = s->attr && strcmp(s->attr, "F") == 0;
+	I->ivar = sema.ivar;
+	I->idx = sema.idx;
 	return I;
 }
 

@@ -81,6 +81,8 @@ RExpr *const_value(Expr *x, Object *obj, const char *name, int fold, int line, i
 	C.fold_obj = obj ? obj->name : NULL;
 	C.fold_name = name;
 	C.fold_line = line;
+	C.ivar = sema.ivar;
+	C.idx = sema.idx;
 	RExpr *r = build(&C, x);
 	if (read) *read = C.first_read;
 	*ok = !C.failed;
@@ -91,11 +93,16 @@ RExpr *const_value(Expr *x, Object *obj, const char *name, int fold, int line, i
 	return r;
 }
 
-static Object *get_object(const char *name, Loc l)
+Object *get_object(const char *name, Loc l)
 {
 	Object *o = map_get(&sema.objects_by_name, name);
 	if (o) return o;
 	if (!check_name(name, l, "an object")) return NULL;
+	if (map_get(&sema.arrays, name)) {
+		ObjArray *A = map_get(&sema.arrays, name);
+		error_at(l, "'%s' is an object array: name a member, '%s[%ld]', or every member, '%s[i]'", name, name, A->lo, name);
+		return NULL;
+	}
 	if (map_get(&sema.globals_by_name, name)) {
 		error_at(l, "'%s' is a global and cannot name an object", name);
 		return NULL;
@@ -153,57 +160,91 @@ static void set_atol(Object *o, Var *p, Stmt *s)
 }
 
 /* Defines or overrides property p of o from a property statement. */
-static void set_prop(Object *o, Stmt *s, int from_kind)
+void set_prop(Object *o, Stmt *s, int from_kind)
 {
-	if (!check_name(s->prop, s->prop_loc, "a property")) return;
-	if (map_get(&sema.globals_by_name, s->prop)) {
-		error_at(s->prop_loc, "'%s' is a global constant; a property cannot have the same name", s->prop);
-		return;
-	}
 	int ok;
 	Var *read;
 	/* the value's expression is folded to a constant and then not needed: one object's
 	   values take no memory from the next's */
 	ArenaMark mark = arena_mark();
-	RExpr rv = *const_value(s->value, o, s->prop, FIX_FOLDED, s->prop_loc.line, &ok, &read), *r = &rv;
+	RExpr rv = *const_value(s->value, o, s->prop, FIX_FOLDED, s->prop_loc.line, &ok, &read);
 	arena_release(mark);
 	if (!ok) return;
-	if (s->isvec && !r->isvec) {
+	if (s->isvec && !rv.isvec) {
 		error_at(s->value->loc, "property '%s' is declared a vector but its value is a scalar", s->prop);
 		return;
 	}
-	Var *p = prop_of(o, s->prop);
+	put_prop(o, s->prop, s->prop_loc, s->value->loc, &rv, rv.isvec, from_kind, read, s);
+}
+
+void put_prop(Object *o, const char *name, Loc l, Loc at, RExpr *r, int isvec, int from_kind, Var *read, Stmt *s)
+{
+	if (!check_name(name, l, "a property")) return;
+	if (map_get(&sema.globals_by_name, name)) {
+		error_at(l, "'%s' is a global constant; a property cannot have the same name", name);
+		return;
+	}
+	Var *p = prop_of(o, name);
 	if (p) {
 		if (!p->from_kind) {
-			error_at(s->prop_loc, "property '%s' of object '%s' is already defined", s->prop, o->name);
+			error_at(l, "property '%s' of object '%s' is already defined", name, o->name);
 			note_at(p->loc, "defined here");
 			return;
 		}
-		if (!override_ok(s->value->loc, xprintf("property '%s'", s->prop), p, r)) return;
+		if (!override_ok(at, xprintf("property '%s'", name), p, r)) return;
 		memcpy(p->init, r->c, sizeof p->init);
-		p->loc = s->prop_loc;
+		p->loc = l;
 		p->from_kind = from_kind;
-		fix_derived(p, read, s->prop_loc.line);
+		fix_derived(p, read, l.line);
 		if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
-		set_atol(o, p, s);
+		if (s) set_atol(o, p, s);
 		return;
 	}
 	p = xalloc(sizeof *p);
 	p->kind = V_PROP;
-	p->name = s->prop;
+	p->name = (char *)name;
 	p->obj = o;
-	p->isvec = r->isvec;
+	p->isvec = isvec;
 	memcpy(p->init, r->c, sizeof p->init);
-	p->loc = s->prop_loc;
+	p->loc = l;
 	p->slot = -1;
 	p->order = sema.def_counter++;
 	p->from_kind = from_kind;
-	fix_derived(p, read, s->prop_loc.line);
+	fix_derived(p, read, l.line);
 	if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
-	set_atol(o, p, s);
+	if (s) set_atol(o, p, s);
 	vec_push(&o->props, p);
 	map_put(&o->props_by_name, p->name, p);
 	map_put(&sema.prop_names, p->name, p);
+}
+
+void apply_kind(Object *o, Stmt *s)
+{
+	Stmt *k = map_get(&sema.kinds, s->prop);
+	if (!k) {
+		error_at(s->prop_loc, "unknown kind '%s'", s->prop);
+		return;
+	}
+	for (Stmt *p = k->body; p; p = p->next) {
+		Var *v = prop_of(o, p->prop);
+		if (!v) {
+			set_prop(o, p, 1);
+			continue;
+		}
+		if (v->from_kind || v->dimk != DK_KNOWN) continue;
+		/* set before the kind (a data file's column, say): of the kind's type and dimension */
+		int ok;
+		ArenaMark mark = arena_mark();
+		RExpr r = *const_value(p->value, o, p->prop, FIX_NONE, p->prop_loc.line, &ok, NULL);
+		arena_release(mark);
+		if (ok && (r.isvec != v->isvec || (r.dimk == DK_KNOWN && memcmp(r.dim, v->dim, sizeof v->dim) != 0))) {
+			error_at(v->loc, "property '%s' of '%s': %s here, but kind '%s' makes it %s", p->prop, o->name,
+			         v->isvec != r.isvec ? (v->isvec ? "a vector" : "a scalar") : dims_describe(v->dim), s->prop,
+			         v->isvec != r.isvec ? (r.isvec ? "a vector" : "a scalar") : dims_describe(r.dim));
+			note_at(s->loc, "the kind is given here");
+			return;
+		}
+	}
 }
 
 void build_objects(Stmt *stmts)
@@ -239,18 +280,23 @@ void build_objects(Stmt *stmts)
 			map_put(&sema.kinds, s->name, s);
 			break;
 		case S_OBJKIND: {
-			Stmt *k = map_get(&sema.kinds, s->prop);
-			if (!k) {
+			if (s->arr) {
+				array_stmt(s);
+				break;
+			}
+			if (!map_get(&sema.kinds, s->prop)) {
 				error_at(s->prop_loc, "unknown kind '%s'", s->prop);
 				break;
 			}
 			Object *o = get_object(s->name, s->name_loc);
-			if (!o) break;
-			for (Stmt *p = k->body; p; p = p->next)
-				if (!prop_of(o, p->prop)) set_prop(o, p, 1);
+			if (o) apply_kind(o, s);
 			break;
 		}
 		case S_PROP: {
+			if (s->arr) {
+				array_stmt(s);
+				break;
+			}
 			Object *o = get_object(s->name, s->name_loc);
 			if (o) set_prop(o, s, 0);
 			break;

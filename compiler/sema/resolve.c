@@ -91,6 +91,8 @@ static Ctx inst_ctx(const Inst *I, Vec *reads, Vec *rf, Vec *pending)
 	C.rf = rf;
 	C.pending = pending;
 	C.key_nbind = I->st->has_for ? 1 : I->nbind;
+	C.ivar = I->ivar;
+	C.idx = I->idx;
 	return C;
 }
 
@@ -177,8 +179,9 @@ static int wait_eqn(Inst *I, Eqn *q, RExpr *lhs, RExpr *rhs, Vec *reads, Vec *rf
  */
 static int resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src, int may_wait)
 {
-	Vec reads = { 0 }, pending = { 0 }, rf = { 0 };
+	Vec reads = { 0 }, pending = { 0 }, rf = { 0 }, summed = { 0 };
 	Ctx C = inst_ctx(I, &reads, &rf, &pending);
+	C.summed = &summed;
 	RExpr *lhs = build(&C, q->lhs), *rhs = build(&C, q->rhs);
 	if (C.failed) return EQN_ERROR;
 	if (lhs->isbool || rhs->isbool) {
@@ -188,7 +191,7 @@ static int resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src, int may_wait)
 	Var *x = NULL;
 	for (int i = 0; i < reads.n; i++) {
 		Var *v = reads.v[i];
-		if (determined(v)) continue;
+		if (determined(v) || vec_has(&summed, v)) continue; /* a sum's terms are read, never solved for */
 		if (!x || var_class(v) < var_class(x) || (var_class(v) == var_class(x) && v->order > x->order)) x = v;
 	}
 	if (!x) {

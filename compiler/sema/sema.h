@@ -133,6 +133,9 @@ struct Inst {
 	int acc;         /* gen.c: a $1 F rule's sums over $1, an array of vectors (slot, -1 before) */
 	int idle;        /* a derivative whose state variable nothing watched depends on: not integrated
 	                    (mid/cone.c) */
+	const char *ivar; /* a rule whose `for` list indexes members (`for node[i], node[i+1]`): its index name
+	                     and value for this binding; NULL: none */
+	long idx;
 };
 
 /* A body of the contact routine: a mass point, a plane or an anchor, with the properties the routine reads. */

@@ -10,6 +10,15 @@
 #include "ast.h"
 #include "sema.h"
 
+/* An object array (DECISIONS §11): its members NAME[lo] .. NAME[hi] are the objects first ..
+ * first + hi - lo, in order (arrays.c). */
+typedef struct ObjArray {
+	char *name;
+	Loc loc;
+	long lo, hi;
+	int first;
+} ObjArray;
+
 /* The state of one resolution (sema_run resolves twice: by shape, then, if need be, by object);
  * sema_reset starts it anew. */
 typedef struct Sema {
@@ -25,6 +34,12 @@ typedef struct Sema {
 	Vec waiting;            /* rules that cannot be resolved alone, in the order reached (group.c) */
 	Map waits_of;           /* "%p" of an unknown of theirs: a Vec of them */
 	Map group_vars;         /* "%p" of a variable they determined (its rule waited) */
+	Map arrays;             /* ObjArray* by name */
+	Map arrays_failed;      /* the arrays whose data files are wrong (reported once) */
+	/* the index of the member being defined (`object star[i]: ...`) or bound (`for node[i], ...`):
+	   its name stands for it in expressions */
+	const char *ivar;
+	long idx;
 } Sema;
 
 /* A resolution context: what an expression is built for (context.c). */
@@ -42,6 +57,10 @@ typedef struct Ctx {
 	const char *fold_obj, *fold_name; /* ... this value, */
 	int fold_line;     /* defined on this line (see Var.fix) */
 	Var *first_read;   /* init: the first global or property it read */
+	const char *ivar;  /* an index name and its value (Sema.ivar, Inst.ivar), or NULL */
+	long idx;
+	Object *sum_obj;   /* in sum(EXPR for NAME): the member whose properties the names of EXPR are */
+	Vec *summed;       /* Var* read in a sum: the rule does not solve for them (NULL: not recorded) */
 } Ctx;
 
 /* A function of one expression (NULL for none) and a context; 0 stops a walk. */
@@ -92,6 +111,37 @@ void predefine(void);
 RExpr *const_value(Expr *x, Object *obj, const char *name, int fold, int line, int *ok, Var **read);
 
 void build_objects(Stmt *stmts);
+
+/* Defines object o's property from statement s (from_kind: a kind's default). */
+void set_prop(Object *o, Stmt *s, int from_kind);
+/* Defines or overrides object o's property name, at l, to constant r (a vector if isvec); reports
+ * a clash of type or dimension at at. */
+void put_prop(Object *o, const char *name, Loc l, Loc at, RExpr *r, int isvec, int from_kind, Var *read, Stmt *s);
+/* The object name, made if new (NULL after an error at l). */
+Object *get_object(const char *name, Loc l);
+/* Applies kind statement s (`object NAME: KIND`) to object o. */
+void apply_kind(Object *o, Stmt *s);
+
+/* ---- arrays.c: object arrays (DECISIONS §11) ---- */
+
+ObjArray *array_of(const char *name);
+/* Member k of array A, or NULL. */
+Object *array_member(const ObjArray *A, long k);
+/* An object statement naming members of an array (s->arr): declares them, reads them from a data file,
+ * or sets a property of them. */
+void array_stmt(Stmt *s);
+/* The member array[idx] in context C (idx built there: numbers, globals, the index name), or NULL after
+ * an error at l (C->failed set). */
+Object *array_at(Ctx *C, const char *array, Expr *idx, Loc l);
+/* The object a `for` list names (reports and returns NULL if none): r->idx resolved with the index
+ * binding of sema (Sema.ivar). */
+Object *objref_object(ObjRef *r);
+/* Is a `for` list's index name the free name of its member indices (`for node[i], node[i+1]`)? Sets
+ * s->ivar; returns 1 (0: the list names no member by a name, -1 after an error). */
+int for_indexed(Stmt *s);
+/* The range of the index name of s (for_indexed) for which every member it names exists: [*from, *to],
+ * empty if *from > *to. 0 after an error. */
+int for_index_range(Stmt *s, long *from, long *to);
 
 /* ---- walk.c: the expressions of a statement ---- */
 

@@ -9,10 +9,24 @@
 #include "sema_int.h"
 #include "csf_int.h"
 
-/* Marks in named (a Map) the objects expression x names (NAME.PROP). Returns 1. */
+/* Marks in named the members of array name: member idx if it is a number, else every member. */
+static void mark_members(const char *name, Expr *idx, Map *named)
+{
+	ObjArray *A = array_of(name);
+	if (!A) return;
+	for (long k = A->lo; k <= A->hi; k++) {
+		if (idx && idx->kind == E_NUM && idx->num != (double)k) continue;
+		Object *o = array_member(A, k);
+		map_put(named, o->name, o);
+	}
+}
+
+/* Marks in named (a Map) the objects expression x names (NAME.PROP, NAME[K].PROP, sum(... for NAME)). Returns 1. */
 static int mark_named(Expr *x, void *named)
 {
 	if (!x) return 1;
+	if (x->kind == E_INDEX) mark_members(x->name, x->a, named);
+	if (x->kind == E_SUM) mark_members(x->name, NULL, named);
 	if (x->kind == E_FIELD && x->a->kind == E_NAME) {
 		Object *o = map_get(&sema.objects_by_name, x->a->name);
 		if (o) map_put(named, o->name, o);
@@ -38,6 +52,10 @@ void build_shapes(Stmt *start)
 		stmt_each(s, mark_named, &named);
 		for (int i = 0; i < s->fors.n; i++) {
 			ObjRef *r = s->fors.v[i];
+			if (r->idx) {
+				mark_members(r->name, r->idx, &named);
+				continue;
+			}
 			Object *o = r->name ? map_get(&sema.objects_by_name, r->name)
 			                    : (r->index < sema.M->objects.n ? sema.M->objects.v[r->index] : NULL);
 			if (o) map_put(&named, o->name, o);

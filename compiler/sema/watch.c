@@ -82,6 +82,21 @@ void build_watch(Stmt *st)
 			}
 			continue;
 		}
+		ObjArray *A = w->obj ? array_of(w->obj) : NULL;
+		if (A) { /* ARRAY.PROP: every member's */
+			for (long k = A->lo; k <= A->hi; k++) {
+				Object *o = array_member(A, k);
+				Var *v = o->dropped ? NULL : watch_var(o, w->prop, &member);
+				if (!v && !o->dropped) {
+					error_at(w->loc, "member '%s' of '%s' has no property or temporary '%s'", o->name, A->name, w->prop);
+					break;
+				}
+				if (!v) continue;
+				if (w->comp) add_comp(w, v, xprintf("%s.%s", o->name, w->prop), member);
+				else add_col(v, xprintf("%s.%s", o->name, w->prop), member);
+			}
+			continue;
+		}
 		if (w->obj) {
 			Object *o = map_get(&sema.objects_by_name, w->obj);
 			if (!o && (map_get(&sema.prop_names, w->obj) || map_get(&sema.globals_by_name, w->obj))) {
@@ -89,8 +104,13 @@ void build_watch(Stmt *st)
 				         w->prop, w->obj);
 				continue;
 			}
+			if (!o && map_get(&sema.arrays_failed, w->obj)) continue;
 			if (!o) {
-				error_at(w->loc, "unknown object '%s'", w->obj);
+				const char *br = strchr(w->obj, '[');
+				ObjArray *B = br ? array_of(xstrndup(w->obj, (size_t)(br - w->obj))) : NULL;
+				if (!B && br && map_get(&sema.arrays_failed, xstrndup(w->obj, (size_t)(br - w->obj)))) continue;
+				if (B) error_at(w->loc, "'%s' has the members %ld..%ld: there is no %s", B->name, B->lo, B->hi, w->obj);
+				else error_at(w->loc, "unknown object '%s'", w->obj);
 				continue;
 			}
 			Var *v = watch_var(o, w->prop, &member);

@@ -1,4 +1,4 @@
-"""libcsf through ctypes (runtime/api/csf_api.h), and where csfc and csfvm are.
+"""libcsf through ctypes (runtime/api/csf_api.h), and where csfc, csfvm and csfview are.
 
 The library is found, in this order: $CSF_LIBCSF; the path make wrote into _paths.py (the build
 directory, or the installed lib directory); libcsf.so.1 next to this package; the system's
@@ -115,7 +115,7 @@ def lib_path():
 
 
 def program(name):
-    """The path of csfc or csfvm: $CSF_CSFC / $CSF_CSFVM; the directory make wrote into _paths.py;
+    """The path of csfc, csfvm or csfview: $CSF_CSFC, $CSF_CSFVM, $CSF_CSFVIEW; the directory make wrote into _paths.py;
     next to libcsf (a build directory) or in ../bin from it (an installation); else PATH."""
     env = os.environ.get("CSF_" + name.upper())
     if env:

@@ -128,15 +128,26 @@ class Result:
         df.attrs["units"] = {n: self._index.units[n] for n in names}
         return df
 
+    def _column_names(self, key):
+        """The columns of a name r[...] takes: a column, a vector's three, a property's of each object."""
+        if key in self._index.col:
+            return [key]
+        if key in self._index.vec:
+            return [key + "." + x for x in "xyz"]
+        if key in self._index.prop:
+            return [n for o in self.objects(key) for n in self._column_names(o + "." + key)]
+        raise KeyError(key)
+
     def plot(self, names=None, ax=None):
-        """The watched columns (or names) against t with matplotlib, one panel per unit with the unit on
-        its axis; returns the figure."""
+        """The watched columns (or names: columns, vectors, properties) against t with matplotlib, a line
+        per column, one panel per unit with the unit on its axis; returns the figure."""
         import matplotlib.pyplot as plt
-        cols = [c.name for c in self.columns] if names is None else list(names)
+        cols = ([c.name for c in self.columns] if names is None else
+                [n for key in names for n in self._column_names(key)])
         units = []
         for n in cols:
-            if self.units.get(n, "") not in units:
-                units.append(self.units.get(n, ""))
+            if self._index.units.get(n, "") not in units:
+                units.append(self._index.units.get(n, ""))
         if ax is None:
             fig, axes = plt.subplots(len(units), 1, sharex=True, squeeze=False, figsize=(7, 2.2 * len(units) + 0.6))
             axes = axes[:, 0]
@@ -144,12 +155,30 @@ class Result:
             axes, fig = [ax] * len(units), ax.figure
         for a, u in zip(axes, units):
             for n in cols:
-                if self.units.get(n, "") == u:
+                if self._index.units.get(n, "") == u:
                     a.plot(self.t, self[n], label=n)
             a.set_ylabel("[%s]" % u if u else "")
             a.legend(loc="best", fontsize="small")
         axes[-1].set_xlabel("t [s]")
         return fig
+
+    def page(self, max_rows=10000, max_values=200000, title=None):
+        """csfview's page of the run (a whole HTML document: the 3-D animation and the plots, the rows
+        and the JavaScript inside it), of every k-th row and the last when the run has more than
+        max_rows intervals or max_values numbers (the page says so). RuntimeError with csfview's
+        message when it cannot (a run without rows, csfview or libjs-three missing)."""
+        from ._view import page
+        return page(self, max_rows, max_values, title)
+
+    def html(self, max_rows=10000, max_values=200000, height=None, title=None):
+        """page() as an HTML fragment for a notebook, an <iframe srcdoc=...> of its own; a run without
+        rows, or one csfview cannot draw, as its repr, the reason and its diagnostics."""
+        from ._view import fragment
+        return fragment(self, max_rows, max_values, height, title)
+
+    def _repr_html_(self):
+        """Jupyter's display of a result: html()."""
+        return self.html()
 
     def to_dict(self):
         """{name: 1-D array} of t and every column."""

@@ -6,7 +6,8 @@
 # floor; --svg names the axes with their units; --png is a PNG; --term draws
 # text; a plain CSV without units; a run that failed an assertion (--log)
 # and ended before its till (--scene) is noted; a 1e6-row CSV is decimated
-# to every 100th row, said so, in a few seconds; bad usage is exit 2, a file
+# to every 100th row, said so, in a few seconds; --decimated (an input that is
+# already every K-th row of a run) said so; bad usage is exit 2, a file
 # that is no CSV exit 1. What joins objects, in the page's CSF_META: the
 # pendulum's rod from bob to pivot (an anchor at the origin), a string of
 # 1 m, a scene's rod (a global in cm), string (written backwards), springs
@@ -104,6 +105,18 @@ if "$CSFVIEW" -o "$T/big.html" "$T/big.csv" 2>"$T/err"; then
 else
 	bad "1e6 rows: $(head -n 1 "$T/err")"
 fi
+
+# 5a. --decimated ROWS,K: the big CSV's every 1000th row and last, said to be of 1000001 rows; decimated
+#     again to every 10th of those (--max-rows 100): every 10000th of the run; a count that does not fit, exit 2
+awk -F, 'NR == 1 || (NR - 2) % 1000 == 0' "$T/big.csv" >"$T/pre.csv"
+if "$CSFVIEW" --decimated 1000001,1000 -o "$T/pre.html" "$T/pre.csv" 2>"$T/err" &&
+	grep -q 'rows: 1000001, stride: 1000,' "$T/pre.html" && page_csv "$T/pre.html" | cmp -s - "$T/pre.csv" &&
+	"$CSFVIEW" --decimated=1000001,1000 --max-rows 100 -o "$T/pre.html" "$T/pre.csv" 2>"$T/err" &&
+	grep -q 'rows: 1000001, stride: 10000,' "$T/pre.html" && [ "$(page_csv "$T/pre.html" | wc -l)" -eq 102 ]; then ok
+else bad "--decimated: $(head -n 1 "$T/err") $(grep -o 'var CSF_META = {[^}]*' "$T/pre.html")"; fi
+"$CSFVIEW" --decimated 1000001,999 -o "$T/x.html" "$T/pre.csv" 2>"$T/err"; st=$?
+if [ $st -eq 2 ] && grep -q 'every 999th row and the last of 1000001 rows are 1003 rows, the input has 1001' "$T/err"; then ok
+else bad "--decimated that does not fit the input: exit $st, $(head -n 1 "$T/err")"; fi
 
 # 6. bad usage is exit 2; what is not a CSV, exit 1
 u=0

@@ -1,0 +1,97 @@
+#!/bin/sh
+# tests/arrays/check.sh CSFC CSFVM DIR - object arrays (DECISIONS §11), against exact answers:
+#  - N projectiles with linear drag in an array (N = 100000; 10000 under the sanitizers), each
+#    launched at its own v0 = (3 + i/1000, 1, 10 - i/2000) m/s (gen_projectiles.sh): ten sampled
+#    members at every row against the closed form to 1e-9 m, both as compiled (the unwatched
+#    members left out) and with --keep-all (every member integrated);
+#  - the same array read from a data file gives the same output, byte for byte, and the same
+#    scene written object by object (2000 objects) the same rows;
+#  - `watch p.pos` names every member's columns p[k].pos.x [m] ..., and -D sets one member;
+#  - a ring of 1000 masses and springs (ring.csf, neighbour rules `for node[i], node[i+1]` and a
+#    sum) oscillates in its normal mode at the exact frequency, to 1e-9 m, its momentum (a sum)
+#    stays 0 to 1e-12 and its assertion on the summed mass holds.
+# Prints one line per failure and, last, "N passed, N failed".
+CSFC=$1 CSFVM=$2 T=$3
+D=$(dirname "$0")
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+check() { if "$@"; then ok; else bad "$*"; fi; }
+comp() { # comp NAME SCENE [CSFC OPTIONS]: $T/NAME.csfb, csfc's words in $T/NAME.err
+	n=$1 f=$2
+	shift 2
+	"$CSFC" "$@" "$f" -o "$T/$n.csfb" 2>"$T/$n.err" && return 0
+	bad "$n: does not compile: $(head -n 1 "$T/$n.err")"
+	return 1
+}
+N=100000
+[ -n "$CSF_SAN" ] && N=10000
+S="0 7 99 1234 2500 4321 5000 7777 9998 $((N - 1))"
+W=$(for k in $S; do printf 'p[%d].pos, ' "$k"; done | sed 's/, $//')
+
+# the closed form of linear drag (tau = m/k = 10 s) for the members in S, at every row
+closed() { # closed CSV
+	awk -F, -v s="$S" 'function abs(x) { return x < 0 ? -x : x }
+		BEGIN { n = split(s, id, " ") }
+		NR > 1 { tau = 10; g = 9.80665; e = 1 - exp(-$1 / tau)
+			for (j = 1; j <= n; j++) {
+				i = id[j]; c = 2 + 3 * (j - 1)
+				x = (3 + i / 1000) * tau * e; y = tau * e; z = tau * ((10 - i / 2000) + g * tau) * e - g * tau * $1
+				if (abs($c - x) > 1e-9 || abs($(c + 1) - y) > 1e-9 || abs($(c + 2) - z) > 1e-9) {
+					printf "FAIL: p[%d] at t=%s: (%.17g, %.17g, %.17g), not (%.17g, %.17g, %.17g)\n", i, $1, $c, $(c + 1), $(c + 2), x, y, z
+					exit 1 }
+			}
+			rows++ }
+		END { exit rows != 41 }' "$1"
+}
+
+sh "$D/gen_projectiles.sh" $N array "$W" >"$T/pa.csf"
+if comp pa "$T/pa.csf"; then
+	check grep -q "and $((N - 13)) more objects from 'p\[" "$T/pa.err"
+	"$CSFVM" "$T/pa.csfb" >"$T/pa.csv" && check closed "$T/pa.csv"
+	check test "$(head -n 1 "$T/pa.csv" | cut -d, -f2)" = "p[0].pos.x [m]"
+fi
+if comp pak "$T/pa.csf" --keep-all; then
+	"$CSFVM" "$T/pak.csfb" >"$T/pak.csv" && check closed "$T/pak.csv"
+fi
+# from a data file: the same output, byte for byte
+sh "$D/gen_projectiles.sh" $N data "$W" "$T/proj.csv" >"$T/pd.csf"
+if comp pd "$T/pd.csf" && [ -f "$T/pa.csv" ]; then
+	"$CSFVM" "$T/pd.csfb" >"$T/pd.csv" && check cmp -s "$T/pa.csv" "$T/pd.csv"
+fi
+# written out object by object: the same rows
+W2="p[0].pos, p[7].pos, p[1999].pos"
+sh "$D/gen_projectiles.sh" 2000 array "$W2" >"$T/qa.csf"
+sh "$D/gen_projectiles.sh" 2000 list "$W2" >"$T/ql.csf"
+if comp qa "$T/qa.csf" && comp ql "$T/ql.csf"; then
+	"$CSFVM" "$T/qa.csfb" | tail -n +2 >"$T/qa.csv" && "$CSFVM" "$T/ql.csfb" | tail -n +2 >"$T/ql.csv" &&
+		check cmp -s "$T/qa.csv" "$T/ql.csv"
+	check test "$(wc -l <"$T/qa.csv")" = 41
+fi
+# every member watched, and -D on one
+sh "$D/gen_projectiles.sh" 4 array "p.pos" >"$T/p4.csf"
+if comp p4 "$T/p4.csf"; then
+	check test "$("$CSFVM" "$T/p4.csfb" | head -n 1)" = "t,p[0].pos.x [m],p[0].pos.y [m],p[0].pos.z [m],p[1].pos.x [m],p[1].pos.y [m],p[1].pos.z [m],p[2].pos.x [m],p[2].pos.y [m],p[2].pos.z [m],p[3].pos.x [m],p[3].pos.y [m],p[3].pos.z [m]"
+	# p[3] launched at rest falls as z = -g tau^2 (e^(-t/tau) - 1 + t/tau); x = y = 0
+	"$CSFVM" -D 'p[3].v=(0,0,0) m/s' "$T/p4.csfb" >"$T/p4.csv" &&
+		check awk -F, 'function abs(x) { return x < 0 ? -x : x }
+			NR > 1 { z = -9.80665 * 100 * (exp(-$1 / 10) - 1 + $1 / 10)
+				if ($11 != 0 || $12 != 0 || abs($13 - z) > 1e-9) exit 1; n++ }
+			END { exit n != 41 }' "$T/p4.csv"
+fi
+# the ring in its normal mode: x_j(t) = j s + A cos(2 pi k j/N) cos(w t), w = 40 sin(pi/10)
+if comp ring "$D/ring.csf"; then
+	check test ! -s "$T/ring.err"
+	"$CSFVM" --tol 1e-12 "$T/ring.csfb" >"$T/ring.csv"
+	check test $? = 0
+	check awk -F, 'function abs(x) { return x < 0 ? -x : x }
+		BEGIN { pi = atan2(0, -1); w = 40 * sin(pi / 10); split("0 1 3 998 999", j, " ") }
+		NR > 1 { for (k = 1; k <= 5; k++) {
+				x = j[k] * 0.01 + 0.001 * cos(2 * pi * 100 * j[k] / 1000) * cos(w * $1)
+				if (abs($(k + 1) - x) > 1e-9) { printf "FAIL: node[%d] at t=%s: %.17g, not %.17g\n", j[k], $1, $(k + 1), x; exit 1 } }
+			if (abs($7) > 1e-12 || $8 != 0 || $9 != 0) { printf "FAIL: momentum %s at t=%s\n", $7, $1; exit 1 }
+			n++ }
+		END { exit n != 21 }' "$T/ring.csv"
+fi
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
