@@ -10,7 +10,7 @@
 #    values) to CSV (target: under 6 s) and, where csfvm writes HDF5 (-o FILE.h5), to HDF5
 #    (target: under 3 s).
 # The runs' output goes to a file on this machine's disk (results/output.tmp). The medians of
-# OUT_REPS (3) runs. Writes $OUT/output.csv, $OUT/output.txt and the output section of $README.
+# OUT_REPS (7) runs. Writes $OUT/output.csv, $OUT/output.txt and the output section of $README.
 #   BUILD (../build), OUT (results), README (README.md; empty: leave it alone)
 set -eu
 cd "$(dirname "$0")"
@@ -20,7 +20,7 @@ README=${README-README.md}
 OUT_N=${OUT_N:-20000}
 OUT_ALL=${OUT_ALL:-2000}
 OUT_MP=${OUT_MP:-10000}
-OUT_REPS=${OUT_REPS:-3}
+OUT_REPS=${OUT_REPS:-7}
 TMP=$OUT/output.tmp CSV=$OUT/output.csv TXT=$OUT/output.txt
 mkdir -p "$TMP"
 export CSF_STDLIB="${CSF_STDLIB:-$(cd .. && pwd)/stdlib}"
