@@ -18,7 +18,14 @@
  *    the rows published and ends the process itself, as the watchdog would.
  *
  * The ring is a single producer and a single consumer, counted by two
- * semaphores (sem_post is what a signal handler may call).
+ * semaphores (sem_post is what a signal handler may call). The work of a
+ * row is shared: the run formats t and the columns before `split` into the
+ * slot's text, the thread the others, and the split moves towards the one
+ * that waits less (the run that finds the ring full takes more columns, a
+ * thread that finds it empty leaves more to the run), so that both
+ * processors are busy whatever a row costs to compute. The thread writes
+ * the text with write(2) from its own buffer of 1 MiB, flushed at least
+ * once a second.
  */
 #include <errno.h>
 #include <pthread.h>
@@ -33,8 +40,10 @@
 
 /* The fewest columns for which a second thread pays (below it, rows are written as they come). */
 enum { ROWTHREAD_MIN_COLS = 64 };
-/* The ring: about this many bytes of values, and between 4 and 1024 rows. */
-enum { RING_BYTES = 4 << 20 };
+/* The ring: about this many bytes of values and text, and between 4 and 1024 rows. */
+enum { RING_BYTES = 16 << 20 };
+/* A cell's text at most (csf_fmt_put's 32 bytes and a comma), the thread's buffer of text. */
+enum { CELL = 1 + 32, WBUF = 1 << 20 };
 
 struct csf_rowthread {
 	const csf_prog *p;
@@ -43,6 +52,15 @@ struct csf_rowthread {
 	sem_t full, free_;   /* published rows not yet written; free slots */
 	size_t nslots, width; /* slots; doubles in a slot (t and the columns) */
 	double *ring;
+	char *text;          /* each slot's text from the run: t and the columns before its split */
+	size_t textcap;      /* bytes of text a slot holds */
+	size_t *textlen;     /* per slot: its text's length */
+	uint32_t *cut;       /* per slot: the columns the run formatted */
+	uint32_t split;      /* the run's: the columns it formats (0 .. ncols) */
+	atomic_int starved;  /* the thread found no row to write since the run last looked */
+	int fd;              /* out's descriptor */
+	char *wbuf;          /* the thread's text, not yet written */
+	size_t wlen;
 	size_t w;            /* rows published (the producer's) */
 	size_t r;            /* rows written (the thread's) */
 	atomic_int done;     /* no more rows will come */
@@ -58,23 +76,28 @@ static void wait_sem(sem_t *s)
 	}
 }
 
-/* Writes one row of values (t, then the columns) to out, as csf_run_write_row does. */
-static int write_values(const csf_prog *p, const double *v, FILE *out)
+/* Formats columns [from, to) of row values v (t, then the columns) at dst, each after a comma: the length. */
+static size_t cells(const double *v, uint32_t from, uint32_t to, char *dst)
 {
-	enum { ROW_BUF = 8192, CELL = 1 + 32 };
-	char row[ROW_BUF];
-	size_t n = (size_t)csf_fmt_put(row, v[0]);
-	for (uint32_t i = 0; i < p->ncols; i++) {
-		if (n + CELL > sizeof row) {
-			fwrite(row, 1, n, out);
-			n = 0;
-		}
-		row[n++] = ',';
-		n += (size_t)csf_fmt_put(row + n, v[i + 1]);
+	size_t n = 0;
+	for (uint32_t i = from; i < to; i++) {
+		dst[n++] = ',';
+		n += (size_t)csf_fmt_put(dst + n, v[i + 1]);
 	}
-	row[n++] = '\n';
-	fwrite(row, 1, n, out);
-	return ferror(out) ? -1 : 0;
+	return n;
+}
+
+/* Writes the thread's buffer to out's descriptor (after a signal, again; a partial write, the rest). */
+static void drain(csf_rowthread *q)
+{
+	size_t at = 0;
+	while (at < q->wlen && !atomic_load(&q->werr)) {
+		ssize_t k = write(q->fd, q->wbuf + at, q->wlen - at);
+		if (k < 0 && errno == EINTR) continue;
+		if (k <= 0) atomic_store(&q->werr, k < 0 ? errno : EIO);
+		else at += (size_t)k;
+	}
+	q->wlen = 0;
 }
 
 static void *writer(void *arg)
@@ -82,23 +105,39 @@ static void *writer(void *arg)
 	csf_rowthread *q = arg;
 	time_t flushed = 0;
 	for (;;) {
-		wait_sem(&q->full);
+		if (sem_trywait(&q->full) != 0) { /* nothing to write: leave more of each row to the run */
+			atomic_store(&q->starved, 1);
+			wait_sem(&q->full);
+		}
 		size_t w = atomic_load(&q->w);
 		while (q->r < w) {
-			const double *v = q->ring + (q->r % q->nslots) * q->width;
-			if (!atomic_load(&q->werr) && write_values(q->p, v, q->out)) atomic_store(&q->werr, errno ? errno : EIO);
+			size_t k = q->r % q->nslots;
+			const double *v = q->ring + k * q->width;
+			if (q->wlen >= WBUF) drain(q); /* then a row's text fits: wlen + rowcap < WBUF + rowcap */
+			if (!atomic_load(&q->werr)) {
+				memcpy(q->wbuf + q->wlen, q->text + k * q->textcap, q->textlen[k]);
+				q->wlen += q->textlen[k];
+				q->wlen += cells(v, q->cut[k], q->p->ncols, q->wbuf + q->wlen);
+				q->wbuf[q->wlen++] = '\n';
+			}
 			q->r++;
 			sem_post(&q->free_);
 		}
 		/* the rows reach out within a second, as emit_row's do (a slow run watched with tail -f) */
 		struct timespec now;
 		clock_gettime(CLOCK_MONOTONIC_COARSE, &now);
-		if (now.tv_sec != flushed && !atomic_load(&q->werr)) {
+		if (now.tv_sec != flushed) {
 			flushed = now.tv_sec;
-			if (fflush(q->out) != 0) atomic_store(&q->werr, errno ? errno : EIO);
+			drain(q);
 		}
-		if (atomic_load(&q->done) && q->r == atomic_load(&q->w)) return NULL;
-		if (csf_watchdog_overdue() && q->r == atomic_load(&q->w)) csf_watchdog_exit(); /* every row published written */
+		if (atomic_load(&q->done) && q->r == atomic_load(&q->w)) {
+			drain(q);
+			return NULL;
+		}
+		if (csf_watchdog_overdue() && q->r == atomic_load(&q->w)) { /* every row published written */
+			drain(q);
+			csf_watchdog_exit();
+		}
 	}
 }
 
@@ -119,15 +158,22 @@ csf_rowthread *csf_rowthread_start(const csf_prog *p, FILE *out)
 	q->p = p;
 	q->out = out;
 	q->width = (size_t)p->ncols + 1;
-	q->nslots = RING_BYTES / (q->width * sizeof(double));
+	q->textcap = q->width * CELL + 1;
+	q->nslots = RING_BYTES / (q->width * sizeof(double) + q->textcap);
 	if (q->nslots < 4) q->nslots = 4;
 	if (q->nslots > 1024) q->nslots = 1024;
+	q->split = p->ncols / 4;
 	q->ring = malloc(q->nslots * q->width * sizeof(double));
-	if (!q->ring || sem_init(&q->full, 0, 0) != 0) goto fail;
+	q->text = malloc(q->nslots * q->textcap);
+	q->textlen = malloc(q->nslots * sizeof *q->textlen);
+	q->cut = malloc(q->nslots * sizeof *q->cut);
+	q->wbuf = malloc(WBUF + q->textcap);
+	if (!q->ring || !q->text || !q->textlen || !q->cut || !q->wbuf || sem_init(&q->full, 0, 0) != 0) goto fail;
 	if (sem_init(&q->free_, 0, (unsigned)q->nslots) != 0) {
 		sem_destroy(&q->full);
 		goto fail;
 	}
+	q->fd = fileno(out);
 	if (fflush(out) != 0 || pthread_create(&q->th, NULL, writer, q) != 0) { /* (the header first) */
 		sem_destroy(&q->full);
 		sem_destroy(&q->free_);
@@ -138,6 +184,10 @@ csf_rowthread *csf_rowthread_start(const csf_prog *p, FILE *out)
 	return q;
 fail:
 	free(q->ring);
+	free(q->text);
+	free(q->textlen);
+	free(q->cut);
+	free(q->wbuf);
 	free(q);
 	return NULL;
 }
@@ -149,11 +199,22 @@ int csf_rowthread_put(csf_rowthread *q, const double *m, double t)
 		errno = e;
 		return -1;
 	}
-	wait_sem(&q->free_);
-	size_t w = atomic_load(&q->w);
-	double *v = q->ring + (w % q->nslots) * q->width;
+	/* the ring full: the thread is behind, the run takes more of each row; it was empty: less */
+	uint32_t step = q->p->ncols / 64 + 1, n = q->p->ncols;
+	if (sem_trywait(&q->free_) != 0) {
+		q->split = q->split + step < n ? q->split + step : n;
+		wait_sem(&q->free_);
+	} else if (atomic_exchange(&q->starved, 0)) {
+		q->split = q->split > step ? q->split - step : 0;
+	}
+	size_t w = atomic_load(&q->w), k = w % q->nslots;
+	double *v = q->ring + k * q->width;
 	v[0] = t;
-	for (uint32_t i = 0; i < q->p->ncols; i++) v[i + 1] = m[q->p->cols[i].slot];
+	for (uint32_t i = 0; i < n; i++) v[i + 1] = m[q->p->cols[i].slot];
+	char *text = q->text + k * q->textcap;
+	size_t len = (size_t)csf_fmt_put(text, t);
+	q->textlen[k] = len + cells(v, 0, q->split, text + len);
+	q->cut[k] = q->split;
 	atomic_store(&q->w, w + 1);
 	sem_post(&q->full);
 	return 0;
@@ -170,6 +231,10 @@ int csf_rowthread_stop(csf_rowthread *q)
 	sem_destroy(&q->full);
 	sem_destroy(&q->free_);
 	free(q->ring);
+	free(q->text);
+	free(q->textlen);
+	free(q->cut);
+	free(q->wbuf);
 	free(q);
 	return e;
 }
