@@ -26,74 +26,107 @@
 #define ARGS3(b, c, d) LOAD_##b(pc[2]), LOAD_##c(pc[3])
 #define ARGS4(b, c, d) LOAD_##b(pc[2]), LOAD_##c(pc[3]), LOAD_##d(pc[4])
 
+/*
+ * Dispatch: where the compiler has labels as values (GCC, clang), each
+ * instruction jumps straight to the next one's code through a table
+ * (threaded code: one indirect jump per instruction, each predicted on its
+ * own); elsewhere, or built with -DCSF_VM_SWITCH, a switch in a loop. The
+ * two run the same code for every instruction.
+ */
+#if defined(__GNUC__) && !defined(CSF_VM_SWITCH)
+#define CSF_VM_THREADED 1
+#define CASE(name) op_##name
+#define DISPATCH() \
+	do { \
+		if (pc >= end) return -1; \
+		goto *label[pc[0]]; \
+	} while (0)
+#else
+#define CASE(name) case CSF_OP_##name
+#define DISPATCH() continue
+#endif
+
 static int exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m)
 {
 	const uint32_t *code = p->code[sec];
 	const uint32_t *pc = code, *end = code + p->ncode[sec];
 	uint32_t reg[CSF_NREGS + 1] = { 0 }, count[CSF_LOOP_MAX + 1] = { 0 };
 
+#ifdef CSF_VM_THREADED
+	static const void *const label[CSF_NOPCODES] = {
+#define OP(name, n, a, b, c, d, syn) [CSF_OP_##name] = &&op_##name,
+#define CTRL(name, n, a, b, c, d, syn) [CSF_OP_##name] = &&op_##name,
+#include "opcodes.def"
+#undef CTRL
+#undef OP
+	};
+	DISPATCH();
+#else
 	while (pc < end) {
 		switch ((enum csf_opcode)pc[0]) {
-		case CSF_OP_JMP:
+#endif
+		CASE(JMP):
 			pc = code + pc[1];
-			continue;
-		case CSF_OP_JZ:
+			DISPATCH();
+		CASE(JZ):
 			if (m[csf_operand(pc[1], reg)] == 0.0) {
 				pc = code + pc[2];
-				continue;
+				DISPATCH();
 			}
 			pc += csf_insn_len(CSF_OP_JZ);
-			continue;
-		case CSF_OP_CONTACT:
+			DISPATCH();
+		CASE(CONTACT):
 			csf_contact_apply(p, x, m);
 			pc += csf_insn_len(CSF_OP_CONTACT);
-			continue;
-		case CSF_OP_CONSTRAIN:
+			DISPATCH();
+		CASE(CONSTRAIN):
 			csf_constraint_apply(p, x, m);
 			pc += csf_insn_len(CSF_OP_CONSTRAIN);
-			continue;
-		case CSF_OP_ASSERT:
+			DISPATCH();
+		CASE(ASSERT):
 			if (m[csf_operand(pc[1], reg)] == 0.0) return (int)csf_operand(pc[2], reg);
 			pc += csf_insn_len(CSF_OP_ASSERT);
-			continue;
-		case CSF_OP_LOOP:
+			DISPATCH();
+		CASE(LOOP):
 			reg[2 * pc[1] - 1] = reg[2 * pc[1]] = 0;
 			count[pc[1]] = pc[2];
 			if (pc[2] == 0) {
 				pc = code + pc[3];
-				continue;
+				DISPATCH();
 			}
 			pc += csf_insn_len(CSF_OP_LOOP);
-			continue;
-		case CSF_OP_NEXT:
+			DISPATCH();
+		CASE(NEXT):
 			reg[2 * pc[1]] += 3;
 			if (++reg[2 * pc[1] - 1] < count[pc[1]]) {
 				pc = code + pc[2];
-				continue;
+				DISPATCH();
 			}
 			pc += csf_insn_len(CSF_OP_NEXT);
-			continue;
-		case CSF_OP_JEQ:
+			DISPATCH();
+		CASE(JEQ):
 			if (reg[2 * pc[1] - 1] == reg[2 * pc[2] - 1]) {
 				pc = code + pc[3];
-				continue;
+				DISPATCH();
 			}
 			pc += csf_insn_len(CSF_OP_JEQ);
-			continue;
+			DISPATCH();
 #define OP(name, n, a, b, c, d, syn) \
-	case CSF_OP_##name: \
+	CASE(name): \
 		STORE_##a(pc[1], csf_op_##name(ARGS##n(b, c, d))); \
 		pc += 1 + n; \
-		continue;
+		DISPATCH();
 #define CTRL(name, n, a, b, c, d, syn)
 #include "opcodes.def"
 #undef CTRL
 #undef OP
+#ifndef CSF_VM_THREADED
 		case CSF_NOPCODES:
 			break;
 		}
 		break; /* unreachable for verified code */
 	}
+#endif
 	return -1;
 }
 
