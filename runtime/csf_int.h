@@ -420,15 +420,23 @@ int csf_sweep_take(csf_sweep *s, size_t i, const unsigned char *msg, size_t len)
 extern int (*csf_sweep_distribute)(csf_sweep *s);
 /* Set on csfvm-mpi's ranks but rank 0, which write nothing: csf_main opens no -o FILE.csv there. */
 extern int csf_quiet;
+/* What an HDF5 file says ran, beside the options: the model's source (its name) and the command line. */
+typedef struct csf_h5_origin {
+	const char *model;
+	int argc;
+	char **argv;
+} csf_h5_origin;
 /*
  * csfvm --sweep / --sweep-file: runs the variants of p (each with o->init, -D's
  * values, and then its own in an overlay of its own; p is not changed) with -j worker processes and writes one CSV to out
- * (or one file per run under o->out_dir), a failing variant's diagnostics
+ * (or one file per run under o->out_dir; with h5 not NULL, an HDF5 file at o->output, which
+ * h5 describes, but on csfvm-mpi's quiet ranks, whose variants' rows go to rank 0 as doubles), a failing variant's diagnostics
  * to err with its run number. Returns the exit status: 0, 1 when a variant
  * failed (its rows up to the failure are written), 2 on bad options or an
  * output error.
  */
-int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char *prog, FILE *out, FILE *err);
+int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char *prog, const csf_h5_origin *h5,
+                   FILE *out, FILE *err);
 
 
 
@@ -451,7 +459,27 @@ csf_h5 *csf_h5_create(const char *path, const csf_prog *p, const csf_opts *o, co
                       char *err, size_t errlen);
 int csf_h5_row(void *h, const double *v, size_t n);
 int csf_h5_close(csf_h5 *h);
-/* --dump FILE.h5: the rows of a file of csf_h5_create on out as the run's CSV, byte for byte; an exit status. */
+/*
+ * --sweep ... -o RUN.h5 (h5.c): a new HDF5 file at path for the rows of the
+ * nvariants variants of a sweep of p, its layout described in h5.c and
+ * csfvm(1): a run's datasets with a leading axis of variants, and the
+ * values of the npar swept parameters, named by heads as the sweep's CSV
+ * header names them ("v0 [m/s]"). NULL with the reason in err, as
+ * csf_h5_create. csf_h5_sweep_variant takes variant i's result, i the
+ * next in order from 0: its swept values par[npar], its exit status
+ * (-1: never run), and its nrows rows of p->ncols + 1 doubles each (rows:
+ * their bytes in the machine's order, at any alignment); it writes them a
+ * block of variants at a time, and returns 0, or -1 (errno set) when a
+ * write failed (every variant after is refused). csf_h5_close writes the
+ * variants kept and closes the file, as for a run.
+ */
+csf_h5 *csf_h5_sweep_create(const char *path, const csf_prog *p, const csf_opts *o, const char *model, int argc,
+                            char **argv, size_t nvariants, int npar, const char *const *heads, char *err, size_t errlen);
+int csf_h5_sweep_variant(csf_h5 *h, size_t i, const double *par, int status, const void *rows, size_t nrows);
+/*
+ * --dump FILE.h5: the rows of a file of csf_h5_create on out as the run's CSV, byte for byte (of
+ * csf_h5_sweep_create: the sweep's CSV); an exit status.
+ */
 int csf_h5_dump(const char *path, FILE *out, FILE *err, const char *prog);
 
 /*

@@ -31,8 +31,8 @@
 #     the README's example against the program (tests/docs/),
 #     csfview's pages and plots (tests/view/; in headless Chromium where it
 #     is installed, else a SKIP line), parameters and sweeps (tests/sweep/; MPI
-#     where Open MPI is installed, else a SKIP line), HDF5 output (tests/h5/;
-#     read with h5py where it is installed, else a SKIP line).
+#     where Open MPI is installed, else a SKIP line), HDF5 output of a run and
+#     of a sweep (tests/h5/; read with h5py where it is installed, else a SKIP line).
 #     hostile sources refused in bounded time and memory, failed writes that
 #     keep what was there, and the fuzz targets' regression corpus
 #     (tests/fuzz/regress/, replayed by fuzz-replay-csfc, fuzz-replay-csfb and
@@ -499,6 +499,14 @@ t_h5() {
 	grep '^SKIP' "$T/suite.out"
 }
 
+# 5p'. a sweep to one HDF5 file: the variants on a leading axis, each against the closed form and
+#      bit for bit its -D run (h5py; SKIP without it), -j 1 = -j 2, --dump the sweep's CSV, a
+#      generated program's and csfvm-mpi's file, an interrupted sweep, errors (tests/h5/sweep.sh)
+t_h5_sweep() {
+	suite "HDF5 output of a sweep" timeout "$LIMIT" sh tests/h5/sweep.sh "$CSFC" "$CSFVM" "$T" "$B"
+	grep '^SKIP' "$T/suite.out"
+}
+
 # 5n. csfview: the page, the static plots, decimation; the page in headless Chromium (tests/view/check.sh)
 t_view() {
 	suite "csfview" sh tests/view/check.sh "$CSFC" "$CSFVM" "$CSFVIEW" "$T"
@@ -745,6 +753,7 @@ done
 	echo arrays
 	echo sweep
 	echo h5
+	echo h5_sweep
 	echo python
 	echo notebook
 	echo slide_stop

@@ -2,6 +2,9 @@
  * explain.c - csfc --explain: what each rule solves for, for which objects,
  * which rules were left out, and what each property is.
  */
+#include <stdlib.h>
+#include <string.h>
+
 #include "csfc.h"
 #include "sema.h"
 #include "explain.h"
@@ -104,6 +107,28 @@ static void explain_block(FILE *f, Branch *B, int depth)
 	}
 }
 
+/* What --explain says of object o after its name: left out, or each property and what it is. */
+static const char *object_line(Object *o)
+{
+	if (o->dropped) return " left out: nothing watched, asserted or stopped on depends on it (csfc --keep-all keeps it)";
+	char *line = "";
+	for (int j = 0; j < o->props.n; j++) {
+		Var *v = o->props.v[j], *r = sema_canon(v);
+		line = xprintf("%s%s %s (%s)", line, j ? "," : "", v->name,
+		               r->state ? (var_integrated(r) ? "state" : "state, left out: nothing needs it")
+		               : r->det ? xprintf("computed, line %d", r->det->st->loc.line) : "constant");
+	}
+	return line;
+}
+
+/* Is b the member of an object array after a (NAME[k] and NAME[k + 1])? */
+static int next_member(const Object *a, const Object *b)
+{
+	const char *pa = strrchr(a->name, '['), *pb = strrchr(b->name, '[');
+	if (!pa || !pb || pa - a->name != pb - b->name || strncmp(a->name, b->name, (size_t)(pa - a->name)) != 0) return 0;
+	return strtol(pa + 1, NULL, 10) + 1 == strtol(pb + 1, NULL, 10);
+}
+
 void explain_model(Model *Mo, FILE *f)
 {
 	for (int i = 0; i < Mo->stmts.n; i++) {
@@ -148,18 +173,16 @@ void explain_model(Model *Mo, FILE *f)
 		else if (!n) fprintf(f, "  applies to no %s\n", s->call ? "pair that can touch" : "object");
 	}
 	if (!Mo->shaped && *Mo->unshaped_why) fprintf(f, "rules compiled once per object, not per shape: %s\n", Mo->unshaped_why);
-	for (int i = 0; i < Mo->objects.n; i++) {
+	/* each object's line; the consecutive members of an object array with the same line, as one */
+	for (int i = 0; i < Mo->objects.n;) {
+		const char *what = object_line(Mo->objects.v[i]);
+		int j = i + 1;
+		while (j < Mo->objects.n && next_member(Mo->objects.v[j - 1], Mo->objects.v[j]) &&
+		       !strcmp(object_line(Mo->objects.v[j]), what))
+			j++;
 		Object *o = Mo->objects.v[i];
-		if (o->dropped) {
-			fprintf(f, "object %s: left out: nothing watched, asserted or stopped on depends on it (csfc --keep-all keeps it)\n", o->name);
-			continue;
-		}
-		fprintf(f, "object %s:", o->name);
-		for (int j = 0; j < o->props.n; j++) {
-			Var *v = o->props.v[j], *r = sema_canon(v);
-			fprintf(f, "%s %s (%s)", j ? "," : "", v->name,
-			        r->state ? (var_integrated(r) ? "state" : "state, left out: nothing needs it") : r->det ? xprintf("computed, line %d", r->det->st->loc.line) : "constant");
-		}
-		fputc('\n', f);
+		if (j - i > 1) fprintf(f, "objects %s .. %s (%d members):%s\n", o->name, ((Object *)Mo->objects.v[j - 1])->name, j - i, what);
+		else fprintf(f, "object %s:%s\n", o->name, what);
+		i = j;
 	}
 }

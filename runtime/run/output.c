@@ -41,7 +41,8 @@ int csf_run_write_row(const csf_prog *p, const double *m, double t, FILE *out)
 int csf_run_finish(FILE *out, FILE *err, int status, int werr)
 {
 	csf_out_begin();
-	int bad = out ? fflush(out) != 0 || ferror(out) : werr != 0; /* (no out: rows to a sink alone) */
+	/* (no out: rows to a sink alone; werr without ferror: the row thread's write(2)) */
+	int bad = out ? fflush(out) != 0 || ferror(out) || werr != 0 : werr != 0;
 	csf_out_end();
 	if (bad) {
 		int e = werr ? werr : errno;

@@ -37,6 +37,7 @@ typedef struct session {
 	double fixed_h;     /* the fixed step */
 	struct timespec t0; /* when the run started */
 	FILE *out;          /* the CSV rows, or NULL */
+	csf_rowthread *rows; /* the thread that writes them (wide rows), or NULL */
 	const csf_sink *sink; /* the rows' values, or NULL */
 	double *v;          /* with a sink: a row's values */
 	const csf_overlay *init; /* initial values over p->mem0 (csf_opts.init) */
@@ -356,7 +357,9 @@ static stop run_advance(session *S, double *t, double *tk, int *last)
 static int emit_row(session *S, double tk)
 {
 	const csf_prog *p = S->r.p;
-	if (S->out) {
+	if (S->rows) {
+		if (csf_rowthread_put(S->rows, S->r.m, tk)) return -1;
+	} else if (S->out) {
 		struct timespec now;
 		if (csf_run_write_row(p, S->r.m, tk, S->out)) return -1;
 		clock_gettime(ROW_CLOCK, &now);
@@ -574,10 +577,15 @@ int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, co
 	if (s.kind == STOP_END) s = run_method(&S, o);
 	if (s.kind == STOP_END) {
 		if (out) csf_run_write_header(p, out);
+		if (out) S.rows = csf_rowthread_start(p, out);
 		s = run_guard(&S, o);
 	}
 	if (s.kind == STOP_END) s = run_start(&S);
 	if (s.kind == STOP_END) s = run_rows(&S);
+	if (S.rows) { /* every row handed over written, before the run's last words */
+		int e = csf_rowthread_stop(S.rows);
+		if (e && !S.werr) S.werr = e;
+	}
 	int status = csf_run_report_stop(&S.r, &s, o->fixed, err);
 	run_stats(&S, o, err);
 	run_free(&S);

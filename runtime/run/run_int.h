@@ -222,6 +222,24 @@ void csf_run_report_event_src(const csf_prog *p, uint32_t src, FILE *err);
 void csf_run_report_unsettled(const run *r, FILE *err);
 int csf_run_report_stop(run *r, const stop *s, int fixed, FILE *err);
 
+/* signals.c: for the row thread */
+/* Has the watchdog fired while a row thread was writing? */
+int csf_watchdog_overdue(void);
+/* Flushes out and ends the process as the watchdog does (128 + the signal). */
+void csf_watchdog_exit(void);
+/* f (NULL: none) is called by the watchdog's handler instead of ending the process (async-signal-safe). */
+void csf_watchdog_wakes(void (*f)(void));
+
+/* rowthread.c: wide rows formatted and written by a second thread */
+typedef struct csf_rowthread csf_rowthread;
+/* A thread writing p's rows to out (after the header), or NULL where rows are written as they come:
+ * fewer than 64 columns, out a terminal, one processor, CSF_ROW_THREAD=0 in the environment. */
+csf_rowthread *csf_rowthread_start(const csf_prog *p, FILE *out);
+/* Hands over the row of memory m at t: 0, or -1 (errno set) after an earlier row failed to be written. */
+int csf_rowthread_put(csf_rowthread *q, const double *m, double t);
+/* Writes every row handed over, ends the thread: its write error (errno), or 0. out is not flushed. */
+int csf_rowthread_stop(csf_rowthread *q);
+
 /* output.c */
 int csf_run_write_row(const csf_prog *p, const double *m, double t, FILE *out);
 int csf_run_finish(FILE *out, FILE *err, int status, int werr);

@@ -25,9 +25,10 @@ enum { CSF_WATCHDOG_MS = 500 };
 static volatile sig_atomic_t writing, overdue;
 static FILE *guarded_out;
 static char watchdog_msg[160];
+static void (*volatile wakes)(void); /* a thread that writes the rows (rowthread.c), woken to end it all */
 
 /* Flushes the rows written (no row is half written) and ends the process: 128 + the signal. */
-static void watchdog_exit(void)
+void csf_watchdog_exit(void)
 {
 	if (guarded_out) fflush(guarded_out);
 	ssize_t w = write(STDERR_FILENO, watchdog_msg, strlen(watchdog_msg));
@@ -38,8 +39,14 @@ static void watchdog_exit(void)
 static void on_watchdog(int sig)
 {
 	(void)sig;
-	if (writing) overdue = 1; /* csf_out_end ends the process after the row */
-	else watchdog_exit();
+	if (wakes) { /* the row thread writes the rows handed to it, then ends the process */
+		overdue = 1;
+		wakes();
+	} else if (writing) {
+		overdue = 1; /* csf_out_end ends the process after the row */
+	} else {
+		csf_watchdog_exit();
+	}
 }
 
 static void on_signal(int sig)
@@ -73,5 +80,9 @@ void csf_out_begin(void) { writing = 1; }
 void csf_out_end(void)
 {
 	writing = 0;
-	if (overdue) watchdog_exit();
+	if (overdue) csf_watchdog_exit();
 }
+
+int csf_watchdog_overdue(void) { return overdue; }
+
+void csf_watchdog_wakes(void (*f)(void)) { wakes = f; }

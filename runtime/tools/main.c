@@ -48,7 +48,7 @@ static const char vm_usage[] =
 	"                 source: -D 'ball.v=(3, 0, 4) m/s', -D k=2000 g/s^2\n"
 	"  --sweep 'NAME=FROM:TO:COUNT [UNIT]'  run COUNT values from FROM to TO; several\n"
 	"                 --sweep run their Cartesian product, in one CSV with the swept\n"
-	"                 values as leading columns\n"
+	"                 values as leading columns (or one HDF5 file: -o)\n"
 	"  --sweep-file FILE.csv  one variant per row (a header names the parameters)\n"
 	"  --sweep-summary 'max(COL) from T, mean(COL), ...'  one row per variant: final,\n"
 	"                 max, min, mean or rms of columns, optionally over 'from T'/'to T'\n"
@@ -56,9 +56,10 @@ static const char vm_usage[] =
 	"  --sweep-binary the rows (or summaries) as 8-byte doubles in the machine's byte\n"
 	"                 order after the CSV header line (for programs: csf-python(7))\n"
 	"  -j N           N worker processes for a sweep (default: every CPU)\n"
-	"  -o FILE        the output to FILE: a run's rows in HDF5 when it ends in .h5 or\n"
-	"                 .hdf5 (a dataset per watched value), else the CSV\n"
-	"  --dump RUN.h5  print the rows of a file of -o RUN.h5 as the run's CSV\n"
+	"  -o FILE        the output to FILE: the rows in HDF5 when it ends in .h5 or .hdf5\n"
+	"                 (a dataset per watched value; a sweep's with a leading axis of\n"
+	"                 variants, the swept values on it), else the CSV\n"
+	"  --dump RUN.h5  print the rows of a file of -o RUN.h5 as the run's (or sweep's) CSV\n"
 	"  --help, --version\n";
 
 static const char exe_usage[] =
@@ -148,14 +149,18 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		return exit_status(st);
 	}
 	int sweep = o.nsweeps || o.sweep_file;
-	int h5 = o.output && h5_name(o.output) && !csf_quiet;
-	if (h5 && (sweep || o.compare)) {
-		fprintf(stderr, sweep ? "%s: --sweep writes CSV; -o FILE.h5 is for one run\n"
-		                      : "%s: --compare-methods writes a table; -o FILE.h5 is for one run\n", prog);
+	int sweep_only = o.summary || o.out_dir || o.sweep_binary;
+	/* -o FILE.h5: a run's rows, or a sweep's (on csfvm-mpi's quiet ranks, no file) */
+	int h5 = o.output && h5_name(o.output);
+	if (h5 && (o.compare || (sweep && sweep_only))) {
+		fprintf(stderr, o.compare   ? "%s: --compare-methods writes a table; -o FILE.h5 is for a run's or a sweep's rows\n"
+		                : o.summary ? "%s: --sweep-summary writes CSV; -o FILE.h5 is for a sweep's rows\n"
+		                : o.out_dir ? "%s: --out-dir writes a CSV per variant; -o FILE.h5 writes one file of them all\n"
+		                            : "%s: --sweep-binary writes doubles after a CSV header; -o FILE.h5 writes HDF5\n",
+		        prog);
 		csf_opts_free(&o);
 		return 2;
 	}
-	int sweep_only = o.summary || o.out_dir || o.sweep_binary;
 	if ((!image && npos != 1) || (!sweep && sweep_only) || (sweep && o.compare)) {
 		if (!sweep && sweep_only)
 			fprintf(stderr, "%s: --sweep-summary, --sweep-binary and --out-dir need --sweep or --sweep-file\n", prog);
@@ -199,14 +204,16 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 			csf_opts_free(&o);
 			return 2;
 		}
-	/* -o: the rows to an HDF5 file, or the CSV to a file (not on csfvm-mpi's quiet ranks) */
+	/* -o: a run's rows to an HDF5 file (a sweep's: csf_sweep_main), or the CSV to a file (not on csfvm-mpi's quiet ranks) */
 	FILE *out = stdout;
 	csf_h5 *h = NULL;
-	if (h5 && !(h = csf_h5_create(o.output, &p, &o, p.nfiles ? csf_str(&p, p.files[0]) : path, argc, argv, err, sizeof err)))
+	csf_h5_origin origin = { p.nfiles ? csf_str(&p, p.files[0]) : path, argc, argv };
+	int h5run = h5 && !sweep && !csf_quiet;
+	if (h5run && !(h = csf_h5_create(o.output, &p, &o, origin.model, argc, argv, err, sizeof err)))
 		fprintf(stderr, "%s: %s\n", prog, err);
 	else if (!h5 && o.output && strcmp(o.output, "-") && !csf_quiet && !(out = fopen(o.output, "w")))
 		fprintf(stderr, "%s: cannot write %s: %s\n", prog, o.output, strerror(errno));
-	if ((h5 && !h) || !out) {
+	if ((h5run && !h) || !out) {
 		csf_overlay_free(&init);
 		csf_prog_free(&p);
 		csf_opts_free(&o);
@@ -218,7 +225,7 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 	/* SIGINT, SIGTERM: csf_run ends after the current row (csf_signal), or the watchdog ends it */
 	csf_signals_install(out, prog);
 	csf_sink sink = { csf_h5_row, h, NULL };
-	if (sweep) st = csf_sweep_main(&p, exec, &o, prog, out, stderr);
+	if (sweep) st = csf_sweep_main(&p, exec, &o, prog, h5 ? &origin : NULL, out, stderr);
 	else if (o.compare) st = csf_compare_methods(&p, exec, &init, out, stderr);
 	else st = h ? csf_run_sink(&p, exec, &o, NULL, &sink, stderr) : csf_run(&p, exec, &o, out, stderr);
 	/* the rows kept and the file closed: every row written survives a run that failed */

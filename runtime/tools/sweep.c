@@ -16,6 +16,10 @@
  * worker process of -j N (a pipe carries it back), or on another MPI rank
  * (sweep_mpi.c); the one writer takes the messages in variant order, so
  * the bytes written do not depend on where or in what order variants ran.
+ * With -o RUN.h5 a variant's text is its rows as doubles, and the writer
+ * gives them, with its values and status, to one HDF5 file (h5.c), whose
+ * data are the same for any -j; an interrupted sweep's file gets the
+ * variants not run as such (status -1, no rows).
  *
  * The values are printed in the model's units with the shortest text that
  * reads back to the same double, and a bare number given to -D is taken
@@ -422,6 +426,20 @@ static int parse_summary(csf_sweep *S, const char *spec)
 	return S->nsum ? 0 : csf_sweep_err(S, "--sweep-summary: no column named");
 }
 
+/* The HDF5 file of -o RUN.h5, for S's variants (NULL after a message). */
+static csf_h5 *h5_create(csf_sweep *S, const csf_h5_origin *h5)
+{
+	char err[1024];
+	const char **heads = malloc((size_t)S->npar * sizeof *heads);
+	if (!heads) return csf_sweep_err(S, "out of memory"), NULL;
+	for (int k = 0; k < S->npar; k++) heads[k] = S->par[k].head;
+	csf_h5 *h = csf_h5_sweep_create(S->o.output, S->p, &S->o, h5->model, h5->argc, h5->argv, S->nvar, S->npar, heads, err,
+	                                sizeof err);
+	free(heads);
+	if (!h) csf_sweep_err(S, "%s", err);
+	return h;
+}
+
 static void sweep_free(csf_sweep *S)
 {
 	for (int k = 0; k < S->npar; k++) free(S->par[k].name), free(S->par[k].head);
@@ -431,10 +449,11 @@ static void sweep_free(csf_sweep *S)
 	csf_overlay_free(&S->init);
 }
 
-int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char *prog, FILE *out, FILE *err)
+int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char *prog, const csf_h5_origin *h5,
+                   FILE *out, FILE *err)
 {
 	csf_sweep S = { .p = p, .exec = exec, .o = *o, .prog = prog, .out = out, .err = err, .out_dir = o->out_dir,
-	                .binary = o->sweep_binary };
+	                .binary = o->sweep_binary, .h5rows = h5 != NULL };
 	S.o.progress = CSF_PROGRESS_OFF;
 	S.o.stats = 0;
 	int st = 2;
@@ -480,6 +499,7 @@ int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const
 		for (int k = 0; k < S.npar; k++) fprintf(S.index, ",%s", S.par[k].head);
 		fputc('\n', S.index);
 	}
+	if (h5 && !csf_quiet && !(S.h5 = h5_create(&S, h5))) goto out;
 	long jobs = o->jobs > 0 ? o->jobs : sysconf(_SC_NPROCESSORS_ONLN);
 	if (jobs < 1) jobs = 1;
 	if ((size_t)jobs > S.nvar) jobs = (long)S.nvar;
@@ -487,6 +507,16 @@ int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const
 	int r = csf_sweep_distribute ? csf_sweep_distribute(&S) : 1;
 	if (r > 0) r = jobs > 1 ? csf_sweep_run_forked(&S, (int)jobs) : csf_sweep_run_serial(&S);
 	if (r < 0 && S.status < 2) S.status = 2;
+	/* an HDF5 file: the variants not run (the sweep was interrupted) too, and closed */
+	if (S.h5 && !S.h5err && csf_sweep_h5_rest(&S)) {
+		fprintf(err, "error: cannot write output: %s\n", strerror(errno));
+		S.status = 2;
+	}
+	if (S.h5 && csf_h5_close(S.h5)) {
+		fprintf(err, "error: cannot write output: %s\n", strerror(errno));
+		S.status = 2;
+	}
+	S.h5 = NULL;
 	if (fflush(out) || ferror(out)) S.status = errno == EPIPE ? 128 + SIGPIPE : 2;
 	if (S.index && fclose(S.index)) S.status = 2;
 	S.index = NULL;
@@ -496,6 +526,7 @@ nomem:
 	csf_sweep_err(&S, "out of memory");
 out:
 	if (S.index) fclose(S.index);
+	if (S.h5) csf_h5_close(S.h5);
 	sweep_free(&S);
 	return st;
 }

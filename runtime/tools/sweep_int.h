@@ -29,6 +29,10 @@ struct csf_sweep {
 	size_t nvar;
 	const char *out_dir;
 	int binary;       /* --sweep-binary: a variant's text is the header line, then its rows as doubles */
+	int h5rows;       /* -o RUN.h5: a variant's text is its rows as doubles, alone */
+	csf_h5 *h5;       /* where they go (NULL on csfvm-mpi's quiet ranks) */
+	int h5err;        /* a write to it failed (reported) */
+	size_t taken;     /* the variants taken, in order */
 	FILE *index;
 	FILE *out, *err;
 	int status, header_done;
@@ -55,6 +59,8 @@ int csf_sweep_err(csf_sweep *S, const char *fmt, ...);
 /* sweep.c: the name of column c of p's output (0: t), and the length of its header with the unit */
 const char *csf_sweep_col_head(const csf_prog *p, uint32_t c);
 size_t csf_sweep_head_len(const csf_prog *p, uint32_t k);
+/* sweep_variant.c: the variants after those taken (an interrupted sweep's) into S->h5, never run; 0 or -1 */
+int csf_sweep_h5_rest(csf_sweep *S);
 /* sweep_fork.c: every variant here, in order; or in nw worker processes (-j) */
 int csf_sweep_run_serial(csf_sweep *S);
 int csf_sweep_run_forked(csf_sweep *S, int nw);

@@ -4,7 +4,9 @@
  * leading columns, or its summary row), and the message that carries its
  * result to the one writer, which takes the messages in variant order. With
  * --sweep-binary the text is the header line and then each row's values as
- * doubles (the run's rows taken from its sink, never formatted).
+ * doubles (the run's rows taken from its sink, never formatted); for an
+ * HDF5 file (-o RUN.h5) the rows' doubles alone, which the writer gives
+ * csf_h5_sweep_variant with the variant's values and status.
  */
 #include <errno.h>
 #include <math.h>
@@ -95,7 +97,7 @@ static int summary_row(void *ctx, const double *v, size_t n)
 {
 	summaries *u = ctx;
 	for (int k = 0; k < u->S->nsum; k++) sum_row(&u->acc[k], &u->S->sum[k], v[0], v[u->S->sum[k].col]);
-	if (!u->S->binary || u->S->nsum) return 0;
+	if (!(u->S->binary || u->S->h5rows) || u->S->nsum) return 0;
 	if (u->nrows == u->cap) {
 		size_t cap = u->cap ? 2 * u->cap : 64;
 		double *r = realloc(u->rows, cap * n * sizeof *r);
@@ -184,22 +186,24 @@ unsigned char *csf_sweep_run(csf_sweep *S, size_t i, size_t *len)
 			                                        S->ax[a].vals[e[a] * (size_t)S->ax[a].n + (size_t)k] };
 	char *out = NULL, *err = NULL, *text = NULL;
 	size_t olen = 0, elen = 0, tlen = 0;
-	/* the run's CSV, but with --sweep-binary (whose rows come from the sink alone) */
-	FILE *fo = S->binary ? NULL : open_memstream(&out, &olen), *fe = open_memstream(&err, &elen);
+	/* the run's CSV, but with --sweep-binary and -o RUN.h5 (whose rows come from the sink alone) */
+	int rows = S->binary || S->h5rows;
+	FILE *fo = rows ? NULL : open_memstream(&out, &olen), *fe = open_memstream(&err, &elen);
 	int st = 2;
 	summaries u = { S, S->nsum ? malloc((size_t)S->nsum * sizeof *u.acc) : NULL, NULL, 0, 0 };
 	for (int k = 0; u.acc && k < S->nsum; k++) sum_start(&u.acc[k]);
-	if ((fo || S->binary) && fe && (u.acc || !S->nsum)) {
+	if ((fo || rows) && fe && (u.acc || !S->nsum)) {
 		csf_opts o = S->o;
 		o.init = &S->init;
 		csf_sink sink = { summary_row, &u, NULL };
-		st = csf_run_sink(S->p, S->exec, &o, fo, S->nsum || S->binary ? &sink : NULL, fe);
+		st = csf_run_sink(S->p, S->exec, &o, fo, S->nsum || rows ? &sink : NULL, fe);
 	}
 	if (fo) fclose(fo);
 	if (fe) fclose(fe);
-	FILE *ft = out || S->binary ? open_memstream(&text, &tlen) : NULL;
+	FILE *ft = out || rows ? open_memstream(&text, &tlen) : NULL;
 	if (ft) {
-		if (S->binary) variant_binary(S, i, &u, ft);
+		if (S->h5rows) fwrite(u.rows, sizeof *u.rows, u.nrows * ((size_t)S->p->ncols + 1), ft);
+		else if (S->binary) variant_binary(S, i, &u, ft);
 		else variant_text(S, i, out, u.acc, ft);
 		fclose(ft);
 	}
@@ -237,7 +241,20 @@ int csf_sweep_take(csf_sweep *S, size_t i, const unsigned char *m, size_t len)
 		return -1;
 	}
 	const char *text = (const char *)m + MSG_HEAD, *diag = text + tlen;
-	if (S->out_dir) {
+	size_t rowlen = ((size_t)S->p->ncols + 1) * sizeof(double);
+	if (S->h5rows && tlen % rowlen) {
+		fprintf(S->err, "%s: run %zu: malformed result\n", S->prog, i + 1);
+		S->status = 2;
+		return -1;
+	}
+	S->taken = i + 1;
+	int werr = 0;
+	if (S->h5rows) {
+		double *v = malloc((size_t)S->npar * sizeof *v);
+		if (v) values_of(S, i, v);
+		if (S->h5 && (!v || csf_h5_sweep_variant(S->h5, i, v, st, text, tlen / rowlen))) werr = v ? errno : ENOMEM;
+		free(v);
+	} else if (S->out_dir) {
 		char path[4096];
 		snprintf(path, sizeof path, "%s/run-%05zu.csv", S->out_dir, i + 1);
 		FILE *f = fopen(path, "w");
@@ -269,10 +286,23 @@ int csf_sweep_take(csf_sweep *S, size_t i, const unsigned char *m, size_t len)
 		s += n + 1;
 	}
 	if (st > S->status) S->status = st;
-	if (ferror(S->out)) {
+	if (werr) fprintf(S->err, "error: cannot write output: %s\n", strerror(werr)), S->h5err = 1;
+	if (werr || ferror(S->out)) {
 		S->status = 2;
 		return -1;
 	}
 	return 0;
+}
+
+int csf_sweep_h5_rest(csf_sweep *S)
+{
+	double *v = malloc((size_t)S->npar * sizeof *v);
+	int bad = !v;
+	for (size_t i = S->taken; S->h5 && i < S->nvar && !bad; i++) {
+		values_of(S, i, v);
+		bad = csf_h5_sweep_variant(S->h5, i, v, -1, NULL, 0);
+	}
+	free(v);
+	return bad ? -1 : 0;
 }
 

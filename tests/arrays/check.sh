@@ -4,6 +4,7 @@
 #    launched at its own v0 = (3 + i/1000, 1, 10 - i/2000) m/s (gen_projectiles.sh): ten sampled
 #    members at every row against the closed form to 1e-9 m, both as compiled (the unwatched
 #    members left out) and with --keep-all (every member integrated);
+#  - --explain says the members left out between two watched ones in one line;
 #  - the same array read from a data file gives the same output, byte for byte, and the same
 #    scene written object by object (2000 objects) the same rows;
 #  - `watch p.pos` names every member's columns p[k].pos.x [m] ..., and -D sets one member;
@@ -50,6 +51,10 @@ if comp pa "$T/pa.csf"; then
 	check grep -q "and $((N - 13)) more objects from 'p\[" "$T/pa.err"
 	"$CSFVM" "$T/pa.csfb" >"$T/pa.csv" && check closed "$T/pa.csv"
 	check test "$(head -n 1 "$T/pa.csv" | cut -d, -f2)" = "p[0].pos.x [m]"
+	# --explain: the members left out between two watched ones as one line
+	"$CSFC" --explain "$T/pa.csf" 2>/dev/null >"$T/pa.explain"
+	check grep -q '^objects p\[1\] \.\. p\[6\] (6 members): left out: nothing watched' "$T/pa.explain"
+	check test "$(grep -c '^object p' "$T/pa.explain")" -eq 10
 fi
 if comp pak "$T/pa.csf" --keep-all; then
 	"$CSFVM" "$T/pak.csfb" >"$T/pak.csv" && check closed "$T/pak.csv"

@@ -15,7 +15,7 @@
 #    root's attributes; a run that fails an assertion keeps its 15 rows;
 #    xarray's variables, dimensions and coordinates for groups.csf;
 #  - -o to a path that cannot be made, and a write that fails (a file size
-#    limit): exit 2 with a message; --sweep with -o RUN.h5: exit 2;
+#    limit): exit 2 with a message (a sweep's file: tests/h5/sweep.sh);
 #  - a run ended by SIGINT, and one killed, leave a file --dump reads;
 #  - a generated program (csfc --emit-c) writes the same file (projectile.csf, groups.csf);
 #  - csfview shows RUN.h5 as it shows the CSV (BUILD/csfview).
@@ -120,7 +120,7 @@ if not a["command_line"].endswith(f" -D ball.m=0.25 --method rk8pd --tol 1e-9 -o
 EOF
 fi
 
-# errors: a path that cannot be made, a write that fails, a sweep, --dump of what is not such a file
+# errors: a path that cannot be made, a write that fails, --dump of what is not such a file
 "$CSFVM" -o "$T/no/such/dir/r.h5" "$T/p.csfb" >"$T/e.out" 2>"$T/e.err"
 st=$?
 if [ $st -eq 2 ] && grep -q "^csfvm: cannot create $T/no/such/dir/r.h5: No such file or directory" "$T/e.err" && [ ! -s "$T/e.out" ]; then ok
@@ -131,10 +131,6 @@ printf 'object p: x = 1\nrule: x'"'"' = 1\ninc t till 100000 by 1 watch x\n' >"$
 st=$?
 if [ $st -eq 2 ] && grep -q "^error: cannot write output: File too large" "$T/e.err"; then ok
 else bad "-o RUN.h5 past the file size limit: exit $st, $(head -n 1 "$T/e.err")"; fi
-"$CSFVM" --sweep 'ball.m=1:2:2 kg' -o "$T/sw.h5" "$T/p.csfb" 2>"$T/e.err"
-st=$?
-if [ $st -eq 2 ] && grep -q "^csfvm: --sweep writes CSV; -o FILE.h5 is for one run" "$T/e.err" && [ ! -e "$T/sw.h5" ]; then ok
-else bad "--sweep -o FILE.h5: exit $st, $(head -n 1 "$T/e.err")"; fi
 if "$CSFVM" --sweep 'ball.m=1:2:2 kg' -o "$T/sw.csv" "$T/p.csfb" && "$CSFVM" --sweep 'ball.m=1:2:2 kg' "$T/p.csfb" | cmp -s - "$T/sw.csv"; then ok
 else bad "--sweep -o FILE.csv is not the sweep's standard output"; fi
 "$CSFVM" --dump "$T/p.csv" >"$T/e.out" 2>"$T/e.err"
@@ -163,10 +159,16 @@ if [ $st -eq 0 ] && [ "$n" -gt 1 ] && [ "$n" -lt 101 ] && [ "$(head -n 2 "$T/int
 else bad "a run ended by SIGINT: --dump exit $st, $n lines, $(head -n 1 "$T/int.err")"; fi
 printf 'object p: x = 1\nrule: x'"'"' = 1\ninc t till 1e7 by 1 watch x\n' >"$T/long7.csf"
 "$CSFC" "$T/long7.csf" -o "$T/long7.csfb"
-timeout -s KILL 0.3 "$B/csfvm" -o "$T/kill.h5" "$T/long7.csfb" 2>/dev/null
-if "$CSFVM" --dump "$T/kill.h5" >"$T/kill.csv" 2>"$T/kill.err" &&
-	"$CSFVM" "$T/long7.csfb" 2>/dev/null | head -n "$(wc -l <"$T/kill.csv")" | cmp -s - "$T/kill.csv"
-then ok; else bad "a killed run: --dump: $(head -n 1 "$T/kill.err")"; fi
+# (killed after 0.3 s, or, on a machine so busy that no block was written by then, 1 s or 3 s)
+killed=0
+for d in 0.3 1 3; do
+	rm -f "$T/kill.h5"
+	timeout -s KILL $d "$B/csfvm" -o "$T/kill.h5" "$T/long7.csfb" 2>/dev/null
+	if "$CSFVM" --dump "$T/kill.h5" >"$T/kill.csv" 2>"$T/kill.err" &&
+		"$CSFVM" "$T/long7.csfb" 2>/dev/null | head -n "$(wc -l <"$T/kill.csv")" | cmp -s - "$T/kill.csv"
+	then killed=1; break; fi
+done
+if [ $killed -eq 1 ]; then ok; else bad "a killed run: --dump: $(head -n 1 "$T/kill.err")"; fi
 rm -f "$T/kill.h5"
 
 # a generated program writes the file csfvm writes (but for the command line)

@@ -5,6 +5,10 @@
 #  - a reader that goes away (csfvm | head -1) ends the run quietly, by SIGPIPE
 #    or with exit 0, nothing on stderr; a full disk (/dev/full) is still exit 2
 #    with a message;
+#  - the same for wide rows (180 columns), which a second thread formats and writes: every row
+#    whole after SIGINT and SIGTERM, a closed pipe quiet, a full disk exit 2, and the text byte for
+#    byte that of CSF_ROW_THREAD=0 (rows written by the run itself), also with --every and when an
+#    assertion halts the run (exit 1 after every row before it);
 #  - "-" is standard input; --opt=value as well as --opt value;
 #  - source given to csfvm draws a hint to compile it first;
 #  - the progress line only when asked for (stderr is not a terminal here) and
@@ -42,6 +46,51 @@ if [ -w /dev/full ]; then
 	if [ $st -eq 2 ] && grep -q "cannot write output: No space left on device" "$T/unix.err"; then ok
 	else bad "> /dev/full: exit $st, $(cat "$T/unix.err")"; fi
 fi
+
+# wide rows: 30 oscillators (x = 0.1 cos 8t each), pos and v watched: 180 columns
+W=$T/unix_wide
+{ echo "using mechanics/mass_point"; echo "global k = 16 N/m"
+  i=0; while [ $i -lt 30 ]; do
+	echo "object b$i: mass_point"; echo "object b$i: m = 0.25 kg"; echo "object b$i: pos = (0.1, 0, $i) m"; i=$((i + 1)); done
+  echo "rule F: S = (pos - (0, 0, pos.z)).mul(-k)"; echo "using mechanics/rules"
+  echo "assert t < 4000 s"; echo "inc t till 5000 s by 1 ms watch pos, v"; } > "$W.csf"
+"$CSFC" "$W.csf" -o "$W.csfb" || bad "the wide oscillators do not compile"
+wide() { awk -F, 'NR > 1 && NF != 181 { bad = 1 } NR > 1 { n++ } END { exit bad || n < 2 }' "$1"; }
+for sig in INT TERM; do
+	"$CSFVM" --stats "$W.csfb" > "$T/wide.csv" 2> "$T/wide.err" &
+	pid=$!
+	sleep 1
+	kill -$sig $pid
+	wait $pid
+	st=$?
+	want=130; [ $sig = TERM ] && want=143
+	if [ $st -eq $want ] && wide "$T/wide.csv" && grep -q "^stats: method" "$T/wide.err"; then ok
+	else bad "wide rows, SIG$sig: exit $st (want $want), $(tail -c 100 "$T/wide.csv" | tail -n 1), $(head -n 1 "$T/wide.err")"; fi
+done
+st=$( ( "$CSFVM" "$W.csfb" 2> "$T/wide.err"; echo $? > "$T/wide.st" ) | head -n 1 > /dev/null; cat "$T/wide.st")
+if { [ "$st" -eq 0 ] || [ "$st" -eq 141 ]; } && [ ! -s "$T/wide.err" ]; then ok; else bad "wide rows | head -1: exit $st, $(cat "$T/wide.err")"; fi
+if [ -w /dev/full ]; then
+	"$CSFVM" "$W.csfb" > /dev/full 2> "$T/wide.err"; st=$?
+	if [ $st -eq 2 ] && grep -q "cannot write output: No space left on device" "$T/wide.err"; then ok
+	else bad "wide rows > /dev/full: exit $st, $(cat "$T/wide.err")"; fi
+fi
+sed 's/^inc t till 5000 s/inc t till 20 s/' "$W.csf" > "$W.s.csf"
+"$CSFC" "$W.s.csf" -o "$W.s.csfb"
+for opts in "--fixed --step 0.01" "--every 7"; do
+	# shellcheck disable=SC2086 # opts holds options
+	"$CSFVM" $opts "$W.s.csfb" > "$T/wide_a.csv" 2>/dev/null
+	# shellcheck disable=SC2086
+	CSF_ROW_THREAD=0 "$CSFVM" $opts "$W.s.csfb" > "$T/wide_b.csv" 2>/dev/null
+	if cmp -s "$T/wide_a.csv" "$T/wide_b.csv" && [ "$(wc -l < "$T/wide_a.csv")" -gt 2800 ]; then ok
+	else bad "wide rows ($opts): not those of CSF_ROW_THREAD=0"; fi
+done
+# an assertion that fails at t = 3001 s: exit 1, every row before it (3001 rows and the header)
+sed 's/^inc t till .*/inc t till 5000 s by 1 s watch pos, v/; s/^assert t < 4000 s/assert t < 3000.5 s/' "$W.csf" > "$W.a.csf"
+"$CSFC" "$W.a.csf" -o "$W.a.csfb"
+"$CSFVM" "$W.a.csfb" > "$T/wide_a.csv" 2>/dev/null; st=$?
+CSF_ROW_THREAD=0 "$CSFVM" "$W.a.csfb" > "$T/wide_b.csv" 2>/dev/null
+if [ $st -eq 1 ] && cmp -s "$T/wide_a.csv" "$T/wide_b.csv" && [ "$(wc -l < "$T/wide_a.csv")" -eq 3002 ]; then ok
+else bad "wide rows, a failed assertion: exit $st, $(wc -l < "$T/wide_a.csv") lines"; fi
 
 # - is standard input; --opt=value
 "$CSFC" tests/stability/oscillator.csf -o "$T/unix_osc.csfb"
