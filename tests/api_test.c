@@ -1,12 +1,15 @@
 /*
  * api_test.c - libcsf's API (runtime/api/csf_api.h) driven from C, linked with libcsfrt.a so that
  * it runs under the sanitizers too (make check's second pass; the Python tests need the shared
- * library, which that build has not). Usage: api-test MODEL.csfb, a compiled
+ * library, which that build has not). Usage: api-test MODEL.csfb [LARGE.csfb], MODEL a compiled
  * examples/projectile.csf. Checks: the columns and parameters; runs with -D and options against
  * csf_run's CSV of the same settings, every value formatted as the CSV formats it; the messages of
  * bad parameters and options; every truncation and every byte inverted refused; a progress
  * callback, csf_api_interrupt and SIGINT ending a run after a row; 2000 runs (LeakSanitizer
- * checks that nothing is left at exit). Prints "FAIL: ..." and exits 1 on the first miss.
+ * checks that nothing is left at exit). With LARGE.csfb, a model whose rows fill 4 MiB or more
+ * (tests/arrays/gen_projectiles.sh: 1000 projectiles watching pos, 1001 rows), the array libcsf
+ * faults in on a helper thread: its rows against the CSV, and stopped runs. Prints "FAIL: ..."
+ * and exits 1 on the first miss.
  */
 #include <math.h>
 #include <signal.h>
@@ -33,8 +36,9 @@ static int failed;
 static unsigned char *bytes;
 static size_t nbytes;
 
-/* The CSV csfvm writes for p with the options argv (and -D in them), into a malloc'd string. */
-static char *csv_of(const char *const *argv, int argc)
+/* The CSV csfvm writes for the program in the n bytes at b with the options argv (and -D in them),
+   into a malloc'd string. */
+static char *csv_of(const unsigned char *b, size_t n, const char *const *argv, int argc)
 {
 	char *args[32] = { "csfvm" };
 	for (int i = 0; i < argc; i++) args[i + 1] = (char *)argv[i];
@@ -43,7 +47,7 @@ static char *csv_of(const char *const *argv, int argc)
 	if (csf_parse_opts(argc + 1, args, 1, &o, pos, 0, &npos, "")) return NULL;
 	csf_prog p;
 	char err[256];
-	if (csf_decode(bytes, nbytes, &p, err, sizeof err)) return NULL;
+	if (csf_decode(b, n, &p, err, sizeof err)) return NULL;
 	csf_overlay init = { 0 };
 	for (int i = 0; i < o.ndefs; i++) csf_param_set(&p, &init, o.defs[i], err, sizeof err);
 	o.init = &init;
@@ -132,7 +136,7 @@ static void one_run(csf_api_model *m, const char *const *argv, int argc)
 	size_t rows = csf_api_run_rows(r), w = csf_api_ncols(m) + 1;
 	double *out = malloc(rows * w * sizeof *out);
 	int st = csf_api_run_exec(r, out, rows, 0);
-	char *want = csv_of(argv, argc), *got = rows_text(out, csf_api_run_nrows(r), w);
+	char *want = csv_of(bytes, nbytes, argv, argc), *got = rows_text(out, csf_api_run_nrows(r), w);
 	CHECK(st == 0 && want && strcmp(strchr(want, '\n') + 1, got) == 0, "status %d, rows differ from the CSV", st);
 	CHECK(csf_api_run_steps(r) > 0 && csf_api_run_rhs(r) > csf_api_run_steps(r), "stats");
 	free(want);
@@ -270,10 +274,49 @@ static void test_stops(void)
 	csf_api_free(m);
 }
 
+/*
+ * A model whose array is large enough for the helper thread that faults it in while the run writes
+ * (runtime/api/api.c, prefault_pages: 4 MiB or more; malloc's memory here, not page-aligned): its
+ * rows against the CSV, and runs stopped after the first row and halfway, the helper still at work.
+ */
+static void test_large(const unsigned char *b, size_t n)
+{
+	char err[512];
+	csf_api_model *m = csf_api_load(b, n, err, sizeof err);
+	CHECK(m, "the large model does not load: %s", err);
+	csf_api_run *r = csf_api_run_new(m);
+	size_t rows = csf_api_run_rows(r), w = csf_api_ncols(m) + 1;
+	CHECK(rows * w * sizeof(double) >= 4 << 20, "%zu rows of %zu values: too few for the helper", rows, w);
+	double *out = malloc(rows * w * sizeof *out), half = csf_api_till(m) / 2;
+	CHECK(out && csf_api_run_exec(r, out, rows, 0) == 0 && csf_api_run_nrows(r) == rows, "%s",
+	      csf_api_run_diagnostics(r));
+	char *want = csv_of(b, n, NULL, 0), *got = rows_text(out, rows, w);
+	const char *body = want ? strchr(want, '\n') + 1 : "";
+	CHECK(strcmp(body, got) == 0, "the large run's rows differ from the CSV");
+	free(got);
+	double at[] = { 0, half };
+	for (int k = 0; k < 2; k++) {
+		csf_api_run_progress(r, k ? sigint_at : stop_at, &at[k], 0);
+		int st = csf_api_run_exec(r, out, rows, k ? CSF_API_CATCH_SIGINT : 0);
+		size_t kept = csf_api_run_nrows(r), len = 0;
+		for (size_t i = 0; i < kept; i++) len += strcspn(body + len, "\n") + 1;
+		got = rows_text(out, kept, w);
+		/* the first row alone, or the rows to t = half: the CSV's first rows */
+		CHECK(st == 130 && (k ? kept > 1 && kept < rows : kept == 1) && strlen(got) == len &&
+		          memcmp(body, got, len) == 0,
+		      "stopped at t = %g: status %d, %zu rows", at[k], st, kept);
+		free(got);
+	}
+	free(want);
+	free(out);
+	csf_api_run_free(r);
+	csf_api_free(m);
+}
+
 int main(int argc, char **argv)
 {
-	if (argc != 2 || !(bytes = csf_read_file(argv[1], &nbytes))) {
-		fprintf(stderr, "usage: api-test PROJECTILE.csfb\n");
+	if (argc < 2 || argc > 3 || !(bytes = csf_read_file(argv[1], &nbytes))) {
+		fprintf(stderr, "usage: api-test PROJECTILE.csfb [LARGE.csfb]\n");
 		return 2;
 	}
 	test_model();
@@ -281,6 +324,14 @@ int main(int argc, char **argv)
 	if (!failed) test_errors();
 	if (!failed) test_stops();
 	free(bytes);
+	size_t n;
+	unsigned char *large = argc > 2 ? csf_read_file(argv[2], &n) : NULL;
+	if (argc > 2 && !large) {
+		printf("FAIL: cannot read %s\n", argv[2]);
+		failed = 1;
+	}
+	if (large && !failed) test_large(large, n);
+	free(large);
 	if (!failed) printf("api-test: all passed\n");
 	return failed;
 }

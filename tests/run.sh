@@ -650,9 +650,14 @@ $T/stage/usr/bin/csfview" ]; then ok
 }
 
 # 5t. libcsf's API from C (tests/api_test.c; under the sanitizers with make check): the columns and
-#     parameters, runs against csf_run's CSV, the messages, hostile bytes, stops, 2000 runs
+#     parameters, runs against csf_run's CSV, the messages, hostile bytes, stops, 2000 runs; and
+#     1000 projectiles watching pos over 1001 rows (24 MB), an array faulted in by libcsf's helper
+#     thread as the run writes it
 t_api() {
-	if "$CSFC" examples/projectile.csf -o "$T/p.csfb" 2>"$T/err" && timeout "$LIMIT" "$B/api-test" "$T/p.csfb" >"$T/api" 2>&1
+	if "$CSFC" examples/projectile.csf -o "$T/p.csfb" 2>"$T/err" &&
+		sh tests/arrays/gen_projectiles.sh 1000 array pos | sed 's/ by 0\.1 s / by 0.004 s /' >"$T/large.csf" &&
+		"$CSFC" "$T/large.csf" -o "$T/large.csfb" 2>>"$T/err" &&
+		timeout "$LIMIT" "$B/api-test" "$T/p.csfb" "$T/large.csfb" >"$T/api" 2>&1
 	then ok; else bad "api: $(grep -m 3 -e FAIL -e ERROR "$T/api" "$T/err")"; fi
 }
 

@@ -27,7 +27,9 @@
  * one thread at a time, and runs of different handles may go on at once.
  * The interrupt is process-wide: it ends every run in progress. Nothing is
  * kept between calls but what the handles own; everything is freed with
- * them.
+ * them. A run into an array of 4 MiB or more, on a machine of two CPUs or
+ * more, has a helper thread of its own (every signal blocked) for as long
+ * as csf_api_run_exec lasts (see there).
  */
 #ifndef CSF_API_H
 #define CSF_API_H
@@ -149,6 +151,15 @@ CSF_API size_t csf_api_run_rows(const csf_api_run *r);
  * written (those before a failure, or an interruption), the diagnostics
  * are csfvm's stderr of the same run, and the --stats figures are set.
  * A run handle may be run again (the same settings, a new run).
+ *
+ * When the rows the run can write fill 4 MiB or more of out, a helper
+ * thread makes the pages that hold them present while the run computes
+ * (madvise MADV_POPULATE_WRITE, Linux 5.14 or later; nothing where the
+ * kernel refuses it, or with one CPU): memory fresh from the kernel is
+ * then not faulted in and zeroed by the run's own thread, row after row.
+ * It leaves their contents as they are, and is stopped and joined before
+ * the call returns; those pages count in the process's memory even when
+ * the run ends early.
  */
 CSF_API int csf_api_run_exec(csf_api_run *r, double *out, size_t maxrows, unsigned flags);
 CSF_API size_t csf_api_run_nrows(const csf_api_run *r);

@@ -151,7 +151,7 @@ csf_rowthread *csf_rowthread_start(const csf_prog *p, FILE *out)
 {
 	const char *env = getenv("CSF_ROW_THREAD");
 	if (p->ncols < ROWTHREAD_MIN_COLS || (env && strcmp(env, "0") == 0) || sysconf(_SC_NPROCESSORS_ONLN) < 2 ||
-	    isatty(fileno(out)))
+	    fileno(out) < 0 || isatty(fileno(out)))
 		return NULL;
 	csf_rowthread *q = calloc(1, sizeof *q);
 	if (!q) return NULL;

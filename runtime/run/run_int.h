@@ -233,7 +233,8 @@ void csf_watchdog_wakes(void (*f)(void));
 /* rowthread.c: wide rows formatted and written by a second thread */
 typedef struct csf_rowthread csf_rowthread;
 /* A thread writing p's rows to out (after the header), or NULL where rows are written as they come:
- * fewer than 64 columns, out a terminal, one processor, CSF_ROW_THREAD=0 in the environment. */
+ * fewer than 64 columns, out a terminal or a stream with no descriptor (open_memstream's: a sweep's
+ * variant, an embedder's), one processor, CSF_ROW_THREAD=0 in the environment. */
 csf_rowthread *csf_rowthread_start(const csf_prog *p, FILE *out);
 /* Hands over the row of memory m at t: 0, or -1 (errno set) after an earlier row failed to be written. */
 int csf_rowthread_put(csf_rowthread *q, const double *m, double t);
