@@ -147,6 +147,17 @@ static void wake(void)
 	if (active) sem_post(&active->full);
 }
 
+/* Frees q and its buffers. */
+static void release(csf_rowthread *q)
+{
+	free(q->ring);
+	free(q->text);
+	free(q->textlen);
+	free(q->cut);
+	free(q->wbuf);
+	free(q);
+}
+
 csf_rowthread *csf_rowthread_start(const csf_prog *p, FILE *out)
 {
 	const char *env = getenv("CSF_ROW_THREAD");
@@ -183,12 +194,7 @@ csf_rowthread *csf_rowthread_start(const csf_prog *p, FILE *out)
 	csf_watchdog_wakes(wake);
 	return q;
 fail:
-	free(q->ring);
-	free(q->text);
-	free(q->textlen);
-	free(q->cut);
-	free(q->wbuf);
-	free(q);
+	release(q);
 	return NULL;
 }
 
@@ -230,11 +236,6 @@ int csf_rowthread_stop(csf_rowthread *q)
 	int e = atomic_load(&q->werr);
 	sem_destroy(&q->full);
 	sem_destroy(&q->free_);
-	free(q->ring);
-	free(q->text);
-	free(q->textlen);
-	free(q->cut);
-	free(q->wbuf);
-	free(q);
+	release(q);
 	return e;
 }
