@@ -13,7 +13,9 @@
 #  - a generated program (csfc --emit-c) takes -D and --sweep and writes
 #    csfvm's bytes;
 #  - under mpirun -np 3 (BUILD/csfvm-mpi, where Open MPI is installed; SKIP
-#    otherwise) the sweep's bytes are the local run's.
+#    otherwise) the sweep's bytes are the local run's;
+#  - a wide model (120 columns, whose own runs write through the row thread):
+#    each variant's rows are its -D run's and follow x = A cos(w t).
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3 B=$4
 HERE=$(dirname "$0")
@@ -257,6 +259,25 @@ if [ -x "$B/csfvm-mpi" ] && command -v mpirun >/dev/null 2>&1; then
 	else bad "mpirun -np 3: the output differs from the local run: $(head -n 2 "$T/mpi.err")"; fi
 else
 	echo "SKIP: MPI sweep (no $B/csfvm-mpi or mpirun: make deps-mpi)"
+fi
+# a wide model (120 columns: its rows written by the row thread in a run of its own, and into
+# memory in a sweep's variant): each variant's rows are those of its -D run, x = A cos(w t)
+{ echo "using mechanics/mass_point"; echo "global k = 16 N/m"
+  echo "object b[0..19]: mass_point"; echo "object b[i]: m = 0.25 kg"; echo "object b[i]: pos = (0.1, 0, i) m"
+  echo "rule F: S = (pos - (0, 0, pos.z)).mul(-k)"; echo "using mechanics/rules"
+  echo "inc t till 2 s by 0.01 s watch pos, v"; } > "$T/wide.csf"
+"$CSFC" "$T/wide.csf" -o "$T/wide.csfb"
+if "$CSFVM" --sweep 'k=4:16:3 N/m' -j 2 "$T/wide.csfb" > "$T/wide_sweep.csv" 2> "$T/wide.err"; then
+	good=1
+	for kv in 4 10 16; do
+		"$CSFVM" -D "k=$kv N/m" "$T/wide.csfb" | tail -n +2 > "$T/wide_d.csv"
+		awk -F, -v k="$kv" 'NR > 1 && $1 == k { sub(/^[^,]*,/, ""); print }' "$T/wide_sweep.csv" | cmp -s - "$T/wide_d.csv" || good=0
+		awk -F, -v k="$kv" 'function abs(x) { return x < 0 ? -x : x }
+			{ w = sqrt(k / 0.25); if (NF != 121 || abs($2 - 0.1 * cos(w * $1)) > 1e-9) exit 1; n++ } END { exit n != 201 }' "$T/wide_d.csv" || good=0
+	done
+	if [ $good -eq 1 ]; then ok; else bad "a sweep of a wide model: a variant's rows are not its -D run's, or not A cos(w t)"; fi
+else
+	bad "a sweep of a wide model: exit $?, $(head -n 1 "$T/wide.err")"
 fi
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
