@@ -557,4 +557,31 @@ double csf_run_kmax(const csf_prog *p);
 /* Name of the i-th available ODE method (the default is 0), NULL past the last. */
 const char *csf_method_name(size_t i);
 
+/*
+ * Checkpoints (checkpoint.c): a run's state as named parts. Each module
+ * describes its state once as csf_keep calls, which write the parts (a
+ * keeper from csf_keep_write) or read them back (csf_keep_read's).
+ * csf_keep: 0, or -1 (a write failed; reading: no part name of n bytes,
+ * the reason for csf_keep_why). csf_kept: the size of part name when
+ * reading, else -1. csf_keep_commit writes the end, flushes the file to
+ * the disk, renames it over path and frees k: 0, or -1 with the reason
+ * in err (the previous checkpoint stays whole).
+ */
+typedef struct csf_keeper csf_keeper;
+int csf_keep(csf_keeper *k, const char *name, void *p, size_t n);
+long csf_kept(const csf_keeper *k, const char *name);
+int csf_keep_reading(const csf_keeper *k);
+csf_keeper *csf_keep_write(const char *path, char *err, size_t errlen);
+int csf_keep_commit(csf_keeper *k, const char *path, char *err, size_t errlen);
+csf_keeper *csf_keep_read(const char *path, char *err, size_t errlen);
+const char *csf_keep_why(const csf_keeper *k);
+void csf_keep_free(csf_keeper *k);
+/* Saves or restores the variable x under its own expression's name. */
+#define CSF_KEEP(k, x) csf_keep((k), #x, &(x), sizeof(x))
+/* The FNV-1a hash of n bytes (a checkpoint's and a record's name of the bytecode). */
+uint64_t csf_hash_bytes(const unsigned char *b, size_t n);
+/* The state of the contacts and of the constraints, for a checkpoint (broad.c, constraint.c). */
+int csf_contacts_keep(csf_contacts *c, csf_keeper *k);
+int csf_cons_keep(csf_cons *cs, csf_keeper *k);
+
 #endif

@@ -115,6 +115,9 @@ typedef struct stop {
 	const char *msg;    /* STOP_SETUP, STOP_CHATTER, STOP_FAILED: the integrator's words */
 } stop;
 
+/* The default of --checkpoint-every: a checkpoint a minute (seconds of wall time). */
+#define CSF_CHECKPOINT_EVERY 60.0
+
 /* A look costs at most 1 / LOOK_EVERY of the evaluations before it (but for those a fixed step needs). */
 enum { LOOK_EVERY = 100 };
 

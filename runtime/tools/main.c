@@ -161,6 +161,15 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		csf_opts_free(&o);
 		return 2;
 	}
+	if ((o.checkpoint || o.resume) && (sweep || o.compare || h5)) {
+		fprintf(stderr,
+		        "%s: --checkpoint and --resume continue one run's CSV rows; %s\n", prog,
+		        sweep ? "a sweep is not resumed (its variants are short runs: run the ones missing with -D)"
+		        : o.compare ? "--compare-methods runs a table of short runs"
+		                    : "-o FILE.h5 is written whole at the end (write CSV, and convert it)");
+		csf_opts_free(&o);
+		return 2;
+	}
 	if ((!image && npos != 1) || (!sweep && sweep_only) || (sweep && o.compare)) {
 		if (!sweep && sweep_only)
 			fprintf(stderr, "%s: --sweep-summary, --sweep-binary and --out-dir need --sweep or --sweep-file\n", prog);
@@ -192,6 +201,7 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		csf_opts_free(&o);
 		return 2;
 	}
+	o.hash = csf_hash_bytes(image ? image : buf, len);
 	free(buf);
 	/* -D's values: an overlay over the program's initial memory, which stays as loaded */
 	csf_overlay init = { 0 };
@@ -211,7 +221,7 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 	int h5run = h5 && !sweep && !csf_quiet;
 	if (h5run && !(h = csf_h5_create(o.output, &p, &o, origin.model, argc, argv, err, sizeof err)))
 		fprintf(stderr, "%s: %s\n", prog, err);
-	else if (!h5 && o.output && strcmp(o.output, "-") && !csf_quiet && !(out = fopen(o.output, "w")))
+	else if (!h5 && o.output && strcmp(o.output, "-") && !csf_quiet && !(out = fopen(o.output, o.resume ? "r+" : "w")))
 		fprintf(stderr, "%s: cannot write %s: %s\n", prog, o.output, strerror(errno));
 	if ((h5run && !h) || !out) {
 		csf_overlay_free(&init);
