@@ -138,6 +138,10 @@ typedef struct csf_opts {
 	/* filled in by csf_run: */
 	unsigned long run_steps, run_rhs;
 	double run_seconds;
+	unsigned long run_rejected, run_jac, run_events, run_rows;
+	/* filled in by --estimate-error (main.c): the largest difference, its column and time, the tolerance */
+	double err_estimate, err_t, err_tol;
+	const char *err_column;
 } csf_opts;
 
 /*

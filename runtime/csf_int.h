@@ -9,6 +9,7 @@
 #define CSF_INT_H
 
 #include <signal.h>
+#include <time.h>
 
 #include "csf.h"
 
@@ -583,5 +584,38 @@ uint64_t csf_hash_bytes(const unsigned char *b, size_t n);
 /* The state of the contacts and of the constraints, for a checkpoint (broad.c, constraint.c). */
 int csf_contacts_keep(csf_contacts *c, csf_keeper *k);
 int csf_cons_keep(csf_cons *cs, csf_keeper *k);
+
+/*
+ * The run record (record.c): its fields, in order, each a string, a number
+ * or a list of strings; written as JSON (--record) and as HDF5 attributes
+ * of the same names (csf_h5_record).
+ */
+enum { CSF_RF_STR, CSF_RF_NUM, CSF_RF_STRS };
+enum { CSF_RECORD_MAX = 40 };
+typedef struct csf_rfield {
+	const char *name;
+	int kind;
+	const char *s;
+	double x;
+	const char *const *v;
+	int nv;
+} csf_rfield;
+typedef struct csf_record {
+	csf_rfield f[CSF_RECORD_MAX];
+	int n;
+	char hash[24], start[32], end[32], host[256];
+	char *cmd; /* the command line (owned) */
+} csf_record;
+/* The record of a run of p with options o (and what csf_run filled in), from source, by the command line argv,
+   from start to end, that ended with exit status; its strings are o's, argv's and its own (csf_record_free). */
+void csf_record_make(csf_record *rec, const csf_prog *p, const csf_opts *o, const char *source, int argc, char **argv,
+                     time_t start, time_t end, int status);
+void csf_record_free(csf_record *rec);
+/* The record as a JSON object to path (- : stderr): 0, or -1 with the reason in err. */
+int csf_record_json(const csf_record *rec, const char *path, char *err, size_t errlen);
+/* The record's fields as root attributes of h (replacing those of the same names): 0, or -1. */
+int csf_h5_record(csf_h5 *h, const csf_record *rec);
+/* The command line as a shell reads it (malloc'd; NULL when memory runs out). */
+char *csf_command_line(int argc, char **argv);
 
 #endif

@@ -708,6 +708,7 @@ static void run_stats(const session *S, csf_opts *o, FILE *err)
 	o->run_steps = steps;
 	o->run_rhs = r->nrhs;
 	o->run_seconds = csf_run_seconds(S->t0, t1);
+	o->run_rejected = rejected, o->run_jac = r->njac, o->run_events = r->nevents, o->run_rows = r->rows;
 	if (o->stats) stats_run(S, o, steps, rejected, err);
 	if (o->stats && S->au.n) stats_auto(S, err);
 	if (o->stats && r->g && S->gd.checks) stats_guard(S, err);

@@ -134,6 +134,7 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 {
 	csf_opts o;
 	int pos[1], npos;
+	time_t start = time(NULL);
 	char usage[4096];
 	if (image) snprintf(usage, sizeof usage, exe_usage, argv[0]);
 	else snprintf(usage, sizeof usage, "%s", vm_usage);
@@ -238,6 +239,17 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 	if (sweep) st = csf_sweep_main(&p, exec, &o, prog, h5 ? &origin : NULL, out, stderr);
 	else if (o.compare) st = csf_compare_methods(&p, exec, &init, out, stderr);
 	else st = h ? csf_run_sink(&p, exec, &o, NULL, &sink, stderr) : csf_run(&p, exec, &o, out, stderr);
+	/* the run record: --record FILE.json, and -o FILE.h5's attributes */
+	if (o.record || h) {
+		csf_record rec;
+		csf_record_make(&rec, &p, &o, origin.model, argc, argv, start, time(NULL), st);
+		if (h && csf_h5_record(h, &rec)) fprintf(stderr, "%s: cannot write the run record into %s\n", prog, o.output);
+		if (o.record && csf_record_json(&rec, o.record, err, sizeof err)) {
+			fprintf(stderr, "%s: --record: %s\n", prog, err);
+			if (!st) st = 2;
+		}
+		csf_record_free(&rec);
+	}
 	/* the rows kept and the file closed: every row written survives a run that failed */
 	if ((h && csf_h5_close(h)) || (out != stdout && fclose(out) && st != 2)) {
 		fprintf(stderr, "error: cannot write output: %s\n", strerror(errno));
