@@ -618,4 +618,12 @@ int csf_h5_record(csf_h5 *h, const csf_record *rec);
 /* The command line as a shell reads it (malloc'd; NULL when memory runs out). */
 char *csf_command_line(int argc, char **argv);
 
+/*
+ * --estimate-error, --accuracy A (estimate.c): csf_run_sink of p with o,
+ * and the estimate of its global error against a run 100 times tighter,
+ * on err (and in o->err_*); with o->accuracy, at the tolerance that meets
+ * it. The exit status (1 when the accuracy cannot be met).
+ */
+int csf_estimate_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, const csf_sink *fwd, FILE *err);
+
 #endif

@@ -162,6 +162,12 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		csf_opts_free(&o);
 		return 2;
 	}
+	if (o.estimate && (sweep || o.compare || o.checkpoint || o.resume)) {
+		fprintf(stderr, "%s: --estimate-error and --accuracy run one scene twice or more; not %s\n", prog,
+		        sweep ? "a sweep" : o.compare ? "with --compare-methods" : "with --checkpoint or --resume");
+		csf_opts_free(&o);
+		return 2;
+	}
 	if ((o.checkpoint || o.resume) && (sweep || o.compare || h5)) {
 		fprintf(stderr,
 		        "%s: --checkpoint and --resume continue one run's CSV rows; %s\n", prog,
@@ -238,6 +244,7 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 	csf_sink sink = { csf_h5_row, h, NULL };
 	if (sweep) st = csf_sweep_main(&p, exec, &o, prog, h5 ? &origin : NULL, out, stderr);
 	else if (o.compare) st = csf_compare_methods(&p, exec, &init, out, stderr);
+	else if (o.estimate) st = csf_estimate_run(&p, exec, &o, h ? NULL : out, h ? &sink : NULL, stderr);
 	else st = h ? csf_run_sink(&p, exec, &o, NULL, &sink, stderr) : csf_run(&p, exec, &o, out, stderr);
 	/* the run record: --record FILE.json, and -o FILE.h5's attributes */
 	if (o.record || h) {
