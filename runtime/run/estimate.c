@@ -85,6 +85,12 @@ static int tighten(const csf_prog *p, csf_opts *o)
 	double t = tol_of(o);
 	if (t <= CSF_MIN_TOL) return -1;
 	o->tol = t / 100 < CSF_MIN_TOL ? CSF_MIN_TOL : t / 100;
+	/* steps capped at the output interval (a method without dense output, or events), or at --hmax, are
+	   the same steps at any tolerance, and so is their error: the reference's are half as long */
+	double cap = o->hmax > 0 ? o->hmax : INFINITY;
+	if (!csf_method_dense(o->method && strcmp(o->method, "auto") ? o->method : NULL) || p->nevents || p->ncrules)
+		cap = cap < p->by ? cap : p->by;
+	if (isfinite(cap)) o->hmax = cap / 2;
 	return 0;
 }
 
