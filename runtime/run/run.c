@@ -498,6 +498,11 @@ static void checkpoint(session *S, double k, double tk)
 {
 	char err[600];
 	long long off = -1;
+	if (S->rows) { /* the row thread's rows written (it starts again after the checkpoint) */
+		int e = csf_rowthread_stop(S->rows);
+		S->rows = NULL;
+		if (e && !S->werr) S->werr = e;
+	}
 	if (S->out) { /* the rows so far on their way, and where the next begins (a pipe: unknown) */
 		csf_out_begin();
 		int bad = fflush(S->out) != 0;
@@ -519,6 +524,7 @@ static void checkpoint(session *S, double k, double tk)
 		fprintf(S->r.err, "warning: %s (the run goes on; the last checkpoint written stays as it was)\n", err);
 		S->ck_warned = 1;
 	}
+	if (S->out && !S->werr) S->rows = csf_rowthread_start(S->r.p, S->out);
 	clock_gettime(ROW_CLOCK, &S->ck_last);
 }
 
@@ -772,6 +778,7 @@ int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, co
 	S.ck = o->checkpoint ? o->checkpoint : o->resume;
 	S.ck_every = o->checkpoint_every_set ? o->checkpoint_every : CSF_CHECKPOINT_EVERY;
 	S.ck_last = S.t0;
+	S.r.row_end = S.ck != NULL;
 	S.hash = o->hash;
 	checkpoint_options(&S, o);
 	stop s = stop_kind_only(STOP_END);
@@ -791,8 +798,7 @@ int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, co
 	}
 	if (s.kind == STOP_END) {
 		if (out && !o->resume) csf_run_write_header(p, out);
-		/* (with checkpoints, rows are written here: a checkpoint knows where they end) */
-		if (out && !S.ck) S.rows = csf_rowthread_start(p, out);
+		if (out) S.rows = csf_rowthread_start(p, out);
 		s = run_guard(&S, o);
 	}
 	if (s.kind == STOP_END) s = run_start(&S);

@@ -67,6 +67,7 @@ typedef struct run {
 	int prog, shown;  /* the progress line: drawn, and on the screen now */
 	struct timespec start, drawn; /* when the run started, and the line was last drawn */
 	unsigned long rows; /* rows written */
+	int row_end;        /* a signal ends the run at the next row, not within a step (--checkpoint: one there) */
 } run;
 
 /*

@@ -60,6 +60,15 @@ static const char vm_usage[] =
 	"                 (a dataset per watched value; a sweep's with a leading axis of\n"
 	"                 variants, the swept values on it), else the CSV\n"
 	"  --dump RUN.h5  print the rows of a file of -o RUN.h5 as the run's (or sweep's) CSV\n"
+	"  --checkpoint FILE  the run's whole state to FILE every --checkpoint-every S\n"
+	"                 seconds of wall time (default 60), and when a signal ends it\n"
+	"  --resume FILE  go on from that checkpoint: csfvm --resume FILE M.csfb >> RUN.csv\n"
+	"                 gives the uninterrupted run's bytes\n"
+	"  --record RUN.json  the run record: version, bytecode hash, options, host,\n"
+	"                 times, --stats's figures, exit status\n"
+	"  --estimate-error  the largest difference of each column from a run 100 times\n"
+	"                 tighter, on stderr: the run's global error\n"
+	"  --accuracy A   tighten the tolerance until that estimate is at most A\n"
 	"  --help, --version\n";
 
 static const char exe_usage[] =
@@ -70,7 +79,8 @@ static const char exe_usage[] =
 	"  --hmax H, --fixed, --step H, --every K, --stats, --progress, --no-progress,\n"
 	"  --compare-methods, -D NAME=VALUE, --sweep 'NAME=FROM:TO:COUNT [UNIT]',\n"
 	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, --sweep-binary, -j N,\n"
-	"  -o FILE, --dump RUN.h5: as csfvm(1)\n"
+	"  -o FILE, --dump RUN.h5, --checkpoint FILE, --checkpoint-every S, --resume FILE,\n"
+	"  --record RUN.json, --estimate-error, --accuracy A: as csfvm(1)\n"
 	"  --help, --version\n";
 
 /* Text (no NUL or other control bytes but white space in the first 4 KiB), as a .csf file is. */

@@ -16,10 +16,10 @@ ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $NAME: $*"; }
 F=$T/$NAME.full P=$T/$NAME.part C=$T/$NAME.ck
 now_ms() { date +%s%3N; }
-timeout -s KILL 300 "$VM" "$@" "$M" >"$F" 2>"$T/$NAME.err" || { bad "the uninterrupted run: $(head -n 1 "$T/$NAME.err")"; echo "$pass passed, $fail failed"; exit 1; }
+timeout -s KILL 300 "$VM" "$@" ${M:+"$M"} >"$F" 2>"$T/$NAME.err" || { bad "the uninterrupted run: $(head -n 1 "$T/$NAME.err")"; echo "$pass passed, $fail failed"; exit 1; }
 rm -f "$C"
 a=$(now_ms)
-timeout -s KILL 300 "$VM" --checkpoint "$C" --checkpoint-every 0.005 "$@" "$M" >"$P" 2>"$T/$NAME.err"
+timeout -s KILL 300 "$VM" --checkpoint "$C" --checkpoint-every 0.005 "$@" ${M:+"$M"} >"$P" 2>"$T/$NAME.err"
 w=$(( $(now_ms) - a ))
 if cmp -s "$F" "$P"; then ok; else bad "a run with --checkpoint differs from one without"; fi
 [ -s "$C" ] || bad "no checkpoint after a run of $w ms"
@@ -29,20 +29,20 @@ for i in 1 2 3 4 5 6 7 8 9 10; do
 	d=$(( w * 5 / 100 + seed % (w * 90 / 100 + 1) ))
 	rm -f "$C" "$C.tmp"
 	timeout -s KILL "$(awk -v d="$d" 'BEGIN { printf "%.3f", d / 1000 }')" \
-		"$VM" --checkpoint "$C" --checkpoint-every 0.005 "$@" "$M" >"$P" 2>"$T/$NAME.err"
+		"$VM" --checkpoint "$C" --checkpoint-every 0.005 "$@" ${M:+"$M"} >"$P" 2>"$T/$NAME.err"
 	how="killed at $d ms of $w"
 	if [ $((i % 2)) -eq 0 ] && [ -f "$C" ]; then
 		seed=$(( (seed * 16807) % 2147483647 ))
 		d2=$(( 1 + seed % (w / 2 + 1) ))
 		timeout -s KILL "$(awk -v d="$d2" 'BEGIN { printf "%.3f", d / 1000 }')" \
-			"$VM" --resume "$C" "$@" "$M" >>"$P" 2>"$T/$NAME.err"
+			"$VM" --resume "$C" "$@" ${M:+"$M"} >>"$P" 2>"$T/$NAME.err"
 		how="$how, resumed and killed again at $d2 ms"
 	fi
 	if [ -f "$C" ]; then
-		timeout -s KILL 300 "$VM" --resume "$C" "$@" "$M" >>"$P" 2>"$T/$NAME.err"
+		timeout -s KILL 300 "$VM" --resume "$C" "$@" ${M:+"$M"} >>"$P" 2>"$T/$NAME.err"
 	else
 		how="$how (before the first checkpoint: run again)"
-		timeout -s KILL 300 "$VM" "$@" "$M" >"$P" 2>"$T/$NAME.err"
+		timeout -s KILL 300 "$VM" "$@" ${M:+"$M"} >"$P" 2>"$T/$NAME.err"
 	fi
 	st=$?
 	if [ $st -ne 0 ]; then bad "$how: the resumed run's exit status $st: $(head -n 1 "$T/$NAME.err")"
