@@ -84,7 +84,9 @@ static int tighten(const csf_prog *p, csf_opts *o)
 	}
 	double t = tol_of(o);
 	if (t <= CSF_MIN_TOL) return -1;
-	o->tol = t / 100 < CSF_MIN_TOL ? CSF_MIN_TOL : t / 100;
+	char b[32]; /* t / 100 to 12 digits: 1e-11, not 1.0000000000000001e-11, from 1e-9 */
+	snprintf(b, sizeof b, "%.12g", t / 100);
+	o->tol = strtod(b, NULL) < CSF_MIN_TOL ? CSF_MIN_TOL : strtod(b, NULL);
 	/* steps capped at the output interval (a method without dense output, or events), or at --hmax, are
 	   the same steps at any tolerance, and so is their error: the reference's are half as long */
 	double cap = o->hmax > 0 ? o->hmax : INFINITY;
