@@ -577,6 +577,18 @@ int csf_keep_commit(csf_keeper *k, const char *path, char *err, size_t errlen);
 csf_keeper *csf_keep_read(const char *path, char *err, size_t errlen);
 const char *csf_keep_why(const csf_keeper *k);
 void csf_keep_free(csf_keeper *k);
+/* The options a checkpoint holds a resumed run to: those that change the rows, and a sweep's (len: CSF_KEEP_OPTS). */
+enum { CSF_KEEP_OPTS = 2048 };
+void csf_keep_options(const csf_opts *o, char *buf, size_t len);
+/* A checkpoint's head: the bytecode's hash, the options (optlen bytes), the output's length (-1: unknown). */
+int csf_keep_header(csf_keeper *k, unsigned long long *hash, char *opts, size_t optlen, long long *off);
+/* Reading: the head checked against this run's hash and opts (0), or -1 with the reason in err; *off. */
+int csf_keep_check(csf_keeper *k, const char *path, unsigned long long hash, const char *opts, size_t optlen,
+                   long long *off, char *err, size_t errlen);
+/* --resume: out (a regular file; else nothing is done) cut back to off bytes: 0, or -1 with the reason in err. */
+int csf_keep_output(FILE *out, long long off, const char *path, char *err, size_t errlen);
+/* The length of out after its rows are flushed (-1: not a file, or the flush failed). */
+long long csf_keep_offset(FILE *out);
 /* Saves or restores the variable x under its own expression's name. */
 #define CSF_KEEP(k, x) csf_keep((k), #x, &(x), sizeof(x))
 /* The FNV-1a hash of n bytes (a checkpoint's and a record's name of the bytecode). */

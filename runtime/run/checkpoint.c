@@ -20,6 +20,7 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "run_int.h"
@@ -189,4 +190,77 @@ uint64_t csf_hash_bytes(const unsigned char *b, size_t n)
 	uint64_t h = 14695981039346656037u; /* FNV-1a, 64 bits */
 	for (size_t i = 0; i < n; i++) h = (h ^ b[i]) * 1099511628211u;
 	return h;
+}
+
+void csf_keep_options(const csf_opts *o, char *buf, size_t len)
+{
+	char v[4][32]; /* each as it reads back to the same double */
+	csf_fmt_double(v[0], o->tol), csf_fmt_double(v[1], o->atol), csf_fmt_double(v[2], o->step), csf_fmt_double(v[3], o->hmax);
+	int n = snprintf(buf, len, "--method %s --tol %s --atol %s --step %s --hmax %s%s --every %lu",
+	                 o->method ? o->method : "auto", v[0], v[1], v[2], v[3], o->fixed ? " --fixed" : "",
+	                 o->every > 1 ? o->every : 1);
+	for (int i = 0; i < o->ndefs && n > 0 && (size_t)n < len; i++) n += snprintf(buf + n, len - (size_t)n, " -D %s", o->defs[i]);
+	for (int i = 0; i < o->nsweeps && n > 0 && (size_t)n < len; i++)
+		n += snprintf(buf + n, len - (size_t)n, " --sweep %s", o->sweeps[i]);
+	if (o->sweep_file && n > 0 && (size_t)n < len) n += snprintf(buf + n, len - (size_t)n, " --sweep-file %s", o->sweep_file);
+	if (o->summary && n > 0 && (size_t)n < len) n += snprintf(buf + n, len - (size_t)n, " --sweep-summary %s", o->summary);
+	if (o->sweep_binary && n > 0 && (size_t)n < len) snprintf(buf + n, len - (size_t)n, " --sweep-binary");
+}
+
+int csf_keep_header(csf_keeper *k, unsigned long long *hash, char *opts, size_t optlen, long long *off)
+{
+	return csf_keep(k, "bytecode", hash, sizeof *hash) | csf_keep(k, "options", opts, optlen) |
+	       csf_keep(k, "offset", off, sizeof *off);
+}
+
+int csf_keep_check(csf_keeper *k, const char *path, unsigned long long hash, const char *opts, size_t optlen,
+                   long long *off, char *err, size_t errlen)
+{
+	unsigned long long h = 0;
+	char *o = malloc(optlen);
+	if (!o || csf_keep_header(k, &h, o, optlen, off)) {
+		snprintf(err, errlen, "--resume: %s does not fit this run: %s", path, o ? csf_keep_why(k) : "out of memory");
+		free(o);
+		return -1;
+	}
+	o[optlen - 1] = '\0';
+	int bad = -1;
+	if (h != hash)
+		snprintf(err, errlen, "--resume: %s belongs to another model: its bytecode's hash is %016llx, this one's %016llx",
+		         path, h, hash);
+	else if (strcmp(o, opts) != 0)
+		snprintf(err, errlen, "--resume: %s was written by a run with other options: '%s', not '%s' (give the same ones)",
+		         path, o, opts);
+	else bad = 0;
+	free(o);
+	return bad;
+}
+
+int csf_keep_output(FILE *out, long long off, const char *path, char *err, size_t errlen)
+{
+	struct stat st;
+	if (!out || off < 0 || fstat(fileno(out), &st) || !S_ISREG(st.st_mode)) return 0;
+	fflush(out);
+	off_t end = lseek(fileno(out), 0, SEEK_END);
+	if (end < (off_t)off) {
+		snprintf(err, errlen,
+		         "--resume: the output has %lld bytes, fewer than the %lld of the rows up to the checkpoint in %s "
+		         "(a resumed run appends to the first run's output: use >> or the same -o FILE)",
+		         (long long)end, off, path);
+		return -1;
+	}
+	if (ftruncate(fileno(out), (off_t)off) || fseeko(out, (off_t)off, SEEK_SET)) {
+		snprintf(err, errlen, "--resume: cannot cut the output back to %lld bytes: %s", off, strerror(errno));
+		return -1;
+	}
+	return 0;
+}
+
+long long csf_keep_offset(FILE *out)
+{
+	if (!out) return -1;
+	csf_out_begin();
+	int bad = fflush(out) != 0;
+	csf_out_end();
+	return bad ? -1 : (long long)ftello(out);
 }

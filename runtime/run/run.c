@@ -10,7 +10,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "run_int.h"
@@ -50,10 +49,11 @@ typedef struct session {
 	double ck_every;    /* seconds of wall time between checkpoints */
 	struct timespec ck_last; /* when the last was written */
 	int ck_warned;      /* a checkpoint could not be written (said once) */
-	char ck_opts[512];  /* the options a checkpoint holds the run to */
+	char ck_opts[CSF_KEEP_OPTS]; /* the options a checkpoint holds the run to */
 	unsigned long long hash; /* the bytecode's */
 	csf_keeper *resume; /* the checkpoint read, until the run is set up from it */
 	double k0, trow;    /* the first row to compute, and the time of the row before it */
+	long long ck_off;   /* the output's length at the checkpoint resumed (-1: unknown) */
 	char ck_err[1400];  /* why a resume failed */
 } session;
 
@@ -483,39 +483,21 @@ static int keep_state(session *S, csf_keeper *k)
 	return bad ? -1 : 0;
 }
 
-/* What a checkpoint holds a resumed run to: the options that change the rows. */
-static void checkpoint_options(session *S, const csf_opts *o)
-{
-	int n = snprintf(S->ck_opts, sizeof S->ck_opts, "--method %s --tol %.17g --atol %.17g --step %.17g --hmax %.17g%s --every %lu",
-	                 o->method ? o->method : "auto", o->tol, o->atol, o->step, o->hmax, o->fixed ? " --fixed" : "",
-	                 o->every > 1 ? o->every : 1);
-	for (int i = 0; i < o->ndefs && n > 0 && (size_t)n < sizeof S->ck_opts; i++)
-		n += snprintf(S->ck_opts + n, sizeof S->ck_opts - (size_t)n, " -D %s", o->defs[i]);
-}
-
 /* Writes the checkpoint after row k at tk (a failure is said once, and the run goes on). */
 static void checkpoint(session *S, double k, double tk)
 {
 	char err[600];
-	long long off = -1;
 	if (S->rows) { /* the row thread's rows written (it starts again after the checkpoint) */
 		int e = csf_rowthread_stop(S->rows);
 		S->rows = NULL;
 		if (e && !S->werr) S->werr = e;
 	}
-	if (S->out) { /* the rows so far on their way, and where the next begins (a pipe: unknown) */
-		csf_out_begin();
-		int bad = fflush(S->out) != 0;
-		csf_out_end();
-		off = bad ? -1 : (long long)ftello(S->out);
-	}
+	long long off = csf_keep_offset(S->out); /* where the next row begins */
 	csf_keeper *w = csf_keep_write(S->ck, err, sizeof err);
 	if (w) {
 		double row[2] = { k, tk };
-		csf_keep(w, "bytecode", &S->hash, sizeof S->hash);
-		csf_keep(w, "options", S->ck_opts, sizeof S->ck_opts);
+		csf_keep_header(w, &S->hash, S->ck_opts, sizeof S->ck_opts, &off);
 		csf_keep(w, "row", row, sizeof row);
-		csf_keep(w, "offset", &off, sizeof off);
 		keep_state(S, w);
 		if (csf_keep_commit(w, S->ck, err, sizeof err)) w = NULL;
 	}
@@ -546,29 +528,16 @@ static int checkpoint_due(const session *S)
 static int resume_open(session *S, const char *path)
 {
 	char err[400];
+	double row[2];
 	if (!(S->resume = csf_keep_read(path, err, sizeof err))) {
 		snprintf(S->ck_err, sizeof S->ck_err, "--resume: %s", err);
 		return -1;
 	}
-	unsigned long long hash = 0;
-	char opts[sizeof S->ck_opts];
-	double row[2];
-	if (csf_keep(S->resume, "bytecode", &hash, sizeof hash) || csf_keep(S->resume, "options", opts, sizeof opts) ||
-	    csf_keep(S->resume, "row", row, sizeof row)) {
+	if (csf_keep_check(S->resume, path, S->hash, S->ck_opts, sizeof S->ck_opts, &S->ck_off, S->ck_err,
+	                   sizeof S->ck_err))
+		return -1;
+	if (csf_keep(S->resume, "row", row, sizeof row)) {
 		snprintf(S->ck_err, sizeof S->ck_err, "--resume: %s does not fit this run: %s", path, csf_keep_why(S->resume));
-		return -1;
-	}
-	opts[sizeof opts - 1] = '\0';
-	if (hash != S->hash) {
-		snprintf(S->ck_err, sizeof S->ck_err,
-		         "--resume: %s belongs to another model: its bytecode's hash is %016llx, this one's %016llx", path, hash,
-		         S->hash);
-		return -1;
-	}
-	if (strcmp(opts, S->ck_opts) != 0) {
-		snprintf(S->ck_err, sizeof S->ck_err,
-		         "--resume: %s was written by a run with other options: '%s', not '%s' (give the same ones)", path, opts,
-		         S->ck_opts);
 		return -1;
 	}
 	S->k0 = row[0] + 1;
@@ -576,41 +545,13 @@ static int resume_open(session *S, const char *path)
 	return 0;
 }
 
-/*
- * --resume: the output goes on where the checkpoint's rows ended. A file
- * (standard output redirected to one with >>, or -o FILE) is cut back to
- * that length, dropping the rows the killed run wrote after it; into a
- * pipe or a terminal the rows after the checkpoint's are written. 0, or -1
- * (S->ck_err) when the file is shorter than the rows were.
- */
-static int resume_output(session *S, const char *path)
-{
-	long long off = -1;
-	struct stat st;
-	if (csf_keep(S->resume, "offset", &off, sizeof off)) return -1;
-	if (!S->out || off < 0 || fstat(fileno(S->out), &st) || !S_ISREG(st.st_mode)) return 0;
-	fflush(S->out);
-	off_t end = lseek(fileno(S->out), 0, SEEK_END);
-	if (end < (off_t)off) {
-		snprintf(S->ck_err, sizeof S->ck_err,
-		         "--resume: the output has %lld bytes, fewer than the %lld of the rows up to the checkpoint in %s "
-		         "(a resumed run appends to the first run's output: use >> or the same -o FILE)",
-		         (long long)end, off, path);
-		return -1;
-	}
-	if (ftruncate(fileno(S->out), (off_t)off) || fseeko(S->out, (off_t)off, SEEK_SET)) {
-		snprintf(S->ck_err, sizeof S->ck_err, "--resume: cannot cut the output back to %lld bytes: %s", off,
-		         strerror(errno));
-		return -1;
-	}
-	return 0;
-}
-
 /* --resume: the run, set up as usual, takes the checkpoint's state. */
 static stop resume_state(session *S, const char *path)
 {
 	stop s = stop_kind_only(STOP_END);
-	if (keep_state(S, S->resume) || resume_output(S, path)) {
+	/* the output goes on where the checkpoint's rows ended: a file is cut back to that length,
+	   dropping the rows the killed run wrote after it; into a pipe, the rows after it are written */
+	if (keep_state(S, S->resume) || csf_keep_output(S->out, S->ck_off, path, S->ck_err, sizeof S->ck_err)) {
 		if (!S->ck_err[0])
 			snprintf(S->ck_err, sizeof S->ck_err, "--resume: %s does not fit this run: %s", path,
 			         csf_keep_why(S->resume)[0] ? csf_keep_why(S->resume) : "its state is damaged");
@@ -780,7 +721,7 @@ int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, co
 	S.ck_last = S.t0;
 	S.r.row_end = S.ck != NULL;
 	S.hash = o->hash;
-	checkpoint_options(&S, o);
+	csf_keep_options(o, S.ck_opts, sizeof S.ck_opts);
 	stop s = stop_kind_only(STOP_END);
 	if (o->resume && resume_open(&S, o->resume)) {
 		s = stop_kind_only(STOP_SETUP);

@@ -178,12 +178,10 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		csf_opts_free(&o);
 		return 2;
 	}
-	if ((o.checkpoint || o.resume) && (sweep || o.compare || h5)) {
-		fprintf(stderr,
-		        "%s: --checkpoint and --resume continue one run's CSV rows; %s\n", prog,
-		        sweep ? "a sweep is not resumed (its variants are short runs: run the ones missing with -D)"
-		        : o.compare ? "--compare-methods runs a table of short runs"
-		                    : "-o FILE.h5 is written whole at the end (write CSV, and convert it)");
+	if ((o.checkpoint || o.resume) && (o.compare || h5)) {
+		fprintf(stderr, "%s: --checkpoint and --resume continue a run's or a sweep's CSV; %s\n", prog,
+		        o.compare ? "--compare-methods runs a table of short runs"
+		                  : "-o FILE.h5 is written whole at the end (write CSV, and convert it)");
 		csf_opts_free(&o);
 		return 2;
 	}

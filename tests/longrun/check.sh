@@ -4,10 +4,12 @@
 #    run resumed with --resume and compared byte for byte with the
 #    uninterrupted run: a Kepler orbit (auto, rk8pd), the bouncing
 #    ball (impacts, Zeno's accumulation, rest), a pile of 16 balls
-#    (contacts), and a generated program (csfc --emit-c) of the ball; a
+#    (contacts), a sweep of 60 variants (serial and -j 2: a checkpoint
+#    after a variant written holds how many are), and a generated program
+#    (csfc --emit-c) of the ball; a
 #    checkpoint of csfvm resumed by the generated program;
 #  - SIGTERM ends the run after its row with a checkpoint (exit 143), resumed exactly;
-#  - refusals, exit 2 with the reason: a sweep, --compare-methods, -o FILE.h5,
+#  - refusals, exit 2 with the reason: a sweep's --out-dir, --compare-methods, -o FILE.h5,
 #    a multistep method; another model's checkpoint, other options, an
 #    output shorter than the checkpoint's rows (> instead of >>), a damaged
 #    checkpoint;
@@ -36,6 +38,10 @@ kills "$CSFVM" "$T" orbit "$T/orbit.csfb"
 kills "$CSFVM" "$T" orbit-rk8pd "$T/orbit.csfb" --method rk8pd
 kills "$CSFVM" "$T" ball "$T/ball.csfb"
 kills "$CSFVM" "$T" pile "$T/pile.csfb"
+# a sweep: a checkpoint after a variant written holds how many are (serial, and -j 2)
+"$CSFC" "$HERE/../../examples/bouncing_ball.csf" -o "$T/bb.csfb"
+kills "$CSFVM" "$T" sweep "$T/bb.csfb" --sweep 'ball.cr=0.1:0.8:60'
+kills "$CSFVM" "$T" sweep-j2 "$T/bb.csfb" -j 2 --sweep 'ball.cr=0.1:0.8:60'
 # a generated program: its own kill test; a checkpoint of csfvm goes on in it (the same bytecode)
 kills "$T/ball-exe" "$T" ball-exe ""
 "$CSFVM" "$T/ball.csfb" >"$T/full.csv"
@@ -64,7 +70,7 @@ refuse() { # WHAT PATTERN COMMAND...: exit 2 and PATTERN on stderr
 	st=$?
 	if [ $st -eq 2 ] && grep -q -- "$pat" "$T/err"; then ok; else bad "$what: exit $st, $(head -n 1 "$T/err")"; fi
 }
-refuse "a sweep" "a sweep is not resumed" "$CSFVM" --checkpoint "$T/c2" --sweep 'ball.cr=0.1:0.5:3' "$T/ball.csfb"
+refuse "a sweep's --out-dir" "not --out-dir's files" "$CSFVM" --checkpoint "$T/c2" --out-dir "$T/od" --sweep 'ball.cr=0.1:0.5:3' "$T/ball.csfb"
 refuse "--compare-methods" "compare-methods runs a table" "$CSFVM" --checkpoint "$T/c2" --compare-methods "$T/ball.csfb"
 refuse "-o FILE.h5" "-o FILE.h5 is written whole" "$CSFVM" --checkpoint "$T/c2" -o "$T/x.h5" "$T/ball.csfb"
 refuse "msbdf" "msbdf keeps a history of past steps" "$CSFVM" --method msbdf --checkpoint "$T/c2" "$T/orbit.csfb"
