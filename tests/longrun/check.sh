@@ -4,7 +4,8 @@
 #    run resumed with --resume and compared byte for byte with the
 #    uninterrupted run: a Kepler orbit (auto, rk8pd), the bouncing
 #    ball (impacts, Zeno's accumulation, rest), a pile of 16 balls
-#    (contacts), a sweep of 60 variants (serial and -j 2: a checkpoint
+#    (contacts), a string going slack and taut (a one-sided constraint),
+#    the ball with --every 7 and rk8pd, a sweep of 60 variants (serial and -j 2: a checkpoint
 #    after a variant written holds how many are), and a generated program
 #    (csfc --emit-c) of the ball; a
 #    checkpoint of csfvm resumed by the generated program;
@@ -38,6 +39,10 @@ kills "$CSFVM" "$T" orbit "$T/orbit.csfb"
 kills "$CSFVM" "$T" orbit-rk8pd "$T/orbit.csfb" --method rk8pd
 kills "$CSFVM" "$T" ball "$T/ball.csfb"
 kills "$CSFVM" "$T" pile "$T/pile.csfb"
+# a string (a one-sided constraint) going slack and snapping taut; --every with another method
+"$CSFC" "$HERE/string.csf" -o "$T/string.csfb" || bad "string.csf does not compile"
+kills "$CSFVM" "$T" string "$T/string.csfb"
+kills "$CSFVM" "$T" ball-every "$T/ball.csfb" --every 7 --method rk8pd
 # a sweep: a checkpoint after a variant written holds how many are (serial, and -j 2)
 "$CSFC" "$HERE/../../examples/bouncing_ball.csf" -o "$T/bb.csfb"
 kills "$CSFVM" "$T" sweep "$T/bb.csfb" --sweep 'ball.cr=0.1:0.8:60'
