@@ -242,6 +242,13 @@ int csf_keep_output(FILE *out, long long off, const char *path, char *err, size_
 	if (!out || off < 0 || fstat(fileno(out), &st) || !S_ISREG(st.st_mode)) return 0;
 	fflush(out);
 	off_t end = lseek(fileno(out), 0, SEEK_END);
+	if (end == 0 && off > 0) { /* a new file (> instead of >>): the rows after the checkpoint's, as into a pipe */
+		fprintf(stderr,
+		        "warning: --resume: the output is empty, not the first run's %lld bytes up to the checkpoint in %s: "
+		        "it gets the rows after them (append it to the first %lld bytes of the first run's output)\n",
+		        off, path, off);
+		return 0;
+	}
 	if (end < (off_t)off) {
 		snprintf(err, errlen,
 		         "--resume: the output has %lld bytes, fewer than the %lld of the rows up to the checkpoint in %s "
