@@ -472,7 +472,7 @@ static int keep_state(session *S, csf_keeper *k)
 	       CSF_KEEP(k, gd->seconds) | CSF_KEEP(k, gd->last) | CSF_KEEP(k, gd->at_max) | CSF_KEEP(k, gd->rho_max) |
 	       CSF_KEEP(k, gd->ratio) | CSF_KEEP(k, gd->ratio_rho) | CSF_KEEP(k, gd->hrho) | CSF_KEEP(k, gd->hlim_rho) |
 	       CSF_KEEP(k, gd->ratio_exact) | CSF_KEEP(k, gd->have_ratio) | CSF_KEEP(k, gd->auto_ratio) |
-	       CSF_KEEP(k, gd->aside) | CSF_KEEP(k, gd->warned) | CSF_KEEP(k, gd->nexact) | CSF_KEEP(k, gd->smin) |
+	       CSF_KEEP(k, gd->aside) | CSF_KEEP(k, gd->warned) | CSF_KEEP(k, gd->warned_short) | CSF_KEEP(k, gd->nexact) | CSF_KEEP(k, gd->smin) |
 	       csf_spectrum_keep(gd->sp, k);
 	if (gd->y) bad |= csf_keep(k, "guard.y", gd->y, 4 * ny * sizeof *gd->y);
 	/* --method auto's pair, and the integrators */
