@@ -51,7 +51,12 @@ kills "$CSFVM" "$T" sweep-j2 "$T/bb.csfb" -j 2 --sweep 'ball.cr=0.1:0.8:30'
 kills "$T/ball-exe" "$T" ball-exe ""
 "$CSFVM" "$T/ball.csfb" >"$T/full.csv"
 rm -f "$T/c"
-timeout -s KILL 0.15 "$CSFVM" --checkpoint "$T/c" --checkpoint-every 0.005 "$T/ball.csfb" >"$T/part.csv"
+"$CSFVM" --checkpoint "$T/c" --checkpoint-every 0.005 "$T/ball.csfb" >"$T/part.csv" & # killed after its first checkpoint
+pid=$!
+n=0
+while [ ! -f "$T/c" ] && [ $n -lt 3000 ]; do sleep 0.01; n=$((n + 1)); done
+kill -KILL $pid 2>/dev/null
+wait $pid
 if [ -f "$T/c" ] && "$T/ball-exe" --resume "$T/c" >>"$T/part.csv" 2>"$T/err" && cmp -s "$T/full.csv" "$T/part.csv"; then ok
 else bad "csfvm's checkpoint resumed by the generated program: $(head -n 1 "$T/err") $(cmp "$T/full.csv" "$T/part.csv" 2>&1)"; fi
 
@@ -61,7 +66,8 @@ sed 's/^inc t till 125 /inc t till 3000 /' "$HERE/orbit.csf" >"$T/long.csf" && "
 rm -f "$T/c"
 "$CSFVM" --checkpoint "$T/c" --checkpoint-every 1000 "$T/long.csfb" >"$T/part.csv" 2>"$T/err" &
 pid=$!
-sleep 0.3
+n=0 # SIGTERM once some rows are out
+while [ "$(wc -c <"$T/part.csv")" -lt 200000 ] && [ $n -lt 3000 ]; do sleep 0.01; n=$((n + 1)); done
 kill -TERM $pid
 wait $pid
 st=$?
@@ -82,7 +88,12 @@ refuse "--compare-methods" "compare-methods runs a table" "$CSFVM" --checkpoint 
 refuse "-o FILE.h5" "-o FILE.h5 is written whole" "$CSFVM" --checkpoint "$T/c2" -o "$T/x.h5" "$T/ball.csfb"
 refuse "msbdf" "msbdf keeps a history of past steps" "$CSFVM" --method msbdf --checkpoint "$T/c2" "$T/orbit.csfb"
 rm -f "$T/c"
-timeout -s KILL 0.1 "$CSFVM" --checkpoint "$T/c" --checkpoint-every 0.005 "$T/ball.csfb" >"$T/part.csv"
+"$CSFVM" --checkpoint "$T/c" --checkpoint-every 0.005 "$T/ball.csfb" >"$T/part.csv" & # killed after its first checkpoint
+pid=$!
+n=0
+while [ ! -f "$T/c" ] && [ $n -lt 3000 ]; do sleep 0.01; n=$((n + 1)); done
+kill -KILL $pid 2>/dev/null
+wait $pid
 refuse "another model" "belongs to another model" "$CSFVM" --resume "$T/c" "$T/orbit.csfb"
 refuse "other options" "written by a run with other options" "$CSFVM" --resume "$T/c" --tol 1e-9 "$T/ball.csfb"
 refuse "other -D" "written by a run with other options" "$CSFVM" --resume "$T/c" -D ball.cr=0.4 "$T/ball.csfb"
