@@ -124,6 +124,7 @@ static void gen_run(Gen *G, Model *M, csf_prog *p)
 	p->nevents = G->nevents;
 	p->events = G->events ? G->events : xcalloc(1, sizeof *p->events);
 	gen_hoist(p, scratch, scratch + G->max_scratch);
+	gen_fuse(p, scratch, scratch + G->max_scratch);
 }
 
 /* After a failure: frees what G holds that p does not (p's tables are csf_prog_free's). */

@@ -130,3 +130,59 @@ void gen_hoist(csf_prog *p, uint32_t lo, uint32_t hi)
 	for (int sec = 0; sec < CSF_NSEC; sec++)
 		for (uint32_t k = 0; k < p->ncode[sec] && hoist_one(p, sec, lo, hi); k++) continue;
 }
+
+/* Does some jump of the section, or a line of its table, name pc? */
+static int named(const csf_prog *p, int sec, uint32_t at)
+{
+	const uint32_t *code = p->code[sec];
+	for (uint32_t pc = 0; pc < p->ncode[sec]; pc += csf_insn_len(code[pc])) {
+		const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
+		for (int k = 0; k < oi->nops; k++)
+			if ((oi->kind[k] == CSF_K_J || oi->kind[k] == CSF_K_B) && code[pc + 1 + k] == at) return 1;
+	}
+	for (uint32_t i = 0; i < p->nlines[sec]; i++)
+		if (p->lines[sec][i].pc == at) return 1;
+	return 0;
+}
+
+/*
+ * POWI t, y, n then DIV a, x, t, with t a scratch slot [lo, hi) that only
+ * that DIV reads: DIVPOWI a, x, y, n (csf_op_DIVPOWI: the same two
+ * operations), 3 words shorter. One fusion of section sec; 0 when none.
+ */
+static int fuse_one(csf_prog *p, int sec, uint32_t lo, uint32_t hi)
+{
+	uint32_t *code = p->code[sec], n = p->ncode[sec];
+	static const uint32_t none[CSF_LOOP_MAX + 1] = { 1, 1, 1, 1 };
+	for (uint32_t q = 0; q < n; q += csf_insn_len(code[q])) {
+		uint32_t d = q + csf_insn_len(CSF_OP_POWI), t = code[q + 1];
+		if (code[q] != CSF_OP_POWI || d >= n || code[d] != CSF_OP_DIV || code[d + 3] != t || code[d + 2] == t ||
+		    t < lo || t >= hi || named(p, sec, d))
+			continue;
+		uint32_t cnt[CSF_LOOP_MAX + 1] = { 1, 1, 1, 1 }; /* the counts of the loops open at the DIV */
+		for (uint32_t pc = 0; pc < d; pc += csf_insn_len(code[pc]))
+			if (code[pc] == CSF_OP_LOOP) cnt[code[pc + 1]] = code[pc + 2];
+		if (touches(code, 0, d, none, t, t + 1ull, 0) || touches(code, d + csf_insn_len(CSF_OP_DIV), n, cnt, t, t + 1ull, 0))
+			continue;
+		uint32_t a = code[d + 1], x = code[d + 2], y = code[q + 2], e = code[q + 3];
+		code[q] = CSF_OP_DIVPOWI, code[q + 1] = a, code[q + 2] = x, code[q + 3] = y, code[q + 4] = e;
+		uint32_t cut = q + csf_insn_len(CSF_OP_DIVPOWI), gone = d + csf_insn_len(CSF_OP_DIV) - cut;
+		memmove(code + cut, code + cut + gone, (size_t)(n - cut - gone) * sizeof *code);
+		p->ncode[sec] = n - gone;
+		for (uint32_t pc = 0; pc < p->ncode[sec]; pc += csf_insn_len(code[pc])) {
+			const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
+			for (int k = 0; k < oi->nops; k++)
+				if ((oi->kind[k] == CSF_K_J || oi->kind[k] == CSF_K_B) && code[pc + 1 + k] > q) code[pc + 1 + k] -= gone;
+		}
+		for (uint32_t i = 0; i < p->nlines[sec]; i++)
+			if (p->lines[sec][i].pc > q) p->lines[sec][i].pc -= gone;
+		return 1;
+	}
+	return 0;
+}
+
+void gen_fuse(csf_prog *p, uint32_t lo, uint32_t hi)
+{
+	for (int sec = 0; sec < CSF_NSEC; sec++)
+		while (fuse_one(p, sec, lo, hi)) continue;
+}

@@ -2,8 +2,10 @@
  * Threads (--threads N): which loops the analysis lets threads share
  * (csf_parloop_analyse) on hand-built loops, each kind of dependence
  * between iterations refused, and the VM with a pool of 2 and 3 threads
- * leaving the memory of a serial run, bit for bit.
+ * leaving the memory of a serial run, bit for bit; the superinstruction
+ * DIVPOWI against the two instructions it fuses.
  */
+#include <math.h>
 #include <string.h>
 
 #include "suites.h"
@@ -228,12 +230,42 @@ START_TEST(test_par_one_thread)
 }
 END_TEST
 
+/* DIVPOWI, the superinstruction of POWI then DIV: the same bits as the two, on the VM too; hostile operands refused. */
+START_TEST(test_divpowi)
+{
+	static const double xs[] = { 1.5, -3e10, 7, 0.1, 0 }, ys[] = { 0.7, 2, -1e-3, 3e100, 0 };
+	for (int n = -CSF_POWI_MAX; n <= CSF_POWI_MAX; n++)
+		for (size_t i = 0; i < sizeof xs / sizeof xs[0]; i++) {
+			double two = csf_op_DIV(xs[i], csf_op_POWI(ys[i], n)), one = csf_op_DIVPOWI(xs[i], ys[i], n);
+			ck_assert_msg(memcmp(&one, &two, sizeof one) == 0 || (isnan(one) && isnan(two)), "%g / %g^%d: %.17g, not %.17g",
+			              xs[i], ys[i], n, one, two);
+			double m[4] = { 0, xs[i], ys[i], 0 };
+			uint32_t code[] = { CSF_OP_DIVPOWI, 0, 1, 2, (uint32_t)n };
+			csf_prog p = bare_prog(code, 5, m, 4, 1);
+			char err[256];
+			ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "%s", err);
+			ck_assert_int_eq(vm_run(&p, CSF_SEC_OUT, m), -1);
+			ck_assert(memcmp(&m[0], &one, sizeof one) == 0 || (isnan(m[0]) && isnan(one)));
+		}
+	/* an exponent past CSF_POWI_MAX, a slot past memory, a register of no open loop */
+	uint32_t bad[][5] = { { CSF_OP_DIVPOWI, 0, 1, 2, 9 }, { CSF_OP_DIVPOWI, 0, 1, 2, (uint32_t)-9 },
+		                  { CSF_OP_DIVPOWI, 0, 1, 4, 3 }, { CSF_OP_DIVPOWI, 0, R(1, 1), 2, 3 } };
+	for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+		double m[4] = { 0 };
+		csf_prog p = bare_prog(bad[i], 5, m, 4, 1);
+		char err[256];
+		ck_assert_msg(csf_verify(&p, err, sizeof err) != 0, "hostile DIVPOWI %zu verified", i);
+	}
+}
+END_TEST
+
 Suite *par_suite(void)
 {
 	Suite *s = suite_create("par");
 	TCase *tc = tcase_create("core");
 	tcase_add_loop_test(tc, test_par_loops, 0, (int)(sizeof cases / sizeof cases[0]));
 	tcase_add_test(tc, test_par_one_thread);
+	tcase_add_test(tc, test_divpowi);
 	suite_add_tcase(s, tc);
 	return s;
 }
