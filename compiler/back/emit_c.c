@@ -449,6 +449,7 @@ static void emit_function(Emit *E, int sec, uint32_t from, uint32_t to, const ch
 			fputc('\n', E->f);
 		}
 		if (E->par[pc] && pc != E->par_pc) {
+			if (E->target[pc]) fprintf(E->f, "L%lu:\n", (unsigned long)pc);
 			emit_par_call(E, fname, pc);
 			pc = code[pc + 3] - csf_insn_len(CSF_OP_NEXT);
 			continue;
