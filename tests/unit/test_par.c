@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "suites.h"
+#include "emit_c.h"
 #include "insn.h"
 #include "par.h"
 #include "parloop.h"
@@ -17,7 +18,7 @@
 
 /* Memory: scratch T (6 slots), a running sum, a constant, the zero vector, then per member (N of them)
    a flag, x, a vector v, and the cells the loops write: OUT (scalars) and OV (vectors). */
-enum { T = 0, SUM = 6, G = 7, ZERO = 8, N = 8, FLAG = 11, X = FLAG + N, V = X + N, OUT = V + 3 * N, OV = OUT + N,
+enum { T = 1 /* (slot 0 is t) */, SUM = T + 6, G = SUM + 1, ZERO = G + 1, N = 8, FLAG = ZERO + 3, X = FLAG + N, V = X + N, OUT = V + 3 * N, OV = OUT + N,
        NMEM = OV + 3 * N };
 
 static uint32_t put(uint32_t *code, uint32_t *n, int op, uint32_t a, uint32_t b, uint32_t c)
@@ -230,6 +231,27 @@ START_TEST(test_par_one_thread)
 }
 END_TEST
 
+/* The C of a loop whose iterations are independent: a function of its own, called through csf_par_for,
+   the label of a jump that lands on the loop before the call. */
+START_TEST(test_par_c)
+{
+	uint32_t code[64], n = 0;
+	uint32_t jz = put(code, &n, CSF_OP_JZ, G, 0, 0);
+	put(code, &n, CSF_OP_MOV, SUM, G, 0);
+	code[jz + 2] = n;
+	uint32_t l = n;
+	own_cells(code, &n);
+	init_mem();
+	csf_prog p = bare_prog(code, n, mem0, NMEM, N);
+	char err[256];
+	ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "%s", err);
+	char *c = emit_string(&p), want[128];
+	snprintf(want, sizeof want, "L%lu:\n\tcsf_par_for(p, x, ", (unsigned long)l);
+	ck_assert_msg(strstr(c, want) && strstr(c, "for (uint32_t i1 = lo; i1 < hi; i1++) {"), "%s", c);
+	free(c);
+}
+END_TEST
+
 /* DIVPOWI, the superinstruction of POWI then DIV: the same bits as the two, on the VM too; hostile operands refused. */
 START_TEST(test_divpowi)
 {
@@ -266,6 +288,7 @@ Suite *par_suite(void)
 	tcase_add_loop_test(tc, test_par_loops, 0, (int)(sizeof cases / sizeof cases[0]));
 	tcase_add_test(tc, test_par_one_thread);
 	tcase_add_test(tc, test_divpowi);
+	tcase_add_test(tc, test_par_c);
 	suite_add_tcase(s, tc);
 	return s;
 }
