@@ -23,7 +23,7 @@
 #     lines that must appear on stderr.
 #  4. both execution paths give identical output: csfvm and `csfc --emit-c`,
 #     also built with the CFLAGS csfc(1) says keep it (-O3 -march=native
-#     -fno-math-errno).
+#     -fno-math-errno); and each of them with --threads 2 and 3 as with one.
 #  5. hostile bytecode, bad usage, output errors, install, a 300-body scene,
 #     every method at every tolerance (tests/methods_tol.sh), contacts
 #     (tests/contacts/; every scene under every method, one job a scene), many objects (tests/many/: 100 balls in a box, 1000
@@ -172,9 +172,32 @@ t_same_as_vm() {
 		bad "$m${2:+ (CFLAGS=$2)}: stdout differs between csfvm and the generated executable: $(cmp "$T/v.out" "$T/c.out")"
 	elif ! cmp -s "$T/v.err" "$T/c.err"; then
 		bad "$m${2:+ (CFLAGS=$2)}: stderr differs: $(head -n 1 "$T/v.err") / $(head -n 1 "$T/c.err")"
+	elif [ -z "${2:-}" ]; then
+		same_threads "$m" "$d" "$vs" "$args"
 	else
 		ok
 	fi
+}
+
+# same_threads MODEL DIR STATUS ARGS: csfvm and the generated executable with --threads 2 and 3 print what
+# they print with one thread (v.out, v.err; exit STATUS), every loop whose iterations are independent
+# shared among the threads however little work it has (CSF_THREADS_MIN_WORK=0), the first 3000 of them
+# (CSF_THREADS_MAX_JOBS: a run of many small loops would take minutes on a busy machine)
+same_threads() {
+	for n in 2 3; do
+		for e in csfvm exe; do
+			if [ $e = csfvm ]; then prog=$CSFVM file=$T/v.csfb; else prog=$T/exe file=; fi
+			# shellcheck disable=SC2086 # $4 holds the model's options
+			(cd "$2" && CSF_THREADS_MIN_WORK=0 CSF_THREADS_MAX_JOBS=3000 timeout "$LIMIT" "$prog" $4 --threads $n ${file:+"$file"}) >"$T/t.out" 2>"$T/t.err"
+			ts=$?
+			sed 's/^\(stats: .*\), [0-9.]* s$/\1/' "$T/t.err" >"$T/t.err2"
+			if [ $ts -ne "$3" ] || ! cmp -s "$T/v.out" "$T/t.out" || ! cmp -s "$T/v.err" "$T/t.err2"; then
+				bad "$1: $e --threads $n differs from one thread: exit $ts (not $3); $(cmp "$T/v.out" "$T/t.out" 2>&1 | head -n 1); $(head -n 1 "$T/t.err2")"
+				return
+			fi
+		done
+	done
+	ok
 }
 
 # 4a. -ffast-math, which does not keep the executable bit-identical, is named in a warning

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "run_int.h"
+#include "par.h"
 #include "constraint.h"
 
 /*
@@ -683,6 +684,7 @@ static void run_free(session *S)
 	csf_ode_free(S->au.m[1]);
 	csf_contacts_free(r->cs);
 	csf_cons_free(r->cons);
+	csf_pool_free(r->x.pool);
 	free(r->cw);
 	free(r->ga);
 	free(r->gb);
@@ -728,6 +730,7 @@ int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, co
 		s.msg = S.ck_err;
 	}
 	if (s.kind == STOP_END) s = run_alloc(&S);
+	S.r.x.pool = csf_pool_new(p, o->threads); /* NULL: one thread (the same result) */
 	if (s.kind == STOP_END) s = run_method(&S, o);
 	if (s.kind == STOP_END && S.ck && S.ode && csf_ode_history(S.ode)) {
 		snprintf(S.ck_err, sizeof S.ck_err,
