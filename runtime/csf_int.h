@@ -101,6 +101,20 @@ typedef struct csf_event { uint32_t kind, value, mode, src; } csf_event;
 #define CSF_EVENT_TERMINAL 2u
 
 /*
+ * A `when` block (one per binding of its objects): its statement, and two
+ * slots of memory the EVT section keeps. The runtime runs EVT at each
+ * event, after an RHS evaluation at the event's instant with the modes
+ * before it: for each block, in order, the section computes the condition
+ * from the values there, sets fire to 1 if it is true and prev (its value
+ * at the last event: 0 or 1; -1 before the first, so that a condition true
+ * at the start does not fire) is 0, else 0, and prev to the condition;
+ * then, for each block that fires, the new values from the values before
+ * any is set, and then sets them. A property only `when` blocks assign is
+ * latched: it lives in memory like prev, and changes only there.
+ */
+typedef struct csf_when { uint32_t src, fire, prev; } csf_when;
+
+/*
  * The contact routine's tables (mechanics/rules, rules 1 to 4; runtime/contact/).
  * There is no list of pairs: the program lists the bodies that can touch,
  * and the routine finds the pairs near or in contact at run time.
@@ -179,9 +193,10 @@ struct csf_prog {
 	double *yatol;  /* per state component: the absolute tolerance the scene sets (`atol A` on the
 	                   property's line), in the model's units; 0: none (--atol, else tol * yscale) */
 	double till, by;
-	uint32_t ncols, nfiles, nsrcs, nasserts, nobjects, nprops, nevents;
+	uint32_t ncols, nfiles, nsrcs, nasserts, nobjects, nprops, nevents, nwhens;
 	csf_col *cols;
 	csf_event *events;
+	csf_when *whens; /* the `when` blocks, in the order the EVT section runs them */
 	uint32_t ncbodies, ncmembers, ncrules; /* the contact routine's tables (no rules: no contacts) */
 	csf_cbody *cbodies;
 	uint32_t *cmembers;

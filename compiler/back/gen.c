@@ -18,6 +18,7 @@
  *   tables.c        the tables beside the code (contacts, columns, -D, sources)
  *   pairs.c         velocity Verlet's position/velocity pairs
  *   jac.c           the JAC section, by forward-mode differentiation of RHS
+ *   when.c          the EVT section: the `when` blocks
  * sharing the generator's state through gen_int.h.
  */
 #include <stdlib.h>
@@ -104,6 +105,7 @@ static void gen_run(Gen *G, Model *M, csf_prog *p)
 	gen_constraint_tables(G, M, p);
 
 	sections(G, M, p, last_a);
+	gen_when_section(G, M, p);
 	gen_columns(G, M, p);
 	gen_globals(G, M, p);
 	gen_objects(G, M, p);

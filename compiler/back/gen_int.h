@@ -73,7 +73,11 @@ uint32_t emit(Gen *G, RExpr *e);
 int inst_loops(const Model *M, const Inst *I);
 int sums_pairs(const Model *M, const Inst *I);
 void add_line(Gen *G, uint32_t src);
+void add_target(Gen *G, uint32_t slot, Var *v, uint32_t src, const char *name, Object *o);
 void emit_inst(Gen *G, Inst *I);
+
+/* when.c: the EVT section */
+void gen_when_section(Gen *G, Model *M, csf_prog *p);
 
 /* jac.c: the Jacobian */
 int depends(const uint32_t *code, uint32_t n, unsigned char *act, int smooth);

@@ -75,7 +75,7 @@ typedef struct WatchItem { Loc loc; char *obj; char *prop; char *comp; } WatchIt
  * them from a data file. */
 enum { ARR_NONE, ARR_RANGE, ARR_EACH, ARR_ONE, ARR_FILE };
 
-typedef enum StmtKind { S_GLOBAL, S_PROP, S_OBJKIND, S_DEF, S_VECDECL, S_RULE, S_ASSERT, S_STOP, S_START } StmtKind;
+typedef enum StmtKind { S_GLOBAL, S_PROP, S_OBJKIND, S_DEF, S_VECDECL, S_RULE, S_ASSERT, S_STOP, S_WHEN, S_START } StmtKind;
 
 typedef struct Stmt Stmt;
 struct Stmt {
@@ -101,8 +101,8 @@ struct Stmt {
 	int has_for;
 	int once;     /* a rule, assertion or stop without `for` that reads nothing of an object it would bind
 	                 (globals, t, NAME.PROP, sums): it applies once, bound to the first object (sema) */
-	Expr *cond;   /* assertion, stop condition */
-	Eqn *eqns;    /* rule: its one step (an equation, or a conditional block) */
+	Expr *cond;   /* assertion, stop condition, `when` condition */
+	Eqn *eqns;    /* rule: its one step (an equation, or a conditional block); `when`: its assignments */
 	Expr *call;   /* a rule that calls a runtime routine: contact(...) */
 	/* S_START */
 	char *var;
