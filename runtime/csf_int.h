@@ -110,7 +110,9 @@ typedef struct csf_event { uint32_t kind, value, mode, src; } csf_event;
  * at the start does not fire) is 0, else 0, and prev to the condition;
  * then, for each block that fires, the new values from the values before
  * any is set, and then sets them. A property only `when` blocks assign is
- * latched: it lives in memory like prev, and changes only there.
+ * latched: it lives in memory like prev, and changes only there. So the
+ * run's state is t, the state vector, and the slots of every prev and of
+ * the EVT section's targets (the latched values): a checkpoint keeps them.
  */
 typedef struct csf_when { uint32_t src, fire, prev; } csf_when;
 

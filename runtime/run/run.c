@@ -459,13 +459,15 @@ static void stats_run(const session *S, const csf_opts *o, unsigned long steps, 
 	if (r->cs)
 		snprintf(cand, sizeof cand, ", %.1f contact pairs watched (candidates) on average, at most %lu",
 		         r->nchoices ? (double)r->ncand / (double)r->nchoices : 0.0, r->maxcand);
+	char fired[48] = "";
+	if (r->p->nwhens) snprintf(fired, sizeof fired, " (%lu when blocks fired)", r->nfired);
 	char name[64];
 	snprintf(name, sizeof name, "%s%s%s%s", r->au ? "auto (" : "", S->ode ? csf_ode_method(S->ode) : "none",
 	         r->au && S->au.n ? " and " AUTO_STIFF : "", r->au ? ")" : "");
 	fprintf(err,
 	        "stats: method %s%s, %lu steps (%lu rejected), %lu right-hand side and %lu Jacobian evaluations, "
-	        "%lu events%s, %.6f s\n",
-	        name, S->fixed ? " (fixed steps)" : "", steps, rejected, r->nrhs, r->njac, r->nevents, cand,
+	        "%lu events%s%s, %.6f s\n",
+	        name, S->fixed ? " (fixed steps)" : "", steps, rejected, r->nrhs, r->njac, r->nevents, fired, cand,
 	        o->run_seconds);
 }
 
