@@ -394,6 +394,8 @@ static stop run_row(session *S, double k, double tk, int *last)
 	run *r = &S->r;
 	const csf_prog *p = r->p;
 	if (S->events && !S->ode) { /* no state: the conditions depend on t alone, and are looked at on the rows */
+		int fired, st = (r->wround = 0, csf_run_whens(r, tk, S->y, &fired));
+		if (st) return stop_at(st == ADV_WHEN_CYCLE ? STOP_WHEN_CYCLE : STOP_NONFINITE, tk);
 		csf_run_free_modes(r, tk, S->y);
 		csf_run_stop_now(r, tk);
 	}
