@@ -31,17 +31,32 @@
 #include "gen_int.h"
 #include "liveness.h"
 
+void section_begin(Gen *G)
+{
+	G->code = NULL;
+	G->ncode = G->capcode = 0;
+	G->lines = NULL;
+	G->nlines = G->caplines = 0;
+	G->targets = NULL;
+	G->ntargets = G->captargets = 0;
+}
+
+void section_end(Gen *G, csf_prog *p, int sec)
+{
+	p->code[sec] = G->code;
+	p->ncode[sec] = G->ncode;
+	p->lines[sec] = G->lines;
+	p->nlines[sec] = G->nlines;
+	p->targets[sec] = G->targets;
+	p->ntargets[sec] = G->ntargets;
+}
+
 /* The RHS and OUT sections: the code of each instance the section needs, in order, the
    contact routine (and the constraints) after the instance last_a (live_mark). */
 static void sections(Gen *G, Model *M, csf_prog *p, int last_a)
 {
 	for (int sec = CSF_SEC_RHS; sec <= CSF_SEC_OUT; sec++) {
-		G->code = NULL;
-		G->ncode = G->capcode = 0;
-		G->lines = NULL;
-		G->nlines = G->caplines = 0;
-		G->targets = NULL;
-		G->ntargets = G->captargets = 0;
+		section_begin(G);
 		for (int i = 0; i < M->insts.n; i++) {
 			Inst *I = M->insts.v[i];
 			if (!I->needed[sec]) continue;
@@ -55,12 +70,7 @@ static void sections(Gen *G, Model *M, csf_prog *p, int last_a)
 			}
 			if (i == last_a && p->ncons) gen_constraint_code(G, M, p);
 		}
-		p->code[sec] = G->code;
-		p->ncode[sec] = G->ncode;
-		p->lines[sec] = G->lines;
-		p->nlines[sec] = G->nlines;
-		p->targets[sec] = G->targets;
-		p->ntargets[sec] = G->ntargets;
+		section_end(G, p, sec);
 	}
 }
 

@@ -49,6 +49,10 @@ typedef struct Gen {
 	void *work[3]; /* gen_jacobian's heap arrays while it runs, for gen_program to free after that */
 } Gen;
 
+/* gen.c: a code section's code, lines and targets, from empty (begin) into p's section sec (end) */
+void section_begin(Gen *G);
+void section_end(Gen *G, csf_prog *p, int sec);
+
 /* slots.c: memory, strings and parameter classes */
 void *grow(void *p, uint32_t *cap, uint32_t need, size_t elem);
 uint32_t alloc_mem(Gen *G, uint32_t n, const double *init);

@@ -60,12 +60,7 @@ static void emit_set(Gen *G, Inst *I, const WhenSlots *W)
 
 void gen_when_section(Gen *G, Model *M, csf_prog *p)
 {
-	G->code = NULL;
-	G->ncode = G->capcode = 0;
-	G->lines = NULL;
-	G->nlines = G->caplines = 0;
-	G->targets = NULL;
-	G->ntargets = G->captargets = 0;
+	section_begin(G);
 	G->loop = 0;
 	Vec whens = { 0 };
 	for (int i = 0; i < M->insts.n; i++) {
@@ -86,10 +81,5 @@ void gen_when_section(Gen *G, Model *M, csf_prog *p)
 	p->nwhens = (uint32_t)whens.n;
 	for (int i = 0; i < whens.n; i++) emit_fire(G, whens.v[i], &W[i]);
 	for (int i = 0; i < whens.n; i++) emit_set(G, whens.v[i], &W[i]);
-	p->code[CSF_SEC_EVT] = G->code;
-	p->ncode[CSF_SEC_EVT] = G->ncode;
-	p->lines[CSF_SEC_EVT] = G->lines;
-	p->nlines[CSF_SEC_EVT] = G->nlines;
-	p->targets[CSF_SEC_EVT] = G->targets;
-	p->ntargets[CSF_SEC_EVT] = G->ntargets;
+	section_end(G, p, CSF_SEC_EVT);
 }
