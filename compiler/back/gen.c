@@ -43,7 +43,7 @@ void section_begin(Gen *G)
 
 void section_end(Gen *G, csf_prog *p, int sec)
 {
-	p->code[sec] = G->code;
+	p->code[sec] = G->code ? G->code : xcalloc(1, sizeof *G->code); /* an empty section is an array too */
 	p->ncode[sec] = G->ncode;
 	p->lines[sec] = G->lines;
 	p->nlines[sec] = G->nlines;
