@@ -75,7 +75,9 @@ typedef struct WatchItem { Loc loc; char *obj; char *prop; char *comp; } WatchIt
  * them from a data file. */
 enum { ARR_NONE, ARR_RANGE, ARR_EACH, ARR_ONE, ARR_FILE };
 
-typedef enum StmtKind { S_GLOBAL, S_PROP, S_OBJKIND, S_DEF, S_VECDECL, S_RULE, S_ASSERT, S_STOP, S_WHEN, S_START } StmtKind;
+typedef enum StmtKind {
+	S_GLOBAL, S_PROP, S_OBJKIND, S_DEF, S_VECDECL, S_RULE, S_ASSERT, S_STOP, S_WHEN, S_START
+} StmtKind;
 
 typedef struct Stmt Stmt;
 struct Stmt {

@@ -83,10 +83,9 @@ static void check_sections(Stmt *stmts)
 	int section = 0; /* 0 objects, 1 rules, 2 start */
 	Stmt *start = NULL;
 	for (Stmt *s = stmts; s; s = s->next) {
-		int sec = s->kind == S_START ? 2
-		          : (s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_STOP || s->kind == S_WHEN || s->kind == S_VECDECL)
-		                  ? 1
-		                  : 0;
+		int rule_sec = s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_STOP || s->kind == S_WHEN ||
+		               s->kind == S_VECDECL;
+		int sec = s->kind == S_START ? 2 : rule_sec ? 1 : 0;
 		if (start) {
 			error_at(s->loc, "the start directive ('inc ...') must be the last statement");
 			note_at(start->loc, "start directive here");

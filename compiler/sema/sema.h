@@ -121,7 +121,8 @@ struct Inst {
 	Object **bind;   /* $0, $1, ... */
 	int nbind;
 	int isassert, isstop, isderiv, isF;
-	int iswhen;      /* a `when` block: its condition in cond, its assignments (var := e, read before any is made) in then */
+	int iswhen;      /* a `when` block: its condition in cond, its assignments in then (var := e, every e read
+	                    before any var is set) */
 	RExpr *cond;     /* assertion, stop; conditional rule: all its conditions joined by 'and' (dims.c) */
 	Branch *top;     /* conditional rule: its block */
 	Vec then, els;   /* of Assign*: a plain rule's one (then); a conditional rule's, at every depth,
