@@ -351,6 +351,14 @@ void csf_contacts_free(csf_contacts *c);
  * and every contact force meaningless: csf_run refuses the run.
  */
 long csf_contacts_bad_mass(const csf_prog *p, const double *m);
+/*
+ * Around velocities changed at an event by something other than an impact (a `when` block): before,
+ * each pair in contact's relative velocity is kept; after, each pair in contact whose relative
+ * velocity changed takes its mode afresh as after an impact: a ball resting on the floor kicked
+ * upwards leaves it (zeno: as csf_contact_settle's). m holds the velocities.
+ */
+void csf_contacts_before_kick(csf_contacts *cs, const double *m);
+void csf_contacts_after_kick(csf_contacts *cs, double *m, double zeno);
 /* The number of candidate pairs (two guards each, after the events'). */
 uint32_t csf_contacts_count(const csf_contacts *c);
 /* Whether the contact forces of some evaluation could not be solved (masses that differ by more than about 1e10,

@@ -143,6 +143,7 @@ int csf_run_whens(run *r, double t, double *y, int *fired_any)
 	for (; p->nwhens; r->wround++) {
 		if (csf_run_rhs(t, y, r->fs, r)) return CSF_ODE_STOPPED;
 		memcpy(m + p->ystart, y, p->ny * sizeof *y); /* (a generated RHS may have read y alone) */
+		if (r->cs) csf_contacts_before_kick(r->cs, m);
 		r->exec(p, &r->x, CSF_SEC_EVT, m, m + p->ystart, m + p->dstart);
 		memcpy(y, m + p->ystart, p->ny * sizeof *y);
 		unsigned long fired = 0;
@@ -153,6 +154,7 @@ int csf_run_whens(run *r, double t, double *y, int *fired_any)
 				r->cycle[r->ncycle++] = i;
 		}
 		if (!fired) return 0;
+		if (r->cs) csf_contacts_after_kick(r->cs, m, r->zeno); /* a body kicked off a floor leaves it */
 		r->nfired += fired;
 		*fired_any = 1;
 		if (r->wround >= WHEN_ROUNDS - 1) return ADV_WHEN_CYCLE;
