@@ -351,8 +351,16 @@ t_lsp() {
 # 5x. the editors' files (editors/): the TextMate grammar under vscode-tmgrammar-test and on every
 #     scene, Vim's syntax groups and indentation headless (SKIP lines without node, the tool or vim)
 t_editors() {
-	suite "editors" sh tests/editors/check.sh "$T" "$B" tests/cookbook/scenes/*.csf
+	/usr/bin/python3 tests/cookbook/run.py --extract doc/cookbook.md "$T/scenes"
+	suite "editors" sh tests/editors/check.sh "$T" "$B" "$T"/scenes/*.csf
 	grep -e '^SKIP' "$T/suite.out"
+}
+
+# 5y. the cookbook (doc/cookbook.md, man/csf-cookbook.7 made from it): every recipe run as written,
+#     against the output it shows and the exact answer it states (tests/cookbook/)
+t_cookbook() {
+	suite "cookbook" sh tests/cookbook/check.sh "$CSFC" "$CSFVM" "$T" "$B"
+	grep -e '^SKIP' -e '^cookbook:' "$T/suite.out"
 }
 
 # 5c. output errors are reported: a full disk (a closed pipe ends a run quietly: tests/unix/check.sh)
@@ -783,6 +791,7 @@ done
 	echo docs
 	echo lsp
 	echo editors
+	echo cookbook
 	echo compare_methods
 	echo n300
 	for t in csfc csfb fmt; do echo "fuzz_regress $t"; done
