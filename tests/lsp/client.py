@@ -244,5 +244,9 @@ for msgs in ([{"jsonrpc": "2.0", "method": "exit"}], []):
     out, _ = p.communicate(data, timeout=LIMIT)
     check(p.returncode == 1, "%s without shutdown: status %d" % ("exit" if msgs else "end of input", p.returncode))
 
+# a model named beside --lsp: bad usage
+p = subprocess.run([CSFC, "--lsp", "x.csf"], capture_output=True, text=True, timeout=LIMIT)
+check(p.returncode == 2 and "--lsp" in p.stderr, "csfc --lsp x.csf: status %d, %s" % (p.returncode, p.stderr))
+
 print("lsp: %d failed" % len(fails))
 sys.exit(1 if fails else 0)
