@@ -382,10 +382,52 @@ static void publish(Doc *d)
 
 /* ---- hover and definition ---- */
 
-/* The name under position pos ({line, character}) of d, and the object name before a '.' in front of it
-   (NULL if none): fresh strings, freed by the caller; 0 if there is no name there. */
-static int word_at(Doc *d, const Json *pos, char **name, char **qual, int *line)
+/* The object the name ending at p[to] of a line (n bytes) belongs to: on an object's line, that object;
+   in a rule or when with a `for` list, the list's first name, or with `$k` after the name its k-th
+   (from 0); a fresh string, or NULL. */
+static char *bound_object(const char *p, size_t n, size_t to)
 {
+	int place = 0;
+	if (to < n && p[to] == '$') place = atoi(p + to + 1);
+	size_t i = 0;
+	while (i < n && p[i] == ' ') i++;
+	if (n - i > 7 && !strncmp(p + i, "object ", 7)) { /* a property line: its object */
+		size_t b = i + 7, e;
+		while (b < n && p[b] == ' ') b++;
+		for (e = b; e < n && is_word(p[e]); e++) {}
+		char *name = xmalloc(e - b + 1);
+		memcpy(name, p + b, e - b);
+		name[e - b] = '\0';
+		return name;
+	}
+	if (!((n - i > 5 && !strncmp(p + i, "rule ", 5)) || (n - i > 5 && !strncmp(p + i, "when ", 5)))) return NULL;
+	const char *colon = memchr(p, ':', n), *f = NULL;
+	for (const char *q = p + i; colon && q + 4 < colon; q++)
+		if (!strncmp(q, " for ", 5)) f = q + 5;
+	if (!f) return NULL;
+	for (int k = 0; f < colon; k++) { /* the k-th item, up to a ',' outside brackets */
+		while (f < colon && *f == ' ') f++;
+		const char *e = f;
+		int depth = 0;
+		while (e < colon && (depth || *e != ',')) depth += (*e == '[') - (*e == ']'), e++;
+		if (k == place) {
+			while (e > f && e[-1] == ' ') e--;
+			char *name = xmalloc((size_t)(e - f) + 1);
+			memcpy(name, f, (size_t)(e - f));
+			name[e - f] = '\0';
+			return name;
+		}
+		f = e + 1;
+	}
+	return NULL;
+}
+
+/* The name under position pos ({line, character}) of d, the object name before a '.' in front of it
+   (NULL if none), and the object its statement's `for` list binds it to (NULL if none): fresh strings,
+   freed by the caller; 0 if there is no name there. */
+static int word_at(Doc *d, const Json *pos, char **name, char **qual, char **bound, int *line)
+{
+	*bound = NULL;
 	*line = json_int(json_get(pos, "line"), -1);
 	int ch = json_int(json_get(pos, "character"), -1);
 	size_t s, n;
@@ -420,6 +462,7 @@ static int word_at(Doc *d, const Json *pos, char **name, char **qual, int *line)
 			(*qual)[e - b] = '\0';
 		}
 	}
+	if (!*qual) *bound = bound_object(p, n, to);
 	return 1;
 }
 
@@ -430,12 +473,15 @@ static Object *object_named(Model *M, const char *name)
 	return NULL;
 }
 
-/* The variable a name stands for: qual's property, else an object's property (the first that has
-   it), a temporary, a global. */
-static Var *var_named(Model *M, const char *name, const char *qual)
+/* The variable a name stands for: qual's property (obj.prop), else that of the object its `for` list
+   binds (bound), else an object's property (the first that has it), a temporary, a global. */
+static Var *var_named(Model *M, const char *name, const char *qual, const char *bound)
 {
-	Object *q = object_named(M, qual);
+	Object *q = object_named(M, qual), *b = object_named(M, bound);
 	if (q) return prop_of_obj(q, name);
+	if (b && prop_of_obj(b, name)) return prop_of_obj(b, name);
+	for (int i = 0; b && i < M->temps.n; i++)
+		if (((Var *)M->temps.v[i])->obj == b && !strcmp(((Var *)M->temps.v[i])->name, name)) return M->temps.v[i];
 	for (int i = 0; i < M->objects.n; i++) {
 		Var *v = prop_of_obj(M->objects.v[i], name);
 		if (v) return v;
@@ -490,13 +536,13 @@ static void describe_var(Buf *b, Var *v)
 
 static void hover(Doc *d, const Json *id, const Json *params)
 {
-	char *name = NULL, *qual = NULL;
+	char *name = NULL, *qual = NULL, *bound = NULL;
 	int line;
 	Model *M = model_of(d);
 	Buf b = { 0 };
-	if (M && word_at(d, json_get(params, "position"), &name, &qual, &line)) {
+	if (M && word_at(d, json_get(params, "position"), &name, &qual, &bound, &line)) {
 		Object *o = qual ? NULL : object_named(M, name);
-		Var *v = o ? NULL : var_named(M, name, qual);
+		Var *v = o ? NULL : var_named(M, name, qual, bound);
 		if (o) explain_part(M, &b, 0, o);
 		else if (v) describe_var(&b, v);
 		else if (lex_keyword(name, strlen(name))) explain_part(M, &b, line + 1, NULL);
@@ -514,6 +560,7 @@ static void hover(Doc *d, const Json *id, const Json *params)
 	free(b.s);
 	free(name);
 	free(qual);
+	free(bound);
 }
 
 /* The location of loc as LSP JSON: in the document, or in another file (a kind's default, in its `using` file). */
@@ -535,13 +582,13 @@ static void buf_location(Buf *b, Doc *d, Loc l)
 
 static void definition(Doc *d, const Json *id, const Json *params)
 {
-	char *name = NULL, *qual = NULL;
+	char *name = NULL, *qual = NULL, *bound = NULL;
 	int line;
 	Model *M = model_of(d);
 	Buf b = { 0 };
-	if (M && word_at(d, json_get(params, "position"), &name, &qual, &line)) {
+	if (M && word_at(d, json_get(params, "position"), &name, &qual, &bound, &line)) {
 		Object *o = qual ? NULL : object_named(M, name);
-		Var *v = o ? NULL : var_named(M, name, qual);
+		Var *v = o ? NULL : var_named(M, name, qual, bound);
 		if (o) buf_location(&b, d, o->loc);
 		else if (v && v->kind != V_TIME && v->loc.line > 0) buf_location(&b, d, v->loc);
 	}
@@ -549,6 +596,7 @@ static void definition(Doc *d, const Json *id, const Json *params)
 	free(b.s);
 	free(name);
 	free(qual);
+	free(bound);
 }
 
 /* ---- the protocol ---- */

@@ -175,6 +175,30 @@ check(loc and loc["uri"] == uri and loc["range"]["start"]["line"] == 5, "definit
 loc = definition(9, lines[9].index("pos"))
 check(loc and loc["uri"].endswith("/mechanics/mass_point.csf"), "definition of pos: mass_point.csf, got %s" % loc)
 
+# a second document: names bound by a `for` list ($0 the first, pos$1 the second), hover over them
+ROD = """using mechanics/mass_point
+object pivot: anchor
+object bob: mass_point
+object bob: pos = (1, 0, 0) m
+using mechanics/rules
+rule F: W = g.mul(m)
+rule C for bob, pivot: (pos - pos$1).mag = 1 m
+inc t till 1 s by 0.5 s watch bob.pos
+"""
+uri2 = "file://" + os.path.join(os.path.abspath(DIR), "rod.csf")
+notify("textDocument/didOpen", {"textDocument": {"uri": uri2, "languageId": "csf", "version": 1, "text": ROD}})
+check(diagnostics() == [], "the rod compiles")
+rl = ROD.split("\n")[6]
+for col, want in ((rl.index("(pos") + 1, "**bob.pos**"), (rl.index("pos$1"), "**pivot.pos**")):
+    r = request("textDocument/hover", {"textDocument": {"uri": uri2}, "position": {"line": 6, "character": col}})
+    h = (r.get("result") or {}).get("contents", {}).get("value", "")
+    check(h.startswith(want) and "`m`" in h, "hover at %d of the rod's rule: %r, expected %s" % (col, h, want))
+r = request("textDocument/hover", {"textDocument": {"uri": uri2}, "position": {"line": 3, "character": 13}})
+h = (r.get("result") or {}).get("contents", {}).get("value", "")
+check(h.startswith("**bob.pos**") and "state variable" in h, "hover on pos of bob's line: %r" % h)
+notify("textDocument/didClose", {"textDocument": {"uri": uri2}})
+check(diagnostics() == [], "the rod closed")
+
 # a warning: severity 2, at the rule
 warned = good.replace("rule F: D", "rule: D")
 notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 4}, "contentChanges": [{"text": warned}]})
