@@ -708,7 +708,7 @@ int lsp_main(const char *stdlib, char **incdirs, int nincdirs, int units)
 	S.stdlib = stdlib, S.nincdirs = nincdirs, S.units = units;
 	/* the -I directories outlive the arena, which every compilation releases */
 	S.incdirs = xcalloc((size_t)nincdirs + 1, sizeof *S.incdirs);
-	memcpy(S.incdirs, incdirs, (size_t)nincdirs * sizeof *incdirs);
+	if (nincdirs) memcpy(S.incdirs, incdirs, (size_t)nincdirs * sizeof *incdirs);
 	size_t n;
 	char *body;
 	while ((body = read_message(&n))) {

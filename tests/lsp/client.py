@@ -10,12 +10,13 @@ m/s and the rule line that integrates it, on `ball` what --explain says
 of the object, on `W` the rule that computes it; definition of `ball`
 and of `b` jumps to their object lines, of `pos` into mechanics/mass_point;
 malformed input (not JSON, no Content-Length, nesting 100 000 deep, wrong
-types, an unknown method, a document never opened) is answered with an
-error and the server goes on; shutdown then exit ends it with status 0.
+types, an unknown method, a document never opened; 300 random documents,
+200 random bodies) is answered with an error and the server goes on; shutdown then exit ends it with status 0.
 Prints "FAIL: ..." for each failed check; exits 1 if any failed.
 """
 import json
 import os
+import random
 import subprocess
 import sys
 import threading
@@ -47,6 +48,15 @@ def send(obj):
 
 
 def receive():
+    try:
+        return receive_one()
+    except (EOFError, ValueError) as e:  # the server died or wrote garbage: the test fails here
+        print("FAIL: lsp: %s (after %d checks failed)" % (e, len(fails)))
+        proc.kill()
+        sys.exit(1)
+
+
+def receive_one():
     length = None
     while True:
         line = proc.stdout.readline()
@@ -247,6 +257,33 @@ for i in range(200):
     if n != (0 if i % 2 else 2):
         check(False, "compilation %d: %d diagnostics" % (i, n))
         break
+# hostile input, seeded: 300 documents made of pieces of the scene shuffled and cut (each answered
+# with its diagnostics), hover and definition everywhere in them, and 200 bodies of random bytes
+# and broken JSON (each answered with an error, or ignored as a notification)
+rnd = random.Random(35)
+pieces = good.replace("\n", " \n ").split(" ") + ["(", ")", "$1", "'", ":", "\t", "\u00e9", "\u03c0", "if", "else:", "\x00"]
+for i in range(300):
+    text = " ".join(rnd.choice(pieces) for _ in range(rnd.randint(0, 80)))
+    notify("textDocument/didChange", {"textDocument": {"uri": uri}, "contentChanges": [{"text": text}]})
+    diagnostics()
+    if i % 10 == 0:
+        for _ in range(5):
+            pos = {"line": rnd.randint(-1, 12), "character": rnd.randint(-1, 40)}
+            request("textDocument/hover" if rnd.random() < 0.5 else "textDocument/definition",
+                    {"textDocument": {"uri": uri}, "position": pos})
+for i in range(200):
+    body = bytes(rnd.randint(0, 255) for _ in range(rnd.randint(0, 60)))
+    if i % 2:
+        body = json.dumps({"jsonrpc": "2.0", "id": i, "method": "textDocument/hover", "params": {}}).encode()
+        body = body[:rnd.randint(0, len(body))]
+    send_raw(b"Content-Length: %d\r\n\r\n" % len(body) + body)
+    r = request("textDocument/definition", {"textDocument": {"uri": uri}, "position": {"line": 0, "character": 0}})
+    if "result" not in r:
+        check(False, "after hostile body %d the server answers %s" % (i, r))
+        break
+notify("textDocument/didChange", {"textDocument": {"uri": uri}, "contentChanges": [{"text": good}]})
+check(diagnostics() == [], "good after the hostile input")
+
 notify("textDocument/didClose", {"textDocument": {"uri": uri}})
 check(diagnostics() == [], "closed: its diagnostics cleared")
 
