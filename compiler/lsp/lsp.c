@@ -22,7 +22,9 @@
  * than LSP_MAX_BODY, is skipped with an error. Nothing in a message can
  * end the server but `exit` and the end of the input.
  */
+#include <limits.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -210,28 +212,35 @@ static int line_span(const char *text, size_t len, int line, size_t *start, size
 	return 1;
 }
 
+/* Walks line p (n bytes) from its start by characters until byte stop or UTF-16 column ch, whichever
+   comes first; the byte and the column reached. */
+static void walk_line(const char *p, size_t n, size_t stop, int ch, size_t *byte, int *col)
+{
+	size_t i = 0;
+	int c = 0;
+	while (i < stop && i < n && c < ch) {
+		int k = lex_utf8_len((const unsigned char *)p + i, (const unsigned char *)p + n);
+		if (k < 1) k = 1;
+		c += k == 4 ? 2 : 1; /* beyond the BMP: two UTF-16 units */
+		i += (size_t)k;
+	}
+	*byte = i, *col = c;
+}
+
 /* The UTF-16 column (LSP's character) of byte b of a line p (n bytes), and the reverse. */
 static int utf16_col(const char *p, size_t n, size_t b)
 {
-	int c = 0;
-	for (size_t i = 0; i < b && i < n;) {
-		int k = lex_utf8_len((const unsigned char *)p + i, (const unsigned char *)p + n);
-		if (k < 1) k = 1;
-		c += k == 4 ? 2 : 1;
-		i += (size_t)k;
-	}
+	size_t i;
+	int c;
+	walk_line(p, n, b, INT_MAX, &i, &c);
 	return c;
 }
 
 static size_t byte_col(const char *p, size_t n, int ch)
 {
-	size_t i = 0;
-	for (int c = 0; c < ch && i < n;) {
-		int k = lex_utf8_len((const unsigned char *)p + i, (const unsigned char *)p + n);
-		if (k < 1) k = 1;
-		c += k == 4 ? 2 : 1;
-		i += (size_t)k;
-	}
+	size_t i;
+	int c;
+	walk_line(p, n, SIZE_MAX, ch, &i, &c);
 	return i;
 }
 
@@ -331,6 +340,14 @@ static int parse_diag(char *s, char **path, int *line, int *col, const char **ki
 /* A diagnostic being collected: where, how severe, its message (with the notes after it). */
 typedef struct Diag { int line, col, severity; Buf msg; } Diag;
 
+/* The start of d's publishDiagnostics notification, up to the opening of its list. */
+static void diagnostics_head(Buf *b, const Doc *d)
+{
+	buf_puts(b, "{\"jsonrpc\":\"2.0\",\"method\":\"textDocument/publishDiagnostics\",\"params\":{\"uri\":");
+	buf_json_str(b, d->uri, strlen(d->uri));
+	buf_puts(b, ",\"diagnostics\":[");
+}
+
 /* Compiles d and publishes its diagnostics. */
 static void publish(Doc *d)
 {
@@ -363,9 +380,7 @@ static void publish(Doc *d)
 	}
 	free(out);
 	Buf b = { 0 };
-	buf_puts(&b, "{\"jsonrpc\":\"2.0\",\"method\":\"textDocument/publishDiagnostics\",\"params\":{\"uri\":");
-	buf_json_str(&b, d->uri, strlen(d->uri));
-	buf_puts(&b, ",\"diagnostics\":[");
+	diagnostics_head(&b, d);
 	for (size_t i = 0; i < nd; i++) {
 		buf_puts(&b, i ? ",{\"range\":" : "{\"range\":");
 		buf_range(&b, d->text, d->len, v[i].line, v[i].col);
@@ -534,33 +549,21 @@ static void describe_var(Buf *b, Var *v)
 	else buf_puts(b, "\n\nconstant");
 }
 
-static void hover(Doc *d, const Json *id, const Json *params)
+/* What the name at params' position of d stands for in its model: an object (*o), or a variable (*v),
+   or neither (a keyword: *kw set); 0 if the text has errors or there is no name there. *line: the
+   position's line (from 0). */
+static int lookup(Doc *d, const Json *params, Model **M, Object **o, Var **v, int *kw, int *line)
 {
 	char *name = NULL, *qual = NULL, *bound = NULL;
-	int line;
-	Model *M = model_of(d);
-	Buf b = { 0 };
-	if (M && word_at(d, json_get(params, "position"), &name, &qual, &bound, &line)) {
-		Object *o = qual ? NULL : object_named(M, name);
-		Var *v = o ? NULL : var_named(M, name, qual, bound);
-		if (o) explain_part(M, &b, 0, o);
-		else if (v) describe_var(&b, v);
-		else if (lex_keyword(name, strlen(name))) explain_part(M, &b, line + 1, NULL);
-	}
-	if (!b.n) {
-		respond(id, "null", 0, NULL);
-	} else {
-		Buf r = { 0 };
-		buf_puts(&r, "{\"contents\":{\"kind\":\"markdown\",\"value\":");
-		buf_json_str(&r, b.s, b.n);
-		buf_puts(&r, "}}");
-		respond(id, r.s, 0, NULL);
-		free(r.s);
-	}
-	free(b.s);
+	*M = model_of(d), *o = NULL, *v = NULL, *kw = 0;
+	if (!*M || !word_at(d, json_get(params, "position"), &name, &qual, &bound, line)) return 0;
+	*o = qual ? NULL : object_named(*M, name);
+	*v = *o ? NULL : var_named(*M, name, qual, bound);
+	*kw = lex_keyword(name, strlen(name)) != 0;
 	free(name);
 	free(qual);
 	free(bound);
+	return 1;
 }
 
 /* The location of loc as LSP JSON: in the document, or in another file (a kind's default, in its `using` file). */
@@ -580,26 +583,54 @@ static void buf_location(Buf *b, Doc *d, Loc l)
 	buf_puts(b, "}");
 }
 
-static void definition(Doc *d, const Json *id, const Json *params)
+/* Answers textDocument/hover (def 0: what the name is, as Markdown) or textDocument/definition (def 1:
+   where it is defined); null where there is nothing to say. */
+static void hover_or_definition(Doc *d, const Json *id, const Json *params, int def)
 {
-	char *name = NULL, *qual = NULL, *bound = NULL;
-	int line;
-	Model *M = model_of(d);
+	Model *M;
+	Object *o;
+	Var *v;
+	int kw, line;
 	Buf b = { 0 };
-	if (M && word_at(d, json_get(params, "position"), &name, &qual, &bound, &line)) {
-		Object *o = qual ? NULL : object_named(M, name);
-		Var *v = o ? NULL : var_named(M, name, qual, bound);
-		if (o) buf_location(&b, d, o->loc);
-		else if (v && v->kind != V_TIME && v->loc.line > 0) buf_location(&b, d, v->loc);
+	if (lookup(d, params, &M, &o, &v, &kw, &line)) {
+		if (def && o) buf_location(&b, d, o->loc);
+		else if (def && v && v->kind != V_TIME && v->loc.line > 0) buf_location(&b, d, v->loc);
+		else if (!def && o) explain_part(M, &b, 0, o);
+		else if (!def && v) describe_var(&b, v);
+		else if (!def && kw) explain_part(M, &b, line + 1, NULL);
+	}
+	if (b.n && !def) {
+		Buf r = { 0 };
+		buf_puts(&r, "{\"contents\":{\"kind\":\"markdown\",\"value\":");
+		buf_json_str(&r, b.s, b.n);
+		buf_puts(&r, "}}");
+		free(b.s);
+		b = r;
 	}
 	respond(id, b.n ? b.s : "null", 0, NULL);
 	free(b.s);
-	free(name);
-	free(qual);
-	free(bound);
 }
 
 /* ---- the protocol ---- */
+
+/* Gives d the text of string j and publishes its diagnostics. */
+static void set_text(Doc *d, const Json *j)
+{
+	free(d->text);
+	d->text = xmalloc(j->len + 1);
+	memcpy(d->text, j->str, j->len + 1);
+	d->len = j->len;
+	d->gen = ++S.gen;
+	publish(d);
+}
+
+static void free_doc(Doc *d)
+{
+	free(d->uri);
+	free(d->path);
+	free(d->text);
+	free(d);
+}
 
 static void open_doc(const Json *params)
 {
@@ -615,12 +646,7 @@ static void open_doc(const Json *params)
 		d->next = S.docs;
 		S.docs = d;
 	}
-	free(d->text);
-	d->text = xmalloc(text->len + 1);
-	memcpy(d->text, text->str, text->len + 1);
-	d->len = text->len;
-	d->gen = ++S.gen;
-	publish(d);
+	set_text(d, text);
 }
 
 static void change_doc(const Json *params)
@@ -632,13 +658,7 @@ static void change_doc(const Json *params)
 	const Json *last = NULL;
 	for (Json *c = ch->kids; c; c = c->next)
 		if (json_get(c, "text") && json_get(c, "text")->k == J_STR && !json_get(c, "range")) last = json_get(c, "text");
-	if (!last) return;
-	free(d->text);
-	d->text = xmalloc(last->len + 1);
-	memcpy(d->text, last->str, last->len + 1);
-	d->len = last->len;
-	d->gen = ++S.gen;
-	publish(d);
+	if (last) set_text(d, last);
 }
 
 static void close_doc(const Json *params)
@@ -648,17 +668,13 @@ static void close_doc(const Json *params)
 		Doc *d = *p;
 		if (strcmp(d->uri, uri)) continue;
 		Buf b = { 0 };
-		buf_puts(&b, "{\"jsonrpc\":\"2.0\",\"method\":\"textDocument/publishDiagnostics\",\"params\":{\"uri\":");
-		buf_json_str(&b, d->uri, strlen(d->uri));
-		buf_puts(&b, ",\"diagnostics\":[]}}");
+		diagnostics_head(&b, d);
+		buf_puts(&b, "]}}");
 		send(&b);
 		free(b.s);
 		if (S.doc == d) S.doc = NULL, S.model = NULL;
 		*p = d->next;
-		free(d->uri);
-		free(d->path);
-		free(d->text);
-		free(d);
+		free_doc(d);
 		return;
 	}
 }
@@ -692,8 +708,7 @@ static int handle(const Json *m)
 		const char *uri = json_str(json_path(params, "textDocument", "uri", NULL));
 		Doc *d = uri ? find_doc(uri) : NULL;
 		if (!d) respond(id, NULL, -32602, "no open document with that uri");
-		else if (method[13] == 'h') hover(d, id, params);
-		else definition(d, id, params);
+		else hover_or_definition(d, id, params, method[13] == 'd');
 	} else if (id) {
 		Buf msg = { 0 };
 		buf_printf(&msg, "csfc --lsp does not know the method '%s'", method);
@@ -724,10 +739,7 @@ int lsp_main(const char *stdlib, char **incdirs, int nincdirs, int units)
 	while (S.docs) {
 		Doc *d = S.docs;
 		S.docs = d->next;
-		free(d->uri);
-		free(d->path);
-		free(d->text);
-		free(d);
+		free_doc(d);
 	}
 	free(S.incdirs);
 	return S.shutdown ? 0 : 1;

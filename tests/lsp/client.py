@@ -185,6 +185,23 @@ check(loc and loc["uri"] == uri and loc["range"]["start"]["line"] == 5, "definit
 loc = definition(9, lines[9].index("pos"))
 check(loc and loc["uri"].endswith("/mechanics/mass_point.csf"), "definition of pos: mass_point.csf, got %s" % loc)
 
+# columns are UTF-16 code units (LSP's), csfc's are bytes: after a pi (2 bytes, 1 unit), the range
+# of 'qq' in characters, and a hover's column back to bytes
+PI = "object p: x = 1 m # \U0001F600\nrule: y = \u03c0 * x + qq\ninc t till 1 s by 1 s watch y\n"
+notify("textDocument/didChange", {"textDocument": {"uri": uri}, "contentChanges": [{"text": PI}]})
+d = diagnostics()
+q = PI.split("\n")[1].index("qq")
+check(len(d) == 1 and rng(d[0]) == (1, q, 1, q + 2), "the range of qq after a pi: %s, expected (1, %d, 1, %d)" % (d, q, q + 2))
+r = request("textDocument/hover", {"textDocument": {"uri": uri}, "position": {"line": 1, "character": q}})
+check(r.get("result") is None, "hover in a text with an error: null, got %s" % r)
+notify("textDocument/didChange", {"textDocument": {"uri": uri}, "contentChanges": [{"text": PI.replace(" + qq", "")}]})
+check(diagnostics() == [], "the pi scene without qq compiles")
+r = request("textDocument/hover", {"textDocument": {"uri": uri}, "position": {"line": 1, "character": PI.split("\n")[1].index("x")}})
+h = (r.get("result") or {}).get("contents", {}).get("value", "")
+check(h.startswith("**p.x**") and "`m`" in h, "hover on x after a pi (a column in UTF-16 units): %r" % h)
+notify("textDocument/didChange", {"textDocument": {"uri": uri}, "contentChanges": [{"text": good}]})
+check(diagnostics() == [], "good again after the pi")
+
 # a second document: names bound by a `for` list ($0 the first, pos$1 the second), hover over them
 ROD = """using mechanics/mass_point
 object pivot: anchor
