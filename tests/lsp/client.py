@@ -187,7 +187,7 @@ check(loc and loc["uri"].endswith("/mechanics/mass_point.csf"), "definition of p
 
 # columns are UTF-16 code units (LSP's), csfc's are bytes: after a pi (2 bytes, 1 unit), the range
 # of 'qq' in characters, and a hover's column back to bytes
-PI = "object p: x = 1 m # \U0001F600\nrule: y = \u03c0 * x + qq\ninc t till 1 s by 1 s watch y\n"
+PI = "object p: x = 1 m \nrule: y = \u03c0 * x + qq\ninc t till 1 s by 1 s watch y\n"
 notify("textDocument/didChange", {"textDocument": {"uri": uri}, "contentChanges": [{"text": PI}]})
 d = diagnostics()
 q = PI.split("\n")[1].index("qq")
