@@ -720,8 +720,11 @@ static int handle(const Json *m)
 
 int lsp_main(const char *stdlib, char **incdirs, int nincdirs, int units)
 {
-	S.stdlib = stdlib, S.nincdirs = nincdirs, S.units = units;
-	/* the -I directories outlive the arena, which every compilation releases */
+	S.nincdirs = nincdirs, S.units = units;
+	/* the standard library's path and the -I directories outlive the arena, which every compilation
+	   releases (find_stdlib's path is the arena's) */
+	char *lib = stdlib ? strcpy(xmalloc(strlen(stdlib) + 1), stdlib) : NULL;
+	S.stdlib = lib;
 	S.incdirs = xcalloc((size_t)nincdirs + 1, sizeof *S.incdirs);
 	if (nincdirs) memcpy(S.incdirs, incdirs, (size_t)nincdirs * sizeof *incdirs);
 	size_t n;
@@ -742,5 +745,6 @@ int lsp_main(const char *stdlib, char **incdirs, int nincdirs, int units)
 		free_doc(d);
 	}
 	free(S.incdirs);
+	free(lib);
 	return S.shutdown ? 0 : 1;
 }
