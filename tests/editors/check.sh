@@ -5,7 +5,8 @@
 #    the standard library, the end-to-end and run-time scenes, and SCENES: the cookbook's);
 #  - the Vim files (editors/vim) in headless vim: the syntax group at every place the samples
 #    annotate (vim_expect.py turns their scopes into Vim's groups), indentation by = and the
-#    ftplugin's options (vim_indent.vim).
+#    ftplugin's options (vim_indent.vim; the filetype of a .csf file).
+# The samples are .sample files, not .csf: they are not scenes (tests/layout compiles every .csf).
 # The tools come from make deps-editors: node and npm (Debian), vscode-tmgrammar-test (npm, into
 # BUILD/editors-deps), vim (Debian); a SKIP line for each that is missing.
 set -u
@@ -17,7 +18,7 @@ fail=0
 mods=$B/editors-deps/node_modules
 # the sanitizer build shares the plain build's tools
 [ -d "$mods" ] || mods=build/editors-deps/node_modules
-samples=$(ls tests/editors/samples/*.csf)
+samples=$(ls tests/editors/samples/*.sample)
 scenes="$(ls examples/*.csf stdlib/*/*.csf tests/e2e/*.csf tests/runtime/*.csf tests/warn/*.csf) $*"
 if ! command -v node >/dev/null 2>&1; then
 	echo "SKIP: editors: no node (make deps-editors installs nodejs, npm and vscode-tmgrammar-test)"
@@ -55,8 +56,8 @@ else
 		timeout 60 vim -es -N -u NONE -i NONE --cmd "set rtp^=$(pwd)/editors/vim" -c 'filetype plugin indent on' \
 			-c 'syntax on' "$@" </dev/null >/dev/null 2>&1
 	}
-	vimrun -c "let g:expect='$T/editors/expect'" -c "let g:out='$T/editors/vim.out'" -c 'source tests/editors/vim_check.vim'
-	vimrun -c "let g:sample='tests/editors/indented.csf'" -c "let g:out='$T/editors/indent.out'" -c 'source tests/editors/vim_indent.vim'
+	vimrun -c "let g:expect='$T/editors/expect'" -c "let g:scene='examples/projectile.csf'" -c "let g:out='$T/editors/vim.out'" -c 'source tests/editors/vim_check.vim'
+	vimrun -c "let g:sample='tests/editors/indented.sample'" -c "let g:out='$T/editors/indent.out'" -c 'source tests/editors/vim_indent.vim'
 	for f in vim.out indent.out; do
 		if ! [ -f "$T/editors/$f" ]; then
 			echo "FAIL: editors: vim wrote no $f"

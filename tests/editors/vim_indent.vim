@@ -1,8 +1,9 @@
-" tests/editors/vim_indent.vim: run by tests/editors/vim.sh (vim -es) with g:sample and g:out:
+" tests/editors/vim_indent.vim: run by tests/editors/check.sh (vim -es) with g:sample and g:out:
 " the sample's lines stripped of their indentation and indented again by = (CsfIndent) must be
 " the sample; the options of ftplugin/csf.vim. FAIL lines in g:out.
 let s:fails = []
 execute 'silent edit! ' . fnameescape(g:sample)
+setfiletype csf
 let s:want = getline(1, '$')
 silent %s/^\s\+//e
 normal! gg=G
