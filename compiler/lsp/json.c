@@ -50,7 +50,7 @@ static void put_utf8(Buf *b, unsigned u)
 	else
 		c[0] = (char)(0xF0 | u >> 18), c[1] = (char)(0x80 | (u >> 12 & 63)), c[2] = (char)(0x80 | (u >> 6 & 63)),
 		c[3] = (char)(0x80 | (u & 63)), n = 4;
-	buf_add(b, c, n);
+	jbuf_add(b, c, n);
 }
 
 /* A string at r->p (just past its opening quote) into j; 0 on success. */
@@ -63,7 +63,7 @@ static int read_string(Reader *r, Json *j)
 		if (c == '"') break;
 		if (c < 0x20) goto bad;
 		if (c != '\\') {
-			buf_add(&b, (const char *)&c, 1);
+			jbuf_add(&b, (const char *)&c, 1);
 			continue;
 		}
 		if (r->p >= r->end) goto bad;
@@ -71,7 +71,7 @@ static int read_string(Reader *r, Json *j)
 		const char *plain = strchr("\"\\/bfnrt", e);
 		if (e && plain) {
 			char out = "\"\\/\b\f\n\r\t"[plain - "\"\\/bfnrt"];
-			buf_add(&b, &out, 1);
+			jbuf_add(&b, &out, 1);
 		} else if (e == 'u') {
 			unsigned u, lo;
 			if (hex4(r, &u)) goto bad;
@@ -88,7 +88,7 @@ static int read_string(Reader *r, Json *j)
 			goto bad;
 		}
 	}
-	buf_add(&b, "", 1); /* the NUL, not counted */
+	jbuf_add(&b, "", 1); /* the NUL, not counted */
 	j->str = b.s;
 	j->len = b.n - 1;
 	return 0;
@@ -255,7 +255,7 @@ int json_int(const Json *j, int def)
 
 /* ---- writing ---- */
 
-void buf_add(Buf *b, const char *s, size_t n)
+void jbuf_add(Buf *b, const char *s, size_t n)
 {
 	if (b->n + n + 1 > b->cap) {
 		size_t cap = b->cap ? b->cap : 256;
@@ -268,9 +268,9 @@ void buf_add(Buf *b, const char *s, size_t n)
 	b->s[b->n] = '\0';
 }
 
-void buf_puts(Buf *b, const char *s) { buf_add(b, s, strlen(s)); }
+void jbuf_puts(Buf *b, const char *s) { jbuf_add(b, s, strlen(s)); }
 
-void buf_printf(Buf *b, const char *fmt, ...)
+void jbuf_printf(Buf *b, const char *fmt, ...)
 {
 	va_list ap, aq;
 	va_start(ap, fmt);
@@ -280,58 +280,58 @@ void buf_printf(Buf *b, const char *fmt, ...)
 	if (n > 0) {
 		char *tmp = xmalloc((size_t)n + 1);
 		vsnprintf(tmp, (size_t)n + 1, fmt, ap);
-		buf_add(b, tmp, (size_t)n);
+		jbuf_add(b, tmp, (size_t)n);
 		free(tmp);
 	}
 	va_end(ap);
 }
 
-void buf_json_str(Buf *b, const char *s, size_t n)
+void jbuf_string(Buf *b, const char *s, size_t n)
 {
-	buf_add(b, "\"", 1);
+	jbuf_add(b, "\"", 1);
 	for (size_t i = 0; i < n;) {
 		unsigned char c = (unsigned char)s[i];
 		if (c == '"' || c == '\\') {
 			char e[2] = { '\\', (char)c };
-			buf_add(b, e, 2);
+			jbuf_add(b, e, 2);
 			i++;
 		} else if (c < 0x20) {
 			const char *esc = c == '\n' ? "\\n" : c == '\t' ? "\\t" : c == '\r' ? "\\r" : NULL;
-			if (esc) buf_puts(b, esc);
-			else buf_printf(b, "\\u%04x", c);
+			if (esc) jbuf_puts(b, esc);
+			else jbuf_printf(b, "\\u%04x", c);
 			i++;
 		} else if (c < 0x80) {
-			buf_add(b, (const char *)&c, 1);
+			jbuf_add(b, (const char *)&c, 1);
 			i++;
 		} else {
 			int k = lex_utf8_len((const unsigned char *)s + i, (const unsigned char *)s + n);
-			if (k > 0) buf_add(b, s + i, (size_t)k), i += (size_t)k;
-			else buf_puts(b, "\xEF\xBF\xBD"), i++;
+			if (k > 0) jbuf_add(b, s + i, (size_t)k), i += (size_t)k;
+			else jbuf_puts(b, "\xEF\xBF\xBD"), i++;
 		}
 	}
-	buf_add(b, "\"", 1);
+	jbuf_add(b, "\"", 1);
 }
 
-void buf_json(Buf *b, const Json *j)
+void jbuf_value(Buf *b, const Json *j)
 {
 	switch (j->k) {
-	case J_NULL: buf_puts(b, "null"); break;
-	case J_FALSE: buf_puts(b, "false"); break;
-	case J_TRUE: buf_puts(b, "true"); break;
-	case J_NUM: buf_printf(b, "%.17g", j->num); break;
-	case J_STR: buf_json_str(b, j->str, j->len); break;
+	case J_NULL: jbuf_puts(b, "null"); break;
+	case J_FALSE: jbuf_puts(b, "false"); break;
+	case J_TRUE: jbuf_puts(b, "true"); break;
+	case J_NUM: jbuf_printf(b, "%.17g", j->num); break;
+	case J_STR: jbuf_string(b, j->str, j->len); break;
 	case J_ARR:
 	case J_OBJ:
-		buf_add(b, j->k == J_ARR ? "[" : "{", 1);
+		jbuf_add(b, j->k == J_ARR ? "[" : "{", 1);
 		for (Json *m = j->kids; m; m = m->next) {
-			if (m != j->kids) buf_add(b, ",", 1);
+			if (m != j->kids) jbuf_add(b, ",", 1);
 			if (j->k == J_OBJ) {
-				buf_json_str(b, m->key, strlen(m->key));
-				buf_add(b, ":", 1);
+				jbuf_string(b, m->key, strlen(m->key));
+				jbuf_add(b, ":", 1);
 			}
-			buf_json(b, m);
+			jbuf_value(b, m);
 		}
-		buf_add(b, j->k == J_ARR ? "]" : "}", 1);
+		jbuf_add(b, j->k == J_ARR ? "]" : "}", 1);
 		break;
 	}
 }

@@ -39,12 +39,12 @@ int json_int(const Json *j, int def);
 
 /* A growable string of bytes, for the messages written. */
 typedef struct Buf { char *s; size_t n, cap; } Buf;
-void buf_add(Buf *b, const char *s, size_t n);
-void buf_puts(Buf *b, const char *s);
-void buf_printf(Buf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void jbuf_add(Buf *b, const char *s, size_t n);
+void jbuf_puts(Buf *b, const char *s);
+void jbuf_printf(Buf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* Appends s (n bytes) as a JSON string, quoted and escaped; invalid UTF-8 becomes U+FFFD. */
-void buf_json_str(Buf *b, const char *s, size_t n);
+void jbuf_string(Buf *b, const char *s, size_t n);
 /* Appends JSON value j as it was read (an id echoed back). */
-void buf_json(Buf *b, const Json *j);
+void jbuf_value(Buf *b, const Json *j);
 
 #endif

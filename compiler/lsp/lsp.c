@@ -79,15 +79,15 @@ static void send(const Buf *b)
 static void respond(const Json *id, const char *result, int code, const char *msg)
 {
 	Buf b = { 0 };
-	buf_puts(&b, "{\"jsonrpc\":\"2.0\",\"id\":");
-	if (id) buf_json(&b, id);
-	else buf_puts(&b, "null");
+	jbuf_puts(&b, "{\"jsonrpc\":\"2.0\",\"id\":");
+	if (id) jbuf_value(&b, id);
+	else jbuf_puts(&b, "null");
 	if (msg) {
-		buf_printf(&b, ",\"error\":{\"code\":%d,\"message\":", code);
-		buf_json_str(&b, msg, strlen(msg));
-		buf_puts(&b, "}}");
+		jbuf_printf(&b, ",\"error\":{\"code\":%d,\"message\":", code);
+		jbuf_string(&b, msg, strlen(msg));
+		jbuf_puts(&b, "}}");
 	} else {
-		buf_printf(&b, ",\"result\":%s}", result);
+		jbuf_printf(&b, ",\"result\":%s}", result);
 	}
 	send(&b);
 	free(b.s);
@@ -186,13 +186,13 @@ static char *uri_path(const char *uri)
 static void buf_uri(Buf *b, const char *path)
 {
 	Buf u = { 0 };
-	buf_puts(&u, "file://");
+	jbuf_puts(&u, "file://");
 	for (const unsigned char *p = (const unsigned char *)path; *p; p++) {
 		if ((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || (*p >= '0' && *p <= '9') || strchr("/-._~", *p))
-			buf_add(&u, (const char *)p, 1);
-		else buf_printf(&u, "%%%02X", *p);
+			jbuf_add(&u, (const char *)p, 1);
+		else jbuf_printf(&u, "%%%02X", *p);
 	}
-	buf_json_str(b, u.s, u.n);
+	jbuf_string(b, u.s, u.n);
 	free(u.s);
 }
 
@@ -262,7 +262,7 @@ static void buf_range(Buf *b, const char *text, size_t len, int line, int col)
 		int k = lex_utf8_len((const unsigned char *)p + to, (const unsigned char *)p + n);
 		to += k > 0 ? (size_t)k : 1;
 	}
-	buf_printf(b, "{\"start\":{\"line\":%d,\"character\":%d},\"end\":{\"line\":%d,\"character\":%d}}", line - 1,
+	jbuf_printf(b, "{\"start\":{\"line\":%d,\"character\":%d},\"end\":{\"line\":%d,\"character\":%d}}", line - 1,
 	           utf16_col(p, n, from), line - 1, utf16_col(p, n, to));
 }
 
@@ -343,9 +343,9 @@ typedef struct Diag { int line, col, severity; Buf msg; } Diag;
 /* The start of d's publishDiagnostics notification, up to the opening of its list. */
 static void diagnostics_head(Buf *b, const Doc *d)
 {
-	buf_puts(b, "{\"jsonrpc\":\"2.0\",\"method\":\"textDocument/publishDiagnostics\",\"params\":{\"uri\":");
-	buf_json_str(b, d->uri, strlen(d->uri));
-	buf_puts(b, ",\"diagnostics\":[");
+	jbuf_puts(b, "{\"jsonrpc\":\"2.0\",\"method\":\"textDocument/publishDiagnostics\",\"params\":{\"uri\":");
+	jbuf_string(b, d->uri, strlen(d->uri));
+	jbuf_puts(b, ",\"diagnostics\":[");
 }
 
 /* Compiles d and publishes its diagnostics. */
@@ -366,31 +366,31 @@ static void publish(Doc *d)
 		int here = !strcmp(path, d->path) && l > 0;
 		if (!strcmp(kind, "note")) {
 			if (!nd) continue;
-			buf_puts(&v[nd - 1].msg, "\nnote: ");
-			if (!here && l > 0) buf_printf(&v[nd - 1].msg, "%s:%d:%d: ", path, l, c);
-			else if (here && l != v[nd - 1].line) buf_printf(&v[nd - 1].msg, "line %d: ", l);
-			buf_puts(&v[nd - 1].msg, msg);
+			jbuf_puts(&v[nd - 1].msg, "\nnote: ");
+			if (!here && l > 0) jbuf_printf(&v[nd - 1].msg, "%s:%d:%d: ", path, l, c);
+			else if (here && l != v[nd - 1].line) jbuf_printf(&v[nd - 1].msg, "line %d: ", l);
+			jbuf_puts(&v[nd - 1].msg, msg);
 			continue;
 		}
 		v = xrealloc(v, (nd + 1) * sizeof *v);
 		Diag *g = &v[nd++];
 		*g = (Diag){ here ? l : 1, here ? c : 1, strcmp(kind, "error") ? 2 : 1, { 0 } };
-		if (!here && l > 0) buf_printf(&g->msg, "%s:%d:%d: ", path, l, c);
-		buf_puts(&g->msg, msg);
+		if (!here && l > 0) jbuf_printf(&g->msg, "%s:%d:%d: ", path, l, c);
+		jbuf_puts(&g->msg, msg);
 	}
 	free(out);
 	Buf b = { 0 };
 	diagnostics_head(&b, d);
 	for (size_t i = 0; i < nd; i++) {
-		buf_puts(&b, i ? ",{\"range\":" : "{\"range\":");
+		jbuf_puts(&b, i ? ",{\"range\":" : "{\"range\":");
 		buf_range(&b, d->text, d->len, v[i].line, v[i].col);
-		buf_printf(&b, ",\"severity\":%d,\"source\":\"csfc\",\"message\":", v[i].severity);
-		buf_json_str(&b, v[i].msg.s ? v[i].msg.s : "", v[i].msg.n);
-		buf_puts(&b, "}");
+		jbuf_printf(&b, ",\"severity\":%d,\"source\":\"csfc\",\"message\":", v[i].severity);
+		jbuf_string(&b, v[i].msg.s ? v[i].msg.s : "", v[i].msg.n);
+		jbuf_puts(&b, "}");
 		free(v[i].msg.s);
 	}
 	free(v);
-	buf_puts(&b, "]}}");
+	jbuf_puts(&b, "]}}");
 	send(&b);
 	free(b.s);
 }
@@ -525,7 +525,7 @@ static void explain_part(Model *M, Buf *b, int line, const Object *o)
 		if (next) *next++ = '\0';
 		if (!strncmp(l, head, strlen(head))) in = 1, l += o ? 0 : strlen(head);
 		else if (l[0] != ' ') in = 0;
-		if (in) buf_printf(b, "%s%s\n", b->n ? "\n" : "", l);
+		if (in) jbuf_printf(b, "%s%s\n", b->n ? "\n" : "", l);
 	}
 	free(out);
 }
@@ -534,19 +534,19 @@ static void explain_part(Model *M, Buf *b, int line, const Object *o)
 static void describe_var(Buf *b, Var *v)
 {
 	Var *r = sema_canon(v);
-	if (v->kind == V_PROP) buf_printf(b, "**%s.%s**: ", v->obj->name, v->name);
-	else if (v->kind == V_TEMP) buf_printf(b, "**%s** (of %s): ", v->name, v->obj ? v->obj->name : "a rule");
-	else buf_printf(b, "**%s** (%s): ", v->name, v->kind == V_TIME ? "time" : "global");
-	buf_puts(b, v->isvec ? "vector" : "scalar");
+	if (v->kind == V_PROP) jbuf_printf(b, "**%s.%s**: ", v->obj->name, v->name);
+	else if (v->kind == V_TEMP) jbuf_printf(b, "**%s** (of %s): ", v->name, v->obj ? v->obj->name : "a rule");
+	else jbuf_printf(b, "**%s** (%s): ", v->name, v->kind == V_TIME ? "time" : "global");
+	jbuf_puts(b, v->isvec ? "vector" : "scalar");
 	if (r->dimk == DK_KNOWN) {
-		if (dims_none(r->dim)) buf_puts(b, ", dimensionless");
-		else buf_printf(b, ", unit `%s`", dims_unit(r->dim));
+		if (dims_none(r->dim)) jbuf_puts(b, ", dimensionless");
+		else jbuf_printf(b, ", unit `%s`", dims_unit(r->dim));
 	}
 	if (v->kind == V_TIME) return;
-	if (v->kind == V_PROP && v->obj->dropped) buf_puts(b, "\n\nleft out: nothing watched depends on its object");
-	else if (r->state) buf_printf(b, "\n\nstate variable, integrated (its derivative: line %d)", r->deriv ? r->deriv->st->loc.line : 0);
-	else if (r->det) buf_printf(b, "\n\ncomputed by the rule on line %d: solves for %s", r->det->st->loc.line, r->det->why ? r->det->why : v->name);
-	else buf_puts(b, "\n\nconstant");
+	if (v->kind == V_PROP && v->obj->dropped) jbuf_puts(b, "\n\nleft out: nothing watched depends on its object");
+	else if (r->state) jbuf_printf(b, "\n\nstate variable, integrated (its derivative: line %d)", r->deriv ? r->deriv->st->loc.line : 0);
+	else if (r->det) jbuf_printf(b, "\n\ncomputed by the rule on line %d: solves for %s", r->det->st->loc.line, r->det->why ? r->det->why : v->name);
+	else jbuf_puts(b, "\n\nconstant");
 }
 
 /* What the name at params' position of d stands for in its model: an object (*o), or a variable (*v),
@@ -569,18 +569,18 @@ static int lookup(Doc *d, const Json *params, Model **M, Object **o, Var **v, in
 /* The location of loc as LSP JSON: in the document, or in another file (a kind's default, in its `using` file). */
 static void buf_location(Buf *b, Doc *d, Loc l)
 {
-	buf_puts(b, "{\"uri\":");
+	jbuf_puts(b, "{\"uri\":");
 	Source *src = sources.v[l.file];
 	if (l.file == S.file) {
-		buf_json_str(b, d->uri, strlen(d->uri));
+		jbuf_string(b, d->uri, strlen(d->uri));
 	} else {
 		char *real = realpath(src->path, NULL);
 		buf_uri(b, real ? real : src->path);
 		free(real);
 	}
-	buf_puts(b, ",\"range\":");
+	jbuf_puts(b, ",\"range\":");
 	buf_range(b, src->text, src->len, l.line, l.col);
-	buf_puts(b, "}");
+	jbuf_puts(b, "}");
 }
 
 /* Answers textDocument/hover (def 0: what the name is, as Markdown) or textDocument/definition (def 1:
@@ -601,9 +601,9 @@ static void hover_or_definition(Doc *d, const Json *id, const Json *params, int 
 	}
 	if (b.n && !def) {
 		Buf r = { 0 };
-		buf_puts(&r, "{\"contents\":{\"kind\":\"markdown\",\"value\":");
-		buf_json_str(&r, b.s, b.n);
-		buf_puts(&r, "}}");
+		jbuf_puts(&r, "{\"contents\":{\"kind\":\"markdown\",\"value\":");
+		jbuf_string(&r, b.s, b.n);
+		jbuf_puts(&r, "}}");
 		free(b.s);
 		b = r;
 	}
@@ -669,7 +669,7 @@ static void close_doc(const Json *params)
 		if (strcmp(d->uri, uri)) continue;
 		Buf b = { 0 };
 		diagnostics_head(&b, d);
-		buf_puts(&b, "]}}");
+		jbuf_puts(&b, "]}}");
 		send(&b);
 		free(b.s);
 		if (S.doc == d) S.doc = NULL, S.model = NULL;
@@ -711,7 +711,7 @@ static int handle(const Json *m)
 		else hover_or_definition(d, id, params, method[13] == 'd');
 	} else if (id) {
 		Buf msg = { 0 };
-		buf_printf(&msg, "csfc --lsp does not know the method '%s'", method);
+		jbuf_printf(&msg, "csfc --lsp does not know the method '%s'", method);
 		respond(id, NULL, -32601, msg.s);
 		free(msg.s);
 	}
