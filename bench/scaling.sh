@@ -8,7 +8,9 @@
 #   gen_nbody.sh N, N = 128, 512, 2048: csfc seconds, code words, bytecode
 #     bytes, and the time per pair of one right-hand side evaluation of csfvm
 #     beside nbody.c (the same arithmetic): (run - start-up) / (evaluations
-#     N (N - 1)), evaluations from nbody --stats (both take the same steps).
+#     N (N - 1)), evaluations from nbody --stats (both take the same steps);
+#   gen_cloth.sh 30 30 (neighbour rules, each one loop): csfc, csfc --emit-c + cc, the lines of
+#     generated code, and the time per evaluation of csfvm and of the generated program.
 # Each run once: the sizes are exact, the times are for orders of magnitude.
 set -eu
 BUILD=${BUILD:-../build}
@@ -68,6 +70,30 @@ for n in 128 512 2048; do
 		printf "| gen_nbody.sh | %d | %s | %d | %d | %.2f | %.2f | %.2f |\n", n, cs, w, b, a, h, a / h }' >> "$TAB"
 	say "scaling: gen_nbody $n: $ev evaluations"
 done
+# the cloth of gen_cloth.sh, 30 x 30, written with neighbour rules (each one loop): csfc, and
+# csfc --emit-c with cc, in seconds; the lines of C outside the embedded image; the time of one
+# right-hand side evaluation of csfvm and of the generated program (run - start-up) / evaluations
+{
+	echo
+	echo "| scene | N | csfc s | csfc --emit-c + cc s | lines of C (code) | evaluations | csfvm us/evaluation | emit-c us/evaluation |"
+	echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+} >> "$TAB"
+sh ./gen_cloth.sh 30 30 "$TMP/cloth.csf"
+sed 's/^inc t till 0.1 s/inc t till 0 s/' "$TMP/cloth.csf" > "$TMP/cloth0.csf"
+cs=$(run /dev/null "$CSFC" "$TMP/cloth.csf" -o "$TMP/cloth.csfb" | awk '{ print $1 }')
+ccs=$(run /dev/null "$CSFC" --emit-c "$TMP/cloth.csf" -o "$TMP/cloth" | awk '{ print $1 }')
+"$CSFC" --emit-c "$TMP/cloth.csf" -o "$TMP/cloth.c"
+"$CSFC" "$TMP/cloth0.csf" -o "$TMP/cloth0.csfb"
+"$CSFC" --emit-c "$TMP/cloth0.csf" -o "$TMP/cloth0"
+lines=$(awk '/^static const unsigned char csf_model_image/ { img = 1 } img && /;$/ { img = 0; next } !img { n++ } END { print n }' "$TMP/cloth.c")
+ev=$("$CSFVM" --stats "$TMP/cloth.csfb" 2>&1 >/dev/null | sed -n 's/.* \([0-9]*\) right-hand side.*/\1/p')
+vm=$(run /dev/null "$CSFVM" "$TMP/cloth.csfb" | awk '{ print $1 }')
+vm0=$(run /dev/null "$CSFVM" "$TMP/cloth0.csfb" | awk '{ print $1 }')
+ex=$(run /dev/null "$TMP/cloth" | awk '{ print $1 }')
+ex0=$(run /dev/null "$TMP/cloth0" | awk '{ print $1 }')
+awk -v cs="$cs" -v ccs="$ccs" -v lines="$lines" -v ev="$ev" -v vm="$vm" -v vm0="$vm0" -v ex="$ex" -v ex0="$ex0" 'BEGIN {
+	printf "| gen_cloth.sh 30 30 | 900 | %s | %s | %d | %d | %.1f | %.1f |\n", cs, ccs, lines, ev, (vm - vm0) / ev * 1e6, (ex - ex0) / ev * 1e6 }' >> "$TAB"
+say "scaling: cloth 30 x 30: $ev evaluations"
 cat "$TAB" >&2
 cp "$TAB" "$OUT/scaling.md"
 sh ./readme_section.sh "$README" scaling "$TAB"

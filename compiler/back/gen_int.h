@@ -39,6 +39,7 @@ typedef struct Gen {
 	int ncse;
 	Map consts;  /* constant bits -> slot + 1 */
 	int loop;     /* the levels of the loops the instance being emitted runs in (0: none) */
+	Inst *iloop;        /* the instance being emitted when it is one loop over neighbours (Inst.iloop) */
 	Inst *evinst; /* emitting a condition of this conditional rule, located as events ... */
 	int evsrc;    /* ... which name this statement */
 	Map evmap;    /* comparison (by address) -> event index + 1 */

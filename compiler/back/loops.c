@@ -12,6 +12,7 @@
    object is bound (0: compiled for its objects alone). */
 int inst_loops(const Model *M, const Inst *I)
 {
+	if (M->shaped && I->iloop) return 1; /* one loop over the bindings */
 	if (!M->shaped || I->st->has_for || I->st->once) return 0;
 	for (int b = 0; b < I->nbind; b++)
 		if (I->bind[b]->shape->n > 1) return I->nbind;
@@ -19,7 +20,7 @@ int inst_loops(const Model *M, const Inst *I)
 }
 
 /* A $1 rule with attribute F in loops: its forces summed over $1 into an array (acc). */
-int sums_pairs(const Model *M, const Inst *I) { return I->isF && I->nbind > 1 && inst_loops(M, I); }
+int sums_pairs(const Model *M, const Inst *I) { return I->isF && I->nbind > 1 && !I->iloop && inst_loops(M, I); }
 void add_line(Gen *G, uint32_t src)
 {
 	G->lines = grow(G->lines, &G->caplines, G->nlines + 1, sizeof(csf_line));
@@ -121,7 +122,9 @@ static void emit_body(Gen *G, Inst *I)
  * One instance. By shape, its code runs in a loop over the members of $0's
  * shape (level 1), and for $1 over those of $1's (level 2, skipping $0
  * itself); a $1 rule with attribute F adds its force to the sum of $0's,
- * over $1 in ascending object index, from 0.
+ * over $1 in ascending object index, from 0. A rule among neighbours
+ * (`for node[i], node[i+1]`, Inst.iloop) is one loop over its bindings,
+ * each place reading its member at the index plus its own offset.
  */
 void emit_inst(Gen *G, Inst *I)
 {
@@ -129,12 +132,13 @@ void emit_inst(Gen *G, Inst *I)
 	cse_reset(G);
 	add_line(G, (uint32_t)I->src);
 	G->loop = inst_loops(G->M, I);
+	G->iloop = G->loop && I->iloop ? I : NULL;
 	int sums = sums_pairs(G->M, I);
 	uint32_t top[CSF_LOOP_MAX + 1] = { 0 }, jeq = 0;
 	for (int l = 1; l <= G->loop; l++) {
 		if (l == 2 && sums) emit_op(G, CSF_OP_VMOV, csf_rel(acc_slot(G, I), 2), const_slot(G, (double[3]){ 0, 0, 0 }, 1), 0, 0);
 		top[l] = pc(G);
-		emit_op(G, CSF_OP_LOOP, (uint32_t)l, (uint32_t)I->bind[l - 1]->shape->n, 0, 0);
+		emit_op(G, CSF_OP_LOOP, (uint32_t)l, G->iloop ? (uint32_t)I->iloop : (uint32_t)I->bind[l - 1]->shape->n, 0, 0);
 	}
 	if (G->loop == 2 && I->bind[0]->shape == I->bind[1]->shape) {
 		jeq = pc(G);
@@ -151,6 +155,7 @@ void emit_inst(Gen *G, Inst *I)
 		G->code[top[l] + 3] = pc(G);
 	}
 	G->loop = 0;
+	G->iloop = NULL;
 	if (I->isassert || I->isstop) return;
 	if (I->isderiv) {
 		Var *v = ((Assign *)I->then.v[0])->var;

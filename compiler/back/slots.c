@@ -137,6 +137,8 @@ uint32_t param_class(Gen *G, Var *v)
 uint32_t var_operand(Gen *G, Var *v, int place)
 {
 	uint32_t s = var_slot(G, v), level = (uint32_t)place + 1;
+	if (G->iloop && place >= 0 && sema_per_member(v)) /* every place in the one loop: its member's offset */
+		return csf_rel(s + (uint32_t)G->iloop->bind[place]->sidx * (v->isvec ? 3u : 1u), v->isvec ? 2 : 1);
 	if (place < 0 || (int)level > G->loop || !sema_per_member(v)) return s;
 	return csf_rel(s, v->isvec ? 2 * level : 2 * level - 1);
 }

@@ -101,6 +101,10 @@ struct Stmt {
 	int has_for;
 	int once;     /* a rule, assertion or stop without `for` that reads nothing of an object it would bind
 	                 (globals, t, NAME.PROP, sums): it applies once, bound to the first object (sema) */
+	long loop;    /* a rule whose `for` list names neighbours of one array (`for node[i], node[i+1]`) whose
+	                 members are one shape in index order: how many bindings, compiled as one loop over
+	                 them (sema sets it; 0: one instance per binding) */
+	long loop_from; /* its first binding's index value */
 	Expr *cond;   /* assertion, stop condition */
 	Eqn *eqns;    /* rule: its one step (an equation, or a conditional block) */
 	Expr *call;   /* a rule that calls a runtime routine: contact(...) */

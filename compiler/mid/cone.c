@@ -42,8 +42,12 @@ typedef struct Walk {
 
 static int nmembers(const Shape *S) { return S ? S->n : 1; }
 
-/* An instance is per member when it is the loop over its shape's members. */
-static int inst_n(const Inst *I) { return I->nbind > 0 && I->bind[0]->shape ? nmembers(I->bind[0]->shape) : 1; }
+/* An instance is per member when it is the loop over its shape's members; a rule among neighbours
+   (Inst.iloop) is one, reading every member it binds. */
+static int inst_n(const Inst *I)
+{
+	return !I->iloop && I->nbind > 0 && I->bind[0]->shape ? nmembers(I->bind[0]->shape) : 1;
+}
 
 /* Marks of p (n of them); NULL-safe */
 static char *marks(Walk *W, void *p, int n)
@@ -99,6 +103,7 @@ static void need_inst(Walk *W, Inst *I, int mem)
 static int member_read(const Inst *I, const Object *o, int mem)
 {
 	if (!o || !o->shape || o->shape->n == 1) return 0;
+	if (I->iloop) return -1; /* a rule among neighbours: every member (at its offsets) */
 	for (int b = 1; b < I->nbind; b++)
 		if (I->bind[b]->shape == o->shape) return -1;
 	if (I->nbind > 0 && I->bind[0]->shape == o->shape) return mem;
@@ -115,8 +120,9 @@ static void visit_var(Walk *W, Var *v, int mem)
 static void visit_inst(Walk *W, Inst *I, int mem)
 {
 	for (int k = 0; k < I->reads.n; k++) {
-		Var *v = sema_canon(I->reads.v[k]);
-		need_var(W, v, sema_per_member(v) ? member_read(I, v->obj, mem) : 0);
+		Var *r = I->reads.v[k], *v = sema_canon(r);
+		/* a member's own variable (in a sum): that member */
+		need_var(W, v, !sema_per_member(v) ? 0 : r != v ? r->obj->sidx : member_read(I, v->obj, mem));
 	}
 	for (int k = 0; k < I->rf_reads.n; k++) {
 		Object *o = I->rf_reads.v[k];

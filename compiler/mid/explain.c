@@ -155,6 +155,9 @@ void explain_model(Model *Mo, FILE *f)
 					        o->shape->n > 2 ? "s" : "");
 				else fprintf(f, "%s%s", b == 1 ? " with " : ", ", o->name);
 			}
+			if (Mo->shaped && I->iloop)
+				fprintf(f, ", and so on: one loop over the %ld bindings, %s = %ld .. %ld", I->iloop, I->ivar, I->idx,
+				        I->idx + I->iloop - 1);
 			if (I->isassert) fprintf(f, ": checked at every output step");
 			else if (I->isstop) fprintf(f, ": ends the run at the instant it becomes true (a terminal event)");
 			else fprintf(f, ": %s%s", I->isderiv ? "" : "solves for ", I->why ? I->why : "?");

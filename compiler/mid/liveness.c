@@ -15,7 +15,7 @@ Vec *live_forces(const Model *M)
 	Vec *Finsts = xalloc((size_t)(M->objects.n + 1) * sizeof(Vec));
 	for (int i = 0; i < M->insts.n; i++) {
 		Inst *I = M->insts.v[i];
-		if (I->isF) vec_push(&Finsts[I->bind[0]->index], I);
+		if (I->isF) vec_push(&Finsts[(I->iloop ? I->bind[0]->shape->members[0] : I->bind[0])->index], I);
 	}
 	return Finsts;
 }
@@ -25,7 +25,7 @@ static void mark(Vec *Finsts, Inst *I, int sec)
 	if (I->needed[sec]) return;
 	I->needed[sec] = 1;
 	for (int i = 0; i < I->reads.n; i++) {
-		Var *v = I->reads.v[i];
+		Var *v = sema_canon(I->reads.v[i]); /* a sum reads the members' own */
 		if (v->det && v->det != I) mark(Finsts, v->det, sec);
 	}
 	for (int i = 0; i < I->rf_reads.n; i++) {

@@ -547,3 +547,87 @@ static void read_file(Stmt *s)
 		}
 	}
 }
+
+/* ---- a rule among neighbours as one loop ---- */
+
+int expr_reads_name(const Expr *x, const char *n)
+{
+	if (!x) return 0;
+	if (x->kind == E_NAME && !strcmp(x->name, n)) return 1;
+	if (expr_reads_name(x->a, n) || expr_reads_name(x->b, n)) return 1;
+	for (int i = 0; i < x->nargs; i++)
+		if (expr_reads_name(x->args[i], n)) return 1;
+	return 0;
+}
+
+/* Is idx the index name of s plus a whole number (into *off)? Checked at -1, 0, 1 and 2, as
+   for_index_range checks a * i + b. */
+static int unit_offset(Stmt *s, Expr *idx, long *off)
+{
+	long v[4];
+	for (int k = 0; k < 4; k++) {
+		Ctx C = { 0 };
+		C.ivar = s->ivar;
+		C.idx = k - 1;
+		if (!index_value(&C, idx, &v[k])) return 0;
+	}
+	*off = v[1];
+	return v[0] == v[1] - 1 && v[2] == v[1] + 1 && v[3] == v[1] + 2;
+}
+
+/* for_loopable's walk of the equation: the members it names by the index name are among the `for`
+   list's (its offsets off[0..n)), and the index name is read only in an index. */
+typedef struct LoopWalk {
+	Stmt *s;
+	const char *array;
+	long *off;
+	int n, ok;
+} LoopWalk;
+
+static int loop_walk(Expr *x, void *ctx)
+{
+	LoopWalk *L = ctx;
+	if (!x || !L->ok) return L->ok;
+	if (x->kind == E_INDEX) {
+		if (expr_reads_name(x->a, L->s->ivar)) {
+			long b;
+			int known = 0;
+			if (!strcmp(x->name, L->array) && unit_offset(L->s, x->a, &b))
+				for (int k = 0; k < L->n; k++) known |= L->off[k] == b;
+			L->ok = known;
+		}
+		return L->ok;
+	}
+	if (x->kind == E_NAME && !strcmp(x->name, L->s->ivar)) return L->ok = 0;
+	loop_walk(x->a, L);
+	loop_walk(x->b, L);
+	for (int i = 0; i < x->nargs; i++) loop_walk(x->args[i], L);
+	return L->ok;
+}
+
+ObjArray *for_array(Stmt *s) { return array_of(((ObjRef *)s->fors.v[0])->name); }
+
+long for_loopable(Stmt *s, long *from)
+{
+	Eqn *q = s->eqns;
+	if (s->kind != S_RULE || s->call || !q || q->next || q->nest || q->deriv || (s->attr && strcmp(s->attr, "F") != 0))
+		return 0;
+	if (for_indexed(s) != 1) return 0;
+	int n = s->fors.n;
+	long *off = xalloc((size_t)n * sizeof *off), lo = 0, hi = 0;
+	ObjArray *A = for_array(s);
+	for (int k = 0; k < n; k++) {
+		ObjRef *r = s->fors.v[k];
+		if (!A || !r->idx || strcmp(r->name, A->name) != 0 || !unit_offset(s, r->idx, &off[k])) return 0;
+		for (int j = 0; j < k; j++)
+			if (off[j] == off[k]) return 0; /* a member named twice: reported per binding */
+		if (k == 0 || off[k] < lo) lo = off[k];
+		if (k == 0 || off[k] > hi) hi = off[k];
+	}
+	/* the index values for which every member named exists: A->lo - lo .. A->hi - hi */
+	long count = (A->hi - hi) - (A->lo - lo) + 1;
+	LoopWalk L = { s, A->name, off, n, 1 };
+	if (count < 2 || !stmt_each(s, loop_walk, &L)) return 0;
+	*from = A->lo - lo;
+	return count;
+}

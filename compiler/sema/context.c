@@ -74,13 +74,15 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 {
 	Loc l = x->loc;
 	int place = -1; /* which $n o is */
-	for (int p = 0; !C->init && !explicit_obj && p < C->nbind; p++)
+	/* explicit_obj 2: a member named by the index of a rule that is one loop, at its place */
+	for (int p = 0; !C->init && (!explicit_obj || explicit_obj == 2) && p < C->nbind; p++)
 		if (C->bind[p] == o) {
 			place = p;
 			break;
 		}
 	/* by shape, a member stands for its shape: the representative's variables, at o's place */
-	if (sema.shaped && o && !C->init && o->sidx) o = o->shape->members[0];
+	/* (explicit_obj 3: a member in a sum, read as itself: its own slot of its shape's arrays) */
+	if (sema.shaped && o && !C->init && o->sidx && explicit_obj != 3) o = o->shape->members[0];
 	if (!explicit_obj) {
 		if (strcmp(name, "t") == 0) return var_ref(C, sema.M->time, l, -1);
 		if (strcmp(name, "RF") == 0) {
@@ -117,6 +119,7 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 	if (map_get(&sema.prop_names, name) || explicit_obj) {
 		if (explicit_obj) {
 			Var *t = map_get(&sema.temps, temp_key(name, &o, 1));
+			if (t && explicit_obj == 2) unshape("a rule among neighbours reads a temporary of a member");
 			if (t) return var_ref(C, t, l, -1);
 			error_at(l, "object '%s' has no property '%s'", o->name, name);
 		}
@@ -322,7 +325,7 @@ RExpr *build(Ctx *C, Expr *x)
 	case E_NAME:
 		if (C->ivar && !strcmp(x->name, C->ivar)) return rconst((double)C->idx, l); /* an index: a bare number */
 		if (C->sum_obj && strcmp(x->name, "t") != 0 && !map_get(&sema.globals_by_name, x->name))
-			return build_name(C, x, x->name, C->sum_obj, 1);
+			return build_name(C, x, x->name, C->sum_obj, 3);
 		return build_name(C, x, x->name, C->init ? C->self : C->bind[0], 0);
 	case E_INDEX:
 		array_at(C, x->name, x->a, l);
@@ -336,7 +339,8 @@ RExpr *build(Ctx *C, Expr *x)
 	case E_FIELD: {
 		if (x->a->kind == E_INDEX) {
 			Object *o = array_at(C, x->a->name, x->a->a, x->a->loc);
-			return o ? build_name(C, x, x->name, o, 1) : rconst(0, l);
+			int by_index = C->iloop && C->ivar && expr_reads_name(x->a->a, C->ivar);
+			return o ? build_name(C, x, x->name, o, by_index ? 2 : 1) : rconst(0, l);
 		}
 		if (x->a->kind == E_NAME) {
 			Object *o = map_get(&sema.objects_by_name, x->a->name);

@@ -225,6 +225,7 @@ static int find_set(Wait *w, Wait **S)
 /* Is instance I compiled as a loop over the members of a shape (by shape: gen's inst_loops)? */
 static int in_loop(const Inst *I)
 {
+	if (sema.shaped && I->iloop) return 1;
 	if (!sema.shaped || I->st->has_for || I->st->once) return 0;
 	for (int b = 0; b < I->nbind; b++)
 		if (I->bind[b]->shape->n > 1) return 1;

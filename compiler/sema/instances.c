@@ -219,6 +219,15 @@ int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 	int k = stmt_max_dollar(s);
 	int nobj = sema.M->objects.n;
 	const char *missing = NULL;
+	if (s->has_for && s->loop) { /* one loop: one instance, bound to the members of the first binding */
+		sema.ivar = s->ivar;
+		sema.idx = s->loop_from;
+		sema.iloop = s->loop;
+		int r = bind_for(s, f, k);
+		sema.ivar = NULL;
+		sema.iloop = 0;
+		return r < 0 ? -1 : r > 0 ? (s->loop > INT_MAX ? INT_MAX : (int)s->loop) : 0;
+	}
 	if (s->has_for) {
 		int ix = for_indexed(s);
 		long from = 0, to = 0, count = 0;
@@ -307,6 +316,7 @@ Inst *new_inst(Stmt *s, Object **bind, int nbind)
 	I->isF = s->attr && strcmp(s->attr, "F") == 0;
 	I->ivar = sema.ivar;
 	I->idx = sema.idx;
+	I->iloop = sema.iloop;
 	return I;
 }
 

@@ -118,6 +118,18 @@ static void check_atols(Model *M)
 	}
 }
 
+/* Does I read temporary v of D, a rule that is one loop (Inst.iloop), in the same loop and only at
+   the member that D determines it for? (By shape, the members past D's bindings have none.) */
+static int same_loop(const Inst *I, const Inst *D, const Var *v)
+{
+	if (I->iloop != D->iloop || I->idx != D->idx || !I->iloop) return 0;
+	unsigned places = 0;
+	for (int k = 0; k < I->then.n; k++) places |= var_places(((Assign *)I->then.v[k])->e, v);
+	for (int p = 0; p < I->nbind; p++)
+		if (places & 1u << (p + 1) && I->bind[p] != D->bind[0]) return 0;
+	return !(places & 1u); /* not as a named object's */
+}
+
 static Model *resolve(Stmt *stmts, int shaped)
 {
 	sema_reset(shaped);
@@ -225,6 +237,8 @@ static Model *resolve(Stmt *stmts, int shaped)
 		for (int k = 0; k < I->reads.n; k++) {
 			Var *v = I->reads.v[k];
 			if (v->kind == V_TEMP && v->pair && v->det != I) unshape("a temporary of a pair ($1) read by another rule");
+			if (v->kind == V_TEMP && v->det && v->det->iloop && v->det != I && !same_loop(I, v->det, v))
+				unshape("a temporary of a rule among neighbours read by another rule");
 		}
 	}
 	/* Also after errors: the instances that failed are left out, and the dimensions of the

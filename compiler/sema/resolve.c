@@ -93,6 +93,7 @@ static Ctx inst_ctx(const Inst *I, Vec *reads, Vec *rf, Vec *pending)
 	C.key_nbind = I->st->has_for ? 1 : I->nbind;
 	C.ivar = I->ivar;
 	C.idx = I->idx;
+	C.iloop = I->iloop;
 	return C;
 }
 
@@ -130,6 +131,8 @@ void resolve_assign(Inst *I, Var *x, RExpr *sol, RExpr *lhs, RExpr *rhs, Eqn *q,
 		unshape("a rule over pairs ($1) determines a variable of one object");
 	if (sema.shaped && sema_per_member(x) && (var_places(lhs, x) | var_places(rhs, x)) & ~2u)
 		unshape("a rule determines a variable of $1");
+	if (sema.shaped && I->iloop && x->kind != V_TEMP) /* the members without a binding would keep theirs */
+		unshape("a rule among neighbours determines a property");
 	Assign *a = xalloc(sizeof *a);
 	a->var = x;
 	a->e = sol;

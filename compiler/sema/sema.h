@@ -136,6 +136,9 @@ struct Inst {
 	const char *ivar; /* a rule whose `for` list indexes members (`for node[i], node[i+1]`): its index name
 	                     and value for this binding; NULL: none */
 	long idx;
+	long iloop;      /* a rule among neighbours compiled as one loop (Stmt.loop): how many bindings, the
+	                    first bound (idx the index's value there); binding b of the k-th is the member
+	                    k places after bind[b] in their shape. 0: none */
 };
 
 /* A body of the contact routine: a mass point, a plane or an anchor, with the properties the routine reads. */

@@ -40,6 +40,7 @@ typedef struct Sema {
 	   its name stands for it in expressions */
 	const char *ivar;
 	long idx;
+	long iloop;             /* binding a rule that is one loop over its bindings (Stmt.loop): how many */
 } Sema;
 
 /* A resolution context: what an expression is built for (context.c). */
@@ -59,6 +60,7 @@ typedef struct Ctx {
 	Var *first_read;   /* init: the first global or property it read */
 	const char *ivar;  /* an index name and its value (Sema.ivar, Inst.ivar), or NULL */
 	long idx;
+	long iloop;        /* building a rule among neighbours compiled as one loop (Inst.iloop) */
 	Object *sum_obj;   /* in sum(EXPR for NAME): the member whose properties the names of EXPR are */
 	Vec *summed;       /* Var* read in a sum: the rule does not solve for them (NULL: not recorded) */
 } Ctx;
@@ -142,6 +144,15 @@ int for_indexed(Stmt *s);
 /* The range of the index name of s (for_indexed) for which every member it names exists: [*from, *to],
  * empty if *from > *to. 0 after an error. */
 int for_index_range(Stmt *s, long *from, long *to);
+/* Can rule s be one loop over its bindings (Stmt.loop)? A plain equation, its `for` list every member
+ * of one array at the index name plus a whole number, and its equation naming members only so (and
+ * not the index name as a number). Returns the number of bindings (at least 2; their first index in
+ * *from), else 0. */
+long for_loopable(Stmt *s, long *from);
+/* The array whose members s's `for` list names (for_loopable). */
+ObjArray *for_array(Stmt *s);
+/* Does expression x read the name n? */
+int expr_reads_name(const Expr *x, const char *n);
 
 /* ---- walk.c: the expressions of a statement ---- */
 

@@ -9,11 +9,15 @@
 #include "sema_int.h"
 #include "csf_int.h"
 
+/* Set while the statement walked is one loop over its bindings (Stmt.loop): the members it names by
+   the index name stay in their shape. */
+static int in_loop_stmt;
+
 /* Marks in named the members of array name: member idx if it is a number, else every member. */
 static void mark_members(const char *name, Expr *idx, Map *named)
 {
 	ObjArray *A = array_of(name);
-	if (!A) return;
+	if (!A || (idx && idx->kind != E_NUM && in_loop_stmt)) return;
 	for (long k = A->lo; k <= A->hi; k++) {
 		if (idx && idx->kind == E_NUM && idx->num != (double)k) continue;
 		Object *o = array_member(A, k);
@@ -21,12 +25,12 @@ static void mark_members(const char *name, Expr *idx, Map *named)
 	}
 }
 
-/* Marks in named (a Map) the objects expression x names (NAME.PROP, NAME[K].PROP, sum(... for NAME)). Returns 1. */
+/* Marks in named (a Map) the objects expression x names (NAME.PROP, NAME[K].PROP; not the members of a
+   sum, which reads each member's own slot of its shape's arrays). Returns 1. */
 static int mark_named(Expr *x, void *named)
 {
 	if (!x) return 1;
 	if (x->kind == E_INDEX) mark_members(x->name, x->a, named);
-	if (x->kind == E_SUM) mark_members(x->name, NULL, named);
 	if (x->kind == E_FIELD && x->a->kind == E_NAME) {
 		Object *o = map_get(&sema.objects_by_name, x->a->name);
 		if (o) map_put(named, o->name, o);
@@ -37,40 +41,16 @@ static int mark_named(Expr *x, void *named)
 	return 1;
 }
 
-/*
- * Groups the objects into shapes: by the names, types and dimensions of
- * their properties, in order (what decides which rules apply to an object
- * and how each resolves). By object (not shaped), or when a rule, a `for`
- * list or the watch list names the object and one of its temporaries, an
- * object is a shape of its own.
- */
-void build_shapes(Stmt *start)
+/* Groups the objects not in named into shapes by their signatures (build_shapes). */
+static void group(Map *named)
 {
-	Map named = { 0 }, by_sig = { 0 };
-	for (int i = 0; i < sema.M->stmts.n; i++) { /* the rules and assertions */
-		Stmt *s = sema.M->stmts.v[i];
-		stmt_each(s, mark_named, &named);
-		for (int i = 0; i < s->fors.n; i++) {
-			ObjRef *r = s->fors.v[i];
-			if (r->idx) {
-				mark_members(r->name, r->idx, &named);
-				continue;
-			}
-			Object *o = r->name ? map_get(&sema.objects_by_name, r->name)
-			                    : (r->index < sema.M->objects.n ? sema.M->objects.v[r->index] : NULL);
-			if (o) map_put(&named, o->name, o);
-		}
-	}
-	for (int i = 0; start && i < start->watch.n; i++) {
-		WatchItem *w = start->watch.v[i];
-		Object *o = w->obj ? map_get(&sema.objects_by_name, w->obj) : NULL;
-		if (o && !prop_of(o, w->prop)) map_put(&named, o->name, o);
-	}
+	Map by_sig = { 0 };
+	sema.M->shapes.n = 0;
 	for (int i = 0; i < sema.M->objects.n; i++) {
 		Object *o = sema.M->objects.v[i];
 		char *sig = NULL;
 		ArenaMark mark = arena_mark();
-		if (sema.shaped && !map_get(&named, o->name) && !o->dropped) {
+		if (sema.shaped && !map_get(named, o->name) && !o->dropped) {
 			/* each property: its name, then type, dimension kind and dimension as hex digits */
 			size_t len = 0;
 			for (int j = 0; j < o->props.n; j++) len += strlen(((Var *)o->props.v[j])->name) + 1 + 2 * (2 + CSF_NDIM * 8);
@@ -106,5 +86,61 @@ void build_shapes(Stmt *start)
 		Object *o = sema.M->objects.v[i];
 		if (!o->shape->members) o->shape->members = xalloc((size_t)o->shape->n * sizeof(Object *));
 		o->shape->members[fill[o->shape->index]++] = o;
+	}
+}
+
+/*
+ * Groups the objects into shapes: by the names, types and dimensions of
+ * their properties, in order (what decides which rules apply to an object
+ * and how each resolves). By object (not shaped), or when a rule, a `for`
+ * list or the watch list names the object and one of its temporaries, an
+ * object is a shape of its own.
+ */
+void build_shapes(Stmt *start)
+{
+	Map named = { 0 };
+	for (int i = 0; i < sema.M->stmts.n; i++) { /* the rules and assertions */
+		Stmt *s = sema.M->stmts.v[i];
+		s->loop = sema.shaped ? for_loopable(s, &s->loop_from) : 0;
+		in_loop_stmt = s->loop > 0;
+		stmt_each(s, mark_named, &named);
+		for (int i = 0; i < s->fors.n; i++) {
+			ObjRef *r = s->fors.v[i];
+			if (r->idx) {
+				mark_members(r->name, r->idx, &named);
+				continue;
+			}
+			Object *o = r->name ? map_get(&sema.objects_by_name, r->name)
+			                    : (r->index < sema.M->objects.n ? sema.M->objects.v[r->index] : NULL);
+			if (o) map_put(&named, o->name, o);
+		}
+		in_loop_stmt = 0;
+	}
+	for (int i = 0; start && i < start->watch.n; i++) {
+		WatchItem *w = start->watch.v[i];
+		Object *o = w->obj ? map_get(&sema.objects_by_name, w->obj) : NULL;
+		if (o && !prop_of(o, w->prop)) map_put(&named, o->name, o);
+	}
+	/* a loop over neighbours needs its array's members in one shape, in index order: where they are
+	   not (some named, left out, or of other properties), its rule is one instance per binding, and
+	   its members shapes of their own */
+	for (int again = 1; again;) {
+		group(&named);
+		again = 0;
+		for (int i = 0; i < sema.M->stmts.n; i++) {
+			Stmt *s = sema.M->stmts.v[i];
+			if (!s->loop) continue;
+			ObjArray *A = for_array(s);
+			Object *o0 = array_member(A, A->lo);
+			int ok = 1;
+			for (long k = A->lo; ok && k <= A->hi; k++) {
+				Object *o = array_member(A, k);
+				ok = o->shape == o0->shape && o->sidx == o0->sidx + (int)(k - A->lo);
+			}
+			if (ok) continue;
+			s->loop = 0;
+			mark_members(A->name, NULL, &named);
+			again = 1;
+		}
 	}
 }
