@@ -300,22 +300,73 @@ int csf_param_set(const csf_prog *p, csf_overlay *ov, const char *assign, char *
 	return 0;
 }
 
+/* A value of a parameter as csf_params_list writes it: "3" or "(1, 2, 3)". */
+static void put_value(FILE *f, const double *v, uint32_t width)
+{
+	char b[32];
+	for (uint32_t k = 0; k < width; k++) {
+		csf_fmt_double(b, v[k]);
+		fprintf(f, "%s%s", width == 3 ? (k ? ", " : "(") : "", b);
+	}
+	if (width == 3) fputc(')', f);
+}
+
+/* What follows a parameter's value on its line: its unit, a note, and why -D cannot set it. */
+static void put_tail(const csf_prog *p, FILE *f, const csf_pclass *c, const char *note)
+{
+	const char *why = csf_str(p, c->why), *unit = csf_str(p, c->unit);
+	fprintf(f, "%s%s%s", *unit ? " " : "", unit, note);
+	if (*why) fprintf(f, ": cannot be set: %s", why);
+	else if (!c->known) fputs(" (dimension not known: a bare number)", f);
+}
+
 /* One parameter's line of csf_params_list. */
 static void list_one(const csf_prog *p, FILE *f, const char *obj, const char *name, uint32_t slot, uint32_t width,
                      const csf_pclass *c)
 {
-	const char *why = csf_str(p, c->why), *unit = csf_str(p, c->unit);
 	fprintf(f, "  %s%s%s = ", obj ? obj : "", obj ? "." : "", name);
-	char b[32];
-	for (uint32_t k = 0; k < width; k++) {
-		csf_fmt_double(b, p->mem0[slot + k]);
-		fprintf(f, "%s%s", width == 3 ? (k ? ", " : "(") : "", b);
-	}
-	fprintf(f, "%s%s%s", width == 3 ? ")" : "", *unit ? " " : "", unit);
-	if (*why) fprintf(f, ": cannot be set: %s", why);
-	else if (!c->known) fputs(" (dimension not known: a bare number)", f);
+	put_value(f, p->mem0 + slot, width);
+	put_tail(p, f, c, "");
 	fputc('\n', f);
 }
+
+/* The length of the array name of a member named NAME[K] (K into *k), or 0. */
+static size_t member_name(const char *obj, long *k)
+{
+	size_t n = strlen(obj);
+	if (n < 4 || obj[n - 1] != ']') return 0;
+	const char *open = strrchr(obj, '[');
+	if (!open || open == obj) return 0;
+	char *end;
+	*k = strtol(open + 1, &end, 10);
+	return end == obj + n - 1 && end != open + 1 ? (size_t)(open - obj) : 0;
+}
+
+/* The properties of object props[i].object: props[i .. *end). */
+static uint32_t props_end(const csf_prog *p, uint32_t i)
+{
+	uint32_t j = i;
+	while (j < p->nprops && p->props[j].object == p->props[i].object) j++;
+	return j;
+}
+
+/* Do the properties at a and b (n each) have the same names, widths and classes? */
+static int same_props(const csf_prog *p, uint32_t a, uint32_t b, uint32_t n)
+{
+	for (uint32_t q = 0; q < n; q++) {
+		const csf_prop *x = &p->props[a + q], *y = &p->props[b + q];
+		if (x->name != y->name || x->width != y->width || x->cls != y->cls) return 0;
+	}
+	return 1;
+}
+
+/*
+ * The members of an array that follow each other in index order with the
+ * same properties (at least ARRAY_RUN of them) are summarised, a line per
+ * property: "star[0..999].m = 1 kg: 1000 members, the same", or the first
+ * and last values, "each its own"; -D sets one member as NAME[K].PROP.
+ */
+enum { ARRAY_RUN = 3 };
 
 void csf_params_list(const csf_prog *p, FILE *f)
 {
@@ -323,7 +374,43 @@ void csf_params_list(const csf_prog *p, FILE *f)
 	for (uint32_t i = 0; i < p->nglobals; i++)
 		list_one(p, f, NULL, csf_str(p, p->globals[i].name), p->globals[i].slot, p->globals[i].width,
 		         &p->pclasses[p->globals[i].cls]);
-	for (uint32_t i = 0; i < p->nprops; i++)
-		list_one(p, f, csf_str(p, p->objects[p->props[i].object]), csf_str(p, p->props[i].name), p->props[i].slot,
-		         p->props[i].width, &p->pclasses[p->props[i].cls]);
+	for (uint32_t i = 0; i < p->nprops;) {
+		const char *obj = csf_str(p, p->objects[p->props[i].object]);
+		uint32_t end = props_end(p, i), n = end - i, members = 1, last = i;
+		long k0, k;
+		size_t len = member_name(obj, &k0);
+		for (uint32_t j = end; len && j < p->nprops; members++) { /* the run of members after obj */
+			const char *o = csf_str(p, p->objects[p->props[j].object]);
+			uint32_t e = props_end(p, j);
+			if (member_name(o, &k) != len || strncmp(o, obj, len) != 0 || k != k0 + (long)members || e - j != n ||
+			    !same_props(p, i, j, n))
+				break;
+			last = j;
+			j = e;
+		}
+		if (members < ARRAY_RUN) {
+			for (uint32_t q = i; q < end; q++)
+				list_one(p, f, obj, csf_str(p, p->props[q].name), p->props[q].slot, p->props[q].width,
+				         &p->pclasses[p->props[q].cls]);
+			i = end;
+			continue;
+		}
+		for (uint32_t q = 0; q < n; q++) {
+			const csf_prop *a = &p->props[i + q];
+			int same = 1;
+			for (uint32_t j = i + n + q; same && j <= last + q; j += n)
+				same = memcmp(p->mem0 + p->props[j].slot, p->mem0 + a->slot, a->width * sizeof(double)) == 0;
+			fprintf(f, "  %.*s[%ld..%ld].%s = ", (int)len, obj, k0, k0 + (long)members - 1, csf_str(p, a->name));
+			put_value(f, p->mem0 + a->slot, a->width);
+			if (!same) {
+				fputs(" .. ", f);
+				put_value(f, p->mem0 + p->props[last + q].slot, a->width);
+			}
+			char note[64];
+			snprintf(note, sizeof note, " (%u members, %s)", members, same ? "the same" : "each its own");
+			put_tail(p, f, &p->pclasses[a->cls], note);
+			fputc('\n', f);
+		}
+		i = last + n;
+	}
 }

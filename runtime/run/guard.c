@@ -166,6 +166,36 @@ static void warn_stiff(run *r, csf_ode *ode, double t, double h, const csf_eigs 
 }
 
 /*
+ * Warning: an adaptive method's steps of h at t, more than SHORT_STEPS times
+ * shorter than the fastest time scale of the scene's dynamics (1/rho), with
+ * more than SHORT_LEFT of them to go (and SHORT_LEFT / 100 taken, so that
+ * the first steps' growth is over): the error control, not stability,
+ * holds them. Either the scene changes faster than its own dynamics (a fast
+ * forcing), or the tolerance asks for more than rounding allows: a value
+ * held near 0, relative to its size, while large forces cancel on it (the
+ * masses of a chain started at rest).
+ */
+enum { SHORT_STEPS = 1000, SHORT_LEFT = 100000 };
+
+static void warn_short(run *r, csf_ode *ode, double t, double h, const csf_eigs *e)
+{
+	char tb[32], more[32], times[32];
+	csf_fmt_double(tb, t);
+	csf_run_fmt_ratio(more, (r->tend - t) / h);
+	csf_run_fmt_ratio(times, 1 / (h * e->rho));
+	csf_run_progress_off(r);
+	fprintf(r->g->err,
+	        "warning: at t=%s, after %lu steps, the error control holds %s to steps of %.3g s, %s times shorter "
+	        "than the fastest time scale of the scene (%.3g s), and some %s more are to go: either the scene "
+	        "changes faster than that (a fast forcing), or the tolerance asks for more than the rounding of the "
+	        "values allows (a velocity near 0 while large forces cancel on it: the masses of a chain started at "
+	        "rest); --atol bounds the error of such values absolutely (--atol 1e-9), a larger --tol loosens "
+	        "every value\n",
+	        tb, r->g->steps, csf_ode_method(ode), h, times, 1 / e->rho, more);
+	r->g->warned_short = 1;
+}
+
+/*
  * Looks at the scene at (t, y) after a step of h (0 at the start).
  * Returns 1 after writing why the run must halt, else 0. A state where an
  * estimate cannot be made (a derivative not finite nearby) is passed
@@ -180,7 +210,7 @@ int csf_run_guard_check(run *r, csf_ode *ode, double t, const double *y, double 
 	double before = guard_evals(r);
 	/* a look for a fixed step is as long as it needs; another spends at most its share of the run */
 	int maxprod = g->fixed ? 1000 : (int)fmin(1000, fmax(3, before / LOOK_EVERY / 2));
-	int halt = 0;
+	int halt = 0, looked = 0;
 	g->due = 0;
 	g->checks++;
 	g->t = t;
@@ -191,6 +221,7 @@ int csf_run_guard_check(run *r, csf_ode *ode, double t, const double *y, double 
 		goto out;
 	}
 	g->last = e;
+	looked = 1;
 	if (e.rho > g->rho_max) g->rho_max = e.rho, g->at_max = e;
 	if (g->stats && (!g->have_ratio || e.rho > 1.5 * g->ratio_rho)) {
 		double b = guard_evals(r), keep = g->auto_ratio;
@@ -243,6 +274,9 @@ int csf_run_guard_check(run *r, csf_ode *ode, double t, const double *y, double 
 		g->warned = 1;
 	}
 out:; /* a label before a declaration: C11 needs a statement */
+	if (looked && !g->fixed && !g->warned_short && g->steps >= SHORT_LEFT / 100 && h > 0 && e.rho > 0 &&
+	    h * e.rho * SHORT_STEPS < 1 && (r->tend - t) / h > SHORT_LEFT)
+		warn_short(r, ode, t, h, &e);
 	/* the next look: after LOOK_EVERY times this one's cost in evaluations; with fixed steps,
 	   sooner as h rho nears the method's least limit on either axis (the direction of the
 	   eigenvalues may turn, as a pendulum's do), every step past half of it */

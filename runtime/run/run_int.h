@@ -188,6 +188,7 @@ typedef struct guard {
 	double auto_ratio;         /* auto: the largest ratio of the looks that decide (not --stats's) */
 	double aside;              /* auto: the evaluations of --stats's own ratios, left out of the schedule */
 	int warned; /* of stiffness */
+	int warned_short; /* of steps far shorter than the scene's time scale */
 } guard;
 
 typedef struct watch_ctx { run *r; csf_ode *ode; } watch_ctx;

@@ -4,7 +4,8 @@
 #    launched at its own v0 = (3 + i/1000, 1, 10 - i/2000) m/s (gen_projectiles.sh): ten sampled
 #    members at every row against the closed form to 1e-9 m, both as compiled (the unwatched
 #    members left out) and with --keep-all (every member integrated);
-#  - --explain says the members left out between two watched ones in one line;
+#  - --explain says the members left out between two watched ones in one line, and each property
+#    of the array's members in one line of its parameters (first and last values, or the one);
 #  - the same array read from a data file gives the same output, byte for byte, and the same
 #    scene written object by object (2000 objects) the same rows;
 #  - `watch p.pos` names every member's columns p[k].pos.x [m] ..., and -D sets one member;
@@ -59,6 +60,15 @@ if comp pa "$T/pa.csf"; then
 fi
 if comp pak "$T/pa.csf" --keep-all; then
 	"$CSFVM" "$T/pak.csfb" >"$T/pak.csv" && check closed "$T/pak.csv"
+	# --explain's parameters: a line per property of the array, not per member; v0 first and last
+	"$CSFC" --explain --keep-all "$T/pa.csf" 2>/dev/null >"$T/pak.explain"
+	check grep -qxF "  p[0..$((N - 1))].m = 0.5 kg ($N members, the same)" "$T/pak.explain"
+	check awk -v n=$N 'function abs(x) { return x < 0 ? -x : x }
+		index($0, "  p[0.." n - 1 "].v = (3, 1, 10) .. (") == 1 && index($0, ") m/s (" n " members, each its own)") {
+			split(substr($0, index($0, ".. (") + 4), v, /[,)] */)
+			ok = abs(v[1] - (3 + (n - 1) / 1000)) < 1e-12 && v[2] == 1 && abs(v[3] - (10 - (n - 1) / 2000)) < 1e-12 }
+		END { exit !ok }' "$T/pak.explain"
+	check test "$(sed -n '/^parameters/,$p' "$T/pak.explain" | grep -c '^  p\[')" -lt 20
 fi
 # from a data file: the same output, byte for byte
 sh "$D/gen_projectiles.sh" $N data "$W" "$T/proj.csv" >"$T/pd.csf"

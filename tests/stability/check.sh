@@ -15,7 +15,9 @@
 #  - --method auto (the default) switches to bsimp on the stiff scene, and keeps
 #    dop853's rows on one that is not;
 #  - --compare-methods on the stiff scene: an exact reference, auto and bsimp
-#    rows that agree with it, rk8pd's rows over budget.
+#    rows that agree with it, rk8pd's rows over budget;
+#  - steps held a thousand times below the scene's time scale by the error control
+#    (a chain at rest far from the origin) draw one warning; --atol 1e-9 runs it exactly.
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3
 pass=0 fail=0
@@ -132,6 +134,29 @@ if [ $st -eq 0 ] && [ "$ref_ok" = 1 ] && grep -q "^reference: auto at tol 1e-13"
 		$1 == "rk8pd" { r++; if ($6 " " $7 == "over budget") over++ }
 		END { exit !(n == 2 && good == 2 && r == 5 && over == 5) }' "$T/st.csv"
 then ok; else bad "--compare-methods on the stiff scene: exit $st, reference exact: $ref_ok, $(head -n 4 "$T/st.csv" | tr '\n' ' ')"; fi
+
+# 9. steps held far below the scene's time scale by the error control: a chain at rest 1 km from the
+# origin (chain_at_rest.csf) warns, once, within its first 10000 steps (the run is stopped then: at
+# that pace it would take hours); with --atol 1e-9 it runs without the warning, every row within
+# 1e-9 m of the normal mode's closed form
+"$CSFC" $D/chain_at_rest.csf -o "$T/st_chain.csfb" || bad "chain_at_rest does not compile"
+"$CSFVM" "$T/st_chain.csfb" >/dev/null 2>"$T/st.err" &
+pid=$!
+for _ in $(seq 600); do grep -q "^warning" "$T/st.err" && break; sleep 0.1; done
+kill -KILL $pid 2>/dev/null
+wait $pid 2>/dev/null
+n=$(sed -n 's/^warning: at t=[^,]*, after \([0-9]*\) steps, the error control holds dop853 to steps of .* times shorter than the fastest time scale of the scene (0.0[0-9]* s), and some .* more are to go: .*--atol 1e-9.*/\1/p' "$T/st.err")
+if [ -n "$n" ] && [ "$n" -lt 10000 ] && [ "$(grep -c '^warning' "$T/st.err")" -eq 1 ]
+then ok; else bad "chain at rest: warned after '$n' steps: $(head -n 1 "$T/st.err")"; fi
+run chain --atol 1e-9
+if [ $st -eq 0 ] && [ ! -s "$T/st.err" ] && awk -F, 'function abs(x) { return x < 0 ? -x : x }
+	NR > 1 { w = 40 * sin(3.141592653589793 / 60)
+		for (c = 0; c < 2; c++) { j = c ? 59 : 0
+			x = 1000 + j * 0.01 + 0.001 * cos(3.141592653589793 * 2 * (2 * j + 1) / 120) * cos(w * $1)
+			if (abs($(2 + c) - x) > 1e-9) exit 1 }
+		n++ }
+	END { exit n != 11 }' "$T/st.csv"
+then ok; else bad "chain at rest --atol 1e-9: exit $st, $(head -n 1 "$T/st.err")"; fi
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
