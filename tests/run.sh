@@ -28,7 +28,8 @@
 #     every method at every tolerance (tests/methods_tol.sh), contacts
 #     (tests/contacts/; every scene under every method, one job a scene), many objects (tests/many/: 100 balls in a box, 1000
 #     sliding to a stop),
-#     the README's example against the program (tests/docs/),
+#     the README's example against the program (tests/docs/), csfc --lsp (tests/lsp/), the
+#     editors' grammars (tests/editors/), the cookbook's recipes (tests/cookbook/),
 #     csfview's pages and plots (tests/view/; in headless Chromium where it
 #     is installed, else a SKIP line), parameters and sweeps (tests/sweep/; MPI
 #     where Open MPI is installed, else a SKIP line), HDF5 output of a run and
@@ -361,6 +362,28 @@ t_hmax() {
 # 5b''. the README's example scene and output are the program's (tests/docs/check.sh)
 t_docs() {
 	suite "docs" sh tests/docs/check.sh "$CSFC" "$CSFVM" "$T"
+}
+
+# 5w. csfc --lsp driven by a client that speaks the protocol (tests/lsp/client.py): diagnostics
+#     with ranges on open and change, hover, definition, malformed messages
+t_lsp() {
+	suite "lsp" sh tests/lsp/check.sh "$CSFC" "$CSFVM" "$T"
+	grep -e '^SKIP' "$T/suite.out"
+}
+
+# 5x. the editors' files (editors/): the TextMate grammar under vscode-tmgrammar-test and on every
+#     scene, Vim's syntax groups and indentation headless (SKIP lines without node, the tool or vim)
+t_editors() {
+	/usr/bin/python3 tests/cookbook/run.py --extract doc/cookbook.md "$T/scenes"
+	suite "editors" sh tests/editors/check.sh "$T" "$B" "$T"/scenes/*.csf
+	grep -e '^SKIP' "$T/suite.out"
+}
+
+# 5y. the cookbook (doc/cookbook.md, man/csf-cookbook.7 made from it): every recipe run as written,
+#     against the output it shows and the exact answer it states (tests/cookbook/)
+t_cookbook() {
+	suite "cookbook" sh tests/cookbook/check.sh "$CSFC" "$CSFVM" "$T" "$B"
+	grep -e '^SKIP' -e '^cookbook:' "$T/suite.out"
 }
 
 # 5c. output errors are reported: a full disk (a closed pipe ends a run quietly: tests/unix/check.sh)
@@ -789,6 +812,9 @@ done
 	echo unix
 	echo warn
 	echo docs
+	echo lsp
+	echo editors
+	echo cookbook
 	echo compare_methods
 	echo n300
 	for t in csfc csfb fmt; do echo "fuzz_regress $t"; done
