@@ -37,7 +37,7 @@ if [ "${PROFILER:-}" = callgrind ]; then
 	TILL=0.05
 elif command -v perf > /dev/null 2>&1 && perf record -q -o "$TMP/probe.perf" true > /dev/null 2>&1; then
 	TOOL=perf
-	TILL=1
+	TILL=3
 elif command -v valgrind > /dev/null 2>&1; then
 	TOOL=callgrind
 	TILL=0.05
@@ -48,19 +48,37 @@ WATCH=$(awk '/^inc / { for (i = 1; i <= NF; i++) if ($i ~ /^p[0-9]+\.pos/) { sub
 {
 	echo "csfvm profile, $NB_N-body gravity ($(date -u '+%Y-%m-%d %H:%M UTC'))"
 	echo
-	echo "VM instructions executed per right-hand side evaluation (section rhs):"
-	awk '/^section rhs/ { on = 1; next } /^section/ { on = 0 }
-		on && /^ +[0-9]+ +[A-Z]/ { c[$2]++; n++ }
-		END { for (k in c) printf "  %-8s %8d  %5.1f%%\n", k, c[k], 100 * c[k] / n }' \
-		"$TMP/nb.lst" | sort -k2,2nr -k1,1
-	awk '/^section rhs/ { on = 1; next } /^section/ { on = 0 } on && /^ +[0-9]+ +[A-Z]/ { n++ }
-		END { printf "  %-8s %8d  (%d words of code)\n", "total", n, words }' words="$(awk '/^section rhs/ { gsub(/[^0-9 ]/, " "); print $1 }' "$TMP/nb.lst")" "$TMP/nb.lst"
+	echo "VM instructions executed per right-hand side evaluation (section rhs; each weighed by the"
+	echo "counts of the loops around it):"
+	awk '/^section rhs/ { on = 1; w = 1; d = 0; next } /^section/ { on = 0 }
+		on && /^ +[0-9]+ +[A-Z]/ {
+			op = $2; c[op] += w; n += w; words++
+			if (op == "LOOP") { st[++d] = w; w *= $4 }
+			else if (op == "NEXT") w = st[d--]
+		}
+		END {
+			for (k in c) printf "  %-8s %10d  %5.1f%%\n", k, c[k], 100 * c[k] / n
+			printf "  %-8s %10d  (%d instructions of code)\n", "total", n, words > "/dev/stderr"
+		}' "$TMP/nb.lst" 2> "$TMP/mix.total" | sort -k2,2nr -k1,1
+	cat "$TMP/mix.total"
 	echo
 	if [ "$TOOL" = none ]; then
 		echo "(neither perf nor valgrind works here: no sampled profile)"
 	else
 		echo "$TOOL, csfvm, till ${TILL} by 0.01:"
 		prof_run csfvm "$BUILD/csfvm" "$TMP/nb.csfb"
+		if [ "$TOOL" = perf ]; then
+			echo
+			echo "perf, csfvm: the samples of the interpreter (exec) by source line, the instruction each is"
+			echo "(an opcodes.def line is its case of the dispatch: operands loaded and stored, csf_ops.h the arithmetic)"
+			perf annotate -i "$TMP/csfvm.perf" --stdio -l -s exec 2> /dev/null |
+				awk '/^Sorted summary/ { on = 1; next } on && /^ *$/ && n { exit }
+					on && /^ +[0-9.]+ +[a-z_]+\.[a-z]+:[0-9]+/ && n < 14 {
+						split($2, a, ":"); f = "../runtime/" a[1]; text = ""
+						for (i = 1; (getline l < f) > 0; i++) if (i == a[2]) { text = l; break }
+						close(f); gsub(/^[ \t]+|[ \t]+$/, "", text)
+						printf "  %7s%%  %-16s %.70s\n", $1, $2, text; n++ }'
+		fi
 		echo
 		echo "$TOOL, nbody.c, same run:"
 		# shellcheck disable=SC2086

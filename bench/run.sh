@@ -63,6 +63,8 @@ case $REPS in '' | *[!0-9]* | 0) echo "run.sh: REPS must be a positive integer" 
 TMP=$OUT/scratch.tmp
 rm -rf "$TMP"
 mkdir -p "$TMP"
+# what else the processors were doing: the load average (1, 5, 15 min) at the start and at the end
+LOAD0=$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo n/a)
 CSV=$TMP/results.csv
 echo "benchmark,program,seconds,steps,seconds_per_step" > "$CSV"
 
@@ -391,7 +393,7 @@ awk -v c1="$C1" -v c2="$C2" -v b1="$B1" -v bf1="$BF1" -v b2="$B2" -v bf2="$BF2" 
 	-v gfsame2="$N2_GENFAST_SAME" -v cfsame2="$N2_CFAST_SAME" \
 	-v reps="$REPS" -v sn="$SCENE_N" -v sbytes="$SCENE_BYTES" -v sinsns="$SCENE_INSNS" \
 	-v date="$(date -u '+%Y-%m-%d %H:%M UTC')" -v host="$(uname -sm)" -v cpu="${cpu:-unknown}" -v ncpu="$ncpu" \
-	-v gsl="$gsl" -v ccv="$ccv" '
+	-v gsl="$gsl" -v ccv="$ccv" -v load0="$LOAD0" -v load1="$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo n/a)" '
 function verdict(x, target, below) { return (below ? x <= target : x >= target) ? "target met" : "**target missed**" }
 # nb(K, T): split the nbtimes figures T into the arrays of scene K
 function nb(k, t,   a) {
@@ -413,7 +415,7 @@ BEGIN {
 	n[1] = n1; till[1] = till1; by[1] = by1; evals[1] = evals1; insns[1] = insns1; npairs[1] = n1 * (n1 - 1)
 	n[2] = n2; till[2] = till2; by[2] = by2; evals[2] = evals2; insns[2] = insns2; npairs[2] = n2 * (n2 - 1)
 	gfsame[1] = gfsame1; cfsame[1] = cfsame1; gfsame[2] = gfsame2; cfsame[2] = cfsame2
-	printf "CSF benchmarks, %s, %s, %s (%s CPUs), GSL %s, %s\n\n", date, host, cpu, ncpu, gsl, ccv
+	printf "CSF benchmarks, %s, %s, %s (%s CPUs), GSL %s, %s; load average (1, 5, 15 min) %s at the start, %s at the end\n\n", date, host, cpu, ncpu, gsl, ccv, load0, load1
 	printf "Median wall time of %d run(s) each (the --emit-c builds: 1 run each); the programs of each scene ran interleaved, in rotating order. emit-c is the program `csfc --emit-c` builds (CFLAGS=%s, plus -ffp-contract=off). Informational: emit-c-fast is the same program built with CFLAGS=%s (plus -ffp-contract=off), nbody.c-fast is nbody.c built with %s (`bin/nbody_fast`).\n\n", reps, ecflags, efflags, nfflags
 	printf "| benchmark | program | seconds | steps | seconds/step |\n"
 	printf "|---|---|---:|---:|---:|\n"

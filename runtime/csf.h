@@ -69,6 +69,21 @@ typedef int (*csf_exec_fn)(const csf_prog *p, const csf_exec_ctx *x, int sec, do
 int csf_vm_exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, const double *y, double *dydt);
 
 /*
+ * Threads (--threads N): a loop of level 1 whose iterations are
+ * independent (runtime/prog/parloop.h) as a function of its own, which
+ * runs the iterations lo to hi - 1 in ascending order; csf_par_for runs
+ * iterations 0 to count - 1 of it, split over x's threads when it has
+ * them and the loop has at least as much work (instructions) as pays for
+ * them, else at once. Every iteration computes what it would alone: the
+ * result is the same, bit for bit, for every number of threads.
+ */
+typedef struct csf_pool csf_pool;
+typedef int csf_par_fn(const csf_prog *p, const csf_exec_ctx *x, double *m, const double *y, double *dydt, uint32_t lo,
+                       uint32_t hi);
+void csf_par_for(const csf_prog *p, const csf_exec_ctx *x, uint64_t work, uint32_t count, csf_par_fn *fn, double *m,
+                 const double *y, double *dydt);
+
+/*
  * The contact routine (the CONTACT instruction; runtime/contact/force.c), on the
  * candidate pairs of x->contacts (nothing when x or they are NULL): for every pair in
  * contact, the normal force that keeps the relative normal acceleration
@@ -125,6 +140,7 @@ typedef struct csf_opts {
 	const char *output;     /* -o FILE: the rows as HDF5 (FILE.h5, FILE.hdf5) or CSV (any other name; -: stdout) */
 	const char *dump;       /* --dump FILE.h5: that file's rows as CSV, and no run */
 	long jobs;              /* -j N: worker processes of a sweep (0: the number of online CPUs) */
+	int threads;            /* --threads N: threads that share a shape's loops (0 or 1: one) */
 	const csf_overlay *init; /* initial values over p->mem0 (-D; a sweep's variant), NULL: none; not
 	                            csf_parse_opts', and not freed by csf_opts_free */
 	/* filled in by csf_run: */

@@ -307,11 +307,13 @@ void csf_disassemble(const csf_prog *p, FILE *f);
  * (const, as loaded) does not hold: the contact routine's candidate pairs
  * and modes, for the CONTACT instruction (csf_run owns them; NULL: no
  * contacts, and CONTACT does nothing); the constraints' work arrays and
- * modes, for the CONSTRAIN instruction (NULL: CONSTRAIN does nothing).
+ * modes, for the CONSTRAIN instruction (NULL: CONSTRAIN does nothing);
+ * the threads that share the loops of a shape (--threads N; NULL: one).
  */
 struct csf_exec_ctx {
 	csf_contacts *contacts;
 	csf_cons *cons;
+	csf_pool *pool;
 };
 
 

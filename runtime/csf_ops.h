@@ -93,6 +93,8 @@ CSF_OP2(DIV, x / y)
 CSF_OP2(POW, pow(x, y))
 /* POW with an exponent known at compile time: the immediate n, |n| <= CSF_POWI_MAX. */
 static inline double csf_op_POWI(double x, int n) { return csf_powi(x, n); }
+/* DIV of POWI's result, fused (csfc writes it for a POWI whose result only that DIV reads): the same two operations. */
+static inline double csf_op_DIVPOWI(double x, double y, int n) { return x / csf_powi(y, n); }
 CSF_OP1(NEG, -x)
 CSF_OP2(ATAN2, atan2(x, y))
 CSF_OP2(MIN, csf_min(x, y))

@@ -13,6 +13,7 @@
 
 #include "csf_int.h"
 #include "insn.h"
+#include "par.h"
 
 /* The value of a read operand of kind K: a scalar or vector slot (through the registers), an immediate. */
 #define LOAD_S(w) m[csf_operand(w, reg)]
@@ -46,11 +47,17 @@
 #define DISPATCH() continue
 #endif
 
-static int exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m)
+/*
+ * Runs the code [from, to) of section sec on m. With hi > 0, [from, to) is
+ * the body of a level-1 loop and its NEXT, run for the indices lo to
+ * hi - 1 (a block of its iterations: csf_vm_loop_range).
+ */
+static int exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, uint32_t from, uint32_t to, uint32_t lo,
+                uint32_t hi)
 {
 	const uint32_t *code = p->code[sec];
-	const uint32_t *pc = code, *end = code + p->ncode[sec];
-	uint32_t reg[CSF_NREGS + 1] = { 0 }, count[CSF_LOOP_MAX + 1] = { 0 };
+	const uint32_t *pc = code + from, *end = code + to;
+	uint32_t reg[CSF_NREGS + 1] = { 0, lo, 3 * lo }, count[CSF_LOOP_MAX + 1] = { 0, hi };
 
 #ifdef CSF_VM_THREADED
 	static const void *const label[CSF_NOPCODES] = {
@@ -88,6 +95,10 @@ static int exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m)
 			pc += csf_insn_len(CSF_OP_ASSERT);
 			DISPATCH();
 		CASE(LOOP):
+			if (pc[1] == 1 && x && x->pool && csf_pool_vm(x->pool, x, sec, (uint32_t)(pc - code), m)) {
+				pc = code + pc[3];
+				DISPATCH();
+			}
 			reg[2 * pc[1] - 1] = reg[2 * pc[1]] = 0;
 			count[pc[1]] = pc[2];
 			if (pc[2] == 0) {
@@ -137,7 +148,13 @@ static int exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m)
 int csf_vm_exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, const double *y, double *dydt)
 {
 	if (y != m + p->ystart) memcpy(m + p->ystart, y, p->ny * sizeof *y);
-	int r = exec(p, x, sec, m);
+	int r = exec(p, x, sec, m, 0, p->ncode[sec], 0, 0);
 	if (dydt != m + p->dstart) memcpy(dydt, m + p->dstart, p->ny * sizeof *dydt);
 	return r;
+}
+
+void csf_vm_loop_range(const csf_prog *p, const csf_exec_ctx *x, int sec, uint32_t pc, uint32_t end, double *m,
+                       uint32_t lo, uint32_t hi)
+{
+	if (lo < hi) exec(p, x, sec, m, pc + csf_insn_len(CSF_OP_LOOP), end, lo, hi);
 }

@@ -23,12 +23,13 @@
 #     lines that must appear on stderr.
 #  4. both execution paths give identical output: csfvm and `csfc --emit-c`,
 #     also built with the CFLAGS csfc(1) says keep it (-O3 -march=native
-#     -fno-math-errno).
+#     -fno-math-errno); and each of them with --threads 2 and 3 as with one.
 #  5. hostile bytecode, bad usage, output errors, install, a 300-body scene,
 #     every method at every tolerance (tests/methods_tol.sh), contacts
 #     (tests/contacts/; every scene under every method, one job a scene), many objects (tests/many/: 100 balls in a box, 1000
 #     sliding to a stop),
-#     the README's example against the program (tests/docs/),
+#     the README's example against the program (tests/docs/), csfc --lsp (tests/lsp/), the
+#     editors' grammars (tests/editors/), the cookbook's recipes (tests/cookbook/),
 #     csfview's pages and plots (tests/view/; in headless Chromium where it
 #     is installed, else a SKIP line), parameters and sweeps (tests/sweep/; MPI
 #     where Open MPI is installed, else a SKIP line), HDF5 output of a run and
@@ -171,9 +172,32 @@ t_same_as_vm() {
 		bad "$m${2:+ (CFLAGS=$2)}: stdout differs between csfvm and the generated executable: $(cmp "$T/v.out" "$T/c.out")"
 	elif ! cmp -s "$T/v.err" "$T/c.err"; then
 		bad "$m${2:+ (CFLAGS=$2)}: stderr differs: $(head -n 1 "$T/v.err") / $(head -n 1 "$T/c.err")"
+	elif [ -z "${2:-}" ]; then
+		same_threads "$m" "$d" "$vs" "$args"
 	else
 		ok
 	fi
+}
+
+# same_threads MODEL DIR STATUS ARGS: csfvm and the generated executable with --threads 2 and 3 print what
+# they print with one thread (v.out, v.err; exit STATUS), every loop whose iterations are independent
+# shared among the threads however little work it has (CSF_THREADS_MIN_WORK=0), the first 3000 of them
+# (CSF_THREADS_MAX_JOBS: a run of many small loops would take minutes on a busy machine)
+same_threads() {
+	for n in 2 3; do
+		for e in csfvm exe; do
+			if [ $e = csfvm ]; then prog=$CSFVM file=$T/v.csfb; else prog=$T/exe file=; fi
+			# shellcheck disable=SC2086 # $4 holds the model's options
+			(cd "$2" && CSF_THREADS_MIN_WORK=0 CSF_THREADS_MAX_JOBS=3000 timeout "$LIMIT" "$prog" $4 --threads $n ${file:+"$file"}) >"$T/t.out" 2>"$T/t.err"
+			ts=$?
+			sed 's/^\(stats: .*\), [0-9.]* s$/\1/' "$T/t.err" >"$T/t.err2"
+			if [ $ts -ne "$3" ] || ! cmp -s "$T/v.out" "$T/t.out" || ! cmp -s "$T/v.err" "$T/t.err2"; then
+				bad "$1: $e --threads $n differs from one thread: exit $ts (not $3); $(cmp "$T/v.out" "$T/t.out" 2>&1 | head -n 1); $(head -n 1 "$T/t.err2")"
+				return
+			fi
+		done
+	done
+	ok
 }
 
 # 4a. -ffast-math, which does not keep the executable bit-identical, is named in a warning
@@ -338,6 +362,28 @@ t_hmax() {
 # 5b''. the README's example scene and output are the program's (tests/docs/check.sh)
 t_docs() {
 	suite "docs" sh tests/docs/check.sh "$CSFC" "$CSFVM" "$T"
+}
+
+# 5w. csfc --lsp driven by a client that speaks the protocol (tests/lsp/client.py): diagnostics
+#     with ranges on open and change, hover, definition, malformed messages
+t_lsp() {
+	suite "lsp" sh tests/lsp/check.sh "$CSFC" "$CSFVM" "$T"
+	grep -e '^SKIP' "$T/suite.out"
+}
+
+# 5x. the editors' files (editors/): the TextMate grammar under vscode-tmgrammar-test and on every
+#     scene, Vim's syntax groups and indentation headless (SKIP lines without node, the tool or vim)
+t_editors() {
+	/usr/bin/python3 tests/cookbook/run.py --extract doc/cookbook.md "$T/scenes"
+	suite "editors" sh tests/editors/check.sh "$T" "$B" "$T"/scenes/*.csf
+	grep -e '^SKIP' "$T/suite.out"
+}
+
+# 5y. the cookbook (doc/cookbook.md, man/csf-cookbook.7 made from it): every recipe run as written,
+#     against the output it shows and the exact answer it states (tests/cookbook/)
+t_cookbook() {
+	suite "cookbook" sh tests/cookbook/check.sh "$CSFC" "$CSFVM" "$T" "$B"
+	grep -e '^SKIP' -e '^cookbook:' "$T/suite.out"
 }
 
 # 5c. output errors are reported: a full disk (a closed pipe ends a run quietly: tests/unix/check.sh)
@@ -774,6 +820,9 @@ done
 	echo unix
 	echo warn
 	echo docs
+	echo lsp
+	echo editors
+	echo cookbook
 	echo compare_methods
 	echo n300
 	for t in csfc csfb fmt; do echo "fuzz_regress $t"; done

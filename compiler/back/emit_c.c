@@ -43,6 +43,7 @@
 #include "csfc.h"
 #include "emit_c.h"
 #include "emit_c_int.h"
+#include "parloop.h"
 
 static void comment(FILE *f, const char *s)
 {
@@ -72,6 +73,8 @@ typedef struct Emit {
 	int used_m, used_y, used_d, used_p;
 	Loops L;
 	unsigned char *target; /* a goto jumps there */
+	uint64_t *par;        /* par[pc] > 0: the level-1 loop at pc is the function NAME_parPC, its work + 1 */
+	uint32_t par_pc;      /* the function being written is that of the loop at par_pc (UINT32_MAX: none) */
 } Emit;
 
 /* Slot s's class in the section being written: a local that goes from function to function there is in memory. */
@@ -308,7 +311,10 @@ static void emit_insn(Emit *E, const uint32_t *code, uint32_t pc)
 		return;
 	case CSF_OP_LOOP: { /* a count of 0 runs no iteration, as the VM's jump to the end */
 		unsigned long l = a[0];
-		fprintf(E->f, "for (uint32_t i%lu = 0; i%lu < %luu; i%lu++) {\n", l, l, (unsigned long)a[1], l);
+		if (pc == E->par_pc)
+			fputs("for (uint32_t i1 = lo; i1 < hi; i1++) {\n", E->f);
+		else
+			fprintf(E->f, "for (uint32_t i%lu = 0; i%lu < %luu; i%lu++) {\n", l, l, (unsigned long)a[1], l);
 		track_loops(&E->L, code, pc);
 		return;
 	}
@@ -329,11 +335,79 @@ static void mark_targets(const uint32_t *code, uint32_t from, uint32_t to, unsig
 	}
 }
 
-/* The parameters of a section's functions. */
-static const char *params(const Slots *S)
+/* The parameters of a section's functions (a loop's for the threads: csf_par_fn). */
+static const char *params(const Emit *E)
 {
-	return S->direct ? "const csf_prog *p, const csf_exec_ctx *x, double *m, const double *y, double *dydt"
-	                 : "const csf_prog *p, const csf_exec_ctx *x, double *m";
+	return E->par_pc != UINT32_MAX ? "const csf_prog *p, const csf_exec_ctx *x, double *m, const double *y, double *dydt, "
+	                                 "uint32_t lo, uint32_t hi"
+	     : E->S->direct ? "const csf_prog *p, const csf_exec_ctx *x, double *m, const double *y, double *dydt"
+	                    : "const csf_prog *p, const csf_exec_ctx *x, double *m";
+}
+
+/* The call of the function of the level-1 loop at pc of section fname, which the threads may share. */
+static void emit_par_call(Emit *E, const char *fname, uint32_t pc)
+{
+	const uint32_t *code = E->p->code[E->sec];
+	E->used_p = E->used_m = 1;
+	E->used_y = E->used_d = E->S->direct;
+	indent(E);
+	fprintf(E->f, "csf_par_for(p, x, %lluu, %luu, %s_par%lu, m, %s);\n", (unsigned long long)(E->par[pc] - 1),
+	        (unsigned long)code[pc + 2], fname, (unsigned long)pc, E->S->direct ? "y, dydt" : "0, 0");
+}
+
+/* Is fixed slot s read by section sec's code outside [from, to)? */
+static int read_outside(const csf_prog *p, int sec, uint32_t from, uint32_t to, uint32_t s)
+{
+	const uint32_t *code = p->code[sec];
+	uint32_t cnt[CSF_LOOP_MAX + 1] = { 0 }; /* the counts of the loops open, by level */
+	for (uint32_t pc = 0; pc < p->ncode[sec]; pc += csf_insn_len(code[pc])) {
+		if (code[pc] == CSF_OP_LOOP) cnt[code[pc + 1]] = code[pc + 2];
+		if (pc >= from && pc < to) continue;
+		const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
+		for (int k = 0; k < oi->nops; k++) {
+			uint32_t w = code[pc + 1 + k], r = csf_reg(w);
+			uint64_t end = csf_operand_end(w, csf_kind_width(oi->kind[k]), r ? cnt[csf_reg_level(r)] : 1);
+			if (csf_kind_slot(oi->kind[k]) && !csf_kind_write(oi->kind[k]) && s >= (w & CSF_SLOT_MASK) && s < end) return 1;
+		}
+	}
+	return 0;
+}
+
+/*
+ * The work of the level-1 loop at pc of the section being written when it
+ * becomes a function of its own that threads may share (csf_par_for), or
+ * 0: its iterations are independent (csf_parloop_analyse), the slots each
+ * writes for itself are locals of that function, read nowhere else, and
+ * the other locals of the section are not read in it. Its workers then
+ * share m, y and dydt.
+ */
+static uint64_t par_loop(Emit *E, uint32_t pc)
+{
+	const csf_prog *p = E->p;
+	const uint32_t *code = p->code[E->sec];
+	csf_parloop L;
+	if (code[pc] != CSF_OP_LOOP || !csf_parloop_analyse(p, E->sec, pc, &L)) return 0;
+	int ok = 1;
+	for (uint32_t i = 0; i < L.npriv && ok; i++) {
+		int c = slot_class(E, L.priv[i]);
+		ok = (c == C_LOCAL || c == C_VLOCAL) && !read_outside(p, E->sec, pc, L.end, L.priv[i]);
+	}
+	for (uint32_t q = pc; q < L.end && ok; q += csf_insn_len(code[q])) {
+		const csf_opinfo *oi = &csf_opinfo_table[code[q]];
+		for (int k = 0; k < oi->nops && ok; k++) {
+			uint32_t w = code[q + 1 + k];
+			if (!csf_kind_slot(oi->kind[k]) || csf_reg(w)) continue;
+			for (uint32_t j = 0; j < csf_kind_width(oi->kind[k]) && ok; j++) {
+				int c = slot_class(E, w + j);
+				if (c != C_LOCAL && c != C_VLOCAL) continue;
+				ok = csf_parloop_own(&L, w + j); /* a local the loop writes, and the whole vector its local holds */
+				for (uint32_t d = 0; d < 3 && ok && c == C_VLOCAL; d++) ok = csf_parloop_own(&L, E->S->vb[w + j] - 1 + d);
+			}
+		}
+	}
+	uint64_t work = ok ? (L.work ? L.work : 1) : 0;
+	csf_parloop_free(&L);
+	return work < UINT64_MAX ? work : UINT64_MAX - 1;
 }
 
 /*
@@ -341,7 +415,8 @@ static const char *params(const Slots *S)
  * locals it uses declared first, a comment with each statement's source
  * line above its code.
  */
-static void emit_function(Emit *E, int sec, uint32_t from, uint32_t to, const char *name, const char *qual)
+static void emit_function(Emit *E, int sec, uint32_t from, uint32_t to, const char *name, const char *qual,
+                          const char *fname)
 {
 	const csf_prog *p = E->p;
 	const uint32_t *code = p->code[sec];
@@ -373,6 +448,12 @@ static void emit_function(Emit *E, int sec, uint32_t from, uint32_t to, const ch
 			comment(E->f, xprintf("%s:%lu: %s", csf_str(p, p->files[s->file]), (unsigned long)s->line, csf_str(p, s->text)));
 			fputc('\n', E->f);
 		}
+		if (E->par[pc] && pc != E->par_pc) {
+			if (E->target[pc]) fprintf(E->f, "L%lu:\n", (unsigned long)pc);
+			emit_par_call(E, fname, pc);
+			pc = code[pc + 3] - csf_insn_len(CSF_OP_NEXT);
+			continue;
+		}
 		emit_insn(E, code, pc);
 	}
 	if (E->target[to]) fprintf(E->f, "L%lu:\n", (unsigned long)to);
@@ -380,7 +461,7 @@ static void emit_function(Emit *E, int sec, uint32_t from, uint32_t to, const ch
 	E->f = out;
 	memset(E->target + from, 0, (size_t)(to - from) + 1);
 
-	fprintf(out, "%s int %s(%s)\n{\n", qual, name, params(E->S));
+	fprintf(out, "%s int %s(%s)\n{\n", qual, name, params(E));
 	for (int vec = 0; vec < 2; vec++) {
 		int first = 1;
 		for (uint32_t i = 0; i < E->nloc; i++) {
@@ -393,8 +474,9 @@ static void emit_function(Emit *E, int sec, uint32_t from, uint32_t to, const ch
 	}
 	if (!E->used_p) fputs("\t(void)p;\n\t(void)x;\n", out);
 	if (!E->used_m) fputs("\t(void)m;\n", out);
-	if (E->S->direct && !E->used_y) fputs("\t(void)y;\n", out);
-	if (E->S->direct && !E->used_d) fputs("\t(void)dydt;\n", out);
+	int ydydt = E->S->direct || E->par_pc != UINT32_MAX;
+	if (ydydt && !E->used_y) fputs("\t(void)y;\n", out);
+	if (ydydt && !E->used_d) fputs("\t(void)dydt;\n", out);
 	fwrite(body, 1, blen, out);
 	fputs("\treturn -1;\n}\n\n", out);
 	free(body);
@@ -410,12 +492,23 @@ static void emit_section(Emit *E, int sec, const char *fname, uint32_t *const *s
 {
 	const csf_prog *p = E->p;
 	const char *sig = "const csf_prog *p, const csf_exec_ctx *x, double *m, const double *y, double *dydt";
+	memset(E->par, 0, ((size_t)p->ncode[sec] + 1) * sizeof *E->par);
+	E->sec = sec;
+	for (uint32_t pc = 0; pc < p->ncode[sec]; pc += csf_insn_len(p->code[sec][pc])) {
+		uint64_t work = par_loop(E, pc);
+		if (!work) continue;
+		E->par_pc = pc;
+		E->par[pc] = work + 1;
+		emit_function(E, sec, pc, p->code[sec][pc + 3], xprintf("%s_par%lu", fname, (unsigned long)pc), "CSF_FN", fname);
+		E->par_pc = UINT32_MAX;
+	}
 	if (E->S->direct && nfn[sec] == 1) {
-		emit_function(E, sec, 0, p->ncode[sec], fname, "static");
+		emit_function(E, sec, 0, p->ncode[sec], fname, "static", fname);
 		return;
 	}
 	for (uint32_t i = 0; i < nfn[sec]; i++)
-		emit_function(E, sec, starts[sec][i], starts[sec][i + 1], xprintf("%s_%lu", fname, (unsigned long)i), "CSF_FN");
+		emit_function(E, sec, starts[sec][i], starts[sec][i + 1], xprintf("%s_%lu", fname, (unsigned long)i), "CSF_FN",
+		              fname);
 	fprintf(E->f, "static int %s(%s)\n{\n\tint r = -1;\n", fname, sig);
 	if (!E->S->direct)
 		fprintf(E->f, "\tif (y != m + %luu) memcpy(m + %luu, y, %luu * sizeof *y);\n", (unsigned long)p->ystart,
@@ -483,6 +576,8 @@ void emit_c(const csf_prog *p, const unsigned char *image, size_t len, const cha
 	for (int sec = 0; sec < CSF_NSEC; sec++)
 		if (p->ncode[sec] > maxcode) maxcode = p->ncode[sec];
 	E.target = xcalloc((size_t)maxcode + 1, 1);
+	E.par = xcalloc((size_t)maxcode + 1, sizeof *E.par);
+	E.par_pc = UINT32_MAX;
 	for (int sec = 0; sec < CSF_NSEC; sec++) emit_section(&E, sec, names[sec], starts, nfn);
 	fputs("static int csf_model_exec(const csf_prog *p, const csf_exec_ctx *x, int sec, double *m, const double *y,\n"
 	      "                          double *dydt)\n{\n"
@@ -497,6 +592,7 @@ void emit_c(const csf_prog *p, const unsigned char *image, size_t len, const cha
 	free(E.decl);
 	free(E.readin);
 	free(E.target);
+	free(E.par);
 	free(E.loc);
 	slots_free(&S);
 }

@@ -19,6 +19,7 @@
  *   pairs.c         velocity Verlet's position/velocity pairs
  *   jac.c           the JAC section, by forward-mode differentiation of RHS
  *   when.c          the EVT section: the `when` blocks
+ *   hoist.c         loop-invariant code motion, last
  * sharing the generator's state through gen_int.h.
  */
 #include <stdlib.h>
@@ -74,8 +75,8 @@ static void sections(Gen *G, Model *M, csf_prog *p, int last_a)
 	}
 }
 
-/* Scratch goes last; relocate scratch operands. */
-static void place_scratch(Gen *G, csf_prog *p)
+/* Scratch goes last; relocate scratch operands. Returns the first scratch slot. */
+static uint32_t place_scratch(Gen *G, csf_prog *p)
 {
 	uint32_t base = alloc_mem(G, G->max_scratch, NULL);
 	for (int sec = 0; sec < CSF_NSEC; sec++)
@@ -87,6 +88,7 @@ static void place_scratch(Gen *G, csf_prog *p)
 			}
 			i += csf_insn_len(p->code[sec][i]);
 		}
+	return base;
 }
 
 /* The pass, on G (zeroed) after gen_program has cleared p and set where a scene too big to compile goes. */
@@ -119,7 +121,7 @@ static void gen_run(Gen *G, Model *M, csf_prog *p)
 	gen_columns(G, M, p);
 	gen_globals(G, M, p);
 	gen_objects(G, M, p);
-	place_scratch(G, p);
+	uint32_t scratch = place_scratch(G, p);
 	if (!p->ncrules && !p->ncons) gen_pairs(G, M, p); /* contact and constraint forces depend on v */
 	else p->vpair = xcalloc(p->ny ? p->ny : 1, sizeof *p->vpair);
 	gen_jacobian(G, p);
@@ -133,6 +135,8 @@ static void gen_run(Gen *G, Model *M, csf_prog *p)
 	p->by = M->by;
 	p->nevents = G->nevents;
 	p->events = G->events ? G->events : xcalloc(1, sizeof *p->events);
+	gen_hoist(p, scratch, scratch + G->max_scratch);
+	gen_fuse(p, scratch, scratch + G->max_scratch);
 }
 
 /* After a failure: frees what G holds that p does not (p's tables are csf_prog_free's). */

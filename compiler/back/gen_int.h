@@ -87,6 +87,11 @@ void gen_when_section(Gen *G, Model *M, csf_prog *p);
 /* jac.c: the Jacobian */
 int depends(const uint32_t *code, uint32_t n, unsigned char *act, int smooth);
 void gen_jacobian(Gen *G, csf_prog *p);
+/* Moves what does not change in an innermost loop before it (hoist.c): instructions with a
+   result in scratch slots [lo, hi) that nothing outside the loop reads. */
+void gen_hoist(csf_prog *p, uint32_t lo, uint32_t hi);
+/* Superinstructions (hoist.c): POWI then the DIV that alone reads its scratch result, as DIVPOWI. */
+void gen_fuse(csf_prog *p, uint32_t lo, uint32_t hi);
 
 /* pairs.c: velocity Verlet's pairs */
 void gen_pairs(Gen *G, Model *M, csf_prog *p);

@@ -150,6 +150,15 @@ int csf_parse_opts_to(int argc, char **argv, int first, csf_opts *o, int *pos, i
 				fprintf(err, "%s: -j needs a number of processes from 1 to 4096, not '%s'\n", argv[0], v);
 				return 2;
 			}
+		} else if (csf_opt_value(argc, argv, &i, "--threads", &v)) {
+			char *end;
+			errno = 0;
+			long k = strtol(v, &end, 10);
+			if (end == v || *end || errno || k < 1 || k > 1024) {
+				fprintf(err, "%s: --threads needs a number of threads from 1 to 1024, not '%s'\n", argv[0], v);
+				return 2;
+			}
+			o->threads = (int)k;
 		} else if (a[0] == '-' && a[1] != '\0') {
 			fprintf(err, "%s: unknown or incomplete option '%s'\n%s", argv[0], a, usage);
 			return 2;

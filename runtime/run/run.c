@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "run_int.h"
+#include "par.h"
 #include "constraint.h"
 
 /*
@@ -600,6 +601,7 @@ static void run_free(session *S)
 	csf_ode_free(S->au.m[1]);
 	csf_contacts_free(r->cs);
 	csf_cons_free(r->cons);
+	csf_pool_free(r->x.pool);
 	free(r->cw);
 	free(r->ga);
 	free(r->gb);
@@ -642,6 +644,7 @@ int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, co
 	S.r.prog = o->progress == CSF_PROGRESS_ON || (o->progress == CSF_PROGRESS_AUTO && isatty(fileno(err)));
 
 	stop s = run_alloc(&S);
+	S.r.x.pool = csf_pool_new(p, o->threads); /* NULL: one thread (the same result) */
 	if (s.kind == STOP_END) s = run_method(&S, o);
 	if (s.kind == STOP_END) {
 		if (out) csf_run_write_header(p, out);

@@ -58,6 +58,8 @@ static const char vm_usage[] =
 	"  --sweep-binary the rows (or summaries) as 8-byte doubles in the machine's byte\n"
 	"                 order after the CSV header line (for programs: csf-python(7))\n"
 	"  -j N           N worker processes for a sweep (default: every CPU)\n"
+	"  --threads N    N threads share the loops of a shape with thousands of pairs or\n"
+	"                 members (default 1); the output is the same, byte for byte\n"
 	"  -o FILE        the output to FILE: the rows in HDF5 when it ends in .h5 or .hdf5\n"
 	"                 (a dataset per watched value; a sweep's with a leading axis of\n"
 	"                 variants, the swept values on it), else the CSV\n"
@@ -73,6 +75,7 @@ static const char exe_usage[] =
 	"  --no-progress,\n"
 	"  --compare-methods, -D NAME=VALUE, --sweep 'NAME=FROM:TO:COUNT [UNIT]',\n"
 	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, --sweep-binary, -j N,\n"
+	"  --threads N,\n"
 	"  -o FILE, --dump RUN.h5: as csfvm(1)\n"
 	"  --help, --version\n";
 

@@ -22,6 +22,7 @@ Suite *vm_suite(void);
 Suite *emit_c_suite(void);
 Suite *jac_suite(void);
 Suite *loops_suite(void);
+Suite *par_suite(void);
 Suite *dop853_suite(void);
 Suite *dopri5_suite(void);
 Suite *stability_suite(void);
