@@ -38,7 +38,7 @@
 #     keep what was there, and the fuzz targets' regression corpus
 #     (tests/fuzz/regress/, replayed by fuzz-replay-csfc, fuzz-replay-csfb and
 #     fuzz-replay-fmt), constraints (tests/constraints/), the cone of influence
-#     and --every (tests/cone/), object arrays (tests/arrays/), the number formatter against the loop it
+#     and --every (tests/cone/), discrete events (tests/when/), object arrays (tests/arrays/), the number formatter against the loop it
 #     replaced (fmt-test), libcsf's API from C (tests/api_test.c) and the
 #     Python package csf (tests/python/, pytest; a SKIP line without numpy and
 #     pytest, and under the sanitizers), and the notebooks of examples/ run
@@ -522,6 +522,13 @@ t_cone() {
 	suite "cone" sh tests/cone/check.sh "$CSFC" "$CSFVM" "$T"
 }
 
+# 5w. discrete events: `when` blocks against exact answers (the parachute opens once at 1000 m,
+#     the rocket equation for each stage, a bounce counter and its impacts' rows at their
+#     instants to 1e-13 s, a kick), --rows-at-events, -D on a latched property (tests/when/check.sh)
+t_when() {
+	suite "when" timeout "$LIMIT" sh tests/when/check.sh "$CSFC" "$CSFVM" "$T"
+}
+
 # 5s. object arrays: 1e5 projectiles in an array against the closed form, the same from a data
 #     file and written object by object byte for byte, a ring of 1000 masses and springs written
 #     with neighbour rules and sums in its normal mode (tests/arrays/check.sh)
@@ -796,6 +803,7 @@ done
 	echo methods_tol
 	echo constraints
 	echo cone
+	echo when
 	echo arrays
 	echo sweep
 	echo h5

@@ -208,7 +208,7 @@ static void walk(Walk *W, const Model *M)
 	}
 	for (int i = 0; i < M->insts.n; i++) {
 		Inst *I = M->insts.v[i];
-		if (I->isassert || I->isstop) need_inst(W, I, -1);
+		if (I->isassert || I->isstop || I->iswhen) need_inst(W, I, -1);
 	}
 	drain(W);
 	while (couple(W))
