@@ -12,6 +12,8 @@
 #   make fuzz       the fuzz targets (clang, libFuzzer, ASan/UBSan) for FUZZ_SECONDS each
 #                   (default 60); non-zero exit on a finding (tests/fuzz/README.md)
 #   make deps-fuzz  install what make fuzz needs (clang, libfuzzer-14-dev)
+#   make deps-editors  node, npm and vim (Debian), vscode-tmgrammar-test (npm, into BUILD/editors-deps):
+#                   what the editors' test needs (tests/editors/; SKIP lines without them)
 #   make bench      benchmarks; results under bench/results, summary in bench/README.md
 #   make bench-peers  CSF beside SciPy's solve_ivp (installs python3-scipy: deps-peers)
 #   make deps-cvode  libsundials-dev, only for make -C bench cvode (CVODE beside msbdf and bsimp)
@@ -47,6 +49,10 @@ MPI ?=
 MPICC ?= mpicc
 HAVE_MPICC := $(shell command -v $(MPICC) 2>/dev/null)
 FUZZ_PACKAGES = clang libfuzzer-14-dev
+# only for the test of editors/ (the TextMate grammar and the Vim files)
+# (npm: Debian's package, unless the nodejs installed brings its own)
+EDITOR_PACKAGES = nodejs vim $(if $(shell command -v npm 2>/dev/null),,npm)
+TMGRAMMAR_TEST = vscode-tmgrammar-test@0.1.3
 , := ,
 SANFLAGS = $(if $(SAN),-fsanitize=address$(,)undefined$(,)float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer)
 CSF_CFLAGS = -std=c11 -Wall -Wextra -ffp-contract=off -D_DEFAULT_SOURCE $(SANFLAGS)
@@ -287,6 +293,13 @@ deps:
 deps-fuzz:
 	@$(call deb_install,deps-fuzz,$(FUZZ_PACKAGES))
 
+# the editors' test: Debian's node, npm and vim, and vscode-tmgrammar-test from the npm registry,
+# installed into the build directory (not into the tree, not globally)
+deps-editors:
+	@$(call deb_install,deps-editors,$(EDITOR_PACKAGES))
+	@if [ -x $(BUILD)/editors-deps/node_modules/.bin/vscode-tmgrammar-test ]; then echo "deps-editors: $(TMGRAMMAR_TEST) present"; \
+	else mkdir -p $(BUILD)/editors-deps && npm install --prefix $(BUILD)/editors-deps --no-audit --no-fund $(TMGRAMMAR_TEST); fi
+
 # only for make bench-peers (not needed by make, make check or make bench)
 deps-peers:
 	@$(call deb_install,deps-peers,$(PEER_PACKAGES))
@@ -350,7 +363,7 @@ install-python: python
 	install -m 755 $(BUILD)/$(SO_NAME) $(DESTDIR)$(PREFIX)/lib/
 	ln -sf $(SO_NAME) $(DESTDIR)$(PREFIX)/lib/libcsf.so
 	install -m 644 runtime/api/csf_api.h $(DESTDIR)$(PREFIX)/include/csf/
-	install -m 644 man/csf-python.7 $(DESTDIR)$(PREFIX)/share/man/man7/
+	install -m 644 man/csf-python.7 man/csf-cookbook.7 $(DESTDIR)$(PREFIX)/share/man/man7/
 	install -m 644 $(PY_SRC) $(DESTDIR)$(PYTHON_DIR)/csf/
 	$(call py_paths,$(PREFIX)/lib,$(PREFIX)/bin) >$(DESTDIR)$(PYTHON_DIR)/csf/_paths.py
 
@@ -364,6 +377,7 @@ uninstall:
 		$(DESTDIR)$(PREFIX)/include/csf/opcodes.def \
 		$(DESTDIR)$(PREFIX)/share/man/man1/csfc.1 $(DESTDIR)$(PREFIX)/share/man/man1/csfvm.1 \
 		$(DESTDIR)$(PREFIX)/share/man/man5/csf.5 $(DESTDIR)$(PREFIX)/share/man/man7/csf-python.7 \
+		$(DESTDIR)$(PREFIX)/share/man/man7/csf-cookbook.7 \
 		$(DESTDIR)$(PREFIX)/lib/$(SO_NAME) $(DESTDIR)$(PREFIX)/lib/libcsf.so $(DESTDIR)$(PREFIX)/include/csf/csf_api.h \
 		$(DESTDIR)$(PYTHON_DIR)/csf/_paths.py $(addprefix $(DESTDIR)$(PYTHON_DIR)/csf/,$(notdir $(PY_SRC)))
 	rm -rf $(DESTDIR)$(PYTHON_DIR)/csf/__pycache__
@@ -383,4 +397,4 @@ bench-peers: all deps-peers
 clean:
 	rm -rf build build-san build-fuzz
 
-.PHONY: python install-python all deps deps-mpi deps-peers deps-cvode deps-box2d deps-view deps-chromium deps-fuzz demo test test-progs check check-piles fuzz fuzz-targets install uninstall bench bench-peers clean
+.PHONY: python install-python all deps deps-editors deps-mpi deps-peers deps-cvode deps-box2d deps-view deps-chromium deps-fuzz demo test test-progs check check-piles fuzz fuzz-targets install uninstall bench bench-peers clean

@@ -17,6 +17,7 @@
 #include "emit_c.h"
 #include "explain.h"
 #include "cone.h"
+#include "lsp.h"
 
 static const char usage[] =
 	"usage: csfc [options] MODEL.csf   (- reads standard input)\n"
@@ -29,6 +30,8 @@ static const char usage[] =
 	"  --dump-bytecode    print the compiled code as a listing\n"
 	"  -Werror            make every warning an error; -w: no warnings\n"
 	"  --max-rows N       allow 'till/by' to ask for up to N rows of output (default 1e7)\n"
+	"  --lsp              serve the Language Server Protocol on standard input and output\n"
+	"                     (diagnostics, hover, definition: for editors; no MODEL)\n"
 	"  --emit-c           translate to C: with -o NAME.c write the source, otherwise\n"
 	"                     build an executable (with $CC $CFLAGS, libcsfrt and GSL)\n"
 	"  --help, --version\n";
@@ -114,7 +117,7 @@ static int write_stdout(const unsigned char *buf, size_t len)
 /* csfc's command line. */
 typedef struct cli {
 	const char *in, *out;
-	int explain, dump, emit, keep_all;
+	int explain, dump, emit, keep_all, lsp;
 } cli;
 
 /* Reads the options into c (and opts); -1 to go on, else csfc's exit status. */
@@ -166,6 +169,8 @@ static int parse_args(int argc, char **argv, cli *c)
 			c->dump = 1;
 		} else if (!strcmp(a, "--emit-c")) {
 			c->emit = 1;
+		} else if (!strcmp(a, "--lsp")) {
+			c->lsp = 1;
 		} else if (a[0] == '-' && a[1]) {
 			fprintf(stderr, "csfc: unknown or incomplete option '%s'\n%s", a, usage);
 			return 2;
@@ -176,40 +181,20 @@ static int parse_args(int argc, char **argv, cli *c)
 			c->in = a;
 		}
 	}
-	if (!c->in) {
+	if (c->lsp && c->in) {
+		fprintf(stderr, "csfc: --lsp reads its documents from the protocol, not '%s'\n", c->in);
+		return 2;
+	}
+	if (!c->in && !c->lsp) {
 		fputs(usage, stderr);
 		return 2;
 	}
-	if (!strcmp(c->in, "-") && !c->out && !c->explain && !c->dump) {
+	if (c->in && !strcmp(c->in, "-") && !c->out && !c->explain && !c->dump) {
 		fprintf(stderr, "csfc: the model comes from standard input: name the output with -o FILE (-o - for "
 		                "standard output)\n");
 		return 2;
 	}
 	return -1;
-}
-
-/*
- * The model without the objects that nothing watched, asserted or stopped on
- * depends on (mid/cone.c), resolved again, with a warning for each (the
- * first three; then how many more); M itself if every object is needed.
- */
-static Model *leave_out(Stmt *stmts, Model *M)
-{
-	char *drop = cone_dropped(M);
-	Model *P = drop ? sema_run(stmts, drop) : NULL;
-	if (!P) return M;
-	int shown = 0;
-	for (int i = 0; i < P->objects.n; i++) {
-		Object *o = P->objects.v[i];
-		if (!o->dropped) continue;
-		if (shown++ < 3) warn_at(o->loc, "object '%s' affects nothing watched: it is left out (csfc --keep-all keeps it)", o->name);
-		else {
-			warn_at(o->loc, "and %d more objects from '%s' on affect nothing watched: they are left out (csfc --explain "
-			                "lists them)", P->ndropped - 3, o->name);
-			break;
-		}
-	}
-	return P;
 }
 
 /* Reads, resolves and generates the model in c->in into p, with --explain's text; 0 or an exit status. */
@@ -232,7 +217,7 @@ static int compile(const cli *c, csf_prog *p)
 	Model *M = sema_run(stmts, NULL);
 	if (diag_errors) return 1;
 	if (!c->keep_all) {
-		M = leave_out(stmts, M);
+		M = cone_leave_out(stmts, M);
 		cone_idle_states(M);
 	}
 	if (gen_program(M, p)) {
@@ -299,6 +284,7 @@ static int run(int argc, char **argv)
 	csf_prog p;
 	int st = parse_args(argc, argv, &c);
 	if (st >= 0) return st;
+	if (c.lsp) return lsp_main(find_stdlib(), (char **)opts.incdirs.v, opts.incdirs.n, opts.units);
 	if ((st = compile(&c, &p))) return st;
 	if (c.dump) csf_disassemble(&p, stdout);
 	unsigned char *buf;

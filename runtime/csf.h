@@ -46,7 +46,7 @@ typedef struct csf_overlay csf_overlay;
  * differentiation of RHS, for the exact Jacobian; empty when the model has
  * no state).
  */
-enum { CSF_SEC_RHS = 0, CSF_SEC_OUT = 1, CSF_SEC_JAC = 2, CSF_NSEC = 3 };
+enum { CSF_SEC_RHS = 0, CSF_SEC_OUT = 1, CSF_SEC_JAC = 2, CSF_SEC_EVT = 3, CSF_NSEC = 4 };
 
 /*
  * Runs code section sec of p on memory m, with the state read from y and
@@ -122,6 +122,7 @@ typedef struct csf_opts {
 	double hmax;        /* --hmax H: the longest internal step (<= 0: no cap but the run's length; by for
 	                       the methods that step to each output time) */
 	int stats;          /* --stats: a summary on stderr at the end */
+	int rows_at_events; /* --rows-at-events: a row before and after each located event, and the column event */
 	int progress;       /* CSF_PROGRESS_AUTO (on a terminal), _ON (--progress), _OFF (--no-progress) */
 	int compare;        /* --compare-methods */
 	unsigned long every; /* --every K: write the rows k = 0, K, 2K, ... and the last (0 or 1: every row) */

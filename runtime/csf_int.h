@@ -102,6 +102,22 @@ typedef struct csf_event { uint32_t kind, value, mode, src; } csf_event;
 #define CSF_EVENT_TERMINAL 2u
 
 /*
+ * A `when` block (one per binding of its objects): its statement, and two
+ * slots of memory the EVT section keeps. The runtime runs EVT at each
+ * event, after an RHS evaluation at the event's instant with the modes
+ * before it: for each block, in order, the section computes the condition
+ * from the values there, sets fire to 1 if it is true and prev (its value
+ * at the last event: 0 or 1; -1 before the first, so that a condition true
+ * at the start does not fire) is 0, else 0, and prev to the condition;
+ * then, for each block that fires, the new values from the values before
+ * any is set, and then sets them. A property only `when` blocks assign is
+ * latched: it lives in memory like prev, and changes only there. So the
+ * run's state is t, the state vector, and the slots of every prev and of
+ * the EVT section's targets (the latched values): a checkpoint keeps them.
+ */
+typedef struct csf_when { uint32_t src, fire, prev; } csf_when;
+
+/*
  * The contact routine's tables (mechanics/rules, rules 1 to 4; runtime/contact/).
  * There is no list of pairs: the program lists the bodies that can touch,
  * and the routine finds the pairs near or in contact at run time.
@@ -180,9 +196,10 @@ struct csf_prog {
 	double *yatol;  /* per state component: the absolute tolerance the scene sets (`atol A` on the
 	                   property's line), in the model's units; 0: none (--atol, else tol * yscale) */
 	double till, by;
-	uint32_t ncols, nfiles, nsrcs, nasserts, nobjects, nprops, nevents;
+	uint32_t ncols, nfiles, nsrcs, nasserts, nobjects, nprops, nevents, nwhens;
 	csf_col *cols;
 	csf_event *events;
+	csf_when *whens; /* the `when` blocks, in the order the EVT section runs them */
 	uint32_t ncbodies, ncmembers, ncrules; /* the contact routine's tables (no rules: no contacts) */
 	csf_cbody *cbodies;
 	uint32_t *cmembers;
@@ -337,6 +354,14 @@ void csf_contacts_free(csf_contacts *c);
  * and every contact force meaningless: csf_run refuses the run.
  */
 long csf_contacts_bad_mass(const csf_prog *p, const double *m);
+/*
+ * Around velocities changed at an event by something other than an impact (a `when` block): before,
+ * each pair in contact's relative velocity is kept; after, each pair in contact whose relative
+ * velocity changed takes its mode afresh as after an impact: a ball resting on the floor kicked
+ * upwards leaves it (zeno: as csf_contact_settle's). m holds the velocities.
+ */
+void csf_contacts_before_kick(csf_contacts *cs, const double *m);
+void csf_contacts_after_kick(csf_contacts *cs, double *m, double zeno);
 /* The number of candidate pairs (two guards each, after the events'). */
 uint32_t csf_contacts_count(const csf_contacts *c);
 /* Whether the contact forces of some evaluation could not be solved (masses that differ by more than about 1e10,

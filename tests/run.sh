@@ -28,7 +28,8 @@
 #     every method at every tolerance (tests/methods_tol.sh), contacts
 #     (tests/contacts/; every scene under every method, one job a scene), many objects (tests/many/: 100 balls in a box, 1000
 #     sliding to a stop),
-#     the README's example against the program (tests/docs/),
+#     the README's example against the program (tests/docs/), csfc --lsp (tests/lsp/), the
+#     editors' grammars (tests/editors/), the cookbook's recipes (tests/cookbook/),
 #     csfview's pages and plots (tests/view/; in headless Chromium where it
 #     is installed, else a SKIP line), parameters and sweeps (tests/sweep/; MPI
 #     where Open MPI is installed, else a SKIP line), HDF5 output of a run and
@@ -38,7 +39,7 @@
 #     keep what was there, and the fuzz targets' regression corpus
 #     (tests/fuzz/regress/, replayed by fuzz-replay-csfc, fuzz-replay-csfb and
 #     fuzz-replay-fmt), constraints (tests/constraints/), the cone of influence
-#     and --every (tests/cone/), object arrays (tests/arrays/), the number formatter against the loop it
+#     and --every (tests/cone/), discrete events (tests/when/), object arrays (tests/arrays/), the number formatter against the loop it
 #     replaced (fmt-test), libcsf's API from C (tests/api_test.c) and the
 #     Python package csf (tests/python/, pytest; a SKIP line without numpy and
 #     pytest, and under the sanitizers), and the notebooks of examples/ run
@@ -364,6 +365,28 @@ t_docs() {
 	suite "docs" sh tests/docs/check.sh "$CSFC" "$CSFVM" "$T"
 }
 
+# 5w. csfc --lsp driven by a client that speaks the protocol (tests/lsp/client.py): diagnostics
+#     with ranges on open and change, hover, definition, malformed messages
+t_lsp() {
+	suite "lsp" sh tests/lsp/check.sh "$CSFC" "$CSFVM" "$T"
+	grep -e '^SKIP' "$T/suite.out"
+}
+
+# 5x. the editors' files (editors/): the TextMate grammar under vscode-tmgrammar-test and on every
+#     scene, Vim's syntax groups and indentation headless (SKIP lines without node, the tool or vim)
+t_editors() {
+	/usr/bin/python3 tests/cookbook/run.py --extract doc/cookbook.md "$T/scenes"
+	suite "editors" sh tests/editors/check.sh "$T" "$B" "$T"/scenes/*.csf
+	grep -e '^SKIP' "$T/suite.out"
+}
+
+# 5y. the cookbook (doc/cookbook.md, man/csf-cookbook.7 made from it): every recipe run as written,
+#     against the output it shows and the exact answer it states (tests/cookbook/)
+t_cookbook() {
+	suite "cookbook" sh tests/cookbook/check.sh "$CSFC" "$CSFVM" "$T" "$B"
+	grep -e '^SKIP' -e '^cookbook:' "$T/suite.out"
+}
+
 # 5c. output errors are reported: a full disk (a closed pipe ends a run quietly: tests/unix/check.sh)
 t_full_disk() {
 	printf 'object p: x = 1\nrule: x'"'"' = 1\ninc t till 100000 by 1 watch x\n' >"$T/long.csf"
@@ -498,6 +521,13 @@ t_constraints() {
 #     bodies that can touch or are constrained to a kept one are kept; --every (tests/cone/check.sh)
 t_cone() {
 	suite "cone" sh tests/cone/check.sh "$CSFC" "$CSFVM" "$T"
+}
+
+# 5w. discrete events: `when` blocks against exact answers (the parachute opens once at 1000 m,
+#     the rocket equation for each stage, a bounce counter and its impacts' rows at their
+#     instants to 1e-13 s, a kick), --rows-at-events, -D on a latched property (tests/when/check.sh)
+t_when() {
+	suite "when" timeout "$LIMIT" sh tests/when/check.sh "$CSFC" "$CSFVM" "$T"
 }
 
 # 5s. object arrays: 1e5 projectiles in an array against the closed form, the same from a data
@@ -787,6 +817,7 @@ done
 	echo methods_tol
 	echo constraints
 	echo cone
+	echo when
 	echo arrays
 	echo sweep
 	echo longrun
@@ -805,6 +836,9 @@ done
 	echo unix
 	echo warn
 	echo docs
+	echo lsp
+	echo editors
+	echo cookbook
 	echo compare_methods
 	echo n300
 	for t in csfc csfb fmt; do echo "fuzz_regress $t"; done

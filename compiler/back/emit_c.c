@@ -552,7 +552,8 @@ static void put_image(FILE *f, const unsigned char *image, size_t len)
 
 void emit_c(const csf_prog *p, const unsigned char *image, size_t len, const char *model, FILE *f)
 {
-	static const char *const names[CSF_NSEC] = { "csf_model_rhs", "csf_model_out", "csf_model_jac" };
+	static const char *const names[CSF_NSEC] = { "csf_model_rhs", "csf_model_out", "csf_model_jac",
+		                                              "csf_model_evt" };
 	Slots S;
 	uint32_t *starts[CSF_NSEC], nfn[CSF_NSEC];
 	slots_analyse(&S, p, starts, nfn);
@@ -582,7 +583,8 @@ void emit_c(const csf_prog *p, const unsigned char *image, size_t len, const cha
 	      "                          double *dydt)\n{\n"
 	      "\treturn sec == CSF_SEC_RHS ? csf_model_rhs(p, x, m, y, dydt)\n"
 	      "\t     : sec == CSF_SEC_OUT ? csf_model_out(p, x, m, y, dydt)\n"
-	      "\t                          : csf_model_jac(p, x, m, y, dydt);\n}\n\n"
+	      "\t     : sec == CSF_SEC_JAC ? csf_model_jac(p, x, m, y, dydt)\n"
+	      "\t                          : csf_model_evt(p, x, m, y, dydt);\n}\n\n"
 	      "int main(int argc, char **argv)\n{\n"
 	      "\treturn csf_main(argc, argv, csf_model_image, sizeof csf_model_image, csf_model_exec);\n}\n",
 	      f);

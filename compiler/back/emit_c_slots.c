@@ -52,6 +52,7 @@ static void scan_slots(Slots *S)
 		mark_ext(S, p->events[i].value, 1);
 		mark_ext(S, p->events[i].mode, 1);
 	}
+	for (uint32_t i = 0; i < p->nwhens; i++) mark_ext(S, p->whens[i].fire, 1), mark_ext(S, p->whens[i].prev, 1);
 	for (uint32_t i = 0; i < p->ncbodies; i++)
 		for (int k = 0; k < CSF_CF_N; k++) mark_ext(S, p->cbodies[i].s[k], 3);
 	for (uint32_t i = 0; i < p->ncons; i++) {

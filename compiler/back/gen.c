@@ -18,6 +18,7 @@
  *   tables.c        the tables beside the code (contacts, columns, -D, sources)
  *   pairs.c         velocity Verlet's position/velocity pairs
  *   jac.c           the JAC section, by forward-mode differentiation of RHS
+ *   when.c          the EVT section: the `when` blocks
  *   hoist.c         loop-invariant code motion, last
  * sharing the generator's state through gen_int.h.
  */
@@ -31,17 +32,32 @@
 #include "gen_int.h"
 #include "liveness.h"
 
+void section_begin(Gen *G)
+{
+	G->code = NULL;
+	G->ncode = G->capcode = 0;
+	G->lines = NULL;
+	G->nlines = G->caplines = 0;
+	G->targets = NULL;
+	G->ntargets = G->captargets = 0;
+}
+
+void section_end(Gen *G, csf_prog *p, int sec)
+{
+	p->code[sec] = G->code ? G->code : xcalloc(1, sizeof *G->code); /* an empty section is an array too */
+	p->ncode[sec] = G->ncode;
+	p->lines[sec] = G->lines;
+	p->nlines[sec] = G->nlines;
+	p->targets[sec] = G->targets;
+	p->ntargets[sec] = G->ntargets;
+}
+
 /* The RHS and OUT sections: the code of each instance the section needs, in order, the
    contact routine (and the constraints) after the instance last_a (live_mark). */
 static void sections(Gen *G, Model *M, csf_prog *p, int last_a)
 {
 	for (int sec = CSF_SEC_RHS; sec <= CSF_SEC_OUT; sec++) {
-		G->code = NULL;
-		G->ncode = G->capcode = 0;
-		G->lines = NULL;
-		G->nlines = G->caplines = 0;
-		G->targets = NULL;
-		G->ntargets = G->captargets = 0;
+		section_begin(G);
 		for (int i = 0; i < M->insts.n; i++) {
 			Inst *I = M->insts.v[i];
 			if (!I->needed[sec]) continue;
@@ -55,12 +71,7 @@ static void sections(Gen *G, Model *M, csf_prog *p, int last_a)
 			}
 			if (i == last_a && p->ncons) gen_constraint_code(G, M, p);
 		}
-		p->code[sec] = G->code;
-		p->ncode[sec] = G->ncode;
-		p->lines[sec] = G->lines;
-		p->nlines[sec] = G->nlines;
-		p->targets[sec] = G->targets;
-		p->ntargets[sec] = G->ntargets;
+		section_end(G, p, sec);
 	}
 }
 
@@ -106,6 +117,7 @@ static void gen_run(Gen *G, Model *M, csf_prog *p)
 	gen_constraint_tables(G, M, p);
 
 	sections(G, M, p, last_a);
+	gen_when_section(G, M, p);
 	gen_columns(G, M, p);
 	gen_globals(G, M, p);
 	gen_objects(G, M, p);

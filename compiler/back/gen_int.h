@@ -50,6 +50,10 @@ typedef struct Gen {
 	void *work[3]; /* gen_jacobian's heap arrays while it runs, for gen_program to free after that */
 } Gen;
 
+/* gen.c: a code section's code, lines and targets, from empty (begin) into p's section sec (end) */
+void section_begin(Gen *G);
+void section_end(Gen *G, csf_prog *p, int sec);
+
 /* slots.c: memory, strings and parameter classes */
 void *grow(void *p, uint32_t *cap, uint32_t need, size_t elem);
 uint32_t alloc_mem(Gen *G, uint32_t n, const double *init);
@@ -74,7 +78,11 @@ uint32_t emit(Gen *G, RExpr *e);
 int inst_loops(const Model *M, const Inst *I);
 int sums_pairs(const Model *M, const Inst *I);
 void add_line(Gen *G, uint32_t src);
+void add_target(Gen *G, uint32_t slot, Var *v, uint32_t src, const char *name, Object *o);
 void emit_inst(Gen *G, Inst *I);
+
+/* when.c: the EVT section */
+void gen_when_section(Gen *G, Model *M, csf_prog *p);
 
 /* jac.c: the Jacobian */
 int depends(const uint32_t *code, uint32_t n, unsigned char *act, int smooth);

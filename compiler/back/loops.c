@@ -27,7 +27,7 @@ void add_line(Gen *G, uint32_t src)
 	G->lines[G->nlines++] = (csf_line){ pc(G), src };
 }
 
-static void add_target(Gen *G, uint32_t slot, Var *v, uint32_t src, const char *name, Object *o)
+void add_target(Gen *G, uint32_t slot, Var *v, uint32_t src, const char *name, Object *o)
 {
 	G->targets = grow(G->targets, &G->captargets, G->ntargets + 1, sizeof(csf_target));
 	G->targets[G->ntargets++] = (csf_target){ slot, v->isvec ? 3u : 1u, src, str_intern(G, name),
@@ -100,13 +100,13 @@ static void emit_body(Gen *G, Inst *I)
 		emit_op(G, CSF_OP_ASSERT, c, csf_rel((uint32_t)I->assert_index, G->loop ? 1 : 0), 0, 0);
 		return;
 	}
-	if (I->isstop) { /* its comparison as an event of the RHS, marked terminal */
+	if (I->isstop || I->iswhen) { /* its comparisons as events of the RHS (a stop's marked terminal) */
 		uint32_t first = G->nevents;
 		G->evinst = I;
 		G->evsrc = I->src;
 		emit(G, I->cond);
 		G->evinst = NULL;
-		for (uint32_t k = first; k < G->nevents; k++) G->events[k].kind |= CSF_EVENT_TERMINAL;
+		for (uint32_t k = first; k < G->nevents && I->isstop; k++) G->events[k].kind |= CSF_EVENT_TERMINAL;
 		return;
 	}
 	if (I->isderiv) {
@@ -156,7 +156,7 @@ void emit_inst(Gen *G, Inst *I)
 	}
 	G->loop = 0;
 	G->iloop = NULL;
-	if (I->isassert || I->isstop) return;
+	if (I->isassert || I->isstop || I->iswhen) return;
 	if (I->isderiv) {
 		Var *v = ((Assign *)I->then.v[0])->var;
 		add_targets(G, I, v, G->p->dstart + (var_slot(G, v) - G->p->ystart), (uint32_t)I->src, xprintf("%s'", v->name));

@@ -75,7 +75,9 @@ typedef struct WatchItem { Loc loc; char *obj; char *prop; char *comp; } WatchIt
  * them from a data file. */
 enum { ARR_NONE, ARR_RANGE, ARR_EACH, ARR_ONE, ARR_FILE };
 
-typedef enum StmtKind { S_GLOBAL, S_PROP, S_OBJKIND, S_DEF, S_VECDECL, S_RULE, S_ASSERT, S_STOP, S_START } StmtKind;
+typedef enum StmtKind {
+	S_GLOBAL, S_PROP, S_OBJKIND, S_DEF, S_VECDECL, S_RULE, S_ASSERT, S_STOP, S_WHEN, S_START
+} StmtKind;
 
 typedef struct Stmt Stmt;
 struct Stmt {
@@ -105,8 +107,8 @@ struct Stmt {
 	                 members are one shape in index order: how many bindings, compiled as one loop over
 	                 them (sema sets it; 0: one instance per binding) */
 	long loop_from; /* its first binding's index value */
-	Expr *cond;   /* assertion, stop condition */
-	Eqn *eqns;    /* rule: its one step (an equation, or a conditional block) */
+	Expr *cond;   /* assertion, stop condition, `when` condition */
+	Eqn *eqns;    /* rule: its one step (an equation, or a conditional block); `when`: its assignments */
 	Expr *call;   /* a rule that calls a runtime routine: contact(...) */
 	/* S_START */
 	char *var;

@@ -145,6 +145,27 @@ static Eqn *cond_block(YYLoc l, Expr *cond, Eqn *then, If *rest)
 	q->nest = f;
 	return q;
 }
+/* A `when` statement at l: condition cond (its text up to the ':' at colon), the objects fors (NULL: none),
+ * its assignments q. */
+static Stmt *when_stmt(YYLoc l, Expr *cond, YYLoc colon, Vec *fors, Eqn *q)
+{
+	Stmt *s = xalloc(sizeof *s);
+	s->kind = S_WHEN;
+	s->loc = LOC(l);
+	s->cond = cond;
+	s->eqns = q;
+	if (fors) {
+		s->fors = *fors;
+		s->has_for = 1;
+	}
+	char *line = src_line(s->loc.file, s->loc.line);
+	size_t a = (size_t)(s->loc.col - 1), b = (size_t)(colon.first_column - 1), n = strlen(line);
+	if (colon.first_line != s->loc.line || b > n) b = n;
+	if (a > b) a = b;
+	while (b > a && line[b - 1] == ' ') b--;
+	s->text = xstrndup(line + a, b - a); /* "when COND" (with `for`: "when for OBJS: COND") */
+	return s;
+}
 static Expr *call(ExprKind k, Expr *recv, char *name, Vec *args, YYLoc l)
 {
 	Expr *e = ast_expr(k, LOC(l));
@@ -304,6 +325,8 @@ stmt:
 	| ASSERT expr {
 		$$ = stmt(S_ASSERT, @$); $$->cond = $2; $$->text = text_from(LOC(@2));
 	}
+	| WHEN expr ':' eqn                   { $$ = when_stmt(@1, $2, @3, NULL, $4); }
+	| WHEN FOR objrefs ':' expr ':' eqn   { $$ = when_stmt(@1, $5, @6, &$3, $7); }
 	| STOP WHEN expr {
 		$$ = stmt(S_STOP, @$); $$->cond = $3; $$->text = text_from(LOC(@3));
 	}
@@ -352,6 +375,8 @@ block:
 	| RULE attr FOR objrefs ':' ifblock {
 		$$ = stmt(S_RULE, @$); $$->attr = $2; $$->fors = $4; $$->has_for = 1; $$->eqns = $6;
 	}
+	| WHEN expr ':' body                  { $$ = when_stmt(@1, $2, @3, NULL, $4); }
+	| WHEN FOR objrefs ':' expr ':' body  { $$ = when_stmt(@1, $5, @6, &$3, $7); }
 	;
 
 /* A conditional block, as one step (an Eqn holding it); `elif` is a block nested as the else part. */

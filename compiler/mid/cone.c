@@ -26,6 +26,7 @@
 #include "sema.h"
 #include "cone.h"
 #include "liveness.h"
+#include "lint.h"
 
 typedef struct Node { void *p; int mem, inst; } Node;
 
@@ -207,7 +208,7 @@ static void walk(Walk *W, const Model *M)
 	}
 	for (int i = 0; i < M->insts.n; i++) {
 		Inst *I = M->insts.v[i];
-		if (I->isassert || I->isstop) need_inst(W, I, -1);
+		if (I->isassert || I->isstop || I->iswhen) need_inst(W, I, -1);
 	}
 	drain(W);
 	while (couple(W))
@@ -239,4 +240,28 @@ void cone_idle_states(Model *M)
 		for (int k = 0; m && k < n; k++) any |= m[k];
 		I->idle = !any;
 	}
+}
+
+/*
+ * The model without the objects that nothing watched, asserted or stopped on
+ * depends on (cone_dropped), resolved again, with a warning for each (the
+ * first three; then how many more); M itself if every object is needed.
+ */
+Model *cone_leave_out(Stmt *stmts, Model *M)
+{
+	char *drop = cone_dropped(M);
+	Model *P = drop ? sema_run(stmts, drop) : NULL;
+	if (!P) return M;
+	int shown = 0;
+	for (int i = 0; i < P->objects.n; i++) {
+		Object *o = P->objects.v[i];
+		if (!o->dropped) continue;
+		if (shown++ < 3) warn_at(o->loc, "object '%s' affects nothing watched: it is left out (csfc --keep-all keeps it)", o->name);
+		else {
+			warn_at(o->loc, "and %d more objects from '%s' on affect nothing watched: they are left out (csfc --explain "
+			                "lists them)", P->ndropped - 3, o->name);
+			break;
+		}
+	}
+	return P;
 }

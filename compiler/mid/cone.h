@@ -14,4 +14,9 @@ char *cone_dropped(const Model *M);
    depends on (Inst.idle): they are not integrated. */
 void cone_idle_states(Model *M);
 
+/* The model without the objects that nothing watched, asserted or stopped on depends on, resolved
+   again from stmts, with a warning for each (the first three; then how many more); M itself if
+   every object is needed (csfc, and csfc --lsp for its warnings). */
+Model *cone_leave_out(Stmt *stmts, Model *M);
+
 #endif

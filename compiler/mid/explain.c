@@ -116,7 +116,9 @@ static const char *object_line(Object *o)
 		Var *v = o->props.v[j], *r = sema_canon(v);
 		line = xprintf("%s%s %s (%s)", line, j ? "," : "", v->name,
 		               r->state ? (var_integrated(r) ? "state" : "state, left out: nothing needs it")
-		               : r->det ? xprintf("computed, line %d", r->det->st->loc.line) : "constant");
+		               : r->det   ? xprintf("computed, line %d", r->det->st->loc.line)
+		               : r->latch ? xprintf("latched, when block line %d", r->latch->st->loc.line)
+		                          : "constant");
 	}
 	return line;
 }
@@ -129,6 +131,20 @@ static int next_member(const Object *a, const Object *b)
 	return strtol(pa + 1, NULL, 10) + 1 == strtol(pb + 1, NULL, 10);
 }
 
+/* What a `when` block does at its events: the variables it assigns, each a state variable or latched. */
+static void explain_when(FILE *f, const Inst *I)
+{
+	fprintf(f, ": at each instant its condition becomes true (its comparisons are events, located in time; not at "
+	           "t = 0), computes every new value from the values just before, then sets");
+	for (int k = 0; k < I->then.n; k++) {
+		const Assign *a = I->then.v[k];
+		const Var *v = a->var;
+		fprintf(f, "%s %s%s%s (%s)", k ? "," : "", v->obj ? v->obj->name : "", v->obj ? "." : "", v->name,
+		        v->state ? "a state variable: integration restarts from its new value"
+		                 : "latched: it keeps its value between events");
+	}
+}
+
 void explain_model(Model *Mo, FILE *f)
 {
 	for (int i = 0; i < Mo->stmts.n; i++) {
@@ -136,6 +152,8 @@ void explain_model(Model *Mo, FILE *f)
 		Source *src = sources.v[s->loc.file];
 		fprintf(f, "%s:%d: %s%s\n", src->path, s->loc.line,
 		        s->kind == S_ASSERT ? "assert " : s->kind == S_STOP ? "stop when " : "", s->text);
+		if (s->kind == S_WHEN)
+			for (Eqn *q = s->eqns; q; q = q->next) fprintf(f, "  %s\n", q->text);
 		int n = 0;
 		Inst *cond = NULL; /* an instance of a conditional rule: its branches are every instance's */
 		for (int k = 0; k < Mo->insts.n; k++) {
@@ -160,9 +178,11 @@ void explain_model(Model *Mo, FILE *f)
 				        I->idx + I->iloop - 1);
 			if (I->isassert) fprintf(f, ": checked at every output step");
 			else if (I->isstop) fprintf(f, ": ends the run at the instant it becomes true (a terminal event)");
+			else if (I->iswhen) explain_when(f, I);
 			else fprintf(f, ": %s%s", I->isderiv ? "" : "solves for ", I->why ? I->why : "?");
-			if (!I->isassert && !I->isstop && !I->needed[0] && !I->needed[1]) fprintf(f, "; left out: nothing needs it");
-			else if (!I->isassert && !I->isstop)
+			if (!I->isassert && !I->isstop && !I->iswhen && !I->needed[0] && !I->needed[1])
+				fprintf(f, "; left out: nothing needs it");
+			else if (!I->isassert && !I->isstop && !I->iswhen)
 				fprintf(f, "; computed in %s", I->needed[0] && I->needed[1] ? "rhs and out" : I->needed[0] ? "rhs" : "out");
 			fputc('\n', f);
 		}

@@ -105,7 +105,7 @@ void lint_model(Model *M)
 	}
 	for (int i = 0; i < M->insts.n; i++) {
 		Inst *I = M->insts.v[i];
-		if (I->isassert || I->isstop || I->isderiv || !users(I->st->loc)) continue;
+		if (I->isassert || I->isstop || I->iswhen || I->isderiv || !users(I->st->loc)) continue;
 		/* a rule whose result nothing reads (what --explain calls left out) */
 		if (!I->needed[0] && !I->needed[1] && I->targets.n && !(I->isF && !rf_read) && first_at(&used, I->st->loc) &&
 		    first_at(&seen, I->st->loc)) {

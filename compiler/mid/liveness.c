@@ -40,7 +40,7 @@ int live_mark(Model *M, Vec *Finsts)
 	/* What is needed: derivatives for RHS; watches and assertions for OUT. */
 	for (int i = 0; i < M->insts.n; i++) {
 		Inst *I = M->insts.v[i];
-		if ((I->isderiv && !I->idle) || I->isstop) mark(Finsts, I, CSF_SEC_RHS);
+		if ((I->isderiv && !I->idle) || I->isstop || I->iswhen) mark(Finsts, I, CSF_SEC_RHS);
 		if (I->isassert) mark(Finsts, I, CSF_SEC_OUT);
 	}
 	for (int i = 0; i < M->cols.n; i++) {

@@ -289,7 +289,8 @@ int for_each_binding(Stmt *s, void (*f)(Stmt *, Object **, int))
 			for (int j = 1; j <= k; j++) T.cur[j] = sema.M->objects.v[nobj - 1 - k + j - 1];
 			stmt_applies(s, T.cur, k + 1, &missing);
 		}
-		const char *what = s->kind == S_ASSERT ? "assertion" : s->kind == S_STOP ? "stop condition" : "rule";
+		const char *what = s->kind == S_ASSERT ? "assertion" : s->kind == S_STOP ? "stop condition"
+		                   : s->kind == S_WHEN ? "when block" : "rule";
 		if (missing) error_at(s->loc, "this %s applies to no object: none has '%s'", what, missing);
 		else error_at(s->loc, "this %s applies to no object", what);
 		return -1;

@@ -83,8 +83,9 @@ static void check_sections(Stmt *stmts)
 	int section = 0; /* 0 objects, 1 rules, 2 start */
 	Stmt *start = NULL;
 	for (Stmt *s = stmts; s; s = s->next) {
-		int sec = s->kind == S_START ? 2
-		          : (s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_STOP || s->kind == S_VECDECL) ? 1 : 0;
+		int rule_sec = s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_STOP || s->kind == S_WHEN ||
+		               s->kind == S_VECDECL;
+		int sec = s->kind == S_START ? 2 : rule_sec ? 1 : 0;
 		if (start) {
 			error_at(s->loc, "the start directive ('inc ...') must be the last statement");
 			note_at(start->loc, "start directive here");
@@ -145,7 +146,7 @@ static Model *resolve(Stmt *stmts, int shaped)
 		if (s->kind == S_START) start = s;
 		if (s->kind == S_VECDECL)
 			for (int i = 0; i < s->names.n; i++) map_put(&sema.vector_decls, s->names.v[i], s);
-		if (s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_STOP) vec_push(&sema.M->stmts, s);
+		if (s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_STOP || s->kind == S_WHEN) vec_push(&sema.M->stmts, s);
 		if (s->kind == S_RULE) vec_push(&rules, s);
 	}
 	if (!start) {
@@ -226,9 +227,9 @@ static Model *resolve(Stmt *stmts, int shaped)
 	}
 	for (int i = 0; i < sema.M->stmts.n; i++) {
 		Stmt *s = sema.M->stmts.v[i];
-		if (s->kind != S_ASSERT && s->kind != S_STOP) continue;
+		if (s->kind != S_ASSERT && s->kind != S_STOP && s->kind != S_WHEN) continue;
 		sema.cur_src = add_src(s->loc, s->text);
-		for_each_binding(s, s->kind == S_STOP ? inst_stop : inst_assert);
+		for_each_binding(s, s->kind == S_STOP ? inst_stop : s->kind == S_WHEN ? inst_when : inst_assert);
 	}
 	build_watch(start);
 	/* by shape, a temporary of a pair lives for one iteration of its rule's loop */

@@ -439,3 +439,79 @@ void inst_stop(Stmt *s, Object **bind, int nbind)
 	}
 	vec_push(sema.cur_insts, I);
 }
+
+/*
+ * when COND: NAME = EXPR ...: a discrete event. COND is located in time as a
+ * conditional rule's is (its comparisons are events); at each instant it
+ * becomes true, every EXPR is computed from the values just before, and
+ * then each NAME takes its value. NAME is a property or a global that no
+ * rule determines: a state variable (its integration restarts from the new
+ * value), or latched, piecewise constant. Each binding is an instance of
+ * its own (the model is not resolved by shape): its flags and new values
+ * have slots of their own.
+ */
+void inst_when(Stmt *s, Object **bind, int nbind)
+{
+	unshape("a when block");
+	Inst *I = new_inst(s, bind, nbind);
+	I->iswhen = 1;
+	I->src = sema.cur_src;
+	I->cond = build_cond(I, s->cond, "a when condition");
+	if (!I->cond) return;
+	for (Eqn *q = s->eqns; q; q = q->next) {
+		if (q->nest || q->deriv) {
+			error_at(q->loc, "a when block holds assignments 'NAME = EXPR', not %s",
+			         q->nest ? "an 'if' block (write a second when block)" : "a derivative (that is a rule's: 'rule: v' = a')");
+			return;
+		}
+		Vec lreads = { 0 }, reads = { 0 }, pending = { 0 }, rf = { 0 };
+		Ctx L = inst_ctx(I, &lreads, &rf, &pending), C = inst_ctx(I, &reads, &rf, &pending);
+		RExpr *lhs = build(&L, q->lhs);
+		if (L.failed) return;
+		Var *x = lhs->k == R_VAR ? sema_canon(lhs->var) : NULL;
+		if (x && x->det) {
+			error_at(q->loc, "when block \"%s\" assigns %s, which a rule also determines: a variable is either "
+			                 "computed by rules or changed at events", s->text, var_label(x));
+			note_at(x->det->st->loc, "%s is determined by this rule", var_label(x));
+			return;
+		}
+		if (!x || x->kind == V_TEMP || x->kind == V_TIME || (x->kind == V_GLOBAL && is_predefined(x->name))) {
+			error_at(q->lhs->loc, "a when block assigns a property of an object or a global (it keeps its value "
+			                      "between events), not %s",
+			         !x                   ? "an expression"
+			         : x->kind == V_TEMP ? xprintf("'%s', which is neither a property of %s nor a global", x->name,
+			                                       I->bind[0]->name)
+			                             : xprintf("the predefined '%s'", x->name));
+			return;
+		}
+		RExpr *rhs = build(&C, q->rhs);
+		if (C.failed) return;
+		if (rhs->isbool || rhs->isvec != x->isvec) {
+			error_at(q->rhs->loc, "'%s' is a %s, and \"%s\" gives it %s", var_label(x), x->isvec ? "vector" : "scalar",
+			         q->text, rhs->isbool ? "a condition" : rhs->isvec ? "a vector" : "a scalar");
+			return;
+		}
+		for (int i = 0; i < reads.n; i++) {
+			Var *v = reads.v[i];
+			if (v->kind == V_TEMP && !determined(v)) {
+				error_at(read_loc(rhs, NULL, v, q->loc), "when block \"%s\" reads '%s', which no rule determines",
+				         s->text, v->name);
+				return;
+			}
+			add_unique(&I->reads, v);
+		}
+		for (int i = 0; i < rf.n; i++) add_unique(&I->rf_reads, rf.v[i]);
+		if (!x->latch) x->latch = I;
+		Assign *a = xalloc(sizeof *a);
+		a->var = x;
+		a->e = rhs;
+		a->src = I->src;
+		a->lhs = lhs;
+		a->rhs = rhs;
+		a->loc = q->loc;
+		a->text = q->text;
+		vec_push(&I->then, a);
+		add_unique(&I->targets, x);
+	}
+	vec_push(sema.cur_insts, I);
+}

@@ -37,6 +37,8 @@ typedef struct Var {
 	double init[3];
 	Loc loc;
 	int state;       /* integrated: has a derivative rule */
+	Inst *latch;     /* props, globals: the first `when` block that assigns it (a state variable, or latched:
+	                    piecewise constant between the events at which the blocks assign it) */
 	Inst *det;       /* the instance that determines it, if any */
 	Inst *deriv;     /* its derivative rule instance (state variables) */
 	int slot;        /* memory slot, -1 until allocated */
@@ -119,6 +121,8 @@ struct Inst {
 	Object **bind;   /* $0, $1, ... */
 	int nbind;
 	int isassert, isstop, isderiv, isF;
+	int iswhen;      /* a `when` block: its condition in cond, its assignments in then (var := e, every e read
+	                    before any var is set) */
 	RExpr *cond;     /* assertion, stop; conditional rule: all its conditions joined by 'and' (dims.c) */
 	Branch *top;     /* conditional rule: its block */
 	Vec then, els;   /* of Assign*: a plain rule's one (then); a conditional rule's, at every depth,

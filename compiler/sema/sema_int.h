@@ -224,6 +224,7 @@ void inst_assert(Stmt *s, Object **bind, int nbind);
  * the runtime reads the guards), never in OUT.
  */
 void inst_stop(Stmt *s, Object **bind, int nbind);
+void inst_when(Stmt *s, Object **bind, int nbind);
 
 /* ---- group.c: rules solved together ---- */
 

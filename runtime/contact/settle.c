@@ -172,6 +172,10 @@ static void after_impact(csf_contacts *cs, double *m, double zeno)
 	}
 }
 
+void csf_contacts_before_kick(csf_contacts *cs, const double *m) { csf_contact_before_impact(cs, m); }
+
+void csf_contacts_after_kick(csf_contacts *cs, double *m, double zeno) { after_impact(cs, m, zeno); }
+
 /* Do pairs c and d share a body (a plane is no body: it does not move)? */
 static int share_body(const cpair *c, const cpair *d)
 {

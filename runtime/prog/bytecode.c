@@ -531,7 +531,7 @@ static void dis_section(const csf_prog *p, int s, FILE *f)
 
 void csf_disassemble(const csf_prog *p, FILE *f)
 {
-	static const char *const secname[CSF_NSEC] = { "rhs", "out", "jac" };
+	static const char *const secname[CSF_NSEC] = { "rhs", "out", "jac", "evt" };
 	fprintf(f, "; memory %lu slots, t at %lu, state %lu..%lu, derivatives %lu..%lu\n", (unsigned long)p->nmem,
 	        (unsigned long)p->tslot, (unsigned long)p->ystart, (unsigned long)(p->ystart + p->ny),
 	        (unsigned long)p->dstart, (unsigned long)(p->dstart + p->ny));

@@ -183,6 +183,13 @@ ELEM(pclass_ok)
 	return ok;
 }
 
+ELEM(when_ok)
+{
+	const csf_when *w = e_;
+	UNUSED;
+	return w->src < p->nsrcs && slot_ok(p, w->fire, 1) && slot_ok(p, w->prev, 1);
+}
+
 ELEM(event_ok)
 {
 	const csf_event *e = e_;
@@ -307,6 +314,7 @@ const csf_field csf_fields[] = {
 	  .at = offsetof(csf_prog, pclasses), .count = offsetof(csf_prog, npclasses), .size = sizeof(csf_pclass),
 	  .dbl_at = offsetof(csf_pclass, dim), .ok = pclass_ok, .bad = "parameter class %lu out of range" },
 	U32S("events", events, nevents, csf_event, event_ok, "event %lu out of range"),
+	U32S("whens", whens, nwhens, csf_when, when_ok, "when block %lu out of range"),
 	U32S("cbodies", cbodies, ncbodies, csf_cbody, cbody_ok, "contact body %lu out of range"),
 	U32S("cmembers", cmembers, ncmembers, uint32_t, cmember_ok, "contact list entry %lu out of range"),
 	{ .name = "crules", .how = CSF_FC_PREFIX, .sec = -1, .words = sizeof(csf_crule) / 4,
@@ -317,7 +325,8 @@ const csf_field csf_fields[] = {
 	SECTION(CSF_SEC_RHS),
 	SECTION(CSF_SEC_OUT),
 	SECTION(CSF_SEC_JAC),
+	SECTION(CSF_SEC_EVT),
 };
-_Static_assert(CSF_NSEC == 3, "a SECTION for each code section");
+_Static_assert(CSF_NSEC == 4, "a SECTION for each code section");
 
 const size_t csf_nfields = sizeof csf_fields / sizeof csf_fields[0];

@@ -19,8 +19,9 @@ void csf_run_stop_now(run *r, double t)
 }
 
 /*
- * Takes the event r->last at (t, y): the modes brought up to date, the
- * integrator restarted. A 'stop when' condition's ends the run instead:
+ * Takes the event r->last at (t, y): the `when` blocks, the modes brought
+ * up to date, the integrator restarted (with --rows-at-events, a row before
+ * and one after). A 'stop when' condition's ends the run instead:
  * ADV_TERMINAL, with its time in r->stop_t. 0, or CSF_ODE_STOPPED when a
  * derivative is not finite.
  */
@@ -33,9 +34,20 @@ int csf_run_take_event(run *r, csf_ode *ode, double t, double *y)
 		r->stop_t = t;
 		return ADV_TERMINAL;
 	}
+	if (r->event_row) r->event_row(r, t, y, -1);
 	if (r->g) r->g->due = 1; /* the scene may have changed: with fixed steps, look after the next one */
-	if (csf_run_update_modes(r, t, y)) return CSF_ODE_STOPPED;
-	if (csf_run_cons_row(r, t, y)) return CSF_ODE_STOPPED; /* impulses the constraints did not see */
+	/* the `when` blocks on the values before the event, then the modes (and impacts); again while
+	   the blocks fire on what the modes changed (a velocity an impact reversed) */
+	r->wround = 0;
+	for (int pass = 0, fired = 1; fired; pass++) {
+		int st = csf_run_whens(r, t, y, &fired);
+		if (st) return st;
+		if (pass > 0 && !fired) break;
+		if (csf_run_update_modes(r, t, y)) return CSF_ODE_STOPPED;
+		if (csf_run_cons_row(r, t, y)) return CSF_ODE_STOPPED; /* impulses the constraints did not see */
+		fired = r->p->nwhens != 0;
+	}
+	if (r->event_row) r->event_row(r, t, y, 1);
 	csf_ode_restart(ode);
 	if (csf_run_guards_at(r, t, y, r->ga)) return CSF_ODE_STOPPED;
 	memcpy(r->fa, r->fs, r->p->ny * sizeof *r->fa);

@@ -135,6 +135,33 @@ int csf_run_update_modes(run *r, double t, double *y)
 	return r->fail;
 }
 
+int csf_run_whens(run *r, double t, double *y, int *fired_any)
+{
+	const csf_prog *p = r->p;
+	double *m = r->m;
+	*fired_any = 0;
+	for (; p->nwhens; r->wround++) {
+		if (csf_run_rhs(t, y, r->fs, r)) return CSF_ODE_STOPPED;
+		memcpy(m + p->ystart, y, p->ny * sizeof *y); /* (a generated RHS may have read y alone) */
+		if (r->cs) csf_contacts_before_kick(r->cs, m);
+		r->exec(p, &r->x, CSF_SEC_EVT, m, m + p->ystart, m + p->dstart);
+		memcpy(y, m + p->ystart, p->ny * sizeof *y);
+		unsigned long fired = 0;
+		for (uint32_t i = 0; i < p->nwhens; i++) {
+			if (m[p->whens[i].fire] == 0) continue;
+			fired++;
+			if (r->wround >= WHEN_ROUNDS - 2 && r->ncycle < 2 && (!r->ncycle || r->cycle[0] != i))
+				r->cycle[r->ncycle++] = i;
+		}
+		if (!fired) return 0;
+		if (r->cs) csf_contacts_after_kick(r->cs, m, r->zeno); /* a body kicked off a floor leaves it */
+		r->nfired += fired;
+		*fired_any = 1;
+		if (r->wround >= WHEN_ROUNDS - 1) return ADV_WHEN_CYCLE;
+	}
+	return 0;
+}
+
 /* How closely events are located in time: 1e-13 s, finer for scenes on tiny time scales. */
 double csf_run_location_tol(const csf_prog *p) { return csf_min(1e-13, 1e-10 * p->by); }
 

@@ -138,6 +138,8 @@ int csf_parse_opts_to(int argc, char **argv, int first, csf_opts *o, int *pos, i
 			o->fixed = 1;
 		} else if (strcmp(a, "--stats") == 0) {
 			o->stats = 1;
+		} else if (strcmp(a, "--rows-at-events") == 0) {
+			o->rows_at_events = 1;
 		} else if (strcmp(a, "--progress") == 0) {
 			o->progress = CSF_PROGRESS_ON;
 		} else if (strcmp(a, "--no-progress") == 0) {

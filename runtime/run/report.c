@@ -245,6 +245,16 @@ int csf_run_report_stop(run *r, const stop *s, int fixed, FILE *err)
 	case STOP_CHATTER:
 		report_chatter(r, s, tb, err);
 		return 1;
+	case STOP_WHEN_CYCLE: {
+		const csf_src *a = &p->srcs[p->whens[r->cycle[0]].src], *b = &p->srcs[p->whens[r->cycle[r->ncycle > 1]].src];
+		fprintf(err,
+		        "%s:%lu: error: at t=%s the when blocks \"%s\" and \"%s\" (%s:%lu) set each other off without time "
+		        "advancing (still firing after %d rounds at that instant): each one's assignments make the other's "
+		        "condition true again\n",
+		        csf_str(p, p->files[a->file]), (unsigned long)a->line, tb, csf_str(p, a->text), csf_str(p, b->text),
+		        csf_str(p, p->files[b->file]), (unsigned long)b->line, WHEN_ROUNDS);
+		return 1;
+	}
 	case STOP_CON_START:
 	case STOP_CON_CONFLICT: {
 		const csf_con *c = &p->cons[r->con_k];

@@ -230,8 +230,11 @@ static stop run_modes(session *S)
 		s.which = b;
 		return s;
 	}
-	/* the modes at t = 0: each comparison's side, contacts at rest or colliding */
-	if (csf_run_update_modes(r, 0, y) || (p->ny && csf_run_guards_at(r, 0, y, r->ga))) {
+	/* the modes at t = 0: each comparison's side, contacts at rest or colliding; then the conditions
+	   of the `when` blocks (none fires at the start) */
+	int fired;
+	if (csf_run_update_modes(r, 0, y) || csf_run_whens(r, 0, y, &fired) ||
+	    (p->ny && csf_run_guards_at(r, 0, y, r->ga))) {
 		if (r->unsettled) return stop_kind_only(STOP_UNSETTLED);
 		if (r->nomem) return stop_kind_only(STOP_NOMEM);
 		return stop_at(STOP_NONFINITE, 0);
@@ -306,6 +309,9 @@ static stop advance_stop(session *S, int st, double t, double tk)
 		break;
 	case ADV_BUDGET:
 		s.kind = STOP_BUDGET;
+		break;
+	case ADV_WHEN_CYCLE:
+		s.kind = STOP_WHEN_CYCLE;
 		break;
 	case ADV_CHATTER:
 		s.kind = STOP_CHATTER;
@@ -401,6 +407,8 @@ static stop run_row(session *S, double k, double tk, int *last)
 	run *r = &S->r;
 	const csf_prog *p = r->p;
 	if (S->events && !S->ode) { /* no state: the conditions depend on t alone, and are looked at on the rows */
+		int fired, st = (r->wround = 0, csf_run_whens(r, tk, S->y, &fired));
+		if (st) return stop_at(st == ADV_WHEN_CYCLE ? STOP_WHEN_CYCLE : STOP_NONFINITE, tk);
 		csf_run_free_modes(r, tk, S->y);
 		csf_run_stop_now(r, tk);
 	}
@@ -596,13 +604,15 @@ static void stats_run(const session *S, const csf_opts *o, unsigned long steps, 
 	if (r->cs)
 		snprintf(cand, sizeof cand, ", %.1f contact pairs watched (candidates) on average, at most %lu",
 		         r->nchoices ? (double)r->ncand / (double)r->nchoices : 0.0, r->maxcand);
+	char fired[48] = "";
+	if (r->p->nwhens) snprintf(fired, sizeof fired, " (%lu when blocks fired)", r->nfired);
 	char name[64];
 	snprintf(name, sizeof name, "%s%s%s%s", r->au ? "auto (" : "", S->ode ? csf_ode_method(S->ode) : "none",
 	         r->au && S->au.n ? " and " AUTO_STIFF : "", r->au ? ")" : "");
 	fprintf(err,
 	        "stats: method %s%s, %lu steps (%lu rejected), %lu right-hand side and %lu Jacobian evaluations, "
-	        "%lu events%s, %.6f s\n",
-	        name, S->fixed ? " (fixed steps)" : "", steps, rejected, r->nrhs, r->njac, r->nevents, cand,
+	        "%lu events%s%s, %.6f s\n",
+	        name, S->fixed ? " (fixed steps)" : "", steps, rejected, r->nrhs, r->njac, r->nevents, fired, cand,
 	        o->run_seconds);
 }
 
@@ -674,6 +684,55 @@ static void run_stats(const session *S, csf_opts *o, FILE *err)
 		        r->nrhs, S->gd.next);
 }
 
+/*
+ * --rows-at-events: p seen with one more column, "event", at a slot past
+ * p's memory (q's last, 0 at the start): *q shares p's tables but the
+ * memory image, the strings and the columns, its own (event_view_free).
+ * 0, or -1 when memory runs out.
+ */
+static int event_view(const csf_prog *p, csf_prog *q)
+{
+	static const char name[] = "event";
+	*q = *p;
+	q->mem0 = malloc(((size_t)p->nmem + 1) * sizeof *q->mem0);
+	q->strs = malloc((size_t)p->nstrs + sizeof name);
+	q->cols = malloc(((size_t)p->ncols + 1) * sizeof *q->cols);
+	if (!q->mem0 || !q->strs || !q->cols) return -1;
+	memcpy(q->mem0, p->mem0, p->nmem * sizeof *q->mem0);
+	q->mem0[q->nmem++] = 0;
+	memcpy(q->strs, p->strs, p->nstrs);
+	memcpy(q->strs + p->nstrs, name, sizeof name);
+	q->nstrs += sizeof name;
+	memcpy(q->cols, p->cols, p->ncols * sizeof *q->cols);
+	q->cols[q->ncols++] = (csf_col){ p->nstrs, p->nmem };
+	return 0;
+}
+
+static void event_view_free(csf_prog *q)
+{
+	free(q->mem0);
+	free(q->strs);
+	free(q->cols);
+}
+
+/*
+ * --rows-at-events (run.event_row): the row of state y at the event at t,
+ * its column event set to mark (-1: just before the event, 1: just after),
+ * whatever --every says. A write error is the run's, as a row's.
+ */
+static void event_row(run *r, double t, const double *y, double mark)
+{
+	session *S = r->event_ctx;
+	const csf_prog *p = r->p;
+	double *m = r->m;
+	m[p->tslot] = t;
+	memcpy(m + p->ystart, y, p->ny * sizeof *y);
+	(void)r->exec(p, &r->x, CSF_SEC_OUT, m, m + p->ystart, m + p->dstart); /* assertions: at the output times */
+	m[p->cols[p->ncols - 1].slot] = mark;
+	if (emit_row(S, t) && !S->werr) S->werr = errno;
+	m[p->cols[p->ncols - 1].slot] = 0;
+}
+
 /* Frees what the run allocated. */
 static void run_free(session *S)
 {
@@ -703,9 +762,18 @@ static void run_free(session *S)
 
 int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, const csf_sink *sink, FILE *err)
 {
+	csf_prog view;
+	int ev_rows = o->rows_at_events && !sink; /* (a sink's rows are as wide as the program's columns) */
+	if (ev_rows && event_view(p, &view)) {
+		event_view_free(&view);
+		fprintf(err, "error: out of memory\n");
+		return 2;
+	}
+	if (ev_rows) p = &view;
 	session S = { .r = { .p = p, .exec = exec, .max_rhs = o->max_rhs }, .out = out, .sink = sink, .init = o->init,
 	              .every = o->every > 1 ? (double)o->every : 1 };
 	S.wc.r = S.wc_stiff.r = &S.r;
+	if (ev_rows) S.r.event_row = event_row, S.r.event_ctx = &S;
 	/* --method auto (the default, but for fixed steps and large scenes: dop853) is dop853 with
 	   AUTO_STIFF beside it */
 	S.method = o->method && strcmp(o->method, "auto") != 0 ? o->method : NULL;
@@ -756,6 +824,7 @@ int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, co
 	int status = csf_run_report_stop(&S.r, &s, o->fixed, err);
 	run_stats(&S, o, err);
 	run_free(&S);
+	if (ev_rows) event_view_free(&view);
 	return csf_run_finish(out, err, status, S.werr);
 }
 

@@ -59,6 +59,13 @@ typedef struct run {
 	double stop_t; /* a 'stop when' condition ended the run at stop_t: the statement stop_src's */
 	uint32_t stop_src;
 	int stopped;
+	unsigned long nfired; /* `when` blocks fired (csf_run_whens), for --stats */
+	uint32_t cycle[2];    /* ADV_WHEN_CYCLE: the first two blocks (indices into p->whens) that fired in its last rounds */
+	int ncycle;
+	int wround;           /* the rounds in which blocks fired at the instant of the event being taken */
+	/* --rows-at-events: writes the row of the state y at an event at t, mark -1 (before it) or 1 (after); NULL: none */
+	void (*event_row)(struct run *r, double t, const double *y, double mark);
+	void *event_ctx;
 	struct guard *g; /* the stability guard, or NULL */
 	csf_ode *ode;     /* the method taking the steps (with --method auto, one of au->m) */
 	int own;          /* the integrator has its own time and state (ti, yi), apart from the rows' */
@@ -77,9 +84,13 @@ typedef struct run {
  * MAX_WORK steps (and events) in one output interval (ADV_TOO_MUCH), a run
  * that cannot get on, halted instead of hanging; a 'stop when' condition
  * became true (ADV_TERMINAL, at r->stop_t); more right-hand side
- * evaluations than r->max_rhs (ADV_BUDGET). csf_run turns it into a stop.
+ * evaluations than r->max_rhs (ADV_BUDGET); `when` blocks that set each
+ * other off at one instant without end (ADV_WHEN_CYCLE, csf_run_whens).
+ * csf_run turns it into a stop.
  */
-enum adv_status { ADV_CHATTER = CSF_ODE_HALTED + 1, ADV_TOO_MUCH, ADV_TERMINAL, ADV_BUDGET };
+enum adv_status { ADV_CHATTER = CSF_ODE_HALTED + 1, ADV_TOO_MUCH, ADV_TERMINAL, ADV_BUDGET, ADV_WHEN_CYCLE };
+/* The rounds of `when` blocks that fire at one instant, each set off by the one before, past which they are a cycle. */
+enum { WHEN_ROUNDS = 100 };
 enum { MAX_WORK = 1000000 };
 
 /*
@@ -104,6 +115,7 @@ typedef enum stop_kind {
 	STOP_BUDGET,       /* ADV_BUDGET at t: 1 */
 	STOP_CON_START,    /* the initial positions break constraint r->con_k by r->con_off: 1 */
 	STOP_CON_CONFLICT, /* constraints that contradict each other at t (r->con_k, r->con_off): 1 */
+	STOP_WHEN_CYCLE,   /* ADV_WHEN_CYCLE at t (r->cycle): 1 */
 } stop_kind;
 
 typedef struct stop {
@@ -256,6 +268,17 @@ int csf_run_guards_at(run *r, double t, const double *y, double *g);
 void csf_run_free_modes(run *r, double t, const double *y);
 int csf_run_room_for_guards(run *r, size_t ng);
 int csf_run_update_modes(run *r, double t, double *y);
+/*
+ * The `when` blocks at an event at (t, y): the EVT section on the values of
+ * an RHS evaluation there (with the modes as they are), and again after
+ * each round in which a block fired (the new values can set another off);
+ * *fired: whether one did. y takes the state variables they set. 0;
+ * CSF_ODE_STOPPED if a derivative was not finite; ADV_WHEN_CYCLE (r->cycle)
+ * when blocks fire in WHEN_ROUNDS rounds (r->wround counts them; the
+ * caller sets it to 0 at each event). At t = 0 (every prev -1)
+ * none fires: it records the conditions.
+ */
+int csf_run_whens(run *r, double t, double *y, int *fired);
 double csf_run_location_tol(const csf_prog *p);
 int csf_run_interp(run *r, csf_ode *ode, double ta, double tb, const double *yb, double s, double *out);
 int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double *y, double *te, long *which, char *msg,

@@ -41,6 +41,8 @@ static const char vm_usage[] =
 	"                 run and its assertions are those of every row\n"
 	"  --stats        steps, evaluations, time, auto's switches and the fastest time\n"
 	"                 scale on stderr\n"
+	"  --rows-at-events  a row just before and one just after each located event,\n"
+	"                 marked -1 and 1 in a last column 'event' (0 on the other rows)\n"
 	"  --progress, --no-progress  a progress line on stderr (default: on a terminal)\n"
 	"  --compare-methods  run the scene with every method and several tolerances;\n"
 	"                 print time and the difference from the most accurate run\n"
@@ -78,7 +80,8 @@ static const char exe_usage[] =
 	"Runs the CSF model compiled into this program and writes its watched variables as CSV on stdout.\n"
 	METHOD_TOL_HELP
 	"  --atol A       absolute local error bound, in the model's units (as csfvm(1))\n"
-	"  --hmax H, --fixed, --step H, --every K, --stats, --progress, --no-progress,\n"
+	"  --hmax H, --fixed, --step H, --every K, --stats, --rows-at-events, --progress,\n"
+	"  --no-progress,\n"
 	"  --compare-methods, -D NAME=VALUE, --sweep 'NAME=FROM:TO:COUNT [UNIT]',\n"
 	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, --sweep-binary, -j N,\n"
 	"  --threads N, -o FILE, --dump RUN.h5, --checkpoint FILE, --checkpoint-every S,\n"
@@ -184,6 +187,12 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		fprintf(stderr, "%s: --checkpoint and --resume continue a run's or a sweep's CSV; %s\n", prog,
 		        o.compare ? "--compare-methods runs a table of short runs"
 		                  : "-o FILE.h5 is written whole at the end (write CSV, and convert it)");
+		csf_opts_free(&o);
+		return 2;
+	}
+	if (o.rows_at_events && (h5 || sweep || o.compare)) {
+		fprintf(stderr, "%s: --rows-at-events adds rows to the CSV of one run, not to %s\n", prog,
+		        sweep ? "a sweep" : o.compare ? "--compare-methods' table" : "an HDF5 file (-o FILE.h5)");
 		csf_opts_free(&o);
 		return 2;
 	}

@@ -643,6 +643,63 @@ START_TEST(test_disassembler)
 }
 END_TEST
 
+/* A when block that swaps through its two assignments: both read the values before the event. */
+static const char *when_model = "object b: x = 0\nobject b: y = 5\nobject b: n = 0\nrule: x' = 1\n"
+                                "when x > 1:\n    n = n + y\n    y = n\ninc t till 2 s by 1 s watch n, y\n";
+
+/* The slot of property name of p's first object. */
+static uint32_t first_prop(const csf_prog *p, const char *name)
+{
+	for (uint32_t k = 0; k < p->nprops; k++)
+		if (!strcmp(csf_str(p, p->props[k].name), name)) return p->props[k].slot;
+	ck_abort_msg("no property %s", name);
+	return 0;
+}
+
+/* The EVT section: no firing at the first look (prev -1), a firing only when the condition
+   turns true, every new value from the values before; the table verified and kept by a round trip. */
+START_TEST(test_when_section)
+{
+	csf_prog p, q;
+	ck_assert_int_eq(compile_string(when_model, &p, NULL), 0);
+	ck_assert_uint_eq(p.nwhens, 1);
+	ck_assert_uint_gt(p.ncode[CSF_SEC_EVT], 0);
+	double *m = malloc(p.nmem * sizeof *m);
+	memcpy(m, p.mem0, p.nmem * sizeof *m);
+	uint32_t x = p.ystart, n = first_prop(&p, "n"), y = first_prop(&p, "y");
+	const csf_when *w = &p.whens[0];
+	ck_assert(m[w->prev] == -1 && m[w->fire] == 0);
+	/* x' = 1 from x = 2: its condition holds at the first look, which does not fire */
+	double look[][4] = { /* x, then fire, n, y after */ { 2, 0, 0, 5 }, { 0, 0, 0, 5 }, { 2, 1, 5, 0 }, { 3, 0, 5, 0 } };
+	for (size_t i = 0; i < sizeof look / sizeof look[0]; i++) {
+		m[x] = look[i][0];
+		vm_run(&p, CSF_SEC_RHS, m);
+		vm_run(&p, CSF_SEC_EVT, m);
+		ck_assert_msg(m[w->fire] == look[i][1] && m[n] == look[i][2] && m[y] == look[i][3],
+		              "look %zu at x=%g: fire %g, n %g, y %g", i, look[i][0], m[w->fire], m[n], m[y]);
+		ck_assert(m[w->prev] == (look[i][0] > 1));
+	}
+	free(m);
+	unsigned char *buf;
+	size_t len;
+	char err[256];
+	ck_assert_int_eq(csf_encode(&p, &buf, &len), 0);
+	ck_assert_msg(csf_decode(buf, len, &q, err, sizeof err) == 0, "%s", err);
+	ck_assert(q.nwhens == 1 && q.whens[0].fire == w->fire && q.whens[0].prev == w->prev && q.whens[0].src == w->src);
+	ck_assert(q.ncode[CSF_SEC_EVT] == p.ncode[CSF_SEC_EVT] &&
+	          !memcmp(q.code[CSF_SEC_EVT], p.code[CSF_SEC_EVT], p.ncode[CSF_SEC_EVT] * sizeof(uint32_t)));
+	free(buf);
+	csf_prog_free(&q);
+	defect d[] = {
+		{ &p.whens[0].src, p.nsrcs, "when block" },
+		{ &p.whens[0].fire, p.nmem, "when block" },
+		{ &p.whens[0].prev, p.nmem, "when block" },
+	};
+	expect_defects(&p, d, sizeof d / sizeof d[0]);
+	csf_prog_free(&p);
+}
+END_TEST
+
 Suite *bytecode_suite(void)
 {
 	Suite *s = suite_create("bytecode");
@@ -659,6 +716,7 @@ Suite *bytecode_suite(void)
 	tcase_add_test(tc, test_contact_broad_phase);
 	tcase_add_test(tc, test_disassembler);
 	tcase_add_test(tc, test_param_tables_verified);
+	tcase_add_test(tc, test_when_section);
 	tcase_add_loop_test(tc, test_param_set, 0, sizeof param_cases / sizeof param_cases[0]);
 	suite_add_tcase(s, tc);
 	return s;
