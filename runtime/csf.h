@@ -143,9 +143,22 @@ typedef struct csf_opts {
 	int threads;            /* --threads N: threads that share a shape's loops (0 or 1: one) */
 	const csf_overlay *init; /* initial values over p->mem0 (-D; a sweep's variant), NULL: none; not
 	                            csf_parse_opts', and not freed by csf_opts_free */
+	/* long runs (run.c, record.c, main.c) */
+	const char *checkpoint; /* --checkpoint FILE: the run's state every checkpoint_every seconds */
+	double checkpoint_every; /* --checkpoint-every S (wall time; 0: at every row), when checkpoint_every_set */
+	int checkpoint_every_set;
+	const char *resume;     /* --resume FILE: go on from that checkpoint */
+	const char *record;     /* --record FILE.json: the run record */
+	int estimate;           /* --estimate-error: a second run at a tolerance 100 times tighter */
+	double accuracy;        /* --accuracy A: tighten the tolerance until the estimate is below A (0: none) */
+	unsigned long long hash; /* the bytecode's FNV-1a hash (csf_main; 0: unknown) */
 	/* filled in by csf_run: */
 	unsigned long run_steps, run_rhs;
 	double run_seconds;
+	unsigned long run_rejected, run_jac, run_events, run_rows;
+	/* filled in by --estimate-error (main.c): the largest difference, its column and time, the tolerance */
+	double err_estimate, err_t, err_tol;
+	const char *err_column;
 } csf_opts;
 
 /*

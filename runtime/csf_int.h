@@ -9,6 +9,7 @@
 #define CSF_INT_H
 
 #include <signal.h>
+#include <time.h>
 
 #include "csf.h"
 
@@ -583,5 +584,85 @@ double csf_run_kmax(const csf_prog *p);
 
 /* Name of the i-th available ODE method (the default is 0), NULL past the last. */
 const char *csf_method_name(size_t i);
+
+/*
+ * Checkpoints (checkpoint.c): a run's state as named parts. Each module
+ * describes its state once as csf_keep calls, which write the parts (a
+ * keeper from csf_keep_write) or read them back (csf_keep_read's).
+ * csf_keep: 0, or -1 (a write failed; reading: no part name of n bytes,
+ * the reason for csf_keep_why). csf_kept: the size of part name when
+ * reading, else -1. csf_keep_commit writes the end, flushes the file to
+ * the disk, renames it over path and frees k: 0, or -1 with the reason
+ * in err (the previous checkpoint stays whole).
+ */
+typedef struct csf_keeper csf_keeper;
+int csf_keep(csf_keeper *k, const char *name, void *p, size_t n);
+long csf_kept(const csf_keeper *k, const char *name);
+int csf_keep_reading(const csf_keeper *k);
+csf_keeper *csf_keep_write(const char *path, char *err, size_t errlen);
+int csf_keep_commit(csf_keeper *k, const char *path, char *err, size_t errlen);
+csf_keeper *csf_keep_read(const char *path, char *err, size_t errlen);
+const char *csf_keep_why(const csf_keeper *k);
+void csf_keep_free(csf_keeper *k);
+/* The options a checkpoint holds a resumed run to: those that change the rows, and a sweep's (len: CSF_KEEP_OPTS). */
+enum { CSF_KEEP_OPTS = 2048 };
+void csf_keep_options(const csf_opts *o, char *buf, size_t len);
+/* A checkpoint's head: the bytecode's hash, the options (optlen bytes), the output's length (-1: unknown). */
+int csf_keep_header(csf_keeper *k, unsigned long long *hash, char *opts, size_t optlen, long long *off);
+/* Reading: the head checked against this run's hash and opts (0), or -1 with the reason in err; *off. */
+int csf_keep_check(csf_keeper *k, const char *path, unsigned long long hash, const char *opts, size_t optlen,
+                   long long *off, char *err, size_t errlen);
+/* --resume: out (a regular file; else nothing is done) cut back to off bytes: 0, or -1 with the reason in err. */
+int csf_keep_output(FILE *out, long long off, const char *path, char *err, size_t errlen);
+/* The length of out after its rows are flushed (-1: not a file, or the flush failed). */
+long long csf_keep_offset(FILE *out);
+/* Saves or restores the variable x under its own expression's name. */
+#define CSF_KEEP(k, x) csf_keep((k), #x, &(x), sizeof(x))
+/* The FNV-1a hash of n bytes (a checkpoint's and a record's name of the bytecode). */
+uint64_t csf_hash_bytes(const unsigned char *b, size_t n);
+/* The state of the contacts and of the constraints, for a checkpoint (broad.c, constraint.c). */
+int csf_contacts_keep(csf_contacts *c, csf_keeper *k);
+int csf_cons_keep(csf_cons *cs, csf_keeper *k);
+
+/*
+ * The run record (record.c): its fields, in order, each a string, a number
+ * or a list of strings; written as JSON (--record) and as HDF5 attributes
+ * of the same names (csf_h5_record).
+ */
+enum { CSF_RF_STR, CSF_RF_NUM, CSF_RF_STRS };
+enum { CSF_RECORD_MAX = 40 };
+typedef struct csf_rfield {
+	const char *name;
+	int kind;
+	const char *s;
+	double x;
+	const char *const *v;
+	int nv;
+} csf_rfield;
+typedef struct csf_record {
+	csf_rfield f[CSF_RECORD_MAX];
+	int n;
+	char hash[24], start[32], end[32], host[256];
+	char *cmd; /* the command line (owned) */
+} csf_record;
+/* The record of a run of p with options o (and what csf_run filled in), from source, by the command line argv,
+   from start to end, that ended with exit status; its strings are o's, argv's and its own (csf_record_free). */
+void csf_record_make(csf_record *rec, const csf_prog *p, const csf_opts *o, const char *source, int argc, char **argv,
+                     time_t start, time_t end, int status);
+void csf_record_free(csf_record *rec);
+/* The record as a JSON object to path (- : stderr): 0, or -1 with the reason in err. */
+int csf_record_json(const csf_record *rec, const char *path, char *err, size_t errlen);
+/* The record's fields as root attributes of h (replacing those of the same names): 0, or -1. */
+int csf_h5_record(csf_h5 *h, const csf_record *rec);
+/* The command line as a shell reads it (malloc'd; NULL when memory runs out). */
+char *csf_command_line(int argc, char **argv);
+
+/*
+ * --estimate-error, --accuracy A (estimate.c): csf_run_sink of p with o,
+ * and the estimate of its global error against a run 100 times tighter,
+ * on err (and in o->err_*); with o->accuracy, at the tolerance that meets
+ * it. The exit status (1 when the accuracy cannot be met).
+ */
+int csf_estimate_run(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, const csf_sink *fwd, FILE *err);
 
 #endif

@@ -33,7 +33,8 @@
 #     csfview's pages and plots (tests/view/; in headless Chromium where it
 #     is installed, else a SKIP line), parameters and sweeps (tests/sweep/; MPI
 #     where Open MPI is installed, else a SKIP line), HDF5 output of a run and
-#     of a sweep (tests/h5/; read with h5py where it is installed, else a SKIP line).
+#     of a sweep (tests/h5/; read with h5py where it is installed, else a SKIP line), long runs
+#     (tests/longrun/: checkpoints, the run record, error estimates).
 #     hostile sources refused in bounded time and memory, failed writes that
 #     keep what was there, and the fuzz targets' regression corpus
 #     (tests/fuzz/regress/, replayed by fuzz-replay-csfc, fuzz-replay-csfb and
@@ -544,6 +545,19 @@ t_sweep() {
 	grep '^SKIP' "$T/suite.out"
 }
 
+# 5q. long runs: checkpoints killed by SIGKILL at ten instants and resumed byte for byte (an orbit,
+#     the bouncing ball, a pile, a generated program), SIGTERM, the refusals, the run record in JSON
+#     and HDF5 (tests/longrun/check.sh); the error estimate against the exact error of three scenes
+#     and --accuracy 1e-6 with every method (tests/longrun/estimate.sh)
+t_longrun() {
+	suite "long runs" timeout "$LIMIT" sh tests/longrun/check.sh "$CSFC" "$CSFVM" "$T" "$B"
+	grep '^SKIP' "$T/suite.out"
+}
+t_estimate() {
+	suite "error estimates" timeout "$LIMIT" sh tests/longrun/estimate.sh "$CSFC" "$CSFVM" "$T"
+	grep '^SKIP' "$T/suite.out"
+}
+
 # 5p. HDF5 output: -o RUN.h5 and --dump against the CSV, byte for byte; read with h5py (SKIP without
 #     it), bit for bit; a failed assertion, write errors, SIGINT and SIGKILL; a generated program's
 #     file (tests/h5/check.sh)
@@ -806,6 +820,8 @@ done
 	echo when
 	echo arrays
 	echo sweep
+	echo longrun
+	echo estimate
 	echo h5
 	echo h5_sweep
 	echo python

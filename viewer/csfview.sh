@@ -6,7 +6,7 @@
 #   csfview [-o PAGE.html] [--svg FILE.svg] [--png FILE.png] [--term]
 #           [--scene MODEL.csf] [--title TEXT] [--note TEXT] [--log FILE]
 #           [--plane X,Y,Z,NX,NY,NZ]... [--radius OBJECT=R]... [--max-rows N]
-#           [--decimated ROWS,K] [CSV | RUN.h5]
+#           [--decimated ROWS,K] [--record RUN.json] [CSV | RUN.h5]
 #
 # Design: a POSIX shell script over installed pieces. The CSV (a file, or
 # standard input copied to a temporary file; an HDF5 file of csfvm -o RUN.h5
@@ -47,7 +47,7 @@ usage() {
 usage: csfview [-o PAGE.html] [--svg FILE.svg] [--png FILE.png] [--term]
                [--scene MODEL.csf] [--title TEXT] [--note TEXT] [--log FILE]
                [--plane X,Y,Z,NX,NY,NZ]... [--radius OBJECT=R]... [--max-rows N]
-               [--decimated ROWS,K] [CSV | RUN.h5]
+               [--decimated ROWS,K] [--record RUN.json] [CSV | RUN.h5]
 Reads a run's CSV, or its HDF5 file (csfvm -o RUN.h5; standard input when
 none or -), and writes an HTML page (to PAGE.html, or to standard output
 when no other output is asked for).
@@ -68,6 +68,7 @@ scene=
 title=
 note=
 log=
+record=
 planes=
 radii=
 maxrows=10000
@@ -82,7 +83,7 @@ while [ $# -gt 0 ]; do
 	case $1 in
 	-h | --help) usage ;;
 	--term) term=1; shift; continue ;;
-	-o | --output | --svg | --png | --scene | --title | --note | --log | --plane | --radius | --max-rows | --decimated)
+	-o | --output | --svg | --png | --scene | --title | --note | --log | --plane | --radius | --max-rows | --decimated | --record)
 		[ $# -ge 2 ] || die "$1 needs a value"
 		case $1 in
 		-o | --output) out=$2 ;;
@@ -92,6 +93,7 @@ while [ $# -gt 0 ]; do
 		--title) title=$2 ;;
 		--note) note=$2 ;;
 		--log) log=$2 ;;
+		--record) record=$2; [ -r "$record" ] || die "cannot read $record" ;;
 		--plane)
 			echo "$2" | grep -Eq '^ *[-+.0-9eE]+( *, *[-+.0-9eE]+){5} *$' ||
 				die "--plane $2: give X,Y,Z,NX,NY,NZ (a point in metres and a normal)"
@@ -378,6 +380,16 @@ till=$(sed -n 's/^till //p' "$T/scene")
 # HTML text: & < > " escaped
 esc() { sed -e 's/&/\&amp;/g' -e 's/</\&lt;/g' -e 's/>/\&gt;/g' -e 's/"/\&quot;/g'; }
 
+# The run record (csfvm --record RUN.json, one field a line): a table of its fields, HTML-escaped
+: >"$T/record.html"
+if [ -n "$record" ]; then
+	grep -q '"bytecode_hash"' "$record" || die "$record is not a run record of csfvm --record"
+	sed -n 's/^  "\([a-z_]*\)": \(.*\)$/\1	\2/p' "$record" | sed 's/,$//' | esc | awk -F'\t' '
+		BEGIN { print "<table>" }
+		{ v = $2; if (v ~ /^&quot;.*&quot;$/) v = substr(v, 7, length(v) - 12); print "<tr><td>" $1 "</td><td>" v "</td></tr>" }
+		END { print "</table>" }' >"$T/record.html"
+fi
+
 page() {
 	for f in "$JSDIR/three/three.min.js" "$JSDIR/three/examples/js/controls/OrbitControls.js" \
 		"$JSDIR/dygraphs/dygraph.min.js" "$JSDIR/dygraphs/dygraph.min.css"; do
@@ -512,7 +524,7 @@ page() {
 	TITLE=$(printf '%s' "$title" | esc) NOTE=$(esc <"$T/note") awk \
 		-v css="$JSDIR/dygraphs/dygraph.min.css" -v three="$JSDIR/three/three.min.js" \
 		-v orbit="$JSDIR/three/examples/js/controls/OrbitControls.js" -v dygraph="$JSDIR/dygraphs/dygraph.min.js" \
-		-v meta="$T/meta.js" -v data="$T/data.csv" -v view="$VIEWDIR/view.js" '
+		-v meta="$T/meta.js" -v data="$T/data.csv" -v view="$VIEWDIR/view.js" -v record="$T/record.html" '
 		function put(f,    l) {
 			while ((getline l < f) > 0) if (l !~ /sourceMappingURL=/) print l
 			close(f)
@@ -527,6 +539,7 @@ page() {
 		/^<!--@META@-->$/ { put(meta); next }
 		/^<!--@DATA@-->$/ { put(data); next }
 		/^<!--@VIEW@-->$/ { put(view); next }
+		/^<!--@RECORD@-->$/ { put(record); next }
 		{ print subst(subst($0, "@TITLE@", ENVIRON["TITLE"]), "@NOTE@", ENVIRON["NOTE"]) }' "$VIEWDIR/view.html"
 }
 

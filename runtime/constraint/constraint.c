@@ -490,3 +490,13 @@ int csf_cons_state(const csf_cons *cs, const double *m, uint32_t k, double *g, d
 	*gd = vsize > 0 ? s * m[c->gd] / vsize : 0;
 	return s != 0;
 }
+
+/* The modes of the one-sided constraints, the rows dropped and the last multipliers. */
+int csf_cons_keep(csf_cons *cs, csf_keeper *k)
+{
+	if (!cs) return 0;
+	size_t n = (size_t)cs->n + 1;
+	return csf_keep(k, "cons.taut", cs->taut, n) | csf_keep(k, "cons.drop", cs->drop, n) |
+	       csf_keep(k, "cons.mu", cs->mu, n * sizeof *cs->mu) | csf_keep(k, "cons.mut", cs->mut, n * sizeof *cs->mut) |
+	       CSF_KEEP(k, cs->failed);
+}

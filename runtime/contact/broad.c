@@ -455,3 +455,35 @@ void csf_contacts_commit(csf_contacts *c, const double *m, double *const *g, con
 	c->cap = c->capnext, c->capnext = cap;
 	c->n = c->nnext;
 }
+
+/*
+ * The candidates (each one's place in the order of pairs and its work
+ * values; the slots follow from the place) and the sweep's order and axis,
+ * which the next search starts from.
+ */
+int csf_contacts_keep(csf_contacts *c, csf_keeper *k)
+{
+	if (!c) return 0;
+	const csf_prog *p = c->p;
+	int bad = CSF_KEEP(k, c->n) | CSF_KEEP(k, c->axis) | CSF_KEEP(k, c->nsap);
+	if (bad || grow((void **)&c->pairs, &c->cap, (size_t)c->n + 1, sizeof *c->pairs)) return -1;
+	if (c->nsap) bad |= csf_keep(k, "contacts.sap", c->sap, c->nsap * sizeof *c->sap);
+	for (uint32_t i = 0; i < c->n && !bad; i++) {
+		cpair *q = &c->pairs[i];
+		char name[48];
+		uint32_t at[3] = { q->rule, q->k0, q->k1 };
+		snprintf(name, sizeof name, "contacts.pair.%u", i);
+		bad |= csf_keep(k, name, at, sizeof at);
+		snprintf(name, sizeof name, "contacts.w.%u", i);
+		bad |= csf_keep(k, name, q->w, sizeof q->w);
+		if (bad || at[0] >= p->ncrules || at[1] >= p->crules[at[0]].n0 || at[2] >= p->crules[at[0]].n1) return -1;
+		const csf_crule *cr = &p->crules[at[0]];
+		const csf_cbody *bi = &p->cbodies[p->cmembers[cr->first0 + at[1]]];
+		const csf_cbody *bj = &p->cbodies[p->cmembers[cr->first1 + at[2]]];
+		q->rule = at[0], q->k0 = at[1], q->k1 = at[2];
+		q->plane = bj->plane != CSF_CB_POINT;
+		q->anchor = bj->plane == CSF_CB_ANCHOR;
+		q->si = bi->s, q->sj = bj->s;
+	}
+	return bad ? -1 : 0;
+}

@@ -16,11 +16,13 @@
  * builds with -ffp-contract=off).
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <gsl/gsl_errno.h>
 
+#include "csf_int.h"
 #include "erk.h"
 
 void csf_erk_combine(size_t dim, const double *w, int n, double *const *k, double *out)
@@ -238,4 +240,24 @@ void csf_erk_last_step(const gsl_odeiv2_step *s, double *t0, double *h)
 	const csf_erk_state *st = state_of(s);
 	*t0 = st ? st->t0 : 0;
 	*h = st ? st->h : 0;
+}
+
+int csf_erk_keep(gsl_odeiv2_step *s, struct csf_keeper *k, const char *tag)
+{
+	csf_erk_state *st = state_of(s);
+	if (!st) return 0;
+	size_t n = st->dim ? st->dim : 1, nf = 3 + (size_t)st->m->nd;
+	char name[64];
+	snprintf(name, sizeof name, "%s.erk", tag);
+	/* the nk stages, the extension's vectors, y0 and y1: one block (ysum, after them, is work) */
+	int bad = csf_keep(k, name, st->k[0], ((size_t)st->m->nk + nf + 2) * n * sizeof(double));
+	double v[2] = { st->t0, st->h };
+	int flags[4] = { st->ok, st->have_end, st->stages, st->dense };
+	snprintf(name, sizeof name, "%s.erk.t0h", tag);
+	bad |= csf_keep(k, name, v, sizeof v);
+	snprintf(name, sizeof name, "%s.erk.flags", tag);
+	bad |= csf_keep(k, name, flags, sizeof flags);
+	st->t0 = v[0], st->h = v[1];
+	st->ok = flags[0], st->have_end = flags[1], st->stages = flags[2], st->dense = flags[3];
+	return bad;
 }

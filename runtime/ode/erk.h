@@ -82,4 +82,8 @@ int csf_erk_dense_prepare(gsl_odeiv2_step *s, const gsl_odeiv2_system *sys, int 
 void csf_erk_dense_eval(const gsl_odeiv2_step *s, double theta, double *y, int some);
 void csf_erk_last_step(const gsl_odeiv2_step *s, double *t0, double *h);
 
+/* Saves or restores the last step's stages, extension and flags under tag (a checkpoint): 0 or -1. */
+struct csf_keeper;
+int csf_erk_keep(gsl_odeiv2_step *s, struct csf_keeper *k, const char *tag);
+
 #endif

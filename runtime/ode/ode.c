@@ -360,3 +360,37 @@ void csf_ode_free(csf_ode *o)
 	if (o->drv) gsl_odeiv2_driver_free(o->drv);
 	free(o);
 }
+
+/* Saves or restores one value of o under "tag.name". */
+static int keep_in(struct csf_keeper *k, const char *tag, const char *name, void *p, size_t n)
+{
+	char full[96];
+	snprintf(full, sizeof full, "%s.%s", tag, name);
+	return csf_keep(k, full, p, n);
+}
+#define KEEP_IN(k, tag, x) keep_in((k), (tag), #x, &(x), sizeof(x))
+
+int csf_ode_keep(csf_ode *o, struct csf_keeper *k, const char *tag)
+{
+	if (!o) return 0;
+	size_t n = o->n ? o->n : 1;
+	int bad = KEEP_IN(k, tag, o->fixed_steps) | KEEP_IN(k, tag, o->past_steps) | KEEP_IN(k, tag, o->past_rejected) |
+	          keep_in(k, tag, "live", o->live, n * sizeof *o->live) | KEEP_IN(k, tag, o->live_set) |
+	          KEEP_IN(k, tag, o->acc_t) | KEEP_IN(k, tag, o->acc_ok) | KEEP_IN(k, tag, o->hcap);
+	/* verlet's derivative at the current point, when it has one */
+	int has_acc = o->acc != NULL;
+	bad |= KEEP_IN(k, tag, has_acc);
+	if (has_acc && work(o)) return -1;
+	if (has_acc) bad |= keep_in(k, tag, "acc", o->acc, n * sizeof *o->acc);
+	if (o->drv) {
+		gsl_odeiv2_driver *d = o->drv;
+		bad |= KEEP_IN(k, tag, d->h) | KEEP_IN(k, tag, d->n) | KEEP_IN(k, tag, d->e->count) |
+		       KEEP_IN(k, tag, d->e->failed_steps) | KEEP_IN(k, tag, d->e->last_step) |
+		       keep_in(k, tag, "e.y0", d->e->y0, o->n * sizeof(double)) |
+		       keep_in(k, tag, "e.yerr", d->e->yerr, o->n * sizeof(double)) |
+		       keep_in(k, tag, "e.dydt_in", d->e->dydt_in, o->n * sizeof(double)) |
+		       keep_in(k, tag, "e.dydt_out", d->e->dydt_out, o->n * sizeof(double));
+		if (o->m->dense) bad |= csf_erk_keep(d->s, k, tag);
+	}
+	return bad ? -1 : 0;
+}

@@ -190,6 +190,15 @@ double csf_ode_next_step(const csf_ode *o);
 /* The method's name. */
 const char *csf_ode_method(const csf_ode *o);
 
+/*
+ * Saves or restores under tag what o keeps from one step to the next (a
+ * checkpoint, csf_keep: its step counts, error scales, next step, and a
+ * dense method's last step): 0, or -1. The multistep methods' history and
+ * bsimp's own state are GSL's and are not kept (csf_ode_keeps).
+ */
+struct csf_keeper;
+int csf_ode_keep(csf_ode *o, struct csf_keeper *k, const char *tag);
+
 void csf_ode_free(csf_ode *o);
 
 #endif

@@ -20,6 +20,7 @@
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_errno.h>
 
+#include "csf_int.h"
 #include "spectrum.h"
 
 enum { ARNOLDI = 16, MAXIT = 40 };
@@ -231,4 +232,11 @@ int csf_spectrum_ratio(csf_spectrum *s, csf_jvp_fn f, void *ctx, double zero, do
 	if (ev) gsl_vector_complex_free(ev);
 	if (A) gsl_matrix_free(A);
 	return st;
+}
+
+int csf_spectrum_keep(csf_spectrum *s, struct csf_keeper *k)
+{
+	if (!s) return 0;
+	return csf_keep(k, "spectrum.v", s->v, (s->n ? s->n : 1) * sizeof *s->v) | CSF_KEEP(k, s->warm) |
+	       CSF_KEEP(k, s->nprod);
 }

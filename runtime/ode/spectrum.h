@@ -56,4 +56,8 @@ int csf_spectrum_ratio(csf_spectrum *s, csf_jvp_fn f, void *ctx, double zero, do
 /* The products computed so far. */
 unsigned long csf_spectrum_products(const csf_spectrum *s);
 
+/* Saves or restores the power iteration's direction and counts (a checkpoint): 0, or nonzero. */
+struct csf_keeper;
+int csf_spectrum_keep(csf_spectrum *s, struct csf_keeper *k);
+
 #endif

@@ -240,7 +240,7 @@ static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
 	   it stops when the bracket is tol wide or its ends are adjacent doubles (the spacing of
 	   doubles at the event's time can exceed tol: 1.1e-13 s past 512 s). */
 	while (*hi - *lo > tol && nextafter(*lo, *hi) < *hi) {
-		if (csf_signal) return CSF_ODE_HALTED;
+		if (csf_signal && !r->row_end) return CSF_ODE_HALTED;
 		double c = *hi - *ghi * (*hi - *lo) / (*ghi - *glo);
 		/* the secant's point rounds to an end when the guard there is tiny (a crossing found
 		   exactly): it then moves in by tol / 4 below, which ends the search; only a point

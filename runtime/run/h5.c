@@ -529,26 +529,6 @@ static int attr_double(hid_t loc, const char *name, double x)
 	return bad ? -1 : 0;
 }
 
-/* The command line as a shell reads it: an argument but of safe characters in single quotes. */
-static char *command_line(int argc, char **argv)
-{
-	size_t n = 1;
-	for (int i = 0; i < argc; i++) n += 4 * strlen(argv[i]) + 3;
-	char *s = malloc(n), *q = s;
-	for (int i = 0; s && i < argc; i++) {
-		const char *a = argv[i];
-		int plain = *a && strspn(a, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./=:+,-@%") == strlen(a);
-		if (i) *q++ = ' ';
-		if (!plain) *q++ = '\'';
-		for (; *a; a++)
-			if (*a == '\'' && !plain) memcpy(q, "'\\''", 4), q += 4;
-			else *q++ = *a;
-		if (!plain) *q++ = '\'';
-	}
-	if (s) *q = '\0';
-	return s;
-}
-
 /*
  * The root's attributes: what ran, and the CSV header's fields; a sweep's (npar > 0) header
  * begins with its swept parameters' heads, and the attribute swept names their datasets.
@@ -558,7 +538,7 @@ static int root_attrs(hid_t f, const csf_prog *p, const csf_opts *o, const char 
 {
 	size_t np = (size_t)npar;
 	const char **cols = malloc((np + p->ncols + 1) * sizeof *cols);
-	char *cl = command_line(argc, argv);
+	char *cl = csf_command_line(argc, argv);
 	int bad = !cols || !cl;
 	if (!bad) {
 		for (size_t k = 0; k < np; k++) cols[k] = heads[k];
@@ -1135,6 +1115,19 @@ int csf_h5_sweep_variant(csf_h5 *h, size_t i, const double *par, int status, con
 	S->nrows[h->nb] = (long long)nrows;
 	S->num[h->nb] = (long long)i + 1;
 	return ++h->nb == R->cv || i + 1 == R->nvariants ? flush_variants(h) : 0;
+}
+
+int csf_h5_record(csf_h5 *h, const csf_record *rec)
+{
+	int bad = 0;
+	for (int i = 0; i < rec->n && !bad; i++) {
+		const csf_rfield *x = &rec->f[i];
+		if (H5Aexists(h->file, x->name) > 0 && H5Adelete(h->file, x->name) < 0) return -1;
+		bad = x->kind == CSF_RF_STR   ? attr_str(h->file, x->name, x->s)
+		      : x->kind == CSF_RF_NUM ? attr_double(h->file, x->name, x->x)
+		                              : attr_strs(h->file, x->name, x->v, x->nv);
+	}
+	return bad;
 }
 
 int csf_h5_close(csf_h5 *h)

@@ -113,6 +113,27 @@ int csf_parse_opts_to(int argc, char **argv, int first, csf_opts *o, int *pos, i
 				return 2;
 			}
 			o->every = (unsigned long)k;
+		} else if (csf_opt_value(argc, argv, &i, "--checkpoint-every", &v)) {
+			char *end;
+			errno = 0;
+			o->checkpoint_every = strtod(v, &end);
+			if (end == v || *end || errno || !(o->checkpoint_every >= 0) || !isfinite(o->checkpoint_every)) {
+				fprintf(err, "%s: --checkpoint-every needs a number of seconds, 0 or more, not '%s'\n", argv[0], v);
+				return 2;
+			}
+			o->checkpoint_every_set = 1;
+		} else if (csf_opt_value(argc, argv, &i, "--checkpoint", &v)) {
+			o->checkpoint = v;
+		} else if (csf_opt_value(argc, argv, &i, "--resume", &v)) {
+			o->resume = v;
+		} else if (csf_opt_value(argc, argv, &i, "--record", &v)) {
+			o->record = v;
+		} else if (strcmp(a, "--estimate-error") == 0) {
+			o->estimate = 1;
+		} else if (csf_opt_value(argc, argv, &i, "--accuracy", &v)) {
+			if (positive(err, argv[0], v, "--accuracy", " (the largest error allowed, in the columns' units)", &o->accuracy))
+				return 2;
+			o->estimate = 1;
 		} else if (strcmp(a, "--fixed") == 0) {
 			o->fixed = 1;
 		} else if (strcmp(a, "--stats") == 0) {

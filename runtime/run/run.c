@@ -45,6 +45,17 @@ typedef struct session {
 	int werr;           /* a row's write error (errno) */
 	time_t flushed;     /* the second of the clock at which out was last flushed */
 	char msg[256];      /* the integrator's words */
+	/* --checkpoint, --resume (checkpoint below) */
+	const char *ck;     /* the checkpoint's file, or NULL */
+	double ck_every;    /* seconds of wall time between checkpoints */
+	struct timespec ck_last; /* when the last was written */
+	int ck_warned;      /* a checkpoint could not be written (said once) */
+	char ck_opts[CSF_KEEP_OPTS]; /* the options a checkpoint holds the run to */
+	unsigned long long hash; /* the bytecode's */
+	csf_keeper *resume; /* the checkpoint read, until the run is set up from it */
+	double k0, trow;    /* the first row to compute, and the time of the row before it */
+	long long ck_off;   /* the output's length at the checkpoint resumed (-1: unknown) */
+	char ck_err[1400];  /* why a resume failed */
 } session;
 
 static stop stop_kind_only(stop_kind kind)
@@ -433,15 +444,145 @@ static stop run_row(session *S, double k, double tk, int *last)
 	return stop_kind_only(STOP_END);
 }
 
+/*
+ * Checkpoints (--checkpoint, --resume). A checkpoint is taken at a row
+ * boundary, after row k at time tk has been written: everything the run
+ * keeps from one row to the next (keep_state), which is every array and
+ * value that the next rows depend on, so that a run set up as usual and
+ * then given that state continues exactly as the run that wrote it did.
+ * What the set-up computes again the same way (the program, the method's
+ * tables, work vectors) is not saved.
+ */
+static int keep_state(session *S, csf_keeper *k)
+{
+	run *r = &S->r;
+	const csf_prog *p = r->p;
+	guard *gd = &S->gd;
+	size_t ny = p->ny ? p->ny : 1;
+	int bad = csf_keep(k, "m", r->m, (p->nmem ? p->nmem : 1) * sizeof *r->m) |
+	          csf_keep(k, "y", S->y, ny * sizeof *S->y);
+	/* the run's counts, the last event, the integrator's own time */
+	bad |= CSF_KEEP(k, r->fail_t) | CSF_KEEP(k, r->fail) | CSF_KEEP(k, r->nrhs) | CSF_KEEP(k, r->njac) |
+	       CSF_KEEP(k, r->nevents) | CSF_KEEP(k, r->last) | CSF_KEEP(k, r->last_src) | CSF_KEEP(k, r->pending) |
+	       CSF_KEEP(k, r->last_h) | CSF_KEEP(k, r->dense) | CSF_KEEP(k, r->ti) | CSF_KEEP(k, r->nchoices) |
+	       CSF_KEEP(k, r->ncand) | CSF_KEEP(k, r->maxcand) | CSF_KEEP(k, r->stop_t) | CSF_KEEP(k, r->stop_src) |
+	       CSF_KEEP(k, r->stopped) | CSF_KEEP(k, r->own) | CSF_KEEP(k, r->rows) | CSF_KEEP(k, r->ng) |
+	       CSF_KEEP(k, S->fixed_h);
+	if (bad) return -1;
+	if (r->own && r->yi) bad |= csf_keep(k, "yi", r->yi, ny * sizeof *r->yi);
+	/* the events' guards and derivative at the integrator's point; the contacts and constraints */
+	if (S->events && csf_keep_reading(k) && csf_run_room_for_guards(r, r->ng ? r->ng : 1)) return -1;
+	if (S->events && r->ga) bad |= csf_keep(k, "ga", r->ga, (r->ng ? r->ng : 1) * sizeof *r->ga);
+	if (r->fa) bad |= csf_keep(k, "fa", r->fa, ny * sizeof *r->fa);
+	bad |= csf_contacts_keep(r->cs, k) | csf_cons_keep(r->cons, k);
+	/* the stability guard */
+	bad |= CSF_KEEP(k, gd->t) | CSF_KEEP(k, gd->due) | CSF_KEEP(k, gd->stiff_hits) | CSF_KEEP(k, gd->h) |
+	       CSF_KEEP(k, gd->next) | CSF_KEEP(k, gd->next_step) | CSF_KEEP(k, gd->steps) | CSF_KEEP(k, gd->checks) |
+	       CSF_KEEP(k, gd->seconds) | CSF_KEEP(k, gd->last) | CSF_KEEP(k, gd->at_max) | CSF_KEEP(k, gd->rho_max) |
+	       CSF_KEEP(k, gd->ratio) | CSF_KEEP(k, gd->ratio_rho) | CSF_KEEP(k, gd->hrho) | CSF_KEEP(k, gd->hlim_rho) |
+	       CSF_KEEP(k, gd->ratio_exact) | CSF_KEEP(k, gd->have_ratio) | CSF_KEEP(k, gd->auto_ratio) |
+	       CSF_KEEP(k, gd->aside) | CSF_KEEP(k, gd->warned) | CSF_KEEP(k, gd->warned_short) | CSF_KEEP(k, gd->nexact) | CSF_KEEP(k, gd->smin) |
+	       csf_spectrum_keep(gd->sp, k);
+	if (gd->y) bad |= csf_keep(k, "guard.y", gd->y, 4 * ny * sizeof *gd->y);
+	/* --method auto's pair, and the integrators */
+	bad |= CSF_KEEP(k, S->au.cur) | CSF_KEEP(k, S->au.want) | CSF_KEEP(k, S->au.soft) | CSF_KEEP(k, S->au.n) |
+	       CSF_KEEP(k, S->au.at) | csf_ode_keep(S->ode, k, "ode") | csf_ode_keep(S->au.m[1], k, "stiff");
+	if (S->au.cur < 0 || S->au.cur > 1 || (S->au.cur && !S->au.m[1])) return -1;
+	r->ode = r->au ? S->au.m[S->au.cur] : S->ode;
+	return bad ? -1 : 0;
+}
+
+/* Writes the checkpoint after row k at tk (a failure is said once, and the run goes on). */
+static void checkpoint(session *S, double k, double tk)
+{
+	char err[600];
+	if (S->rows) { /* the row thread's rows written (it starts again after the checkpoint) */
+		int e = csf_rowthread_stop(S->rows);
+		S->rows = NULL;
+		if (e && !S->werr) S->werr = e;
+	}
+	long long off = csf_keep_offset(S->out); /* where the next row begins */
+	csf_keeper *w = csf_keep_write(S->ck, err, sizeof err);
+	if (w) {
+		double row[2] = { k, tk };
+		csf_keep_header(w, &S->hash, S->ck_opts, sizeof S->ck_opts, &off);
+		csf_keep(w, "row", row, sizeof row);
+		keep_state(S, w);
+		if (csf_keep_commit(w, S->ck, err, sizeof err)) w = NULL;
+	}
+	if (!w && !S->ck_warned) {
+		csf_run_progress_off(&S->r);
+		fprintf(S->r.err, "warning: %s (the run goes on; the last checkpoint written stays as it was)\n", err);
+		S->ck_warned = 1;
+	}
+	if (S->out && !S->werr) S->rows = csf_rowthread_start(S->r.p, S->out);
+	clock_gettime(ROW_CLOCK, &S->ck_last);
+}
+
+/* Is a checkpoint due (the interval past since the last)? */
+static int checkpoint_due(const session *S)
+{
+	struct timespec now;
+	if (!S->ck) return 0;
+	if (S->ck_every <= 0) return 1;
+	clock_gettime(ROW_CLOCK, &now);
+	return csf_run_seconds(S->ck_last, now) >= S->ck_every;
+}
+
+/*
+ * --resume: the checkpoint read and checked against this run (the
+ * bytecode, the options); its row and output position. 0, or -1 with the
+ * reason in S->ck_err.
+ */
+static int resume_open(session *S, const char *path)
+{
+	char err[400];
+	double row[2];
+	if (!(S->resume = csf_keep_read(path, err, sizeof err))) {
+		snprintf(S->ck_err, sizeof S->ck_err, "--resume: %s", err);
+		return -1;
+	}
+	if (csf_keep_check(S->resume, path, S->hash, S->ck_opts, sizeof S->ck_opts, &S->ck_off, S->ck_err,
+	                   sizeof S->ck_err))
+		return -1;
+	if (csf_keep(S->resume, "row", row, sizeof row)) {
+		snprintf(S->ck_err, sizeof S->ck_err, "--resume: %s does not fit this run: %s", path, csf_keep_why(S->resume));
+		return -1;
+	}
+	S->k0 = row[0] + 1;
+	S->trow = row[1];
+	return 0;
+}
+
+/* --resume: the run, set up as usual, takes the checkpoint's state. */
+static stop resume_state(session *S, const char *path)
+{
+	stop s = stop_kind_only(STOP_END);
+	/* the output goes on where the checkpoint's rows ended: a file is cut back to that length,
+	   dropping the rows the killed run wrote after it; into a pipe, the rows after it are written */
+	if (keep_state(S, S->resume) || csf_keep_output(S->out, S->ck_off, path, S->ck_err, sizeof S->ck_err)) {
+		if (!S->ck_err[0])
+			snprintf(S->ck_err, sizeof S->ck_err, "--resume: %s does not fit this run: %s", path,
+			         csf_keep_why(S->resume)[0] ? csf_keep_why(S->resume) : "its state is damaged");
+		s = stop_kind_only(STOP_SETUP);
+		s.msg = S->ck_err;
+	}
+	csf_keep_free(S->resume);
+	S->resume = NULL;
+	return s;
+}
+
 /* The rows t_k = k*by, k = 0 .. kmax, each after the advance to it. */
 static stop run_rows(session *S)
 {
 	run *r = &S->r;
 	const csf_prog *p = r->p;
-	double t = 0;
+	double t = S->trow;
 	int last = 0;
-	for (double k = 0; k <= S->kmax; k++) {
+	for (double k = S->k0; k <= S->kmax; k++) {
 		double tk = k * p->by;
+		/* a checkpoint after the last row: when due, and when a signal ends the run */
+		if (k > S->k0 && S->ck && (csf_signal || checkpoint_due(S))) checkpoint(S, k - 1, t);
 		if (csf_signal) return stop_kind_only(STOP_SIGNAL); /* after the last whole row */
 		if (r->prog) csf_run_progress(r, t);
 		if (S->ode && tk > t) {
@@ -525,6 +666,7 @@ static void run_stats(const session *S, csf_opts *o, FILE *err)
 	o->run_steps = steps;
 	o->run_rhs = r->nrhs;
 	o->run_seconds = csf_run_seconds(S->t0, t1);
+	o->run_rejected = rejected, o->run_jac = r->njac, o->run_events = r->nevents, o->run_rows = r->rows;
 	if (o->stats) stats_run(S, o, steps, rejected, err);
 	if (o->stats && S->au.n) stats_auto(S, err);
 	if (o->stats && r->g && S->gd.checks) stats_guard(S, err);
@@ -643,16 +785,38 @@ int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, co
 	S.r.start = S.r.drawn = S.t0;
 	S.r.prog = o->progress == CSF_PROGRESS_ON || (o->progress == CSF_PROGRESS_AUTO && isatty(fileno(err)));
 
-	stop s = run_alloc(&S);
+	/* --checkpoint (--resume alone goes on writing to its file), --resume */
+	S.ck = o->checkpoint ? o->checkpoint : o->resume;
+	S.ck_every = o->checkpoint_every_set ? o->checkpoint_every : CSF_CHECKPOINT_EVERY;
+	S.ck_last = S.t0;
+	S.r.row_end = S.ck != NULL;
+	S.hash = o->hash;
+	csf_keep_options(o, S.ck_opts, sizeof S.ck_opts);
+	stop s = stop_kind_only(STOP_END);
+	if (o->resume && resume_open(&S, o->resume)) {
+		s = stop_kind_only(STOP_SETUP);
+		s.msg = S.ck_err;
+	}
+	if (s.kind == STOP_END) s = run_alloc(&S);
 	S.r.x.pool = csf_pool_new(p, o->threads); /* NULL: one thread (the same result) */
 	if (s.kind == STOP_END) s = run_method(&S, o);
+	if (s.kind == STOP_END && S.ck && S.ode && csf_ode_history(S.ode)) {
+		snprintf(S.ck_err, sizeof S.ck_err,
+		         "--checkpoint: %s keeps a history of past steps inside GSL that a checkpoint cannot hold, and a "
+		         "resumed run would not repeat the rows; use a one-step method (auto, dop853, rk8pd, bsimp, ...)",
+		         csf_ode_method(S.ode));
+		s = stop_kind_only(STOP_SETUP);
+		s.msg = S.ck_err;
+	}
 	if (s.kind == STOP_END) {
-		if (out) csf_run_write_header(p, out);
+		if (out && !o->resume) csf_run_write_header(p, out);
 		if (out) S.rows = csf_rowthread_start(p, out);
 		s = run_guard(&S, o);
 	}
 	if (s.kind == STOP_END) s = run_start(&S);
+	if (s.kind == STOP_END && S.resume) s = resume_state(&S, o->resume);
 	if (s.kind == STOP_END) s = run_rows(&S);
+	csf_keep_free(S.resume);
 	if (S.rows) { /* every row handed over written, before the run's last words */
 		int e = csf_rowthread_stop(S.rows);
 		if (e && !S.werr) S.werr = e;

@@ -74,6 +74,7 @@ typedef struct run {
 	int prog, shown;  /* the progress line: drawn, and on the screen now */
 	struct timespec start, drawn; /* when the run started, and the line was last drawn */
 	unsigned long rows; /* rows written */
+	int row_end;        /* a signal ends the run at the next row, not within a step (--checkpoint: one there) */
 } run;
 
 /*
@@ -126,6 +127,9 @@ typedef struct stop {
 	const char *method; /* STOP_NO_CONTACTS */
 	const char *msg;    /* STOP_SETUP, STOP_CHATTER, STOP_FAILED: the integrator's words */
 } stop;
+
+/* The default of --checkpoint-every: a checkpoint a minute (seconds of wall time). */
+#define CSF_CHECKPOINT_EVERY 60.0
 
 /* A look costs at most 1 / LOOK_EVERY of the evaluations before it (but for those a fixed step needs). */
 enum { LOOK_EVERY = 100 };

@@ -64,6 +64,15 @@ static const char vm_usage[] =
 	"                 (a dataset per watched value; a sweep's with a leading axis of\n"
 	"                 variants, the swept values on it), else the CSV\n"
 	"  --dump RUN.h5  print the rows of a file of -o RUN.h5 as the run's (or sweep's) CSV\n"
+	"  --checkpoint FILE  the run's whole state to FILE every --checkpoint-every S\n"
+	"                 seconds of wall time (default 60), and when a signal ends it\n"
+	"  --resume FILE  go on from that checkpoint: csfvm --resume FILE M.csfb >> RUN.csv\n"
+	"                 gives the uninterrupted run's bytes\n"
+	"  --record RUN.json  the run record: version, bytecode hash, options, host,\n"
+	"                 times, --stats's figures, exit status\n"
+	"  --estimate-error  the largest difference of each column from a run 100 times\n"
+	"                 tighter, on stderr: the run's global error\n"
+	"  --accuracy A   tighten the tolerance until that estimate is at most A\n"
 	"  --help, --version\n";
 
 static const char exe_usage[] =
@@ -75,8 +84,8 @@ static const char exe_usage[] =
 	"  --no-progress,\n"
 	"  --compare-methods, -D NAME=VALUE, --sweep 'NAME=FROM:TO:COUNT [UNIT]',\n"
 	"  --sweep-file FILE, --sweep-summary EXPR, --out-dir DIR, --sweep-binary, -j N,\n"
-	"  --threads N,\n"
-	"  -o FILE, --dump RUN.h5: as csfvm(1)\n"
+	"  --threads N, -o FILE, --dump RUN.h5, --checkpoint FILE, --checkpoint-every S,\n"
+	"  --resume FILE, --record RUN.json, --estimate-error, --accuracy A: as csfvm(1)\n"
 	"  --help, --version\n";
 
 /* Text (no NUL or other control bytes but white space in the first 4 KiB), as a .csf file is. */
@@ -140,6 +149,7 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 {
 	csf_opts o;
 	int pos[1], npos;
+	time_t start = time(NULL);
 	char usage[4096];
 	if (image) snprintf(usage, sizeof usage, exe_usage, argv[0]);
 	else snprintf(usage, sizeof usage, "%s", vm_usage);
@@ -164,6 +174,19 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		                : o.out_dir ? "%s: --out-dir writes a CSV per variant; -o FILE.h5 writes one file of them all\n"
 		                            : "%s: --sweep-binary writes doubles after a CSV header; -o FILE.h5 writes HDF5\n",
 		        prog);
+		csf_opts_free(&o);
+		return 2;
+	}
+	if (o.estimate && (sweep || o.compare || o.checkpoint || o.resume)) {
+		fprintf(stderr, "%s: --estimate-error and --accuracy run one scene twice or more; not %s\n", prog,
+		        sweep ? "a sweep" : o.compare ? "with --compare-methods" : "with --checkpoint or --resume");
+		csf_opts_free(&o);
+		return 2;
+	}
+	if ((o.checkpoint || o.resume) && (o.compare || h5)) {
+		fprintf(stderr, "%s: --checkpoint and --resume continue a run's or a sweep's CSV; %s\n", prog,
+		        o.compare ? "--compare-methods runs a table of short runs"
+		                  : "-o FILE.h5 is written whole at the end (write CSV, and convert it)");
 		csf_opts_free(&o);
 		return 2;
 	}
@@ -204,6 +227,7 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		csf_opts_free(&o);
 		return 2;
 	}
+	o.hash = csf_hash_bytes(image ? image : buf, len);
 	free(buf);
 	/* -D's values: an overlay over the program's initial memory, which stays as loaded */
 	csf_overlay init = { 0 };
@@ -223,7 +247,7 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 	int h5run = h5 && !sweep && !csf_quiet;
 	if (h5run && !(h = csf_h5_create(o.output, &p, &o, origin.model, argc, argv, err, sizeof err)))
 		fprintf(stderr, "%s: %s\n", prog, err);
-	else if (!h5 && o.output && strcmp(o.output, "-") && !csf_quiet && !(out = fopen(o.output, "w")))
+	else if (!h5 && o.output && strcmp(o.output, "-") && !csf_quiet && !(out = fopen(o.output, o.resume ? "r+" : "w")))
 		fprintf(stderr, "%s: cannot write %s: %s\n", prog, o.output, strerror(errno));
 	if ((h5run && !h) || !out) {
 		csf_overlay_free(&init);
@@ -239,7 +263,19 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 	csf_sink sink = { csf_h5_row, h, NULL };
 	if (sweep) st = csf_sweep_main(&p, exec, &o, prog, h5 ? &origin : NULL, out, stderr);
 	else if (o.compare) st = csf_compare_methods(&p, exec, &init, out, stderr);
+	else if (o.estimate) st = csf_estimate_run(&p, exec, &o, h ? NULL : out, h ? &sink : NULL, stderr);
 	else st = h ? csf_run_sink(&p, exec, &o, NULL, &sink, stderr) : csf_run(&p, exec, &o, out, stderr);
+	/* the run record: --record FILE.json, and -o FILE.h5's attributes */
+	if (o.record || h) {
+		csf_record rec;
+		csf_record_make(&rec, &p, &o, origin.model, argc, argv, start, time(NULL), st);
+		if (h && csf_h5_record(h, &rec)) fprintf(stderr, "%s: cannot write the run record into %s\n", prog, o.output);
+		if (o.record && csf_record_json(&rec, o.record, err, sizeof err)) {
+			fprintf(stderr, "%s: --record: %s\n", prog, err);
+			if (!st) st = 2;
+		}
+		csf_record_free(&rec);
+	}
 	/* the rows kept and the file closed: every row written survives a run that failed */
 	if ((h && csf_h5_close(h)) || (out != stdout && fclose(out) && st != 2)) {
 		fprintf(stderr, "error: cannot write output: %s\n", strerror(errno));

@@ -449,6 +449,66 @@ static void sweep_free(csf_sweep *S)
 	csf_overlay_free(&S->init);
 }
 
+/* The sweep's place: the variants written, the header, the worst status so far. */
+static int keep_sweep(csf_sweep *S, csf_keeper *k)
+{
+	unsigned long long taken = S->taken;
+	int bad = csf_keep(k, "sweep.taken", &taken, sizeof taken) | CSF_KEEP(k, S->header_done) | CSF_KEEP(k, S->status);
+	S->taken = S->first = (size_t)taken;
+	return bad || taken > S->nvar ? -1 : 0;
+}
+
+void csf_sweep_checkpoint(csf_sweep *S)
+{
+	struct timespec now;
+	clock_gettime(CLOCK_MONOTONIC, &now);
+	double dt = (double)(now.tv_sec - S->ck_last.tv_sec) + 1e-9 * (double)(now.tv_nsec - S->ck_last.tv_nsec);
+	/* (a signal: the variant just written may be cut short, and the last checkpoint stands) */
+	if (csf_signal || dt < S->ck_every) return;
+	char err[600];
+	long long off = csf_keep_offset(S->out);
+	unsigned long long hash = S->o.hash;
+	csf_keeper *w = csf_keep_write(S->ck, err, sizeof err);
+	if (w) {
+		csf_keep_header(w, &hash, S->ck_opts, sizeof S->ck_opts, &off);
+		keep_sweep(S, w);
+		if (csf_keep_commit(w, S->ck, err, sizeof err)) w = NULL;
+	}
+	if (!w && !S->ck_warned) {
+		fprintf(S->err, "warning: %s (the sweep goes on; the last checkpoint written stays as it was)\n", err);
+		S->ck_warned = 1;
+	}
+	clock_gettime(CLOCK_MONOTONIC, &S->ck_last);
+}
+
+/*
+ * --checkpoint, --resume of a sweep written as one stream (CSV, summaries,
+ * --sweep-binary): a checkpoint after each variant written, when due, holds
+ * how many are; a resumed sweep cuts the output back to their end and runs
+ * the rest. 0, or -1 (reported).
+ */
+static int sweep_resume(csf_sweep *S, const csf_opts *o)
+{
+	char err[1400];
+	S->ck = o->checkpoint ? o->checkpoint : o->resume;
+	S->ck_every = o->checkpoint_every_set ? o->checkpoint_every : 60;
+	clock_gettime(CLOCK_MONOTONIC, &S->ck_last);
+	csf_keep_options(o, S->ck_opts, sizeof S->ck_opts);
+	if (S->out_dir || S->h5rows || csf_sweep_distribute)
+		return csf_sweep_err(S, "--checkpoint and --resume continue a sweep written as one stream, not %s",
+		                     S->out_dir ? "--out-dir's files" : S->h5rows ? "-o FILE.h5" : "under MPI");
+	if (!o->resume) return 0;
+	long long off = -1;
+	csf_keeper *k = csf_keep_read(o->resume, err, sizeof err);
+	int bad = !k || csf_keep_check(k, o->resume, o->hash, S->ck_opts, sizeof S->ck_opts, &off, err, sizeof err);
+	if (k && !bad && keep_sweep(S, k))
+		bad = 1, snprintf(err, sizeof err, "--resume: %s does not fit this sweep: %s", o->resume, csf_keep_why(k));
+	if (!bad && csf_keep_output(S->out, off, o->resume, err, sizeof err)) bad = 1;
+	csf_keep_free(k);
+	if (bad) fprintf(S->err, "error: %s%s\n", k ? "" : "--resume: ", err);
+	return bad ? -1 : 0;
+}
+
 int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const char *prog, const csf_h5_origin *h5,
                    FILE *out, FILE *err)
 {
@@ -456,6 +516,7 @@ int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const
 	                .binary = o->sweep_binary, .h5rows = h5 != NULL };
 	S.o.progress = CSF_PROGRESS_OFF;
 	S.o.stats = 0;
+	S.o.checkpoint = S.o.resume = NULL; /* the sweep's, not each variant's */
 	int st = 2;
 	if (o->sweep_file && parse_file(&S, o->sweep_file)) goto out;
 	for (int k = 0; k < o->nsweeps; k++)
@@ -500,6 +561,7 @@ int csf_sweep_main(const csf_prog *p, csf_exec_fn exec, const csf_opts *o, const
 		fputc('\n', S.index);
 	}
 	if (h5 && !csf_quiet && !(S.h5 = h5_create(&S, h5))) goto out;
+	if ((o->checkpoint || o->resume) && sweep_resume(&S, o)) goto out;
 	long jobs = o->jobs > 0 ? o->jobs : sysconf(_SC_NPROCESSORS_ONLN);
 	if (jobs < 1) jobs = 1;
 	if ((size_t)jobs > S.nvar) jobs = (long)S.nvar;

@@ -42,7 +42,7 @@ static int read_all(int fd, void *buf, size_t n)
 /* Runs every variant here, in order. */
 int csf_sweep_run_serial(csf_sweep *S)
 {
-	for (size_t i = 0; i < S->nvar && !csf_signal; i++) {
+	for (size_t i = S->first; i < S->nvar && !csf_signal; i++) {
 		size_t len = 0;
 		unsigned char *m = csf_sweep_run(S, i, &len);
 		int r = csf_sweep_take(S, i, m, len);
@@ -124,7 +124,7 @@ int csf_sweep_run_forked(csf_sweep *S, int nw)
 		w[started] = (worker){ pid, t[1], r[0], 0 };
 	}
 	if (started == 0) bad = csf_sweep_err(S, "cannot start worker processes: %s", strerror(errno));
-	size_t next = 0, written = 0, batch = S->nvar / ((size_t)(started ? started : 1) * 32);
+	size_t next = S->first, written = S->first, batch = S->nvar / ((size_t)(started ? started : 1) * 32);
 	batch = batch < 1 ? 1 : batch > 64 ? 64 : batch;
 	for (int k = 0; k < started && !bad; k++)
 		for (int q = 0; q < 2; q++) bad = send_task(S, &w[k], &next, batch);

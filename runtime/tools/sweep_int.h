@@ -38,7 +38,17 @@ struct csf_sweep {
 	int status, header_done;
 	csf_overlay init; /* o->init (-D's values), then the variant's: the run's initial values over p's */
 	size_t ninit;     /* how many of them are -D's */
+	/* --checkpoint, --resume: a checkpoint after a variant written, every ck_every seconds (sweep.c) */
+	const char *ck;
+	double ck_every;
+	struct timespec ck_last;
+	int ck_warned;
+	char ck_opts[CSF_KEEP_OPTS];
+	size_t first;     /* the first variant to run (--resume: the first not written) */
 };
+
+/* sweep.c: after variant S->taken - 1 written, a checkpoint when one is due (or a signal ends the sweep) */
+void csf_sweep_checkpoint(csf_sweep *S);
 
 /* message: u64 index, u32 status, u64 text length, u64 diagnostics length, the text, the diagnostics */
 enum { MSG_HEAD = 28 };

@@ -291,6 +291,7 @@ int csf_sweep_take(csf_sweep *S, size_t i, const unsigned char *m, size_t len)
 		S->status = 2;
 		return -1;
 	}
+	if (S->ck) csf_sweep_checkpoint(S);
 	return 0;
 }
 
