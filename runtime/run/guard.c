@@ -167,7 +167,8 @@ static void warn_stiff(run *r, csf_ode *ode, double t, double h, const csf_eigs 
 
 /*
  * Warning: an adaptive method's steps of h at t, more than SHORT_STEPS times
- * shorter than the fastest time scale of the scene's dynamics (1/rho), with
+ * shorter than the fastest time scale of the scene's dynamics (1/rho) and
+ * than the caps on a step (the output interval by, --hmax), with
  * more than SHORT_LEFT of them to go (and SHORT_LEFT / 100 taken, so that
  * the first steps' growth is over): the error control, not stability,
  * holds them. Either the scene changes faster than its own dynamics (a fast
@@ -275,7 +276,7 @@ int csf_run_guard_check(run *r, csf_ode *ode, double t, const double *y, double 
 	}
 out:; /* a label before a declaration: C11 needs a statement */
 	if (looked && !g->fixed && !g->warned_short && g->steps >= SHORT_LEFT / 100 && h > 0 && e.rho > 0 &&
-	    h * e.rho * SHORT_STEPS < 1 && (r->tend - t) / h > SHORT_LEFT)
+	    h * e.rho * SHORT_STEPS < 1 && h * SHORT_STEPS < g->hcap && (r->tend - t) / h > SHORT_LEFT)
 		warn_short(r, ode, t, h, &e);
 	/* the next look: after LOOK_EVERY times this one's cost in evaluations; with fixed steps,
 	   sooner as h rho nears the method's least limit on either axis (the direction of the

@@ -187,6 +187,7 @@ static stop run_guard(session *S, csf_opts *o)
 		gd->user_step = o->step;
 		gd->vfrac = sqrt((o->tol > 0 ? o->tol : csf_method_tol("verlet")) / 1e-4);
 		gd->detect_stiff = !S->fixed && csf_ode_explicit(ode);
+		gd->hcap = o->hmax > 0 && o->hmax < p->by ? o->hmax : p->by;
 		gd->stats = o->stats;
 	}
 	if (gd->check_step || gd->auto_step || gd->detect_stiff || gd->stats) {

@@ -205,6 +205,7 @@ typedef struct guard {
 	double aside;              /* auto: the evaluations of --stats's own ratios, left out of the schedule */
 	int warned; /* of stiffness */
 	int warned_short; /* of steps far shorter than the scene's time scale */
+	double hcap;      /* the least cap on a step: by, or --hmax (warn_short: steps far below it) */
 } guard;
 
 typedef struct watch_ctx { run *r; csf_ode *ode; } watch_ctx;

@@ -17,7 +17,8 @@
 #  - --compare-methods on the stiff scene: an exact reference, auto and bsimp
 #    rows that agree with it, rk8pd's rows over budget;
 #  - steps held a thousand times below the scene's time scale by the error control
-#    (a chain at rest far from the origin) draw one warning; --atol 1e-9 runs it exactly.
+#    (a chain at rest far from the origin) draw one warning; --atol 1e-9 runs it exactly;
+#    steps held by the output interval (rows every 1e-4 s) draw none.
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3
 pass=0 fail=0
@@ -157,6 +158,13 @@ if [ $st -eq 0 ] && [ ! -s "$T/st.err" ] && awk -F, 'function abs(x) { return x 
 		n++ }
 	END { exit n != 11 }' "$T/st.csv"
 then ok; else bad "chain at rest --atol 1e-9: exit $st, $(head -n 1 "$T/st.err")"; fi
+# ... and steps held by the output interval are not: the parachute (a when block, so steps of at
+# most by) with rows every 1e-4 s for 15 s, 150001 rows, no warning
+sed 's/^inc t till 60 s by 0.5 s/inc t till 15 s by 0.0001 s/' examples/parachute.csf >"$T/chute.csf"
+"$CSFC" "$T/chute.csf" -o "$T/st_chute.csfb" || bad "the parachute does not compile"
+run chute
+if [ $st -eq 0 ] && [ ! -s "$T/st.err" ] && [ "$(rows)" -eq 150001 ]
+then ok; else bad "parachute, rows every 1e-4 s: exit $st, $(rows) rows, $(head -n 1 "$T/st.err")"; fi
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
