@@ -29,6 +29,16 @@ PY=/usr/bin/python3
 pass=0 fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+# the ball under --checkpoint into $T/c, killed with SIGKILL after its first checkpoint; its rows in $T/part.csv
+killed_after_checkpoint() {
+	rm -f "$T/c"
+	"$KVM" --checkpoint "$T/c" --checkpoint-every 0.005 "$T/ball.csfb" >"$T/part.csv" &
+	pid=$!
+	n=0
+	while [ ! -f "$T/c" ] && [ $n -lt 3000 ]; do sleep 0.01; n=$((n + 1)); done
+	kill -KILL $pid 2>/dev/null
+	wait $pid
+}
 # kill.sh's tally into ours
 kills() {
 	sh "$HERE/kill.sh" "$@" >"$T/kill.out" 2>&1
@@ -55,13 +65,7 @@ kills "$KVM" "$T" sweep-j2 "$T/bb.csfb" -j 2 --sweep 'ball.cr=0.1:0.8:30'
 # a generated program: its own kill test; a checkpoint of csfvm goes on in it (the same bytecode)
 kills "$T/ball-exe" "$T" ball-exe ""
 "$CSFVM" "$T/ball.csfb" >"$T/full.csv"
-rm -f "$T/c"
-"$KVM" --checkpoint "$T/c" --checkpoint-every 0.005 "$T/ball.csfb" >"$T/part.csv" & # killed after its first checkpoint
-pid=$!
-n=0
-while [ ! -f "$T/c" ] && [ $n -lt 3000 ]; do sleep 0.01; n=$((n + 1)); done
-kill -KILL $pid 2>/dev/null
-wait $pid
+killed_after_checkpoint
 if [ -f "$T/c" ] && "$T/ball-exe" --resume "$T/c" >>"$T/part.csv" 2>"$T/err" && cmp -s "$T/full.csv" "$T/part.csv"; then ok
 else bad "csfvm's checkpoint resumed by the generated program: $(head -n 1 "$T/err") $(cmp "$T/full.csv" "$T/part.csv" 2>&1)"; fi
 
@@ -94,13 +98,7 @@ refuse "a sweep's --out-dir" "not --out-dir's files" "$CSFVM" --checkpoint "$T/c
 refuse "--compare-methods" "compare-methods runs a table" "$CSFVM" --checkpoint "$T/c2" --compare-methods "$T/ball.csfb"
 refuse "-o FILE.h5" "-o FILE.h5 is written whole" "$CSFVM" --checkpoint "$T/c2" -o "$T/x.h5" "$T/ball.csfb"
 refuse "msbdf" "msbdf keeps a history of past steps" "$CSFVM" --method msbdf --checkpoint "$T/c2" "$T/orbit.csfb"
-rm -f "$T/c"
-"$KVM" --checkpoint "$T/c" --checkpoint-every 0.005 "$T/ball.csfb" >"$T/part.csv" & # killed after its first checkpoint
-pid=$!
-n=0
-while [ ! -f "$T/c" ] && [ $n -lt 3000 ]; do sleep 0.01; n=$((n + 1)); done
-kill -KILL $pid 2>/dev/null
-wait $pid
+killed_after_checkpoint
 refuse "another model" "belongs to another model" "$CSFVM" --resume "$T/c" "$T/orbit.csfb"
 refuse "other options" "written by a run with other options" "$CSFVM" --resume "$T/c" --tol 1e-9 "$T/ball.csfb"
 refuse "other -D" "written by a run with other options" "$CSFVM" --resume "$T/c" -D ball.cr=0.4 "$T/ball.csfb"
