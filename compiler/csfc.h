@@ -32,8 +32,9 @@ void *xmalloc(size_t n);
 void *xcalloc(size_t n, size_t size);
 void *xrealloc(void *p, size_t n);
 void xoom(void) __attribute__((noreturn));
-/* Everything allocated after a mark is released by arena_release (temporary work). */
-typedef struct ArenaMark { void *blocks; char *bump, *bump_end; } ArenaMark;
+/* Everything allocated after a mark is released by arena_release (temporary work, or a model
+   resolved again), with the sources loaded since (data files: they live in the arena). */
+typedef struct ArenaMark { void *blocks; char *bump, *bump_end; void **src_v; int src_n, src_cap; } ArenaMark;
 ArenaMark arena_mark(void);
 void arena_release(ArenaMark m);
 
@@ -45,7 +46,7 @@ int vec_has(const Vec *a, const void *x);
 
 /* A string-keyed hash map (keys are not copied). */
 typedef struct Map { char **keys; void **vals; size_t cap, n; } Map;
-void *map_get(Map *m, const char *k);
+void *map_get(const Map *m, const char *k);
 void map_put(Map *m, char *k, void *v);
 
 /* ---- sources and diagnostics ---- */

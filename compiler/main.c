@@ -14,6 +14,7 @@
 #include "sema.h"
 #include "gen.h"
 #include "csf_int.h"
+#include "bytecode.h"
 #include "emit_c.h"
 #include "explain.h"
 #include "cone.h"
@@ -214,10 +215,11 @@ static int compile(const cli *c, csf_prog *p)
 	if (!strcmp(in, "-")) ((Source *)sources.v[0])->path = "<stdin>";
 	Stmt *stmts = parse_file(0);
 	if (diag_errors) return 1;
+	ArenaMark mark = arena_mark();
 	Model *M = sema_run(stmts, NULL);
 	if (diag_errors) return 1;
 	if (!c->keep_all) {
-		M = cone_leave_out(stmts, M);
+		M = cone_leave_out(stmts, M, mark);
 		cone_idle_states(M);
 	}
 	if (gen_program(M, p)) {
@@ -232,6 +234,12 @@ static int compile(const cli *c, csf_prog *p)
 	if (c->explain) {
 		explain_model(M, stdout);
 		csf_params_list(p, stdout);
+	}
+	if (p->nmem > CSFB_RUNS_MAX) {
+		fprintf(stderr, "csfc: error: %s needs %lu doubles of memory, more than the %lu a bytecode file holds\n", in,
+		        (unsigned long)p->nmem, (unsigned long)CSFB_RUNS_MAX);
+		csf_prog_free(p);
+		return 1;
 	}
 	char err[256];
 	if (csf_verify(p, err, sizeof err)) {

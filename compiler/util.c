@@ -76,7 +76,7 @@ void *xalloc(size_t n)
 	return p;
 }
 
-ArenaMark arena_mark(void) { return (ArenaMark){ blocks, bump, bump_end }; }
+ArenaMark arena_mark(void) { return (ArenaMark){ blocks, bump, bump_end, sources.v, sources.n, sources.cap }; }
 
 void arena_release(ArenaMark m)
 {
@@ -89,6 +89,9 @@ void arena_release(ArenaMark m)
 	}
 	bump = m.bump;
 	bump_end = m.bump_end;
+	sources.v = m.src_v; /* vec_push copies on growth: the table as it was is intact */
+	sources.n = m.src_n;
+	sources.cap = m.src_cap;
 	if (bump) memset(bump, 0, (size_t)(end - bump)); /* xalloc hands out zeroed memory */
 }
 
@@ -364,7 +367,7 @@ static size_t str_hash(const char *s)
 	return h;
 }
 
-void *map_get(Map *m, const char *k)
+void *map_get(const Map *m, const char *k)
 {
 	if (!m->cap) return NULL;
 	for (size_t i = str_hash(k) & (m->cap - 1);; i = (i + 1) & (m->cap - 1)) {

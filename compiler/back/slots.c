@@ -67,7 +67,7 @@ uint32_t var_slot(Gen *G, Var *v)
 		return base;
 	}
 	for (int q = 0; q < S->n; q++) {
-		Var *m = map_get(&S->members[q]->props_by_name, v->name);
+		Var *m = prop_of_obj(S->members[q], v->name);
 		m->slot = (int)(base + (uint32_t)q * w);
 		memcpy(G->mem + m->slot, m->init, w * sizeof(double));
 	}

@@ -279,9 +279,10 @@ static void compile(Doc *d, char **out, size_t *outlen)
 	diag_out = f;
 	S.file = src_add_n(d->path, d->text, d->len);
 	Stmt *stmts = parse_file(S.file);
+	ArenaMark mark = arena_mark();
 	Model *M = diag_errors ? NULL : sema_run(stmts, NULL);
 	if (M && !diag_errors) {
-		M = cone_leave_out(stmts, M);
+		M = cone_leave_out(stmts, M, mark);
 		cone_idle_states(M);
 		csf_prog p;
 		if (!gen_program(M, &p)) lint_model(M);

@@ -247,11 +247,17 @@ void cone_idle_states(Model *M)
  * depends on (cone_dropped), resolved again, with a warning for each (the
  * first three; then how many more); M itself if every object is needed.
  */
-Model *cone_leave_out(Stmt *stmts, Model *M)
+Model *cone_leave_out(Stmt *stmts, Model *M, ArenaMark mark)
 {
-	char *drop = cone_dropped(M);
-	Model *P = drop ? sema_run(stmts, drop) : NULL;
-	if (!P) return M;
+	const char *left = cone_dropped(M);
+	if (!left) return M;
+	size_t n = (size_t)M->objects.n + 1;
+	char *drop = memcpy(xmalloc(n), left, n);
+	arena_release(mark);
+	Model *P = sema_run(stmts, drop);
+	free(drop);
+	/* left out, they make an error: M again (it resolved without a diagnostic: silently again) */
+	if (!P) return sema_run(stmts, NULL);
 	int shown = 0;
 	for (int i = 0; i < P->objects.n; i++) {
 		Object *o = P->objects.v[i];

@@ -16,7 +16,9 @@ void cone_idle_states(Model *M);
 
 /* The model without the objects that nothing watched, asserted or stopped on depends on, resolved
    again from stmts, with a warning for each (the first three; then how many more); M itself if
-   every object is needed (csfc, and csfc --lsp for its warnings). */
-Model *cone_leave_out(Stmt *stmts, Model *M);
+   every object is needed (csfc, and csfc --lsp for its warnings). M was resolved from stmts after
+   mark: what it holds is released before the second resolution (a model of many objects takes
+   most of the memory csfc needs: it is not held twice). */
+Model *cone_leave_out(Stmt *stmts, Model *M, ArenaMark mark);
 
 #endif

@@ -140,7 +140,7 @@ static int find_bodies(Constraint *K)
 		int pos = v->kind == V_PROP && !strcmp(v->name, "pos") && v->isvec;
 		if (pos && v->state) {
 			for (size_t k = 0; k < sizeof body_props / sizeof body_props[0]; k++) {
-				Var *p = prop_of(v->obj, body_props[k]);
+				Var *p = prop_of_obj(v->obj, body_props[k]);
 				if (!p || !p->isvec != (k == 2)) {
 					error_at(K->st->loc, "constrained object '%s' is not a mass point: it has no %s '%s' "
 					         "(object %s: mass_point)", v->obj->name, k == 2 ? "scalar" : "vector",
@@ -148,14 +148,14 @@ static int find_bodies(Constraint *K)
 					return 0;
 				}
 			}
-			if (!prop_of(v->obj, "v")->state) {
+			if (!prop_of_obj(v->obj, "v")->state) {
 				error_at(K->st->loc, "constrained object '%s' has no velocity integrated ('rule: pos' = v' "
 				         "and 'rule: v' = a', from mechanics/rules)", v->obj->name);
 				return 0;
 			}
 			vec_push(&K->bodies, v->obj);
 			vec_push(&K->pos, v);
-			vec_push(&K->vel, prop_of(v->obj, "v"));
+			vec_push(&K->vel, prop_of_obj(v->obj, "v"));
 			continue;
 		}
 		if (v->state || v->det) {
@@ -196,7 +196,7 @@ static int derive(Constraint *K)
 	if (D.failed) return 0;
 	K->cr = NULL; /* the least cr of its objects', 1 if none has one */
 	for (int i = 0; i < K->nbind; i++) {
-		Var *cr = prop_of(K->bind[i], "cr");
+		Var *cr = prop_of_obj(K->bind[i], "cr");
 		if (!cr || cr->isvec) continue;
 		RExpr *v = var_ref(cr, l);
 		K->cr = K->cr ? rop(CSF_OP_MIN, 0, l, K->cr, v, NULL) : v;
@@ -220,7 +220,7 @@ void constraints_finish(void)
 			continue;
 		}
 		for (int b = 0; b < K->bodies.n; b++) {
-			Var *a = prop_of(K->bodies.v[b], "a");
+			Var *a = prop_of_obj(K->bodies.v[b], "a");
 			if (!a->det)
 				error_at(K->st->loc, "constrained object '%s' has no acceleration: use mechanics/rules (a from RF = "
 				         "a.mul(m))", ((Object *)K->bodies.v[b])->name);

@@ -58,7 +58,7 @@ typedef struct CPair {
 /* Is o, with geometry geo of contact(), an anchor: a sphere without v, a and m? */
 static int is_anchor(Object *o, Var **geo)
 {
-	return !geo[1]->isvec && !prop_of(o, "v") && !prop_of(o, "a") && !prop_of(o, "m");
+	return !geo[1]->isvec && !prop_of_obj(o, "v") && !prop_of_obj(o, "a") && !prop_of_obj(o, "m");
 }
 
 /* The kind of body o, with geometry geo, as $1. */
@@ -72,7 +72,7 @@ static int body_kind(Object *o, Var **geo)
 static int contact_geo(Stmt *s, Object *o, int k, Var **geo)
 {
 	for (int i = 0; i < 2; i++)
-		if (!(geo[i] = prop_of(o, s->call->args[2 * k + i]->name))) return 0;
+		if (!(geo[i] = prop_of_obj(o, s->call->args[2 * k + i]->name))) return 0;
 	return 1;
 }
 
@@ -88,7 +88,7 @@ static int contact_body(CPair *c, int k, Var **geo, Stmt *s, int report)
 	f[CSF_CF_R] = geo[1];
 	for (int i = 0; i < CSF_CF_N; i++) {
 		if (!names[i]) continue;
-		Var *v = prop_of(o, names[i]);
+		Var *v = prop_of_obj(o, names[i]);
 		if (!v || v->isvec != (i == CSF_CF_V || i == CSF_CF_A || i == CSF_CF_FN || i == CSF_CF_FF)) {
 			if (report)
 				error_at(s->loc, "contact of %s and %s: object '%s' needs %s property '%s' (mechanics/mass_point's "

@@ -28,7 +28,6 @@ int is_predefined(const char *n)
 	return 0;
 }
 
-Var *prop_of(Object *o, const char *name) { return map_get(&o->props_by_name, name); }
 
 char *temp_key(const char *name, Object **bind, int nbind)
 {
@@ -102,7 +101,7 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 		if (g) return var_ref(C, g, l, -1);
 	}
 	if (o) {
-		Var *p = prop_of(o, name);
+		Var *p = prop_of_obj(o, name);
 		if (p) return var_ref(C, p, l, place);
 	}
 	if (C->init) {
@@ -344,7 +343,7 @@ RExpr *build(Ctx *C, Expr *x)
 		}
 		if (x->a->kind == E_NAME) {
 			Object *o = map_get(&sema.objects_by_name, x->a->name);
-			if (o && !(C->bind && prop_of(C->bind[0], x->a->name)) && !map_get(&sema.globals_by_name, x->a->name))
+			if (o && !(C->bind && prop_of_obj(C->bind[0], x->a->name)) && !map_get(&sema.globals_by_name, x->a->name))
 				return build_name(C, x, x->name, o, 1);
 		}
 		RExpr *r = build(C, x->a);

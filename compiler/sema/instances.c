@@ -69,14 +69,14 @@ static int names_apply(Expr *x, Object **bind, int nbind, const char **missing)
 		Object *o = x->kind == E_DOLLAR ? (x->n < nbind ? bind[x->n] : NULL) : bind[0];
 		if (!o) return 1;
 		if (x->kind == E_NAME && (is_predefined(x->name) || map_get(&sema.globals_by_name, x->name))) return 1;
-		if (map_get(&sema.prop_names, x->name) && !prop_of(o, x->name)) {
+		if (map_get(&sema.prop_names, x->name) && !prop_of_obj(o, x->name)) {
 			*missing = x->name;
 			return 0;
 		}
 		return 1;
 	}
 	if (x->kind == E_FIELD && x->a->kind == E_NAME && map_get(&sema.objects_by_name, x->a->name) &&
-	    (!bind[0] || !prop_of(bind[0], x->a->name)))
+	    (!bind[0] || !prop_of_obj(bind[0], x->a->name)))
 		return 1;
 	if (!names_apply(x->a, bind, nbind, missing) || !names_apply(x->b, bind, nbind, missing)) return 0;
 	for (int i = 0; i < x->nargs; i++)
@@ -336,7 +336,7 @@ int determined(Var *v)
 Var *sema_canon(Var *v)
 {
 	if (!v || v->kind != V_PROP || !v->obj->shape || v->obj->sidx == 0) return v;
-	Var *r = prop_of(v->obj->shape->members[0], v->name);
+	Var *r = prop_of_obj(v->obj->shape->members[0], v->name);
 	return r ? r : v;
 }
 

@@ -4,6 +4,7 @@
  * folded with the runtime's arithmetic.
  */
 #include <math.h>
+#include <stdint.h>
 #include <string.h>
 
 #include <gsl/gsl_const_mksa.h>
@@ -93,6 +94,16 @@ RExpr *const_value(Expr *x, Object *obj, const char *name, int fold, int line, i
 	return r;
 }
 
+Var *prop_of_obj(const Object *o, const char *name)
+{
+	if (o->props.n > PROPS_SCANNED) return map_get(&o->props_by_name, name);
+	for (int i = 0; i < o->props.n; i++) {
+		Var *v = o->props.v[i];
+		if (v->name == name || (v->name[0] == name[0] && !strcmp(v->name, name))) return v;
+	}
+	return NULL;
+}
+
 Object *get_object(const char *name, Loc l)
 {
 	Object *o = map_get(&sema.objects_by_name, name);
@@ -160,15 +171,33 @@ static void set_atol(Object *o, Var *p, Stmt *s)
 }
 
 /* Defines or overrides property p of o from a property statement. */
+/* The values of property statements that read nothing (no property, global or index name): the
+   same for every object, folded once for the million members of an array (a kind's defaults, a
+   value every member is given), direct-mapped by the statement. */
+#define MEMO_SIZE 256
+typedef struct FoldMemo { const Stmt *s; RExpr v; } FoldMemo;
+
+static FoldMemo *memo_of(const Stmt *s)
+{
+	if (!sema.memo) sema.memo = xalloc(MEMO_SIZE * sizeof *sema.memo);
+	return &sema.memo[((uintptr_t)s / sizeof(Stmt)) % MEMO_SIZE];
+}
+
 void set_prop(Object *o, Stmt *s, int from_kind)
 {
-	int ok;
-	Var *read;
-	/* the value's expression is folded to a constant and then not needed: one object's
-	   values take no memory from the next's */
-	ArenaMark mark = arena_mark();
-	RExpr rv = *const_value(s->value, o, s->prop, FIX_FOLDED, s->prop_loc.line, &ok, &read);
-	arena_release(mark);
+	int ok = 1;
+	Var *read = NULL;
+	FoldMemo *m = memo_of(s);
+	RExpr rv;
+	if (m->s == s) rv = m->v;
+	else {
+		/* the value's expression is folded to a constant and then not needed: one object's
+		   values take no memory from the next's */
+		ArenaMark mark = arena_mark();
+		rv = *const_value(s->value, o, s->prop, FIX_FOLDED, s->prop_loc.line, &ok, &read);
+		arena_release(mark);
+		if (ok && !read && !(sema.ivar && expr_reads_name(s->value, sema.ivar))) *m = (FoldMemo){ s, rv };
+	}
 	if (!ok) return;
 	if (s->isvec && !rv.isvec) {
 		error_at(s->value->loc, "property '%s' is declared a vector but its value is a scalar", s->prop);
@@ -184,7 +213,7 @@ void put_prop(Object *o, const char *name, Loc l, Loc at, RExpr *r, int isvec, i
 		error_at(l, "'%s' is a global constant; a property cannot have the same name", name);
 		return;
 	}
-	Var *p = prop_of(o, name);
+	Var *p = prop_of_obj(o, name);
 	if (p) {
 		if (!p->from_kind) {
 			error_at(l, "property '%s' of object '%s' is already defined", name, o->name);
@@ -214,7 +243,9 @@ void put_prop(Object *o, const char *name, Loc l, Loc at, RExpr *r, int isvec, i
 	if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
 	if (s) set_atol(o, p, s);
 	vec_push(&o->props, p);
-	map_put(&o->props_by_name, p->name, p);
+	if (o->props.n == PROPS_SCANNED + 1)
+		for (int i = 0; i < o->props.n; i++) map_put(&o->props_by_name, ((Var *)o->props.v[i])->name, o->props.v[i]);
+	else if (o->props.n > PROPS_SCANNED) map_put(&o->props_by_name, p->name, p);
 	map_put(&sema.prop_names, p->name, p);
 }
 
@@ -226,7 +257,7 @@ void apply_kind(Object *o, Stmt *s)
 		return;
 	}
 	for (Stmt *p = k->body; p; p = p->next) {
-		Var *v = prop_of(o, p->prop);
+		Var *v = prop_of_obj(o, p->prop);
 		if (!v) {
 			set_prop(o, p, 1);
 			continue;

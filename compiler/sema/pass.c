@@ -266,10 +266,12 @@ Model *sema_run(Stmt *stmts, const char *drop)
 	drop_objects = drop;
 	if (null) {
 		diag_out = null;
+		ArenaMark mark = arena_mark();
 		m = resolve(stmts, 1);
 		if (!sema.unshaped && diag_errors == errors) m->shaped = 1;
 		else {
-			why = sema.unshaped ? sema.unshaped : "";
+			why = sema.unshaped ? sema.unshaped : ""; /* a literal */
+			arena_release(mark);
 			diag_errors = errors;
 			diag_stop = stop;
 			m = NULL;

@@ -353,7 +353,7 @@ void inst_deriv(Stmt *s, Object **bind, int nbind)
 	I->isderiv = 1;
 	if (sema.shaped && !s->has_for && nbind > 1) unshape("a derivative rule over pairs ($1)");
 	I->src = sema.cur_src;
-	Var *v = prop_of(bind[0], s->eqns->lhs->name);
+	Var *v = prop_of_obj(bind[0], s->eqns->lhs->name);
 	if (!v) {
 		error_at(s->eqns->lhs->loc, "'%s' is not a property of object '%s': only properties can be integrated",
 		         s->eqns->lhs->name, bind[0]->name);
@@ -367,7 +367,7 @@ void inst_deriv(Stmt *s, Object **bind, int nbind)
 	v->state = 1;
 	v->deriv = I;
 	for (int q = 1; sema.shaped && q < bind[0]->shape->n; q++) { /* every member's is state */
-		Var *w = prop_of(bind[0]->shape->members[q], v->name);
+		Var *w = prop_of_obj(bind[0]->shape->members[q], v->name);
 		w->state = 1;
 		w->deriv = I;
 	}

@@ -66,7 +66,8 @@ struct Object {
 	Loc loc;
 	int index;
 	Vec props;       /* of Var* (V_PROP), in definition order */
-	Map props_by_name; /* the same, by name */
+	Map props_by_name; /* the same, by name, once there are more than PROPS_SCANNED (an array's
+	                      million members, of a dozen properties each, have none: prop_of_obj) */
 	Shape *shape;
 	int sidx;        /* its index among the shape's members */
 	int dropped;     /* left out: nothing watched depends on it (mid/cone.c); no rule applies to it */
@@ -223,7 +224,9 @@ Model *sema_run(Stmt *stmts, const char *drop);
 /* The variable standing for v in the code: the representative's property of v's name. */
 Var *sema_canon(Var *v);
 /* Object o's property name, or NULL. */
-static inline Var *prop_of_obj(Object *o, const char *name) { return map_get(&o->props_by_name, name); }
+Var *prop_of_obj(const Object *o, const char *name);
+/* The most properties prop_of_obj finds by a scan of Object.props, not by Object.props_by_name. */
+#define PROPS_SCANNED 16
 
 /* Is v integrated: a state variable whose derivative is not idle (mid/cone.c)? */
 static inline int var_integrated(const Var *v) { return v->state && !(v->deriv && v->deriv->idle); }

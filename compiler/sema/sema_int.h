@@ -41,6 +41,7 @@ typedef struct Sema {
 	const char *ivar;
 	long idx;
 	long iloop;             /* binding a rule that is one loop over its bindings (Stmt.loop): how many */
+	struct FoldMemo *memo;  /* set_prop's values that are the same for every object (objects.c) */
 } Sema;
 
 /* A resolution context: what an expression is built for (context.c). */
@@ -95,7 +96,6 @@ int opcode_of_func(const char *name, int *nargs);
 
 void add_unique(Vec *v, void *x);
 int is_predefined(const char *n);
-Var *prop_of(Object *o, const char *name);
 char *temp_key(const char *name, Object **bind, int nbind);
 RExpr *build(Ctx *C, Expr *x);
 

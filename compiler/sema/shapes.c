@@ -119,7 +119,7 @@ void build_shapes(Stmt *start)
 	for (int i = 0; start && i < start->watch.n; i++) {
 		WatchItem *w = start->watch.v[i];
 		Object *o = w->obj ? map_get(&sema.objects_by_name, w->obj) : NULL;
-		if (o && !prop_of(o, w->prop)) map_put(&named, o->name, o);
+		if (o && !prop_of_obj(o, w->prop)) map_put(&named, o->name, o);
 	}
 	/* a loop over neighbours needs its array's members in one shape, in index order: where they are
 	   not (some named, left out, or of other properties), its rule is one instance per binding, and

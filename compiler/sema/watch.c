@@ -24,7 +24,7 @@ static void add_col(Var *v, const char *label, int member)
  * representative's, at *member. */
 static Var *watch_var(Object *o, const char *name, int *member)
 {
-	Var *v = prop_of(o, name);
+	Var *v = prop_of_obj(o, name);
 	*member = 0;
 	if (v) return v;
 	Object *r = sema.shaped ? o->shape->members[0] : o;
