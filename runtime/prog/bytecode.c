@@ -98,6 +98,49 @@ static void put_f64(wbuf *w, double d)
 	put_u32(w, (uint32_t)(u >> 32));
 }
 
+/* The bits of double d (runs compare bits: -0.0 is not a zero, a NaN's payload is kept). */
+static uint64_t bits(double d)
+{
+	uint64_t u;
+	memcpy(&u, &d, 8);
+	return u;
+}
+
+/* How many of the n doubles from x[0] on have x[0]'s bits (at most CSFB_RUN_MAX). */
+static uint32_t run_length(const double *x, uint32_t n)
+{
+	uint32_t k = 1;
+	while (k < n && k < CSFB_RUN_MAX && bits(x[k]) == bits(x[0])) k++;
+	return k;
+}
+
+/* Is the run at x (of length k) worth its header: zeros from 2 on, another value from 3 on. */
+static int worth_a_run(const double *x, uint32_t k) { return k >= (bits(x[0]) == 0 ? 2u : 3u); }
+
+/* Writes the n doubles x as runs (bytecode.h): runs of zeros and of equal values, the rest literal. */
+static void put_runs(wbuf *w, const double *x, uint32_t n)
+{
+	uint32_t i = 0;
+	while (i < n) {
+		uint32_t k = run_length(x + i, n - i);
+		if (worth_a_run(x + i, k)) {
+			int zero = bits(x[i]) == 0;
+			put_u32(w, (uint32_t)(zero ? CSFB_RUN_ZEROS : CSFB_RUN_REPEAT) << 30 | k);
+			if (!zero) put_f64(w, x[i]);
+			i += k;
+			continue;
+		}
+		uint32_t j = i + k; /* the literals: up to the next run worth its header */
+		while (j < n && j - i < CSFB_RUN_MAX) {
+			uint32_t l = run_length(x + j, n - j);
+			if (worth_a_run(x + j, l)) break;
+			j += l < CSFB_RUN_MAX - (j - i) ? l : CSFB_RUN_MAX - (j - i);
+		}
+		put_u32(w, (uint32_t)CSFB_RUN_LITERAL << 30 | (j - i));
+		for (; i < j; i++) put_f64(w, x[i]);
+	}
+}
+
 /* Field f of p: its elements (in memory) and their count. */
 static const unsigned char *field_elems(const csf_prog *p, const csf_field *f, uint32_t *n)
 {
@@ -117,6 +160,10 @@ static void put_field(wbuf *w, const csf_prog *p, const csf_field *f)
 	double d;
 	const unsigned char *e = field_elems(p, f, &n);
 	if (f->how == CSF_FC_PREFIX) put_u32(w, n);
+	if (f->runs) {
+		put_runs(w, (const double *)(const void *)e, n);
+		return;
+	}
 	if (!f->words && !f->dbls) {
 		if (n) put(w, e, n);
 		return;
@@ -187,8 +234,37 @@ static int get_f64(rbuf *r, double *d)
 }
 
 /*
+ * Reads n doubles stored as runs into x, or (x NULL) only checks that the runs cover exactly n
+ * within the bytes left (r is not advanced then). -1 on a malformed run: kind 3, length 0, past n
+ * or past the end.
+ */
+static int get_runs(rbuf *r, double *x, uint32_t n)
+{
+	rbuf s = *r;
+	uint32_t done = 0, h;
+	while (done < n) {
+		if (get_u32(&s, &h)) return -1;
+		uint32_t kind = h >> 30, k = h & CSFB_RUN_MAX;
+		if (kind > CSFB_RUN_REPEAT || k == 0 || k > n - done) return -1;
+		if (kind == CSFB_RUN_LITERAL) {
+			if (k > s.left / 8) return -1;
+			if (!x) s.p += 8 * (size_t)k, s.left -= 8 * (size_t)k, done += k;
+			else
+				for (uint32_t j = 0; j < k; j++) get_f64(&s, &x[done++]);
+			continue;
+		}
+		double d = 0;
+		if (kind == CSFB_RUN_REPEAT && get_f64(&s, &d)) return -1;
+		for (uint32_t j = 0; x && j < k; j++) x[done + j] = d;
+		done += k;
+	}
+	if (x) *r = s;
+	return 0;
+}
+
+/*
  * Reads field f into p: its count (checked against the bytes left before
- * anything is allocated), the array, its elements.
+ * anything is allocated; a field of runs, checked by reading its runs), the array, its elements.
  */
 static int get_field(rbuf *r, csf_prog *p, const csf_field *f)
 {
@@ -202,11 +278,12 @@ static int get_field(rbuf *r, csf_prog *p, const csf_field *f)
 	} else if (f->how == CSF_FC_NY) {
 		n = p->ny;
 	}
-	if ((size_t)n > r->left / fsize) return -1;
+	if (f->runs ? n > CSFB_RUNS_MAX || get_runs(r, NULL, n) : (size_t)n > r->left / fsize) return -1;
 	if (f->how != CSF_FC_INLINE) {
 		if (!(e = malloc(n ? (size_t)n * f->size : 1))) return -1;
 		memcpy(at, &e, sizeof e);
 	}
+	if (f->runs) return get_runs(r, (double *)(void *)e, n);
 	if (fsize == 1) {
 		memcpy(e, r->p, n);
 		r->p += n;

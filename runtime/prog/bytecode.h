@@ -29,10 +29,23 @@
 #define CSF_BYTECODE_H
 
 #define CSFB_MAGIC "CSFB"
-#define CSFB_VERSION 13u
+#define CSFB_VERSION 14u
 #define CSFB_INT_PROBE 0x01020304u
 #define CSFB_FLOAT_PROBE 370.5
 #define CSFB_HEADER_SIZE 28u
+
+/*
+ * A field of doubles stored in runs (csf_field.runs: the memory image, yscale, yatol) is a sequence
+ * of runs, each a u32 header h, its kind h >> 30 and its length h & CSFB_RUN_MAX (at least 1): kind 0,
+ * that many doubles follow; 1, that many zeros (+0.0), nothing follows; 2, that many copies of the
+ * one double that follows. The runs cover the field's element count exactly. A million objects'
+ * masses, all equal, take 12 bytes; their zero accelerations 4.
+ */
+enum { CSFB_RUN_LITERAL, CSFB_RUN_ZEROS, CSFB_RUN_REPEAT };
+#define CSFB_RUN_MAX 0x3FFFFFFFu
+/* The most elements a field of runs may have (2^27 doubles, 1 GiB): a few bytes of runs cannot make
+   the loader allocate more. A model of a million objects has some 5e7. */
+#define CSFB_RUNS_MAX (1u << 27)
 
 /* CRC-32 of len bytes (the format's checksum). */
 unsigned long csf_crc32(const unsigned char *buf, size_t len);

@@ -271,10 +271,10 @@ ELEM(line_ok)
 #define U32S(nm, ptr, n, T, ok_, bad_)                                                                            \
 	{ .name = nm, .how = CSF_FC_PREFIX, .sec = -1, .words = sizeof(T) / 4, .at = offsetof(csf_prog, ptr),      \
 	  .count = offsetof(csf_prog, n), .size = sizeof(T), .ok = ok_, .bad = bad_ }
-/* One element of type T (one u32 or double) per state component. */
+/* One element of type T (one u32, or one double stored in runs) per state component. */
 #define PER_Y(nm, ptr, T, ok_, bad_)                                                                              \
 	{ .name = nm, .how = CSF_FC_NY, .sec = -1, .words = sizeof(T) == 4, .dbls = sizeof(T) == 8,                \
-	  .at = offsetof(csf_prog, ptr), .size = sizeof(T), .ok = ok_, .bad = bad_ }
+	  .runs = sizeof(T) == 8, .at = offsetof(csf_prog, ptr), .size = sizeof(T), .ok = ok_, .bad = bad_ }
 /* A field of code section s (the array ptr[s] of n[s] elements); SECTION(s): the section's three. */
 #define SEC_U32S(nm, ptr, n, T, s, ok_, bad_, check_)                                                              \
 	{ .name = nm, .how = CSF_FC_PREFIX, .sec = s, .words = sizeof(T) / 4,                                      \
@@ -289,7 +289,7 @@ const csf_field csf_fields[] = {
 	/* special: bytes */
 	{ .name = "strings", .how = CSF_FC_PREFIX, .sec = -1, .at = offsetof(csf_prog, strs),
 	  .count = offsetof(csf_prog, nstrs), .size = 1, .check = check_strings },
-	{ .name = "memory", .how = CSF_FC_PREFIX, .sec = -1, .dbls = 1, .at = offsetof(csf_prog, mem0),
+	{ .name = "memory", .how = CSF_FC_PREFIX, .sec = -1, .dbls = 1, .runs = 1, .at = offsetof(csf_prog, mem0),
 	  .count = offsetof(csf_prog, nmem), .size = sizeof(double) },
 	/* special: u32 tslot, ystart, dstart, ny, jtan in csf_prog */
 	{ .name = "layout", .how = CSF_FC_INLINE, .sec = -1, .words = 5, .at = offsetof(csf_prog, tslot), .count = 1,

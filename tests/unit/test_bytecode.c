@@ -101,6 +101,107 @@ START_TEST(test_header_checks)
 }
 END_TEST
 
+/* The bytes of the memory image's runs in an encoded program (bytecode.h): from *at, *len of them. */
+static void memory_runs(const unsigned char *buf, size_t size, size_t *at, size_t *len)
+{
+	uint32_t nstrs, nmem, h;
+	memcpy(&nstrs, buf + CSFB_HEADER_SIZE, 4);
+	size_t i = CSFB_HEADER_SIZE + 4 + nstrs;
+	memcpy(&nmem, buf + i, 4);
+	*at = i += 4;
+	for (uint32_t done = 0; done < nmem; done += h & CSFB_RUN_MAX) {
+		ck_assert(i + 4 <= size);
+		memcpy(&h, buf + i, 4);
+		i += 4 + ((h >> 30) == CSFB_RUN_LITERAL ? 8 * (size_t)(h & CSFB_RUN_MAX) : (h >> 30) == CSFB_RUN_REPEAT ? 8 : 0);
+	}
+	*len = i - *at;
+}
+
+/* The encoded program buf with nmem and its memory runs replaced by words (n of them), the file cut
+   after them if cut; payload size and CRC-32 made right, so that only the runs are wrong. */
+static unsigned char *with_runs(const unsigned char *buf, size_t size, uint32_t nmem, const uint32_t *words, size_t n,
+                                int cut, size_t *out)
+{
+	size_t at, len;
+	memory_runs(buf, size, &at, &len);
+	size_t tail = cut ? 0 : size - at - len;
+	unsigned char *b = malloc(at + 4 * n + tail);
+	memcpy(b, buf, at);
+	memcpy(b + at - 4, &nmem, 4);
+	memcpy(b + at, words, 4 * n);
+	memcpy(b + at + 4 * n, buf + at + len, tail);
+	*out = at + 4 * n + tail;
+	uint32_t plen = (uint32_t)(*out - CSFB_HEADER_SIZE), crc = (uint32_t)csf_crc32(b + CSFB_HEADER_SIZE, plen);
+	memcpy(b + 20, &plen, 4);
+	memcpy(b + 24, &crc, 4);
+	return b;
+}
+
+#define RUN(kind, n) ((uint32_t)(kind) << 30 | (uint32_t)(n))
+
+/* The memory image in runs (bytecode.h): every value back bit for bit (-0.0 is not a zero, a NaN keeps
+   its payload), zeros and equal values in runs (all zeros: one word, 8 bytes a value fewer than all
+   different), and malformed runs refused with the reason. */
+START_TEST(test_memory_runs)
+{
+	csf_prog p, q;
+	ck_assert_int_eq(compile_string(model, &p, NULL), 0);
+	uint32_t n = p.nmem;
+	ck_assert(n >= 12);
+	double *keep = p.mem0, *x = calloc(n, sizeof *x);
+	uint64_t nan = 0x7FF8000000000123ull;
+	for (uint32_t i = 0; i < n; i++) x[i] = i % 7 < 3 ? 0.0 : i % 7 < 5 ? 2.5 : (double)i;
+	x[1] = -0.0;
+	memcpy(&x[n - 1], &nan, 8);
+	p.mem0 = x;
+	unsigned char *buf, *b0, *b1;
+	size_t len, l0, l1, bad_len;
+	char err[256];
+	ck_assert_int_eq(csf_encode(&p, &buf, &len), 0);
+	ck_assert_msg(csf_decode(buf, len, &q, err, sizeof err) == 0, "%s", err);
+	ck_assert_uint_eq(q.nmem, n);
+	ck_assert(memcmp(q.mem0, x, n * sizeof *x) == 0);
+	csf_prog_free(&q);
+	/* all zeros against all different */
+	memset(x, 0, n * sizeof *x);
+	ck_assert_int_eq(csf_encode(&p, &b0, &l0), 0);
+	for (uint32_t i = 0; i < n; i++) x[i] = i + 0.5;
+	ck_assert_int_eq(csf_encode(&p, &b1, &l1), 0);
+	ck_assert_uint_eq(l1 - l0, 8 * (size_t)n);
+	size_t at, rl;
+	memory_runs(b0, l0, &at, &rl);
+	ck_assert_uint_eq(rl, 4);
+	/* malformed: a kind 3, a run of length 0, a run past nmem, runs short of it, a literal run past the
+	   end of the file, more elements than a field of runs may have */
+	static const struct { uint32_t nmem, w[3]; size_t n; int cut; } bad[] = {
+		{ 0, { RUN(3, 1) }, 1, 0 },
+		{ 0, { RUN(CSFB_RUN_ZEROS, 0) }, 1, 0 },
+		{ 1, { RUN(CSFB_RUN_ZEROS, 2) }, 1, 0 },
+		{ 2, { RUN(CSFB_RUN_ZEROS, 1) }, 1, 1 },
+		{ 0, { RUN(CSFB_RUN_LITERAL, 4), 0, 0 }, 3, 1 },
+		{ CSFB_RUNS_MAX + 1, { RUN(CSFB_RUN_ZEROS, CSFB_RUNS_MAX + 1) }, 1, 0 },
+	};
+	for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+		unsigned char *h = with_runs(buf, len, bad[i].nmem ? bad[i].nmem : n, bad[i].w, bad[i].n, bad[i].cut, &bad_len);
+		ck_assert_msg(csf_decode(h, bad_len, &q, err, sizeof err) == -1, "malformed runs %zu accepted", i);
+		ck_assert_msg(strstr(err, "malformed payload") != NULL, "malformed runs %zu: %s", i, err);
+		free(h);
+	}
+	/* the same file with its runs written again as they were is accepted (the harness is right) */
+	memory_runs(buf, len, &at, &rl);
+	unsigned char *same = with_runs(buf, len, n, (const uint32_t *)(const void *)(buf + at), rl / 4, 0, &bad_len);
+	ck_assert_uint_eq(bad_len, len);
+	ck_assert(memcmp(same, buf, len) == 0);
+	free(same);
+	free(buf);
+	free(b0);
+	free(b1);
+	free(x);
+	p.mem0 = keep;
+	csf_prog_free(&p);
+}
+END_TEST
+
 typedef struct defect { uint32_t *w; uint32_t bad; const char *why; } defect;
 
 /* Plants each defect in turn in the valid program p: csf_verify must reject it, giving the reason. */
@@ -708,6 +809,7 @@ Suite *bytecode_suite(void)
 	tcase_add_test(tc, test_load);
 	tcase_add_test(tc, test_crc32);
 	tcase_add_test(tc, test_header_checks);
+	tcase_add_test(tc, test_memory_runs);
 	tcase_add_test(tc, test_verifier);
 	tcase_add_test(tc, test_powi_verified);
 	tcase_add_test(tc, test_contact_routine);
