@@ -10,7 +10,13 @@
 #     beside nbody.c (the same arithmetic): (run - start-up) / (evaluations
 #     N (N - 1)), evaluations from nbody --stats (both take the same steps);
 #   gen_cloth.sh 30 30 (neighbour rules, each one loop): csfc, csfc --emit-c + cc, the lines of
-#     generated code, and the time per evaluation of csfvm and of the generated program.
+#     generated code, and the time per evaluation of csfvm, of the generated program and of
+#     cloth.c (the same operations, hand-written), with the generated program's ratio to cloth.c;
+#   an array of ARR_N (1e6) projectiles (tests/arrays/gen_projectiles.sh): csfc's seconds and
+#     peak memory as compiled (two members watched, the others left out) and with --keep-all,
+#     the bytecode's bytes, csfvm's start-up (--keep-all, till 0), and one evaluation of the
+#     right-hand side by the VM beside projectiles.c's loop over the same arrays (medians of
+#     ARR_REPS, and whether the derivatives are the same bits).
 # Each run once: the sizes are exact, the times are for orders of magnitude.
 set -eu
 BUILD=${BUILD:-../build}
@@ -18,6 +24,8 @@ BIN=${BIN:-bin}
 OUT=${OUT:-results}
 case $BUILD in ..//*) BUILD=${BUILD#..} ;; esac
 README=${README-README.md}
+ARR_N=${ARR_N:-1000000}
+ARR_REPS=${ARR_REPS:-11}
 CSFC=$BUILD/csfc
 CSFVM=$BUILD/csfvm
 TMP=$OUT/scaling.tmp
@@ -75,8 +83,8 @@ done
 # right-hand side evaluation of csfvm and of the generated program (run - start-up) / evaluations
 {
 	echo
-	echo "| scene | N | csfc s | csfc --emit-c + cc s | lines of C (code) | evaluations | csfvm us/evaluation | emit-c us/evaluation |"
-	echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+	echo "| scene | N | csfc s | csfc --emit-c + cc s | lines of C (code) | evaluations | csfvm us/evaluation | emit-c us/evaluation | cloth.c us/evaluation | emit-c / cloth.c |"
+	echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 } >> "$TAB"
 sh ./gen_cloth.sh 30 30 "$TMP/cloth.csf"
 sed 's/^inc t till 0.1 s/inc t till 0 s/' "$TMP/cloth.csf" > "$TMP/cloth0.csf"
@@ -91,9 +99,37 @@ vm=$(run /dev/null "$CSFVM" "$TMP/cloth.csfb" | awk '{ print $1 }')
 vm0=$(run /dev/null "$CSFVM" "$TMP/cloth0.csfb" | awk '{ print $1 }')
 ex=$(run /dev/null "$TMP/cloth" | awk '{ print $1 }')
 ex0=$(run /dev/null "$TMP/cloth0" | awk '{ print $1 }')
-awk -v cs="$cs" -v ccs="$ccs" -v lines="$lines" -v ev="$ev" -v vm="$vm" -v vm0="$vm0" -v ex="$ex" -v ex0="$ex0" 'BEGIN {
-	printf "| gen_cloth.sh 30 30 | 900 | %s | %s | %d | %d | %.1f | %.1f |\n", cs, ccs, lines, ev, (vm - vm0) / ev * 1e6, (ex - ex0) / ev * 1e6 }' >> "$TAB"
+# cloth.c integrates with ref.h's steps, not csfvm's: its own evaluations
+hev=$("$BIN/cloth" --stats "$TMP/cloth.csv" 0.1 0.01 30 0 899 2>&1 >/dev/null | awk '{ print $2 }')
+hc=$(run /dev/null "$BIN/cloth" "$TMP/cloth.csv" 0.1 0.01 30 0 899 | awk '{ print $1 }')
+hc0=$(run /dev/null "$BIN/cloth" "$TMP/cloth.csv" 0 0.01 30 0 899 | awk '{ print $1 }')
+awk -v cs="$cs" -v ccs="$ccs" -v lines="$lines" -v ev="$ev" -v vm="$vm" -v vm0="$vm0" -v ex="$ex" -v ex0="$ex0" \
+    -v hev="$hev" -v hc="$hc" -v hc0="$hc0" 'BEGIN {
+	e = (ex - ex0) / ev * 1e6; h = (hc - hc0) / hev * 1e6
+	printf "| gen_cloth.sh 30 30 | 900 | %s | %s | %d | %d | %.1f | %.1f | %.1f | %.2f |\n", cs, ccs, lines, ev, (vm - vm0) / ev * 1e6, e, h, e / h }' >> "$TAB"
 say "scaling: cloth 30 x 30: $ev evaluations"
+# ARR_N projectiles in an array: csfc as compiled (two members watched) and --keep-all, csfvm's
+# start-up, and one evaluation by the VM and by projectiles.c
+{
+	echo
+	echo "| scene | N | csfc s | csfc peak MiB | csfc --keep-all s | --keep-all peak MiB | --keep-all bytecode bytes | csfvm start-up s | VM us/evaluation | projectiles.c us/evaluation | VM / projectiles.c | same bits |"
+	echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+} >> "$TAB"
+sh ../tests/arrays/gen_projectiles.sh "$ARR_N" array "p[0].pos, p[7].pos" > "$TMP/pa.csf"
+sed 's/^inc t till 4 s by/inc t till 0 s by/' "$TMP/pa.csf" > "$TMP/pa0.csf"
+set -- $(run /dev/null "$CSFC" "$TMP/pa.csf" -o "$TMP/pa.csfb")
+acs=$1 amem=$2
+rm -f "$TMP/pa.csfb"
+set -- $(run /dev/null "$CSFC" --keep-all "$TMP/pa0.csf" -o "$TMP/pa0.csfb")
+aks=$1 akmem=$2
+ast=$(run /dev/null "$CSFVM" "$TMP/pa0.csfb" | awk '{ print $1 }')
+set -- $("$BIN/projectiles" "$TMP/pa0.csfb" "$ARR_REPS")
+awk -v n="$ARR_N" -v cs="$acs" -v mem="$amem" -v ks="$aks" -v kmem="$akmem" -v b="$(wc -c < "$TMP/pa0.csfb" | tr -d ' ')" \
+    -v st="$ast" -v vm="$2" -v hc="$3" -v same="$4" 'BEGIN {
+	printf "| gen_projectiles.sh array | %d | %s | %d | %s | %d | %d | %s | %.0f | %.0f | %.2f | %s |\n", n, cs, mem / 1024, ks,
+	       kmem / 1024, b, st, vm * 1e6, hc * 1e6, vm / hc, same ? "yes" : "no" }' >> "$TAB"
+rm -f "$TMP/pa0.csfb"
+say "scaling: $ARR_N projectiles in an array"
 cat "$TAB" >&2
 cp "$TAB" "$OUT/scaling.md"
 sh ./readme_section.sh "$README" scaling "$TAB"
