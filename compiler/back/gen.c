@@ -135,6 +135,7 @@ static void gen_run(Gen *G, Model *M, csf_prog *p)
 	p->by = M->by;
 	p->nevents = G->nevents;
 	p->events = G->events ? G->events : xcalloc(1, sizeof *p->events);
+	gen_fuse_loops(p, scratch, scratch + G->max_scratch);
 	gen_hoist(p, scratch, scratch + G->max_scratch);
 	gen_fuse(p, scratch, scratch + G->max_scratch);
 }

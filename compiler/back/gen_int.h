@@ -90,6 +90,9 @@ void gen_jacobian(Gen *G, csf_prog *p);
 /* Moves what does not change in an innermost loop before it (hoist.c): instructions with a
    result in scratch slots [lo, hi) that nothing outside the loop reads. */
 void gen_hoist(csf_prog *p, uint32_t lo, uint32_t hi);
+/* Fuses loops one after the other at one level over one count (hoist.c) when running them member by
+   member computes the same; [lo, hi): the scratch slots. */
+void gen_fuse_loops(csf_prog *p, uint32_t lo, uint32_t hi);
 /* Superinstructions (hoist.c): POWI then the DIV that alone reads its scratch result, as DIVPOWI. */
 void gen_fuse(csf_prog *p, uint32_t lo, uint32_t hi);
 

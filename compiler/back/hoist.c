@@ -13,7 +13,17 @@
  * section computes the same bits; an iteration the loop skips (JEQ, JZ)
  * merely had not needed it. The VM and the generated C run the moved code
  * alike: both run the bytecode.
+ *
+ * Loop fusion: two loops one after the other at the same level over the
+ * same count (two rules over one array: W = g.mul(m), then D = v.mul(-k))
+ * become one, when running them member by member computes what running the
+ * first to its end and then the second did: their bodies straight-line
+ * arithmetic, and every slot one writes that the other touches either the
+ * same member's (the same operand: the same base through the same index)
+ * or a temporary each body writes before it reads it. A million members
+ * are then walked once, not once a rule.
  */
+#include <stdlib.h>
 #include <string.h>
 
 #include "csfc.h"
@@ -129,6 +139,128 @@ void gen_hoist(csf_prog *p, uint32_t lo, uint32_t hi)
 {
 	for (int sec = 0; sec < CSF_NSEC; sec++)
 		for (uint32_t k = 0; k < p->ncode[sec] && hoist_one(p, sec, lo, hi); k++) continue;
+}
+
+/* May the instruction op be in a loop that is fused: arithmetic, no control flow and no event? */
+static int fusable(uint32_t op)
+{
+	switch (op) {
+#define OP(name, n, a, b, c, d, syn)
+#define CTRL(name, n, a, b, c, d, syn) case CSF_OP_##name:
+#define STEP OP
+#include "opcodes.def"
+#undef STEP
+#undef CTRL
+#undef OP
+	case CSF_OP_EVGT:
+	case CSF_OP_EVGE: return 0;
+	default: return 1;
+	}
+}
+
+/* A slot operand of a loop body: its word, its instruction, whether it writes, the slots it reaches. */
+typedef struct Opnd { uint32_t w, pc, write; uint64_t lo, hi; } Opnd;
+
+/* The slot operands of the straight-line body [b, e) (counts cnt) into o (n so far); -1: not straight-line. */
+static int operands(const uint32_t *code, uint32_t b, uint32_t e, const uint32_t *cnt, Opnd **o, size_t *n, size_t *cap)
+{
+	for (uint32_t pc = b; pc < e; pc += csf_insn_len(code[pc])) {
+		const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
+		if (!fusable(code[pc])) return -1;
+		for (int k = 0; k < oi->nops; k++) {
+			if (!csf_kind_slot(oi->kind[k])) continue;
+			if (*n == *cap) *o = xrealloc(*o, (*cap = *cap ? 2 * *cap : 64) * sizeof **o);
+			Opnd *x = &(*o)[(*n)++];
+			x->w = code[pc + 1 + k], x->pc = pc, x->write = (uint32_t)csf_kind_write(oi->kind[k]);
+			reach(code, pc, k, cnt, &x->lo, &x->hi);
+		}
+	}
+	return 0;
+}
+
+/* Does the body from b write every slot of [lo, hi) before the instruction at pc? */
+static int written_before(const uint32_t *code, uint32_t b, uint32_t pc, const uint32_t *cnt, uint64_t lo, uint64_t hi)
+{
+	for (uint64_t s = lo; s < hi; s++)
+		if (!touches(code, b, pc, cnt, s, s + 1, 1)) return 0;
+	return 1;
+}
+
+/* Operand x of one body and y of the other (at least one a write) allow running them member by member. */
+static int independent(const uint32_t *code, const Opnd *x, uint32_t bx, const Opnd *y, uint32_t by, uint32_t level,
+                       const uint32_t *cnt, uint32_t lo, uint32_t hi)
+{
+	if (!meet(x->lo, x->hi, y->lo, y->hi)) return 1;
+	uint32_t rx = csf_reg(x->w), ry = csf_reg(y->w);
+	if (rx && x->w == y->w && csf_reg_level(rx) == level && x->hi - x->lo == y->hi - y->lo) return 1; /* the same member's */
+	if (rx || ry || x->lo < lo || x->hi > hi || y->lo < lo || y->hi > hi) return 0;
+	/* a temporary: each body's reads of it come after its own writes */
+	return (x->write || written_before(code, bx, x->pc, cnt, x->lo, x->hi)) &&
+	       (y->write || written_before(code, by, y->pc, cnt, y->lo, y->hi));
+}
+
+/* Does a jump of the section other than those of the loops at l1 and l2 name a pc in (l1, a2)? */
+static int jumped_into(const csf_prog *p, int sec, uint32_t l1, uint32_t l2, uint32_t a2)
+{
+	const uint32_t *code = p->code[sec];
+	uint32_t e1 = l2 - csf_insn_len(CSF_OP_NEXT), e2 = a2 - csf_insn_len(CSF_OP_NEXT);
+	for (uint32_t pc = 0; pc < p->ncode[sec]; pc += csf_insn_len(code[pc])) {
+		const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
+		if (pc == l1 || pc == e1 || pc == l2 || pc == e2) continue;
+		for (int k = 0; k < oi->nops; k++)
+			if ((oi->kind[k] == CSF_K_J || oi->kind[k] == CSF_K_B) && code[pc + 1 + k] > l1 && code[pc + 1 + k] < a2) return 1;
+	}
+	return 0;
+}
+
+/* One pair of loops of section sec fused; 0 when none can be. */
+static int fuse_loops_one(csf_prog *p, int sec, uint32_t lo, uint32_t hi)
+{
+	uint32_t *code = p->code[sec], n = p->ncode[sec], cnt[CSF_LOOP_MAX + 1] = { 1, 1, 1, 1 };
+	uint32_t ll = csf_insn_len(CSF_OP_LOOP), nl = csf_insn_len(CSF_OP_NEXT);
+	Opnd *o = NULL;
+	size_t cap = 0;
+	int done = 0;
+	for (uint32_t l1 = 0; l1 < n && !done; l1 += csf_insn_len(code[l1])) {
+		if (code[l1] != CSF_OP_LOOP) continue;
+		cnt[code[l1 + 1]] = code[l1 + 2];
+		uint32_t level = code[l1 + 1], l2 = code[l1 + 3];
+		if (l2 + ll > n || code[l2] != CSF_OP_LOOP || code[l2 + 1] != level || code[l2 + 2] != code[l1 + 2]) continue;
+		uint32_t b1 = l1 + ll, e1 = l2 - nl, b2 = l2 + ll, a2 = code[l2 + 3], e2 = a2 - nl;
+		size_t na = 0, nb = 0;
+		if (operands(code, b1, e1, cnt, &o, &na, &cap) || (nb = na, operands(code, b2, e2, cnt, &o, &nb, &cap)) ||
+		    jumped_into(p, sec, l1, l2, a2))
+			continue;
+		int ok = 1;
+		for (size_t i = 0; i < na && ok; i++)
+			for (size_t j = na; j < nb && ok; j++)
+				if (o[i].write || o[j].write) ok = independent(code, &o[i], b1, &o[j], b2, level, cnt, lo, hi);
+		if (!ok) continue;
+		/* drop the first NEXT and the second LOOP: [e1, b2) */
+		uint32_t gone = b2 - e1;
+		memmove(code + e1, code + b2, (size_t)(n - b2) * sizeof *code);
+		p->ncode[sec] = n -= gone;
+		for (uint32_t pc = 0; pc < n; pc += csf_insn_len(code[pc])) {
+			const csf_opinfo *oi = &csf_opinfo_table[code[pc]];
+			for (int k = 0; k < oi->nops; k++)
+				if ((oi->kind[k] == CSF_K_J || oi->kind[k] == CSF_K_B) && code[pc + 1 + k] >= b2) code[pc + 1 + k] -= gone;
+		}
+		code[l1 + 3] = a2 - gone;     /* the first LOOP ends past the second NEXT, */
+		code[e2 - gone + 2] = b1;     /* which goes back to the first body */
+		for (uint32_t i = 0; i < p->nlines[sec]; i++) {
+			csf_line *l = &p->lines[sec][i];
+			l->pc = l->pc >= b2 ? l->pc - gone : l->pc >= e1 ? e1 : l->pc;
+		}
+		done = 1;
+	}
+	free(o);
+	return done;
+}
+
+void gen_fuse_loops(csf_prog *p, uint32_t lo, uint32_t hi)
+{
+	for (int sec = 0; sec < CSF_NSEC; sec++)
+		while (fuse_loops_one(p, sec, lo, hi)) continue;
 }
 
 /* Does some jump of the section, or a line of its table, name pc? */

@@ -9,6 +9,8 @@
 
 #include "suites.h"
 #include "emit_c.h"
+#include "gen_int.h"
+#include "insn.h"
 
 /* Slot word slot relative to register r (csf_rel, as a constant expression). */
 #define R(slot, r) ((uint32_t)(slot) | (uint32_t)(r) << CSF_REG_SHIFT)
@@ -254,6 +256,62 @@ START_TEST(test_loop_structure)
 		csf_prog p = bare(code, c[i].n);
 		ck_assert_msg(csf_verify(&p, err, sizeof err) == -1, "program %zu accepted", i);
 		ck_assert_msg(strstr(err, c[i].why) != NULL, "program %zu: %s", i, err);
+	}
+}
+END_TEST
+
+/*
+ * Loop fusion (gen_fuse_loops): two loops of four iterations, the second after the first, become
+ * one exactly when running them member by member computes what they computed one after the other.
+ * Each case runs before and after; the memory must be the same, and fused as the case says. A = X's
+ * array of squares (VEC + i), B the second loop's array (VEC + 4 + i); TMP a scratch slot.
+ */
+START_TEST(test_loop_fusion)
+{
+	enum { A = VEC, B = VEC + 4, MUL = CSF_OP_MUL, ADD = CSF_OP_ADD, NEG = CSF_OP_NEG, JZ = CSF_OP_JZ };
+	static const struct { int op[2][2]; uint32_t a[2][2], b[2][2], c[2][2]; uint32_t count2; int fused; const char *what; } c[] = {
+		{ { { MUL, 0 }, { ADD, 0 } }, { { R(A, 1) }, { R(B, 1) } }, { { R(X, 1) }, { R(A, 1) } }, { { R(X, 1) }, { R(X, 1) } },
+		  NOBJ, 1, "the second reads the first's result of the same member" },
+		{ { { MUL, 0 }, { ADD, 0 } }, { { R(A + 1, 1) }, { R(B, 1) } }, { { R(X, 1) }, { R(A, 1) } }, { { R(X, 1) }, { R(X, 1) } },
+		  NOBJ, 0, "the second reads what the first writes for the member before" },
+		{ { { MUL, 0 }, { NEG, 0 } }, { { R(A, 1) }, { R(X, 1) } }, { { R(X + 1, 1) }, { R(B, 1) } }, { { R(X, 1) }, { 0 } },
+		  NOBJ - 1, 0, "a different count" },
+		{ { { MUL, 0 }, { NEG, 0 } }, { { R(A, 1) }, { R(X, 1) } }, { { R(X, 1) }, { R(B, 1) } }, { { R(X, 1) }, { 0 } }, NOBJ,
+		  1, "the second writes what the first reads, of the same member" },
+		{ { { ADD, 0 }, { ADD, 0 } }, { { SUM }, { R(B, 1) } }, { { SUM }, { SUM } }, { { R(X, 1) }, { R(X, 1) } }, NOBJ, 0,
+		  "the second reads a sum the first makes" },
+		{ { { MUL, ADD }, { MUL, ADD } }, { { TMP, R(A, 1) }, { TMP, R(B, 1) } }, { { R(X, 1), TMP }, { R(X, 1), TMP } },
+		  { { R(X, 1), TMP }, { R(X, 1), R(X, 1) } }, NOBJ, 1, "both write the scratch slot before they read it" },
+		{ { { MUL, 0 }, { ADD, 0 } }, { { TMP }, { R(B, 1) } }, { { R(X, 1) }, { TMP } }, { { R(X, 1) }, { R(X, 1) } }, NOBJ, 0,
+		  "the second reads the scratch slot the first wrote" },
+		{ { { MUL, 0 }, { JZ, 0 } }, { { R(A, 1) }, { R(FLAG, 1) } }, { { R(X, 1) }, { 0 } }, { { R(X, 1) }, { 0 } }, NOBJ, 0,
+		  "a jump in a body" },
+	};
+	for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+		uint32_t code[64], n = 0, l[2];
+		for (int k = 0; k < 2; k++) {
+			l[k] = put(code, &n, CSF_OP_LOOP, 1, k ? c[i].count2 : NOBJ, 0);
+			for (int q = 0; q < 2 && c[i].op[k][q]; q++) {
+				uint32_t pc = put(code, &n, c[i].op[k][q], c[i].a[k][q], c[i].b[k][q], c[i].c[k][q]);
+				if (c[i].op[k][q] == JZ) code[pc + 2] = pc + 3; /* to the NEXT */
+			}
+			put(code, &n, CSF_OP_NEXT, 1, l[k] + 4, 0);
+			code[l[k] + 3] = n;
+		}
+		csf_prog p = bare(code, n);
+		char err[256];
+		ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "case %zu (%s): %s", i, c[i].what, err);
+		int ret;
+		double *before = run(&p, &ret);
+		gen_fuse_loops(&p, TMP, TMP + 1);
+		ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "case %zu (%s) fused: %s", i, c[i].what, err);
+		int loops = 0;
+		for (uint32_t pc = 0; pc < p.ncode[CSF_SEC_OUT]; pc += csf_insn_len(code[pc])) loops += code[pc] == CSF_OP_LOOP;
+		ck_assert_msg(loops == 2 - c[i].fused, "case %zu (%s): %d loops", i, c[i].what, loops);
+		double *after = run(&p, &ret);
+		ck_assert_msg(memcmp(before, after, NMEM * sizeof *before) == 0, "case %zu (%s): another result", i, c[i].what);
+		free(before);
+		free(after);
 	}
 }
 END_TEST
@@ -539,6 +597,7 @@ Suite *loops_suite(void)
 	TCase *tc = tcase_create("loops");
 	tcase_set_timeout(tc, 60);
 	tcase_add_test(tc, test_loop_sum);
+	tcase_add_test(tc, test_loop_fusion);
 	tcase_add_test(tc, test_pair_loop);
 	tcase_add_test(tc, test_loop_verifier);
 	tcase_add_test(tc, test_loop_structure);
