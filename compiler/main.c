@@ -14,7 +14,6 @@
 #include "sema.h"
 #include "gen.h"
 #include "csf_int.h"
-#include "bytecode.h"
 #include "emit_c.h"
 #include "explain.h"
 #include "cone.h"
@@ -234,12 +233,6 @@ static int compile(const cli *c, csf_prog *p)
 	if (c->explain) {
 		explain_model(M, stdout);
 		csf_params_list(p, stdout);
-	}
-	if (p->nmem > CSFB_RUNS_MAX) {
-		fprintf(stderr, "csfc: error: %s needs %lu doubles of memory, more than the %lu a bytecode file holds\n", in,
-		        (unsigned long)p->nmem, (unsigned long)CSFB_RUNS_MAX);
-		csf_prog_free(p);
-		return 1;
 	}
 	char err[256];
 	if (csf_verify(p, err, sizeof err)) {

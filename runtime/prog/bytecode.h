@@ -44,7 +44,8 @@
 enum { CSFB_RUN_LITERAL, CSFB_RUN_ZEROS, CSFB_RUN_REPEAT };
 #define CSFB_RUN_MAX 0x3FFFFFFFu
 /* The most elements a field of runs may have (2^27 doubles, 1 GiB): a few bytes of runs cannot make
-   the loader allocate more. A model of a million objects has some 5e7. */
+   the loader allocate more. csfc's scenes have fewer slots in all (compiler/back/slots.c); a million
+   objects some 5e7. */
 #define CSFB_RUNS_MAX (1u << 27)
 
 /* CRC-32 of len bytes (the format's checksum). */
