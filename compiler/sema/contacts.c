@@ -3,6 +3,7 @@
  * contact routine works on, checked for the properties it reads.
  */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "csfc.h"
@@ -178,10 +179,11 @@ typedef struct Body {
 	Var *f[2][CSF_CF_N];
 } Body;
 
-/* What contact rule s needs of every object, in an array indexed like M->objects. */
+/* What contact rule s needs of every object, in an array indexed like M->objects (malloc'd: the
+   caller frees it; 200 bytes an object, for each contact rule, are not kept for a million members). */
 static Body *contact_bodies(Stmt *s)
 {
-	Body *B = xalloc((size_t)sema.M->objects.n * sizeof *B);
+	Body *B = xcalloc((size_t)sema.M->objects.n + 1, sizeof *B);
 	for (int i = 0; i < sema.M->objects.n; i++) {
 		for (int k = 0; k < 2; k++) {
 			Var *geo[2];
@@ -206,7 +208,7 @@ static Body *contact_bodies(Stmt *s)
 static void first_bad_pair(Body *B, int n, int *ea, int *eb)
 {
 	/* next_*[i]: the first $1 from i on, any or bad; plane_*: the first plane or anchor */
-	int *next_any = xalloc((size_t)(n + 1) * sizeof *next_any), *next_bad = xalloc((size_t)(n + 1) * sizeof *next_bad);
+	int *next_any = xcalloc((size_t)n + 1, sizeof *next_any), *next_bad = xcalloc((size_t)n + 1, sizeof *next_bad);
 	int plane_any = n, plane_bad = n;
 	next_any[n] = next_bad[n] = n;
 	for (int i = n - 1; i >= 0; i--) {
@@ -222,9 +224,11 @@ static void first_bad_pair(Body *B, int n, int *ea, int *eb)
 		int plane = B[a].bad[0] ? plane_any : plane_bad, b = plane < a ? plane : (B[a].bad[0] ? next_any : next_bad)[a + 1];
 		if (b < n) {
 			*ea = a, *eb = b;
-			return;
+			break;
 		}
 	}
+	free(next_any);
+	free(next_bad);
 }
 
 /*
@@ -243,6 +247,7 @@ void contact_pairs(Stmt *s)
 	if (ea < n) {
 		CPair c;
 		contact_binding(s, sema.M->objects.v[ea], sema.M->objects.v[eb], &c);
+		free(B);
 		return;
 	}
 	/* the bodies it applies to (a bad one here has no binding) */
@@ -260,7 +265,10 @@ void contact_pairs(Stmt *s)
 		else if (B[i].geo[1] && maxr0 + B[i].r[1] > 0) touch = 1;
 		if (B[i].geo[0] && B[i].r[0] > maxr0) maxr0 = B[i].r[0];
 	}
-	if (!touch) return;
+	if (!touch) {
+		free(B);
+		return;
+	}
 	Contact *r = new_contact(s, 1);
 	for (int i = 0; i < n; i++) {
 		if (B[i].geo[0]) vec_push(&r->b0, contact_cbody(sema.M->objects.v[i], CSF_CB_POINT, B[i].f[0]));
@@ -269,6 +277,7 @@ void contact_pairs(Stmt *s)
 		r->nanchors += B[i].geo[1] && B[i].kind == CSF_CB_ANCHOR;
 	}
 	vec_push(&sema.M->contacts, r);
+	free(B);
 }
 
 /* Every mass point of a contact rule must have its a determined (by Newton's second law). */
