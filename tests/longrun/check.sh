@@ -73,6 +73,7 @@ else bad "csfvm's checkpoint resumed by the generated program: $(head -n 1 "$T/e
 # of 300000 light rows: the row is reached well within the watchdog's 500 ms)
 sed 's/^inc t till 125 /inc t till 3000 /' "$HERE/orbit.csf" >"$T/long.csf" && "$CSFC" "$T/long.csf" -o "$T/long.csfb"
 rm -f "$T/c"
+: >"$T/part.csv" # there before the loop below reads its size (the shell may not have opened it yet)
 "$CSFVM" --checkpoint "$T/c" --checkpoint-every 1000 "$T/long.csfb" >"$T/part.csv" 2>"$T/err" &
 pid=$!
 n=0 # SIGTERM once some rows are out
