@@ -69,7 +69,7 @@
 /* Do the 3 slots at d and the values of an operand at q, q + s, ... (nk of them, 3 slots each) meet? */
 static int block_meets(const double *d, const double *q, size_t s, uint32_t nk)
 {
-	uintptr_t d0 = (uintptr_t)d, q0 = (uintptr_t)q, q1 = (uintptr_t)(q + s * (nk - 1) + 3);
+	uintptr_t d0 = (uintptr_t)d, q0 = (uintptr_t)q, q1 = q0 + (s * (nk - 1) + 3) * sizeof *q;
 	return d0 < q1 && q0 < d0 + 3 * sizeof *d;
 }
 
