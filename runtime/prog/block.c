@@ -230,12 +230,6 @@ void csf_blocks_free(csf_blocks *b)
 const csf_bloop *csf_blocks_find(const csf_blocks *b, int sec, uint32_t pc)
 {
 	if (!b) return NULL;
-	const csf_bloop *a = b->loops[sec];
-	uint32_t lo = 0, hi = b->nloops[sec];
-	while (lo < hi) {
-		uint32_t mid = lo + (hi - lo) / 2;
-		if (a[mid].pc < pc) lo = mid + 1;
-		else hi = mid;
-	}
-	return lo < b->nloops[sec] && a[lo].pc == pc ? &a[lo] : NULL;
+	uint32_t i = csf_find_pc(b->loops[sec], b->nloops[sec], sizeof *b->loops[sec], pc);
+	return i < b->nloops[sec] ? &b->loops[sec][i] : NULL;
 }

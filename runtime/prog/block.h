@@ -48,7 +48,7 @@ typedef struct csf_btemp { uint32_t slot, width, off; } csf_btemp;
  * indices a block takes (the scratch holds that many of every temporary).
  */
 typedef struct csf_bloop {
-	uint32_t pc, end, level, skip, block;
+	uint32_t pc, end, level, skip, block; /* pc first: csf_find_pc */
 	csf_binsn *insn; /* the body's instructions after the JEQ, in order */
 	uint32_t ninsn;
 	csf_btemp *tmp;

@@ -238,14 +238,9 @@ static int worth(csf_pool *pool, uint64_t work, uint32_t count)
 int csf_pool_vm(csf_pool *pool, const csf_exec_ctx *x, int sec, uint32_t pc, double *m)
 {
 	const csf_parloop *a = pool->loops[sec];
-	uint32_t lo = 0, hi = pool->nloops[sec];
-	while (lo < hi) {
-		uint32_t mid = lo + (hi - lo) / 2;
-		if (a[mid].pc < pc) lo = mid + 1;
-		else hi = mid;
-	}
-	if (lo == pool->nloops[sec] || a[lo].pc != pc || !worth(pool, a[lo].work, a[lo].count)) return 0;
-	const csf_parloop *L = &a[lo];
+	uint32_t i = csf_find_pc(a, pool->nloops[sec], sizeof *a, pc);
+	if (i == pool->nloops[sec] || !worth(pool, a[i].work, a[i].count)) return 0;
+	const csf_parloop *L = &a[i];
 	for (int t = 0; t < pool->n - 1; t++) {
 		worker *w = &pool->w[t];
 		if (!w->mem && !(w->mem = malloc((pool->p->nmem ? pool->p->nmem : 1) * sizeof *w->mem))) return 0;
