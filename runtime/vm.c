@@ -56,11 +56,11 @@
  * slots are both the destination and a source (stride 0) adds its terms
  * in order.
  */
-#define BLOAD_S(k) q##k[0]
-#define BLOAD_V(k) csf_vload(q##k)
+#define BLOAD_S(k) q##k[i * s##k]
+#define BLOAD_V(k) csf_vload(q##k + i * s##k)
 #define BLOAD_N(k) imm##k
-#define BSTORE_DS(e) q0[0] = (e)
-#define BSTORE_DV(e) csf_vstore(q0, (e))
+#define BSTORE_DS(e) q0[i * s0] = (e)
+#define BSTORE_DV(e) csf_vstore(q0 + i * s0, (e))
 #define BARGS1(b, c, d)
 #define BARGS2(b, c, d) BLOAD_##b(1)
 #define BARGS3(b, c, d) BLOAD_##b(1), BLOAD_##c(2)
@@ -83,30 +83,30 @@ static void block_op(uint32_t op, uint32_t nk, double *const q[4], const size_t 
 	if (s0 == 0 && s1 == 0 && q0 == q1 && !block_meets(q0, q2, s2, nk)) { /* a sum: kept in a register */
 		if (op == CSF_OP_VADD) {
 			csf_vec sum = csf_vload(q1);
-			for (uint32_t k = 0; k < nk; k++, q2 += s2) sum = csf_op_VADD(sum, csf_vload(q2));
+			for (size_t i = 0; i < nk; i++) sum = csf_op_VADD(sum, BLOAD_V(2));
 			csf_vstore(q0, sum);
 			return;
 		}
 		if (op == CSF_OP_ADD) {
 			double sum = q1[0];
-			for (uint32_t k = 0; k < nk; k++, q2 += s2) sum = csf_op_ADD(sum, q2[0]);
+			for (size_t i = 0; i < nk; i++) sum = csf_op_ADD(sum, BLOAD_S(2));
 			q0[0] = sum;
 			return;
 		}
 	}
 	/* integer powers with their exponent known, so that csf_powi's loop unrolls */
 	if (op == CSF_OP_DIVPOWI && imm3 == 3) {
-		for (uint32_t k = 0; k < nk; k++, q0 += s0, q1 += s1, q2 += s2) q0[0] = csf_op_DIVPOWI(q1[0], q2[0], 3);
+		for (size_t i = 0; i < nk; i++) BSTORE_DS(csf_op_DIVPOWI(BLOAD_S(1), BLOAD_S(2), 3));
 		return;
 	}
 	if (op == CSF_OP_POWI && imm2 == 2) {
-		for (uint32_t k = 0; k < nk; k++, q0 += s0, q1 += s1) q0[0] = csf_op_POWI(q1[0], 2);
+		for (size_t i = 0; i < nk; i++) BSTORE_DS(csf_op_POWI(BLOAD_S(1), 2));
 		return;
 	}
 	switch ((enum csf_opcode)op) {
 #define OP(name, n, a, b, c, d, syn) \
 	case CSF_OP_##name: \
-		for (uint32_t k = 0; k < nk; k++, q0 += s0, q1 += s1, q2 += s2, q3 += s3) \
+		for (size_t i = 0; i < nk; i++) \
 			BSTORE_##a(csf_op_##name(BARGS##n(b, c, d))); \
 		return;
 #define CTRL(name, n, a, b, c, d, syn) case CSF_OP_##name:
