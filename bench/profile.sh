@@ -61,6 +61,8 @@ WATCH=$(awk '/^inc / { for (i = 1; i <= NF; i++) if ($i ~ /^p[0-9]+\.pos/) { sub
 			printf "  %-8s %10d  (%d instructions of code)\n", "total", n, words > "/dev/stderr"
 		}' "$TMP/nb.lst" 2> "$TMP/mix.total" | sort -k2,2nr -k1,1
 	cat "$TMP/mix.total"
+	echo "(instructions as the bytecode counts them: csfvm dispatches those of an innermost loop it runs a block"
+	echo "at a time, such as the pair loop, once a block of up to 64 iterations: csfvm(1), DESCRIPTION)"
 	echo
 	if [ "$TOOL" = none ]; then
 		echo "(neither perf nor valgrind works here: no sampled profile)"
