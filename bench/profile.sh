@@ -61,6 +61,8 @@ WATCH=$(awk '/^inc / { for (i = 1; i <= NF; i++) if ($i ~ /^p[0-9]+\.pos/) { sub
 			printf "  %-8s %10d  (%d instructions of code)\n", "total", n, words > "/dev/stderr"
 		}' "$TMP/nb.lst" 2> "$TMP/mix.total" | sort -k2,2nr -k1,1
 	cat "$TMP/mix.total"
+	echo "(instructions as the bytecode counts them: csfvm dispatches those of an innermost loop it runs a block"
+	echo "at a time, such as the pair loop, once a block of up to 64 iterations: csfvm(1), DESCRIPTION)"
 	echo
 	if [ "$TOOL" = none ]; then
 		echo "(neither perf nor valgrind works here: no sampled profile)"
@@ -68,16 +70,19 @@ WATCH=$(awk '/^inc / { for (i = 1; i <= NF; i++) if ($i ~ /^p[0-9]+\.pos/) { sub
 		echo "$TOOL, csfvm, till ${TILL} by 0.01:"
 		prof_run csfvm "$BUILD/csfvm" "$TMP/nb.csfb"
 		if [ "$TOOL" = perf ]; then
-			echo
-			echo "perf, csfvm: the samples of the interpreter (exec) by source line, the instruction each is"
-			echo "(an opcodes.def line is its case of the dispatch: operands loaded and stored, csf_ops.h the arithmetic)"
-			perf annotate -i "$TMP/csfvm.perf" --stdio -l -s exec 2> /dev/null |
-				awk '/^Sorted summary/ { on = 1; next } on && /^ *$/ && n { exit }
-					on && /^ +[0-9.]+ +[a-z_]+\.[a-z]+:[0-9]+/ && n < 14 {
-						split($2, a, ":"); f = "../runtime/" a[1]; text = ""
-						for (i = 1; (getline l < f) > 0; i++) if (i == a[2]) { text = l; break }
-						close(f); gsub(/^[ \t]+|[ \t]+$/, "", text)
-						printf "  %7s%%  %-16s %.70s\n", $1, $2, text; n++ }'
+			for sym in exec run_blocked; do
+				echo
+				echo "perf, csfvm: the samples of $sym by source line, the instruction each is (exec: the dispatch loop,"
+				echo "an opcodes.def line its case, operands loaded and stored; run_blocked: a loop a block of 64 at a"
+				echo "time, vm.c the loop over the block, csf_ops.h the arithmetic)"
+				perf annotate -i "$TMP/csfvm.perf" --stdio -l -s "$sym" 2> /dev/null |
+					awk '/^Sorted summary/ { on = 1; next } on && /^ *$/ && n { exit }
+						on && /^ +[0-9.]+ +[a-z_]+\.[a-z]+:[0-9]+/ && n < 14 {
+							split($2, a, ":"); f = "../runtime/" a[1]; text = ""
+							for (i = 1; (getline l < f) > 0; i++) if (i == a[2]) { text = l; break }
+							close(f); gsub(/^[ \t]+|[ \t]+$/, "", text)
+							printf "  %7s%%  %-16s %.70s\n", $1, $2, text; n++ }'
+			done
 		fi
 		echo
 		echo "$TOOL, nbody.c, same run:"

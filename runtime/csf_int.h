@@ -309,12 +309,16 @@ void csf_disassemble(const csf_prog *p, FILE *f);
  * and modes, for the CONTACT instruction (csf_run owns them; NULL: no
  * contacts, and CONTACT does nothing); the constraints' work arrays and
  * modes, for the CONSTRAIN instruction (NULL: CONSTRAIN does nothing);
- * the threads that share the loops of a shape (--threads N; NULL: one).
+ * the threads that share the loops of a shape (--threads N; NULL: one);
+ * the loops the VM runs a block of iterations at a time (runtime/prog/block.h;
+ * NULL: none, every loop an iteration at a time, with the same results).
  */
+typedef struct csf_blocks csf_blocks;
 struct csf_exec_ctx {
 	csf_contacts *contacts;
 	csf_cons *cons;
 	csf_pool *pool;
+	csf_blocks *blocks;
 };
 
 

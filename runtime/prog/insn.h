@@ -11,6 +11,7 @@
 #define CSF_INSN_H
 
 #include <stdint.h>
+#include <string.h>
 
 #include "csf_int.h"
 
@@ -79,6 +80,25 @@ static inline uint32_t csf_reg_stride(uint32_t r) { return r == 0 ? 0u : r % 2 ?
 static inline uint64_t csf_operand_end(uint32_t w, uint32_t width, uint64_t count)
 {
 	return (uint64_t)(w & CSF_SLOT_MASK) + (count ? count - 1 : 0) * csf_reg_stride(csf_reg(w)) + width;
+}
+
+/*
+ * The index of the record for pc in a[0 .. n): records of size bytes, each
+ * starting with its uint32_t pc, ascending by pc (the loops of a section a
+ * run's tables keep: csf_parloop, csf_bloop); n when there is none.
+ */
+static inline uint32_t csf_find_pc(const void *a, uint32_t n, size_t size, uint32_t pc)
+{
+	const unsigned char *b = a;
+	uint32_t lo = 0, hi = n, at;
+	while (lo < hi) {
+		uint32_t mid = lo + (hi - lo) / 2;
+		memcpy(&at, b + (size_t)mid * size, sizeof at);
+		if (at < pc) lo = mid + 1;
+		else hi = mid;
+	}
+	if (lo < n) memcpy(&at, b + (size_t)lo * size, sizeof at);
+	return lo < n && at == pc ? lo : n;
 }
 
 #endif

@@ -26,7 +26,7 @@ typedef struct csf_cell { uint32_t base, stride, width; } csf_cell;
  * assertions make a loop serial.
  */
 typedef struct csf_parloop {
-	uint32_t pc, end, count; /* the LOOP, the pc just past its NEXT, its iterations */
+	uint32_t pc, end, count; /* the LOOP (first: csf_find_pc), the pc just past its NEXT, its iterations */
 	uint64_t work;           /* instructions one run of the loop executes, at most (saturated) */
 	csf_span *in;            /* what a worker's memory needs: the slots the body reads and its cells */
 	uint32_t nin;

@@ -2,17 +2,20 @@
  * par.c - the threads of one run (par.h).
  *
  * The pool's n - 1 workers wait on a condition variable for a job: a
- * generation count goes up, each worker runs its block of iterations and
- * the last to finish wakes the caller, which ran the last block meanwhile.
- * Block t of count iterations is [count t / n, count (t + 1) / n): each
- * iteration runs whole on one thread, its instructions in their order, so
- * every value it computes is the serial run's. The caller's block is the
- * last, in m itself: the values a serial run leaves behind in the
+ * generation count goes up, each worker takes chunks of the iterations
+ * from a shared counter until none is left, and the last to finish wakes
+ * the caller, which took chunks meanwhile. Chunk c of count iterations is
+ * [count c / k, count (c + 1) / k), k = min(count, PAR_CHUNKS n): small
+ * enough that a thread slowed down by another program on its processor
+ * holds up the others by one chunk at most. Each iteration runs whole on
+ * one thread, its instructions in their order, so every value it computes
+ * is the serial run's. The caller runs the last chunk, after every other
+ * chunk it took, in m itself: the values a serial run leaves behind in the
  * iteration's own slots are the last iteration's, and they are there.
  *
  * A VM worker works in a memory of its own (the body's fixed scratch slots
  * are shared slots of m): before the job the caller copies into it the
- * slots the body reads (csf_parloop.in); after its block the worker copies
+ * slots the body reads (csf_parloop.in); after each chunk the worker copies
  * its cells back into m, which no other thread reads or writes then. A
  * generated program's body keeps its scratch values in C locals, so its
  * workers share m, y and dydt, each writing only its own cells.
@@ -28,12 +31,11 @@
 #include "par.h"
 #include "parloop.h"
 
-/* Reads of a flag before a thread sleeps on a condition variable (some microseconds). */
-enum { PAR_SPIN = 1 << 10 };
+/* Reads of a flag before a thread sleeps on a condition variable (some microseconds); chunks of a job per thread. */
+enum { PAR_SPIN = 1 << 10, PAR_CHUNKS = 16 };
 
 typedef struct worker {
 	csf_pool *pool;
-	int t;         /* its block */
 	double *mem;   /* its memory for the VM (NULL until the first VM job) */
 	pthread_t th;
 } worker;
@@ -53,7 +55,8 @@ struct csf_pool {
 	int quit;                         /* (under mu) */
 	/* the job */
 	const csf_exec_ctx *x;
-	uint32_t count;
+	uint32_t count, chunks;           /* iterations, and the chunks they are cut into */
+	atomic_uint next;                 /* the next chunk to take (the last is the caller's) */
 	double *m;
 	int sec;                          /* the VM's: its section and loop */
 	const csf_parloop *L;
@@ -62,17 +65,11 @@ struct csf_pool {
 	double *dydt;
 };
 
-static void block(const csf_pool *pool, int t, uint32_t *lo, uint32_t *hi)
+/* Chunk c of the job, on mem (m for the caller). */
+static void run_chunk(csf_pool *pool, uint32_t c, double *mem)
 {
-	*lo = (uint32_t)((uint64_t)pool->count * (uint64_t)t / (uint64_t)pool->n);
-	*hi = (uint32_t)((uint64_t)pool->count * (uint64_t)(t + 1) / (uint64_t)pool->n);
-}
-
-/* Block t of the job, on mem (m for the caller). */
-static void run_block(csf_pool *pool, int t, double *mem)
-{
-	uint32_t lo, hi;
-	block(pool, t, &lo, &hi);
+	uint32_t lo = (uint32_t)((uint64_t)pool->count * c / pool->chunks);
+	uint32_t hi = (uint32_t)((uint64_t)pool->count * (c + 1) / pool->chunks);
 	if (pool->fn) {
 		pool->fn(pool->p, pool->x, pool->m, pool->y, pool->dydt, lo, hi);
 		return;
@@ -81,9 +78,19 @@ static void run_block(csf_pool *pool, int t, double *mem)
 	csf_vm_loop_range(pool->p, pool->x, pool->sec, L->pc, L->end, mem, lo, hi);
 	if (mem == pool->m || lo == hi) return;
 	for (uint32_t i = 0; i < L->nout; i++) {
-		const csf_cell *c = &L->out[i];
-		size_t first = c->base + (size_t)c->stride * lo, past = c->base + (size_t)c->stride * (hi - 1) + c->width;
+		const csf_cell *cl = &L->out[i];
+		size_t first = cl->base + (size_t)cl->stride * lo, past = cl->base + (size_t)cl->stride * (hi - 1) + cl->width;
 		memcpy(pool->m + first, mem + first, (past - first) * sizeof *mem);
+	}
+}
+
+/* Takes chunks of the job until none but the last is left. */
+static void run_chunks(csf_pool *pool, double *mem)
+{
+	for (;;) {
+		uint32_t c = atomic_fetch_add_explicit(&pool->next, 1, memory_order_relaxed);
+		if (c >= pool->chunks - 1) return;
+		run_chunk(pool, c, mem);
 	}
 }
 
@@ -110,7 +117,7 @@ static void *work(void *arg)
 		unsigned long g = next_job(pool, seen);
 		if (g == seen) return NULL; /* quit */
 		seen = g;
-		run_block(pool, w->t, w->mem);
+		run_chunks(pool, w->mem);
 		if (atomic_fetch_sub_explicit(&pool->busy, 1, memory_order_acq_rel) == 1) {
 			pthread_mutex_lock(&pool->mu);
 			pthread_cond_signal(&pool->done);
@@ -119,15 +126,19 @@ static void *work(void *arg)
 	}
 }
 
-/* Posts the job set up in pool, runs the caller's block, waits for the others (a short spin, then on done). */
+/* Posts the job set up in pool, takes chunks and runs the last, waits for the others (a short spin, then on done). */
 static void run_job(csf_pool *pool)
 {
+	uint64_t k = (uint64_t)PAR_CHUNKS * (uint64_t)pool->n;
+	pool->chunks = pool->count < k ? pool->count : (uint32_t)k;
+	atomic_store_explicit(&pool->next, 0, memory_order_relaxed);
 	atomic_store_explicit(&pool->busy, pool->n - 1, memory_order_relaxed);
 	pthread_mutex_lock(&pool->mu);
 	atomic_fetch_add_explicit(&pool->gen, 1, memory_order_release);
 	pthread_cond_broadcast(&pool->go);
 	pthread_mutex_unlock(&pool->mu);
-	run_block(pool, pool->n - 1, pool->m);
+	run_chunks(pool, pool->m);
+	run_chunk(pool, pool->chunks - 1, pool->m);
 	for (int k = 0; k < PAR_SPIN && atomic_load_explicit(&pool->busy, memory_order_acquire); k++) continue;
 	if (!atomic_load_explicit(&pool->busy, memory_order_acquire)) return;
 	pthread_mutex_lock(&pool->mu);
@@ -184,7 +195,6 @@ csf_pool *csf_pool_new(const csf_prog *p, int n)
 	for (int t = 0; t < n - 1; t++) {
 		worker *w = &pool->w[t];
 		w->pool = pool;
-		w->t = t;
 		if (pthread_create(&w->th, NULL, work, w)) break;
 		pool->n++;
 	}
@@ -228,14 +238,9 @@ static int worth(csf_pool *pool, uint64_t work, uint32_t count)
 int csf_pool_vm(csf_pool *pool, const csf_exec_ctx *x, int sec, uint32_t pc, double *m)
 {
 	const csf_parloop *a = pool->loops[sec];
-	uint32_t lo = 0, hi = pool->nloops[sec];
-	while (lo < hi) {
-		uint32_t mid = lo + (hi - lo) / 2;
-		if (a[mid].pc < pc) lo = mid + 1;
-		else hi = mid;
-	}
-	if (lo == pool->nloops[sec] || a[lo].pc != pc || !worth(pool, a[lo].work, a[lo].count)) return 0;
-	const csf_parloop *L = &a[lo];
+	uint32_t i = csf_find_pc(a, pool->nloops[sec], sizeof *a, pc);
+	if (i == pool->nloops[sec] || !worth(pool, a[i].work, a[i].count)) return 0;
+	const csf_parloop *L = &a[i];
 	for (int t = 0; t < pool->n - 1; t++) {
 		worker *w = &pool->w[t];
 		if (!w->mem && !(w->mem = malloc((pool->p->nmem ? pool->p->nmem : 1) * sizeof *w->mem))) return 0;

@@ -2,7 +2,7 @@
  * par.h - the threads of one run (--threads N): a pool of N - 1 POSIX
  * threads beside the caller, which share the loops of a shape whose
  * iterations are independent (runtime/prog/parloop.h) among them, in
- * contiguous blocks of iterations. The VM hands it such a loop at its LOOP
+ * chunks of contiguous iterations. The VM hands it such a loop at its LOOP
  * instruction (csf_pool_vm); a generated program, the loop's function
  * (csf_par_for, csf.h).
  */

@@ -14,6 +14,7 @@
 
 #include "run_int.h"
 #include "par.h"
+#include "block.h"
 #include "constraint.h"
 
 /*
@@ -745,6 +746,7 @@ static void run_free(session *S)
 	csf_contacts_free(r->cs);
 	csf_cons_free(r->cons);
 	csf_pool_free(r->x.pool);
+	csf_blocks_free(r->x.blocks);
 	free(r->cw);
 	free(r->ga);
 	free(r->gb);
@@ -800,6 +802,7 @@ int csf_run_sink(const csf_prog *p, csf_exec_fn exec, csf_opts *o, FILE *out, co
 	}
 	if (s.kind == STOP_END) s = run_alloc(&S);
 	S.r.x.pool = csf_pool_new(p, o->threads); /* NULL: one thread (the same result) */
+	S.r.x.blocks = csf_blocks_new(p);         /* NULL: no loop run a block at a time (the same result) */
 	if (s.kind == STOP_END) s = run_method(&S, o);
 	if (s.kind == STOP_END && S.ck && S.ode && csf_ode_history(S.ode)) {
 		snprintf(S.ck_err, sizeof S.ck_err,

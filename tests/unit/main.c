@@ -102,6 +102,7 @@ int main(void)
 	srunner_add_suite(sr, jac_suite());
 	srunner_add_suite(sr, loops_suite());
 	srunner_add_suite(sr, par_suite());
+	srunner_add_suite(sr, block_suite());
 	srunner_add_suite(sr, dop853_suite());
 	srunner_add_suite(sr, dopri5_suite());
 	srunner_add_suite(sr, stability_suite());

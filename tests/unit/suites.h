@@ -23,6 +23,7 @@ Suite *emit_c_suite(void);
 Suite *jac_suite(void);
 Suite *loops_suite(void);
 Suite *par_suite(void);
+Suite *block_suite(void);
 Suite *dop853_suite(void);
 Suite *dopri5_suite(void);
 Suite *stability_suite(void);
