@@ -57,6 +57,7 @@ static void enter_contact(const csf_contacts *cs, cpair *c, double *m, const dou
 		s = 0;
 	}
 	W(c, MODE) = s == 0 && has_friction(c, m) ? STICKING : SLIDING;
+	W(c, LIFT) = 0;
 	for (int k = 0; k < 3; k++) WV(c, DS)[k] = s > 0 ? vt[k] / s : 0;
 }
 
@@ -66,11 +67,22 @@ static int touching(const cpair *c, const double *m, double gap)
 	return gap <= 1e-12 * csf_contact_scale(c, m) && csf_contact_inside(c, m) >= 0;
 }
 
-/* Lift-off: apart, exactly touching. */
-static void separate(cpair *c, double *m)
+/*
+ * Lift-off: apart, exactly touching. A pair lifts off where its normal
+ * force fades to zero, so its relative normal velocity and acceleration
+ * are zero there too: its gap opens as the cube of the time, and for a
+ * while stays within the integrator's error of positions, tol times their
+ * size, which takes it below zero and back again and again (some 2000
+ * events as a ball slid off another, each a restart). Until the gap is
+ * beyond ten times that error (hold_gaps), its guard takes that as margin
+ * (W_LIFT, at least the touching gap): the pair is struck when it closes
+ * beyond it, and placed touching (close_gap).
+ */
+static void separate(const csf_contacts *cs, cpair *c, double *m)
 {
-	double n[3], curv, gap = csf_contact_geometry(c, m, n, &curv);
+	double n[3], curv, gap = csf_contact_geometry(c, m, n, &curv), s = csf_contact_scale(c, m);
 	W(c, MODE) = APART;
+	W(c, LIFT) = csf_max(1e-12, 10 * cs->tol) * s;
 	close_gap(c, m, n, gap);
 }
 
@@ -167,7 +179,7 @@ static void after_impact(csf_contacts *cs, double *m, double zeno)
 		csf_contact_geometry(c, m, n, &curv);
 		double vn = dot3(vr, n), an = -W(c, LAM) * (inv_mass_i(c, m) + inv_mass_j(c, m));
 		if (vn < -speed_resolution(cs, c, m)) continue; /* closing: struck in turn (csf_contact_settle) */
-		if (vn > 0 && !at_rest(c, m, vn, an, zeno)) separate(c, m);
+		if (vn > 0 && !at_rest(c, m, vn, an, zeno)) separate(cs, c, m);
 		else enter_contact(cs, c, m, n);
 	}
 }
@@ -254,7 +266,7 @@ static int take_mode(const csf_contacts *cs, cpair *c, double *m, int to, const 
 {
 	int was = in_contact(c);
 	if (to == TO_APART) {
-		if (was) separate(c, m);
+		if (was) separate(cs, c, m);
 		return was;
 	}
 	if (!has_friction(c, m)) to = TO_CONTACT;
@@ -326,6 +338,35 @@ static int turns_back(const csf_contacts *cs, const cpair *c, const double *m)
 	rel(c, m, I(c, A), J(c, A), ar);
 	csf_contact_tangential(ar, n, at);
 	return dot3(at, WV(c, DS)) < -csf_contact_accel_resolution(c, m, curv);
+}
+
+/*
+ * A pair in contact whose bodies part (vn beyond the rounding of zero) at
+ * an instant: its relative normal velocity should be zero, and is not by
+ * the integrator's error (a contact's force that fades to zero over a step
+ * is a kink the step's error estimate does not see; the state at an event
+ * is a step's) or by an impulse on a neighbour that left it parting. Left
+ * alone, the pair's normal force would hold it in contact while its bodies
+ * move apart, doing work: a ball lifting off a floor at 3e-6 m/s that
+ * holds it up, gaining energy. It goes on as such a parting does
+ * (departure, its relative normal acceleration that of its own normal
+ * force, as after_impact takes it): at rest, the parting is taken away (an
+ * impulse along the normal; the velocity's projection onto the contact,
+ * which never adds energy); else it lifts off. Returns 1 (its state
+ * changed).
+ */
+static int drifts_apart(csf_contacts *cs, cpair *c, double *m, double vn, double zeno, double tol)
+{
+	double n[3], curv, dv[3];
+	csf_contact_geometry(c, m, n, &curv);
+	double an = -W(c, LAM) * (inv_mass_i(c, m) + inv_mass_j(c, m));
+	if (departure(cs, m, c, vn, an, zeno, tol) != RESTS) {
+		separate(cs, c, m);
+		return 1;
+	}
+	for (int k = 0; k < 3; k++) dv[k] = -vn * n[k];
+	csf_contact_add_impulse(c, m, dv);
+	return 1;
 }
 
 /* Hops from time t at normal speed v >= 0 (an < 0): it lands after 2 v/|an|. */
@@ -405,8 +446,9 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 			if (in_contact(c)) { /* closing, struck by an impact on a body it holds */
 				csf_contact_geometry(c, m, n, &curv);
 				rel(c, m, I(c, V), J(c, V), vr);
-				double vn = dot3(vr, n);
-				if (vn < -speed_resolution(cs, c, m) && vn < worst) worst = vn, hit = (long)i;
+				double vn = dot3(vr, n), res = speed_resolution(cs, c, m);
+				if (vn < -res && vn < worst) worst = vn, hit = (long)i;
+				if (vn > res && hit < 0 && evaluated && drifts_apart(cs, c, m, vn, zeno, tol)) changed = 1;
 				continue;
 			}
 			double gap = csf_contact_geometry(c, m, n, &curv);
@@ -472,6 +514,7 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 			if (how == RESTS) enter_contact(cs, c, m, n);
 			else if (how == HOPS) hop(c, m[p->tslot], sep, an);
 			else if (was) W(c, MODE) = APART;
+			if (how != RESTS) W(c, LIFT) = 0; /* struck apart: its gap's guard is the gap */
 			for (uint32_t i = 0; i < cs->n; i++) /* flights whose velocities just changed */
 				if (share_body(c, &cs->pairs[i]) && W(&cs->pairs[i], MODE) == HOPPING)
 					W(&cs->pairs[i], MODE) = APART;
@@ -504,11 +547,62 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 		for (uint32_t i = 0; i < cs->n && !changed; i++) {
 			cpair *c = &cs->pairs[i];
 			if (!in_contact(c) || (chose && cs->mark[i] & MODES_CHOSEN)) continue;
-			if (W(c, G0) < 0) separate(c, m), changed = 1;
+			if (W(c, G0) < 0) separate(cs, c, m), changed = 1;
 			else if (W(c, G1) < 0 && W(c, MODE) == SLIDING && W(c, SS) < 2) stick(c, m), W(c, SS)++, changed = 1;
 			else if (W(c, G1) < 0 && W(c, MODE) == STICKING) slide(c, m), changed = 1;
 		}
 		if (!changed || ++others >= 100 + 10 * (uint64_t)cs->n) return 0;
+	}
+}
+
+/*
+ * The pairs in contact placed exactly in contact again, once their modes
+ * stand: the integrator's error, and a gap closed between two bodies that
+ * moved one of them along that pair's normal into a third (close_gap on a
+ * ball resting on a floor and leaning on another), leave pairs in contact
+ * apart or overlapping, which their accelerations keep so: a ball that
+ * sinks into a floor a little more at every event. A pair whose gap is
+ * beyond the touching one (touching) moves along its normal as close_gap
+ * moves it, without the outward push; pair by pair, in sweeps
+ * (Gauss-Seidel), until every such gap is within it, at most 64 sweeps.
+ */
+static void hold_sweeps(csf_contacts *cs, double *m);
+
+static void hold_gaps(csf_contacts *cs, double *m)
+{
+	if (grow_marks(cs)) return;
+	for (uint32_t i = 0; i < cs->n; i++) { /* the apart pairs whose guards are armed */
+		cpair *c = &cs->pairs[i];
+		double n[3], curv;
+		cs->mark[i] = W(c, MODE) == APART && csf_contact_geometry(c, m, n, &curv) >= 0;
+	}
+	hold_sweeps(cs, m);
+	for (uint32_t i = 0; i < cs->n; i++) { /* armed still, though the gaps held moved their bodies */
+		cpair *c = &cs->pairs[i];
+		double n[3], curv, gap = csf_contact_geometry(c, m, n, &curv);
+		if (cs->mark[i] && gap < 0) close_gap(c, m, n, gap);
+		if (W(c, MODE) != APART || gap > W(c, LIFT)) W(c, LIFT) = 0; /* clear of the positions' error */
+	}
+}
+
+static void hold_sweeps(csf_contacts *cs, double *m)
+{
+	for (int sweep = 0; sweep < 64; sweep++) {
+		int moved = 0;
+		for (uint32_t i = 0; i < cs->n; i++) {
+			cpair *c = &cs->pairs[i];
+			double n[3], curv;
+			if (!in_contact(c)) continue;
+			double gap = csf_contact_geometry(c, m, n, &curv);
+			if (fabs(gap) <= 1e-12 * csf_contact_scale(c, m)) continue;
+			double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), w = wi + wj;
+			for (int k = 0; k < 3; k++) {
+				m[I(c, POS) + k] -= gap * n[k] * (wi / w);
+				if (!c->plane) m[J(c, POS) + k] += gap * n[k] * (wj / w);
+			}
+			moved = 1;
+		}
+		if (!moved) return;
 	}
 }
 
@@ -518,7 +612,9 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 {
 	if (!cs) return 0;
 	cs->vfloor = 0;
+	cs->tol = tol;
 	int st = settle(p, cs, m, zeno, tol, eval, ctx);
+	if (st == 0) hold_gaps(cs, m);
 	cs->vfloor = 0;
 	return st;
 }
