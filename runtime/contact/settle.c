@@ -67,23 +67,31 @@ static int touching(const cpair *c, const double *m, double gap)
 	return gap <= 1e-12 * csf_contact_scale(c, m) && csf_contact_inside(c, m) >= 0;
 }
 
-/*
- * Lift-off: apart, exactly touching. A pair lifts off where its normal
- * force fades to zero, so its relative normal velocity and acceleration
- * are zero there too: its gap opens as the cube of the time, and for a
- * while stays within the integrator's error of positions, tol times their
- * size, which takes it below zero and back again and again (some 2000
- * events as a ball slid off another, each a restart). Until the gap is
- * beyond ten times that error (hold_gaps), its guard takes that as margin
- * (W_LIFT, at least the touching gap): the pair is struck when it closes
- * beyond it, and placed touching (close_gap).
- */
-static void separate(const csf_contacts *cs, cpair *c, double *m)
+/* Apart, exactly touching. */
+static void separate(cpair *c, double *m)
 {
-	double n[3], curv, gap = csf_contact_geometry(c, m, n, &curv), s = csf_contact_scale(c, m);
+	double n[3], curv, gap = csf_contact_geometry(c, m, n, &curv);
 	W(c, MODE) = APART;
-	W(c, LIFT) = csf_max(1e-12, 10 * cs->tol) * s;
 	close_gap(c, m, n, gap);
+}
+
+/*
+ * Lift-off where the normal force fades to zero (it would pull): the
+ * relative normal velocity and acceleration are zero there too, so the gap
+ * opens as the cube of the time, and for a while stays within the
+ * integrator's error of positions, tol times their size, which takes it
+ * below zero and back again and again (some 2000 events as a ball slid off
+ * another, each a restart). Until the gap is beyond ten times that error
+ * (hold_gaps), its guard takes that as margin (W_LIFT, at least the
+ * touching gap): the pair is struck when it closes beyond it, and placed
+ * touching (close_gap). Not after an impulse: a pair pressed together that
+ * an impact parted would gain speed falling back through the margin, and
+ * rattle on.
+ */
+static void lift_off(const csf_contacts *cs, cpair *c, double *m)
+{
+	separate(c, m);
+	W(c, LIFT) = csf_max(1e-12, 10 * cs->tol) * csf_contact_scale(c, m);
 }
 
 /* Sliding has stopped: the relative tangential velocity becomes exactly zero, and the pair sticks. */
@@ -179,7 +187,7 @@ static void after_impact(csf_contacts *cs, double *m, double zeno)
 		csf_contact_geometry(c, m, n, &curv);
 		double vn = dot3(vr, n), an = -W(c, LAM) * (inv_mass_i(c, m) + inv_mass_j(c, m));
 		if (vn < -speed_resolution(cs, c, m)) continue; /* closing: struck in turn (csf_contact_settle) */
-		if (vn > 0 && !at_rest(c, m, vn, an, zeno)) separate(cs, c, m);
+		if (vn > 0 && !at_rest(c, m, vn, an, zeno)) separate(c, m);
 		else enter_contact(cs, c, m, n);
 	}
 }
@@ -266,7 +274,7 @@ static int take_mode(const csf_contacts *cs, cpair *c, double *m, int to, const 
 {
 	int was = in_contact(c);
 	if (to == TO_APART) {
-		if (was) separate(cs, c, m);
+		if (was) lift_off(cs, c, m);
 		return was;
 	}
 	if (!has_friction(c, m)) to = TO_CONTACT;
@@ -361,12 +369,32 @@ static int drifts_apart(csf_contacts *cs, cpair *c, double *m, double vn, double
 	csf_contact_geometry(c, m, n, &curv);
 	double an = -W(c, LAM) * (inv_mass_i(c, m) + inv_mass_j(c, m));
 	if (departure(cs, m, c, vn, an, zeno, tol) != RESTS) {
-		separate(cs, c, m);
+		separate(c, m);
 		return 1;
 	}
 	for (int k = 0; k < 3; k++) dv[k] = -vn * n[k];
 	csf_contact_add_impulse(c, m, dv);
 	return 1;
+}
+
+/*
+ * A sliding pair whose slip its own friction would stop within the Zeno
+ * time (the slip over the deceleration mu_k |N| (1/m_i + 1/m_j)): a slip of
+ * a few 1e-12 m/s, the integrator's error of velocities at rest, left a
+ * pair sliding in a direction that is noise, whose friction turned it this
+ * way and that in steps of 1e-11 s (a ball wedged on a peg in a Galton
+ * board). It sticks, as a slide that stops does (its slip taken away); at
+ * most twice at an instant (W_SS), since static friction that cannot hold
+ * sends it sliding again at once, from no slip.
+ */
+static int stops_at_once(const csf_contacts *cs, const cpair *c, const double *m, double zeno)
+{
+	double n[3], curv, vt[3];
+	if (W(c, MODE) != SLIDING || !has_friction(c, m) || W(c, SS) >= 2) return 0;
+	csf_contact_geometry(c, m, n, &curv);
+	csf_contact_slip_velocity(c, m, n, vt);
+	double s = mag3(vt), d = mu_k(c, m) * fabs(W(c, LAM)) * (inv_mass_i(c, m) + inv_mass_j(c, m));
+	return s > speed_resolution(cs, c, m) && s <= d * zeno;
 }
 
 /* Hops from time t at normal speed v >= 0 (an < 0): it lands after 2 v/|an|. */
@@ -449,6 +477,7 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 				double vn = dot3(vr, n), res = speed_resolution(cs, c, m);
 				if (vn < -res && vn < worst) worst = vn, hit = (long)i;
 				if (vn > res && hit < 0 && evaluated && drifts_apart(cs, c, m, vn, zeno, tol)) changed = 1;
+				else if (hit < 0 && evaluated && stops_at_once(cs, c, m, zeno)) stick(c, m), W(c, SS)++, changed = 1;
 				continue;
 			}
 			double gap = csf_contact_geometry(c, m, n, &curv);
@@ -547,7 +576,7 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 		for (uint32_t i = 0; i < cs->n && !changed; i++) {
 			cpair *c = &cs->pairs[i];
 			if (!in_contact(c) || (chose && cs->mark[i] & MODES_CHOSEN)) continue;
-			if (W(c, G0) < 0) separate(cs, c, m), changed = 1;
+			if (W(c, G0) < 0) lift_off(cs, c, m), changed = 1;
 			else if (W(c, G1) < 0 && W(c, MODE) == SLIDING && W(c, SS) < 2) stick(c, m), W(c, SS)++, changed = 1;
 			else if (W(c, G1) < 0 && W(c, MODE) == STICKING) slide(c, m), changed = 1;
 		}
