@@ -594,22 +594,20 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
  * beyond the touching one (touching) moves along its normal as close_gap
  * moves it, without the outward push; pair by pair, in sweeps
  * (Gauss-Seidel), until every such gap is within it, at most 64 sweeps.
+ * Then an apart pair left overlapping (by these moves, or by a gap closed
+ * at this instant that moved a body into a third) is placed touching.
  */
 static void hold_sweeps(csf_contacts *cs, double *m);
 
 static void hold_gaps(csf_contacts *cs, double *m)
 {
-	if (grow_marks(cs)) return;
-	for (uint32_t i = 0; i < cs->n; i++) { /* the apart pairs whose guards are armed */
-		cpair *c = &cs->pairs[i];
-		double n[3], curv;
-		cs->mark[i] = W(c, MODE) == APART && csf_contact_geometry(c, m, n, &curv) >= 0;
-	}
 	hold_sweeps(cs, m);
-	for (uint32_t i = 0; i < cs->n; i++) { /* armed still, though the gaps held moved their bodies */
+	for (uint32_t i = 0; i < cs->n; i++) {
 		cpair *c = &cs->pairs[i];
 		double n[3], curv, gap = csf_contact_geometry(c, m, n, &curv);
-		if (cs->mark[i] && gap < 0) close_gap(c, m, n, gap);
+		/* an apart pair that the gaps held, or a gap closed at this instant (close_gap), moved
+		   into overlap: placed touching, so that its guard is armed (else it would pass through) */
+		if (W(c, MODE) == APART && gap < 0 && csf_contact_inside(c, m) >= 0) close_gap(c, m, n, gap);
 		if (W(c, MODE) != APART || gap > W(c, LIFT)) W(c, LIFT) = 0; /* clear of the positions' error */
 	}
 }
