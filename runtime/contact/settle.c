@@ -349,35 +349,6 @@ static int turns_back(const csf_contacts *cs, const cpair *c, const double *m)
 }
 
 /*
- * A pair in contact whose bodies part (vn beyond the rounding of zero) at
- * an instant: its relative normal velocity should be zero, and is not by
- * the integrator's error (a contact's force that fades to zero over a step
- * is a kink the step's error estimate does not see; the state at an event
- * is a step's) or by an impulse on a neighbour that left it parting. Left
- * alone, the pair's normal force would hold it in contact while its bodies
- * move apart, doing work: a ball lifting off a floor at 3e-6 m/s that
- * holds it up, gaining energy. It goes on as such a parting does
- * (departure, its relative normal acceleration that of its own normal
- * force, as after_impact takes it): at rest, the parting is taken away (an
- * impulse along the normal; the velocity's projection onto the contact,
- * which never adds energy); else it lifts off. Returns 1 (its state
- * changed).
- */
-static int drifts_apart(csf_contacts *cs, cpair *c, double *m, double vn, double zeno, double tol)
-{
-	double n[3], curv, dv[3];
-	csf_contact_geometry(c, m, n, &curv);
-	double an = -W(c, LAM) * (inv_mass_i(c, m) + inv_mass_j(c, m));
-	if (departure(cs, m, c, vn, an, zeno, tol) != RESTS) {
-		separate(c, m);
-		return 1;
-	}
-	for (int k = 0; k < 3; k++) dv[k] = -vn * n[k];
-	csf_contact_add_impulse(c, m, dv);
-	return 1;
-}
-
-/*
  * A sliding pair whose slip its own friction would stop within the Zeno
  * time (the slip over the deceleration mu_k |N| (1/m_i + 1/m_j)): a slip of
  * a few 1e-12 m/s, the integrator's error of velocities at rest, left a
@@ -476,8 +447,7 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 				rel(c, m, I(c, V), J(c, V), vr);
 				double vn = dot3(vr, n), res = speed_resolution(cs, c, m);
 				if (vn < -res && vn < worst) worst = vn, hit = (long)i;
-				if (vn > res && hit < 0 && evaluated && drifts_apart(cs, c, m, vn, zeno, tol)) changed = 1;
-				else if (hit < 0 && evaluated && stops_at_once(cs, c, m, zeno)) stick(c, m), W(c, SS)++, changed = 1;
+				if (hit < 0 && evaluated && stops_at_once(cs, c, m, zeno)) stick(c, m), W(c, SS)++, changed = 1;
 				continue;
 			}
 			double gap = csf_contact_geometry(c, m, n, &curv);
@@ -597,23 +567,59 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
  * Then an apart pair left overlapping (by these moves, or by a gap closed
  * at this instant that moved a body into a third) is placed touching.
  */
-static void hold_sweeps(csf_contacts *cs, double *m);
+static int hold_sweeps(csf_contacts *cs, double *m);
 
-static void hold_gaps(csf_contacts *cs, double *m)
+/*
+ * The pairs in contact held at a relative normal velocity of zero, once
+ * the modes stand: the integrator's error, and the impulses of the
+ * instant, leave pairs in contact parting or closing within what counts as
+ * rest (after_impact); their normal forces would then do work (a ball on a
+ * floor that the floor holds up while it rises at 3e-6 m/s gains energy).
+ * Each such pair takes the impulse along its normal (of either sign) that
+ * makes its velocity zero, pair by pair, in sweeps (Gauss-Seidel), until
+ * every one is within the rounding of zero (speed_resolution), at most 64
+ * sweeps: each impulse takes away the kinetic energy of the velocity it
+ * removes, so the sweeps never add energy.
+ */
+static int hold_velocities(csf_contacts *cs, double *m)
 {
-	hold_sweeps(cs, m);
+	int any = 0;
+	for (int sweep = 0; sweep < 64; sweep++) {
+		int moved = 0;
+		for (uint32_t i = 0; i < cs->n; i++) {
+			cpair *c = &cs->pairs[i];
+			double n[3], curv, vr[3], dv[3];
+			if (!in_contact(c)) continue;
+			csf_contact_geometry(c, m, n, &curv);
+			rel(c, m, I(c, V), J(c, V), vr);
+			double vn = dot3(vr, n);
+			if (fabs(vn) <= speed_resolution(cs, c, m)) continue;
+			for (int k = 0; k < 3; k++) dv[k] = -vn * n[k];
+			csf_contact_add_impulse(c, m, dv);
+			moved = any = 1;
+		}
+		if (!moved) break;
+	}
+	return any;
+}
+
+static int hold_gaps(csf_contacts *cs, double *m)
+{
+	int moved = hold_velocities(cs, m) | hold_sweeps(cs, m);
 	for (uint32_t i = 0; i < cs->n; i++) {
 		cpair *c = &cs->pairs[i];
 		double n[3], curv, gap = csf_contact_geometry(c, m, n, &curv);
 		/* an apart pair that the gaps held, or a gap closed at this instant (close_gap), moved
 		   into overlap: placed touching, so that its guard is armed (else it would pass through) */
-		if (W(c, MODE) == APART && gap < 0 && csf_contact_inside(c, m) >= 0) close_gap(c, m, n, gap);
+		if (W(c, MODE) == APART && gap < 0 && csf_contact_inside(c, m) >= 0) close_gap(c, m, n, gap), moved = 1;
 		if (W(c, MODE) != APART || gap > W(c, LIFT)) W(c, LIFT) = 0; /* clear of the positions' error */
 	}
+	return moved;
 }
 
-static void hold_sweeps(csf_contacts *cs, double *m)
+static int hold_sweeps(csf_contacts *cs, double *m)
 {
+	int any = 0;
 	for (int sweep = 0; sweep < 64; sweep++) {
 		int moved = 0;
 		for (uint32_t i = 0; i < cs->n; i++) {
@@ -627,10 +633,11 @@ static void hold_sweeps(csf_contacts *cs, double *m)
 				m[I(c, POS) + k] -= gap * n[k] * (wi / w);
 				if (!c->plane) m[J(c, POS) + k] += gap * n[k] * (wj / w);
 			}
-			moved = 1;
+			moved = any = 1;
 		}
-		if (!moved) return;
+		if (!moved) break;
 	}
+	return any;
 }
 
 /* The instant's modes (settle), with the speed that counts at the instant (speed_resolution). */
@@ -640,8 +647,11 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 	if (!cs) return 0;
 	cs->vfloor = 0;
 	cs->tol = tol;
-	int st = settle(p, cs, m, zeno, tol, eval, ctx);
-	if (st == 0) hold_gaps(cs, m);
+	/* the modes chosen again (at most 3 times) when holding the pairs in contact moved a body:
+	   velocities changed, and a normal force could pull from the start of the next step */
+	int st;
+	for (int round = 0; !(st = settle(p, cs, m, zeno, tol, eval, ctx)) && round < 3 && hold_gaps(cs, m); round++)
+		;
 	cs->vfloor = 0;
 	return st;
 }
