@@ -497,15 +497,16 @@ t_piles_now() {
 	suite "piles that settle" sh tests/piles/piles.sh "$CSFC" "$CSFVM" "$T" "3 0 0 default" "3 0.5 0 default" \
 		"3 0.5 0.3 default" "3 1 0 default" "3 0.9 0.3 default" "16 0.5 0.3 default" "16 0 0.3 default" \
 		"3 0.5 0.3 rkf45" "16 0.5 0.3 msbdf" "16 1 0 default" "16 1 0.3 default" "3 0 0.3 default" \
-		"3 0.9 0 default" "3 1 0.3 default" "16 0 0.3 rkf45"
+		"3 0.9 0 default" "3 1 0.3 default" "16 0 0.3 rkf45" "3 0 0 msbdf" "3 0.5 0 msbdf" "3 0.9 0 msbdf" \
+		"16 0.5 0.3 rkf45"
 }
 t_piles_statics() {
 	suite "balls at rest" sh tests/piles/statics.sh "$CSFC" "$CSFVM" "$T"
 }
 # a Galton board (issue 28's proof item, tests/piles/galton.sh; galton NBALLS NROWS): no overlap,
-# no energy gained, every ball at rest in a bin at the end. 9 balls through 10 rows take 0.2 s;
-# 7, 8, 10 and more, and 10 balls through 4, 6 or 8 rows, stop with a contact error or a collapsed
-# step (the script's header says where and how), so only the sizes that pass are here
+# no energy gained, every ball at rest in a bin at the end. 9 balls through 10 rows take 0.2 s,
+# 10 balls some 7 s; 20 and more do not finish in 120 s (the script's header says where and how),
+# so only the sizes that pass are here
 t_galton() {
 	suite "a Galton board of $1 balls, $2 rows" sh tests/piles/galton.sh "$CSFC" "$CSFVM" "$T" "$1" "$2"
 }
@@ -810,7 +811,7 @@ done
 	done
 	echo piles_statics
 	echo piles_now
-	for c in "6 10" "9 10"; do echo "galton $c"; done
+	for c in "6 10" "9 10" "10 10"; do echo "galton $c"; done
 	if [ -n "${CSF_TEST_PILES:-}" ]; then
 		for n in 64 16 3; do echo "piles $n"; done
 	fi

@@ -85,8 +85,9 @@ enum { APART, SLIDING, STICKING, HOPPING }; /* the modes of a pair */
 /* A pair's work values: mode, the two guards, the normal force's size, the friction force,
    the sliding direction, the time a hop lands, the relative velocity before an impact, the
    times it has begun to stick at the instant being settled (csf_contact_settle), whether
-   sliding friction locks it (force.c). A pair that is not a candidate is apart. */
-enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_SS = 14, W_LOCK = 15, W_N = 16 };
+   sliding friction locks it (force.c), the margin its gap's guard takes after it lifted off
+   (settle.c's separate). A pair that is not a candidate is apart. */
+enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_SS = 14, W_LOCK = 15, W_LIFT = 16, W_N = 17 };
 
 /* A candidate pair: body i (a mass point, $0) and body j (a mass point, a plane or an anchor, $1). */
 typedef struct cpair {
@@ -142,6 +143,7 @@ struct csf_contacts {
 	int group;                 /* an impact's impulses are shared by the pairs marked (impulse.c) */
 	uint32_t why_pair, why_np; /* of a cluster that could not be solved: a pair of it, its pairs, */
 	uint32_t why_big;          /* and DIRECT_MAX if its unknowns are more (else 0) */
+	double tol;                /* the integrator's tolerance at the last instant settled (settle.c) */
 	double vfloor;             /* the least speed that counts at the instant being settled (settle.c) */
 	int unsolved; /* the sweeps left contact forces that do not hold (csf_contacts_unsolved) */
 };

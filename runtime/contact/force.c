@@ -404,7 +404,8 @@ int csf_contacts_unsolved(const csf_contacts *c) { return c->unsolved; }
 double csf_contact_gap_guard(const cpair *c, const double *m, const double *pi, const double *pj)
 {
 	double n[3], curv, gap = csf_contact_geometry_at(c, m, pi, pj, n, &curv);
-	return csf_max(gap + 2 * DBL_EPSILON * csf_contact_scale_at(c, m, pi, pj), -csf_contact_inside_at(c, m, pi));
+	return csf_max(gap + csf_max(2 * DBL_EPSILON * csf_contact_scale_at(c, m, pi, pj), W(c, LIFT)),
+	               -csf_contact_inside_at(c, m, pi));
 }
 
 /*
@@ -506,7 +507,7 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 			continue;
 		}
 		if (!in_contact(c)) { /* the gap closes over the plane (not past its edge) */
-			g[0] = csf_max(gap + csf_contact_resolution(c, m), -in); /* csf_contact_gap_guard, from the gap */
+			g[0] = csf_max(gap + csf_max(csf_contact_resolution(c, m), W(c, LIFT)), -in); /* csf_contact_gap_guard */
 			g[1] = 1;
 			continue;
 		}

@@ -57,6 +57,7 @@ static void enter_contact(const csf_contacts *cs, cpair *c, double *m, const dou
 		s = 0;
 	}
 	W(c, MODE) = s == 0 && has_friction(c, m) ? STICKING : SLIDING;
+	W(c, LIFT) = 0;
 	for (int k = 0; k < 3; k++) WV(c, DS)[k] = s > 0 ? vt[k] / s : 0;
 }
 
@@ -66,12 +67,31 @@ static int touching(const cpair *c, const double *m, double gap)
 	return gap <= 1e-12 * csf_contact_scale(c, m) && csf_contact_inside(c, m) >= 0;
 }
 
-/* Lift-off: apart, exactly touching. */
+/* Apart, exactly touching. */
 static void separate(cpair *c, double *m)
 {
 	double n[3], curv, gap = csf_contact_geometry(c, m, n, &curv);
 	W(c, MODE) = APART;
 	close_gap(c, m, n, gap);
+}
+
+/*
+ * Lift-off where the normal force fades to zero (it would pull): the
+ * relative normal velocity and acceleration are zero there too, so the gap
+ * opens as the cube of the time, and for a while stays within the
+ * integrator's error of positions, tol times their size, which takes it
+ * below zero and back again and again (some 2000 events as a ball slid off
+ * another, each a restart). Until the gap is beyond ten times that error
+ * (hold_gaps), its guard takes that as margin (W_LIFT, at least the
+ * touching gap): the pair is struck when it closes beyond it, and placed
+ * touching (close_gap). Not after an impulse: a pair pressed together that
+ * an impact parted would gain speed falling back through the margin, and
+ * rattle on.
+ */
+static void lift_off(const csf_contacts *cs, cpair *c, double *m)
+{
+	separate(c, m);
+	W(c, LIFT) = csf_max(1e-12, 10 * cs->tol) * csf_contact_scale(c, m);
 }
 
 /* Sliding has stopped: the relative tangential velocity becomes exactly zero, and the pair sticks. */
@@ -254,7 +274,7 @@ static int take_mode(const csf_contacts *cs, cpair *c, double *m, int to, const 
 {
 	int was = in_contact(c);
 	if (to == TO_APART) {
-		if (was) separate(c, m);
+		if (was) lift_off(cs, c, m);
 		return was;
 	}
 	if (!has_friction(c, m)) to = TO_CONTACT;
@@ -326,6 +346,26 @@ static int turns_back(const csf_contacts *cs, const cpair *c, const double *m)
 	rel(c, m, I(c, A), J(c, A), ar);
 	csf_contact_tangential(ar, n, at);
 	return dot3(at, WV(c, DS)) < -csf_contact_accel_resolution(c, m, curv);
+}
+
+/*
+ * A sliding pair whose slip its own friction would stop within the Zeno
+ * time (the slip over the deceleration mu_k |N| (1/m_i + 1/m_j)): a slip of
+ * a few 1e-12 m/s, the integrator's error of velocities at rest, left a
+ * pair sliding in a direction that is noise, whose friction turned it this
+ * way and that in steps of 1e-11 s (a ball wedged on a peg in a Galton
+ * board). It sticks, as a slide that stops does (its slip taken away); at
+ * most twice at an instant (W_SS), since static friction that cannot hold
+ * sends it sliding again at once, from no slip.
+ */
+static int stops_at_once(const csf_contacts *cs, const cpair *c, const double *m, double zeno)
+{
+	double n[3], curv, vt[3];
+	if (W(c, MODE) != SLIDING || !has_friction(c, m) || W(c, SS) >= 2) return 0;
+	csf_contact_geometry(c, m, n, &curv);
+	csf_contact_slip_velocity(c, m, n, vt);
+	double s = mag3(vt), d = mu_k(c, m) * fabs(W(c, LAM)) * (inv_mass_i(c, m) + inv_mass_j(c, m));
+	return s > speed_resolution(cs, c, m) && s <= d * zeno;
 }
 
 /* Hops from time t at normal speed v >= 0 (an < 0): it lands after 2 v/|an|. */
@@ -405,8 +445,9 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 			if (in_contact(c)) { /* closing, struck by an impact on a body it holds */
 				csf_contact_geometry(c, m, n, &curv);
 				rel(c, m, I(c, V), J(c, V), vr);
-				double vn = dot3(vr, n);
-				if (vn < -speed_resolution(cs, c, m) && vn < worst) worst = vn, hit = (long)i;
+				double vn = dot3(vr, n), res = speed_resolution(cs, c, m);
+				if (vn < -res && vn < worst) worst = vn, hit = (long)i;
+				if (hit < 0 && evaluated && stops_at_once(cs, c, m, zeno)) stick(c, m), W(c, SS)++, changed = 1;
 				continue;
 			}
 			double gap = csf_contact_geometry(c, m, n, &curv);
@@ -472,6 +513,7 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 			if (how == RESTS) enter_contact(cs, c, m, n);
 			else if (how == HOPS) hop(c, m[p->tslot], sep, an);
 			else if (was) W(c, MODE) = APART;
+			if (how != RESTS) W(c, LIFT) = 0; /* struck apart: its gap's guard is the gap */
 			for (uint32_t i = 0; i < cs->n; i++) /* flights whose velocities just changed */
 				if (share_body(c, &cs->pairs[i]) && W(&cs->pairs[i], MODE) == HOPPING)
 					W(&cs->pairs[i], MODE) = APART;
@@ -504,12 +546,98 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 		for (uint32_t i = 0; i < cs->n && !changed; i++) {
 			cpair *c = &cs->pairs[i];
 			if (!in_contact(c) || (chose && cs->mark[i] & MODES_CHOSEN)) continue;
-			if (W(c, G0) < 0) separate(c, m), changed = 1;
+			if (W(c, G0) < 0) lift_off(cs, c, m), changed = 1;
 			else if (W(c, G1) < 0 && W(c, MODE) == SLIDING && W(c, SS) < 2) stick(c, m), W(c, SS)++, changed = 1;
 			else if (W(c, G1) < 0 && W(c, MODE) == STICKING) slide(c, m), changed = 1;
 		}
 		if (!changed || ++others >= 100 + 10 * (uint64_t)cs->n) return 0;
 	}
+}
+
+/*
+ * The pairs in contact placed exactly in contact again, once their modes
+ * stand: the integrator's error, and a gap closed between two bodies that
+ * moved one of them along that pair's normal into a third (close_gap on a
+ * ball resting on a floor and leaning on another), leave pairs in contact
+ * apart or overlapping, which their accelerations keep so: a ball that
+ * sinks into a floor a little more at every event. A pair whose gap is
+ * beyond the touching one (touching) moves along its normal as close_gap
+ * moves it, without the outward push; pair by pair, in sweeps
+ * (Gauss-Seidel), until every such gap is within it, at most 64 sweeps.
+ * Then an apart pair left overlapping (by these moves, or by a gap closed
+ * at this instant that moved a body into a third) is placed touching.
+ */
+static int hold_sweeps(csf_contacts *cs, double *m);
+
+/*
+ * The pairs in contact held at a relative normal velocity of zero, once
+ * the modes stand: the integrator's error, and the impulses of the
+ * instant, leave pairs in contact parting or closing within what counts as
+ * rest (after_impact); their normal forces would then do work (a ball on a
+ * floor that the floor holds up while it rises at 3e-6 m/s gains energy).
+ * Each such pair takes the impulse along its normal (of either sign) that
+ * makes its velocity zero, pair by pair, in sweeps (Gauss-Seidel), until
+ * every one is within the rounding of zero (speed_resolution), at most 64
+ * sweeps: each impulse takes away the kinetic energy of the velocity it
+ * removes, so the sweeps never add energy.
+ */
+static int hold_velocities(csf_contacts *cs, double *m)
+{
+	int any = 0;
+	for (int sweep = 0; sweep < 64; sweep++) {
+		int moved = 0;
+		for (uint32_t i = 0; i < cs->n; i++) {
+			cpair *c = &cs->pairs[i];
+			double n[3], curv, vr[3], dv[3];
+			if (!in_contact(c)) continue;
+			csf_contact_geometry(c, m, n, &curv);
+			rel(c, m, I(c, V), J(c, V), vr);
+			double vn = dot3(vr, n);
+			if (fabs(vn) <= speed_resolution(cs, c, m)) continue;
+			for (int k = 0; k < 3; k++) dv[k] = -vn * n[k];
+			csf_contact_add_impulse(c, m, dv);
+			moved = any = 1;
+		}
+		if (!moved) break;
+	}
+	return any;
+}
+
+static int hold_gaps(csf_contacts *cs, double *m)
+{
+	int moved = hold_velocities(cs, m) | hold_sweeps(cs, m);
+	for (uint32_t i = 0; i < cs->n; i++) {
+		cpair *c = &cs->pairs[i];
+		double n[3], curv, gap = csf_contact_geometry(c, m, n, &curv);
+		/* an apart pair that the gaps held, or a gap closed at this instant (close_gap), moved
+		   into overlap: placed touching, so that its guard is armed (else it would pass through) */
+		if (W(c, MODE) == APART && gap < 0 && csf_contact_inside(c, m) >= 0) close_gap(c, m, n, gap), moved = 1;
+		if (W(c, MODE) != APART || gap > W(c, LIFT)) W(c, LIFT) = 0; /* clear of the positions' error */
+	}
+	return moved;
+}
+
+static int hold_sweeps(csf_contacts *cs, double *m)
+{
+	int any = 0;
+	for (int sweep = 0; sweep < 64; sweep++) {
+		int moved = 0;
+		for (uint32_t i = 0; i < cs->n; i++) {
+			cpair *c = &cs->pairs[i];
+			double n[3], curv;
+			if (!in_contact(c)) continue;
+			double gap = csf_contact_geometry(c, m, n, &curv);
+			if (fabs(gap) <= 1e-12 * csf_contact_scale(c, m)) continue;
+			double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), w = wi + wj;
+			for (int k = 0; k < 3; k++) {
+				m[I(c, POS) + k] -= gap * n[k] * (wi / w);
+				if (!c->plane) m[J(c, POS) + k] += gap * n[k] * (wj / w);
+			}
+			moved = any = 1;
+		}
+		if (!moved) break;
+	}
+	return any;
 }
 
 /* The instant's modes (settle), with the speed that counts at the instant (speed_resolution). */
@@ -518,7 +646,12 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 {
 	if (!cs) return 0;
 	cs->vfloor = 0;
-	int st = settle(p, cs, m, zeno, tol, eval, ctx);
+	cs->tol = tol;
+	/* the modes chosen again (at most 3 times) when holding the pairs in contact moved a body:
+	   velocities changed, and a normal force could pull from the start of the next step */
+	int st;
+	for (int round = 0; !(st = settle(p, cs, m, zeno, tol, eval, ctx)) && round < 3 && hold_gaps(cs, m); round++)
+		;
 	cs->vfloor = 0;
 	return st;
 }
