@@ -68,11 +68,13 @@ static ObjArray *declared(Stmt *s)
 	return A;
 }
 
-/* Applies object statement s (a kind, or a property) to member o. */
-static void apply(Stmt *s, Object *o)
+/* Applies object statement s (a kind, or a property) to member o; every: s sets every member
+   (object NAME[i], NAME[A..B]), which a member's own value that follows (object NAME[K])
+   overrides (put_prop). */
+static void apply(Stmt *s, Object *o, int every)
 {
 	if (s->kind == S_OBJKIND) apply_kind(o, s);
-	else set_prop(o, s, 0);
+	else set_prop(o, s, every ? 2 : 0);
 }
 
 static void from_file(Stmt *s);
@@ -89,7 +91,7 @@ void array_stmt(Stmt *s)
 		if (!(A = declare(s->name, s->name_loc, s->lo, s->hi))) return;
 		for (long k = A->lo; k <= A->hi; k++) {
 			int before = diag_errors;
-			apply(s, array_member(A, k));
+			apply(s, array_member(A, k), 1);
 			if (diag_errors > before) return; /* one report, not one per member */
 		}
 		return;
@@ -103,7 +105,7 @@ void array_stmt(Stmt *s)
 			int before = diag_errors;
 			sema.ivar = s->ivar;
 			sema.idx = k;
-			apply(s, array_member(A, k));
+			apply(s, array_member(A, k), 1);
 			sema.ivar = NULL;
 			if (diag_errors > before) return;
 		}
@@ -115,7 +117,7 @@ void array_stmt(Stmt *s)
 			error_at(s->name_loc, "'%s' has the members %ld..%ld: there is no %s[%ld]", A->name, A->lo, A->hi, A->name, s->lo);
 			return;
 		}
-		apply(s, o);
+		apply(s, o, 0);
 		return;
 	}
 	case ARR_FILE:

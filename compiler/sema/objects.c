@@ -215,9 +215,13 @@ void put_prop(Object *o, const char *name, Loc l, Loc at, RExpr *r, int isvec, i
 	}
 	Var *p = prop_of_obj(o, name);
 	if (p) {
-		if (!p->from_kind) {
+		/* the value every member of an array takes (object NAME[i], from_kind 2) gives way to a
+		   member's own that follows it (object NAME[K]), as a kind's default does */
+		if (!p->from_kind || (p->from_kind == 2 && from_kind == 2)) {
 			error_at(l, "property '%s' of object '%s' is already defined", name, o->name);
-			note_at(p->loc, "defined here");
+			note_at(p->loc, from_kind == 2 && !p->from_kind ? "defined here: one member's own value comes after "
+			                                                   "the value every member takes"
+			                                                 : "defined here");
 			return;
 		}
 		if (!override_ok(at, xprintf("property '%s'", name), p, r)) return;

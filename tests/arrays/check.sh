@@ -109,5 +109,32 @@ if comp ring "$D/ring.csf"; then
 			n++ }
 		END { exit n != 21 }' "$T/ring.csv"
 fi
+# one member's own value after every member's: osc[3] and osc[4] take theirs, the rest 0.25 kg;
+# each on a spring of 1 N/m from x = 1 m: x = cos(t sqrt(k/m)); the other order is an error
+cat >"$T/own.csf" <<'EOS'
+using mechanics/mass_point
+global k = 1 N/m
+object osc[0..4]: mass_point
+object osc[i]: m = 0.25 kg
+object osc[i]: pos = (1, 0, 0.1 * i) m
+object osc[3]: m = 1 kg
+object osc[4]: m = 4 kg
+using mechanics/rules
+rule F: S = pos.mul(-k)
+inc t till 2 s by 0.1 s watch osc.pos
+EOS
+if comp own "$T/own.csf"; then
+	"$CSFVM" "$T/own.csfb" >"$T/own.csv"
+	check awk -F, 'function abs(x) { return x < 0 ? -x : x }
+		NR > 1 { n++; split("4 4 4 1 0.25", w2, " ")
+			for (j = 0; j < 5; j++) if (abs($(2 + 3 * j) - cos($1 * sqrt(w2[j + 1]))) > 1e-9) exit 1 }
+		END { exit n != 21 }' "$T/own.csv"
+fi
+printf 'using mechanics/mass_point\nobject p[0..2]: mass_point\nobject p[1]: m = 2 kg\nobject p[i]: m = 1 kg\n' >"$T/own2.csf"
+"$CSFC" "$T/own2.csf" -o "$T/own2.csfb" 2>"$T/own2.err"
+check test $? -eq 1
+check grep -q "own2.csf:4:14: error: property 'm' of object 'p\[1\]' is already defined" "$T/own2.err"
+check grep -q "one member's own value comes after the value every member takes" "$T/own2.err"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
