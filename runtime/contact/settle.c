@@ -11,13 +11,20 @@
  * location error): then, if rounding left it negative, body i outward by the
  * least amount that makes it non-negative, so that the gap's guard is armed.
  */
-static void close_gap(cpair *c, double *m, const double n[3], double gap)
+/* Moves the pair's bodies along n, each by its share of the inverse masses, so that gap closes. */
+static void move_closed(cpair *c, double *m, const double n[3], double gap)
 {
-	double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), w = wi + wj, nn[3], curv;
+	double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), w = wi + wj;
 	for (int k = 0; k < 3; k++) {
 		m[I(c, POS) + k] -= gap * n[k] * (wi / w);
 		if (!c->plane) m[J(c, POS) + k] += gap * n[k] * (wj / w);
 	}
+}
+
+static void close_gap(cpair *c, double *m, const double n[3], double gap)
+{
+	double nn[3], curv;
+	move_closed(c, m, n, gap);
 	double push = DBL_EPSILON * csf_contact_scale(c, m) / 8;
 	for (int i = 0; i < 64 && (gap = csf_contact_geometry(c, m, nn, &curv)) < 0; i++, push *= 2)
 		for (int k = 0; k < 3; k++) m[I(c, POS) + k] += csf_max(push, -gap) * n[k];
@@ -82,7 +89,7 @@ static void separate(cpair *c, double *m)
  * integrator's error of positions, tol times their size, which takes it
  * below zero and back again and again (some 2000 events as a ball slid off
  * another, each a restart). Until the gap is beyond ten times that error
- * (hold_gaps), its guard takes that as margin (W_LIFT, at least the
+ * (hold_contacts), its guard takes that as margin (W_LIFT, at least the
  * touching gap): the pair is struck when it closes beyond it, and placed
  * touching (close_gap). Not after an impulse: a pair pressed together that
  * an impact parted would gain speed falling back through the margin, and
@@ -555,89 +562,82 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 }
 
 /*
- * The pairs in contact placed exactly in contact again, once their modes
- * stand: the integrator's error, and a gap closed between two bodies that
- * moved one of them along that pair's normal into a third (close_gap on a
- * ball resting on a floor and leaning on another), leave pairs in contact
- * apart or overlapping, which their accelerations keep so: a ball that
- * sinks into a floor a little more at every event. A pair whose gap is
- * beyond the touching one (touching) moves along its normal as close_gap
- * moves it, without the outward push; pair by pair, in sweeps
- * (Gauss-Seidel), until every such gap is within it, at most 64 sweeps.
- * Then an apart pair left overlapping (by these moves, or by a gap closed
- * at this instant that moved a body into a third) is placed touching.
+ * Sweeps (Gauss-Seidel) of one correction over the pairs in contact, pair
+ * by pair, until a sweep corrects none, at most 64. one() corrects a pair
+ * and returns 1, or returns 0 when it is within its rounding. Returns 1 if
+ * any pair was corrected.
  */
-static int hold_sweeps(csf_contacts *cs, double *m);
-
-/*
- * The pairs in contact held at a relative normal velocity of zero, once
- * the modes stand: the integrator's error, and the impulses of the
- * instant, leave pairs in contact parting or closing within what counts as
- * rest (after_impact); their normal forces would then do work (a ball on a
- * floor that the floor holds up while it rises at 3e-6 m/s gains energy).
- * Each such pair takes the impulse along its normal (of either sign) that
- * makes its velocity zero, pair by pair, in sweeps (Gauss-Seidel), until
- * every one is within the rounding of zero (speed_resolution), at most 64
- * sweeps: each impulse takes away the kinetic energy of the velocity it
- * removes, so the sweeps never add energy.
- */
-static int hold_velocities(csf_contacts *cs, double *m)
+static int sweep_contacts(csf_contacts *cs, double *m, int (*one)(const csf_contacts *, cpair *, double *))
 {
 	int any = 0;
 	for (int sweep = 0; sweep < 64; sweep++) {
 		int moved = 0;
-		for (uint32_t i = 0; i < cs->n; i++) {
-			cpair *c = &cs->pairs[i];
-			double n[3], curv, vr[3], dv[3];
-			if (!in_contact(c)) continue;
-			csf_contact_geometry(c, m, n, &curv);
-			rel(c, m, I(c, V), J(c, V), vr);
-			double vn = dot3(vr, n);
-			if (fabs(vn) <= speed_resolution(cs, c, m)) continue;
-			for (int k = 0; k < 3; k++) dv[k] = -vn * n[k];
-			csf_contact_add_impulse(c, m, dv);
-			moved = any = 1;
-		}
+		for (uint32_t i = 0; i < cs->n; i++)
+			if (in_contact(&cs->pairs[i]) && one(cs, &cs->pairs[i], m)) moved = any = 1;
 		if (!moved) break;
 	}
 	return any;
 }
 
-static int hold_gaps(csf_contacts *cs, double *m)
+/*
+ * A pair in contact held at a relative normal velocity of zero: the
+ * integrator's error, and the impulses of the instant, leave pairs in
+ * contact parting or closing within what counts as rest (after_impact);
+ * their normal forces would then do work (a ball on a floor that the floor
+ * holds up while it rises at 3e-6 m/s gains energy). Beyond the rounding of
+ * zero (speed_resolution), the pair takes the impulse along its normal (of
+ * either sign) that makes its velocity zero: each such impulse takes away
+ * the kinetic energy of the velocity it removes, so this never adds energy.
+ */
+static int hold_velocity(const csf_contacts *cs, cpair *c, double *m)
 {
-	int moved = hold_velocities(cs, m) | hold_sweeps(cs, m);
+	double n[3], curv, vr[3], dv[3];
+	csf_contact_geometry(c, m, n, &curv);
+	rel(c, m, I(c, V), J(c, V), vr);
+	double vn = dot3(vr, n);
+	if (fabs(vn) <= speed_resolution(cs, c, m)) return 0;
+	for (int k = 0; k < 3; k++) dv[k] = -vn * n[k];
+	csf_contact_add_impulse(c, m, dv);
+	return 1;
+}
+
+/*
+ * A pair in contact placed exactly in contact: the integrator's error, and
+ * a gap closed between two bodies that moved one of them along that pair's
+ * normal into a third (close_gap on a ball resting on a floor and leaning
+ * on another), leave pairs in contact apart or overlapping, which their
+ * accelerations keep so: a ball that sinks into a floor a little more at
+ * every event. A gap beyond the touching one (touching) is closed by moving
+ * the bodies along the normal (move_closed, without close_gap's outward
+ * push).
+ */
+static int hold_gap(const csf_contacts *cs, cpair *c, double *m)
+{
+	double n[3], curv, gap = csf_contact_geometry(c, m, n, &curv);
+	(void)cs;
+	if (fabs(gap) <= 1e-12 * csf_contact_scale(c, m)) return 0;
+	move_closed(c, m, n, gap);
+	return 1;
+}
+
+/*
+ * The pairs in contact held, once the modes stand: their velocities, then
+ * their gaps, in sweeps; then an apart pair left overlapping (by these
+ * moves, or by a gap closed at this instant that moved a body into a third)
+ * is placed touching, so that its guard is armed (else it would pass
+ * through), and a lift-off's margin is dropped once the gap is clear of it.
+ * Returns 1 if a body moved.
+ */
+static int hold_contacts(csf_contacts *cs, double *m)
+{
+	int moved = sweep_contacts(cs, m, hold_velocity) | sweep_contacts(cs, m, hold_gap);
 	for (uint32_t i = 0; i < cs->n; i++) {
 		cpair *c = &cs->pairs[i];
 		double n[3], curv, gap = csf_contact_geometry(c, m, n, &curv);
-		/* an apart pair that the gaps held, or a gap closed at this instant (close_gap), moved
-		   into overlap: placed touching, so that its guard is armed (else it would pass through) */
 		if (W(c, MODE) == APART && gap < 0 && csf_contact_inside(c, m) >= 0) close_gap(c, m, n, gap), moved = 1;
-		if (W(c, MODE) != APART || gap > W(c, LIFT)) W(c, LIFT) = 0; /* clear of the positions' error */
+		if (W(c, MODE) != APART || gap > W(c, LIFT)) W(c, LIFT) = 0;
 	}
 	return moved;
-}
-
-static int hold_sweeps(csf_contacts *cs, double *m)
-{
-	int any = 0;
-	for (int sweep = 0; sweep < 64; sweep++) {
-		int moved = 0;
-		for (uint32_t i = 0; i < cs->n; i++) {
-			cpair *c = &cs->pairs[i];
-			double n[3], curv;
-			if (!in_contact(c)) continue;
-			double gap = csf_contact_geometry(c, m, n, &curv);
-			if (fabs(gap) <= 1e-12 * csf_contact_scale(c, m)) continue;
-			double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), w = wi + wj;
-			for (int k = 0; k < 3; k++) {
-				m[I(c, POS) + k] -= gap * n[k] * (wi / w);
-				if (!c->plane) m[J(c, POS) + k] += gap * n[k] * (wj / w);
-			}
-			moved = any = 1;
-		}
-		if (!moved) break;
-	}
-	return any;
 }
 
 /* The instant's modes (settle), with the speed that counts at the instant (speed_resolution). */
@@ -650,7 +650,7 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 	/* the modes chosen again (at most 3 times) when holding the pairs in contact moved a body:
 	   velocities changed, and a normal force could pull from the start of the next step */
 	int st;
-	for (int round = 0; !(st = settle(p, cs, m, zeno, tol, eval, ctx)) && round < 3 && hold_gaps(cs, m); round++)
+	for (int round = 0; !(st = settle(p, cs, m, zeno, tol, eval, ctx)) && round < 3 && hold_contacts(cs, m); round++)
 		;
 	cs->vfloor = 0;
 	return st;
