@@ -141,6 +141,64 @@ static void put_runs(wbuf *w, const double *x, uint32_t n)
 	}
 }
 
+/*
+ * How many groups of g elements (of w words) from e on, m elements left, go on as the first two
+ * do: each the one before plus the same difference, word by word (at least 1 when g <= m).
+ */
+static uint64_t prog_groups(const uint32_t *e, uint32_t w, uint64_t m, uint32_t g)
+{
+	size_t gw = (size_t)g * w;
+	uint64_t k = m >= 2 * (uint64_t)g ? 2 : m >= g;
+	for (; k >= 2 && (k + 1) * g <= m; k++) {
+		const uint32_t *a = e + (k - 1) * gw, *b = a + gw;
+		size_t t = 0;
+		while (t < gw && b[t] - a[t] == e[gw + t] - e[t]) t++;
+		if (t < gw) break;
+	}
+	return k;
+}
+
+/* Writes g elements of w words from e as they are (a progression of one group), none if g is 0. */
+static void put_group(wbuf *w, const uint32_t *e, uint32_t words, uint32_t g)
+{
+	if (!g) return;
+	put_u32(w, g);
+	put_u32(w, 1);
+	for (size_t t = 0; t < (size_t)g * words; t++) put_u32(w, e[t]);
+}
+
+/*
+ * Writes the n elements of w words from e as progressions (bytecode.h): at each element, the
+ * group of up to CSFB_PROG_GROUP_MAX elements that repeats with a constant difference over the
+ * most elements, if three groups or more; the elements between such progressions as they are.
+ */
+static void put_progs(wbuf *w, const uint32_t *e, uint32_t words, uint32_t n)
+{
+	uint32_t i = 0, lit = 0; /* lit: the elements before i not yet written */
+	while (i < n) {
+		uint32_t g = 0;
+		uint64_t k = 0;
+		for (uint32_t h = 1; h <= CSFB_PROG_GROUP_MAX && 3 * (uint64_t)h <= n - i; h++) {
+			uint64_t l = prog_groups(e + (size_t)i * words, words, n - i, h);
+			if (l >= 3 && h * l > g * k) g = h, k = l;
+		}
+		if (!g) {
+			i++;
+			lit++;
+			continue;
+		}
+		put_group(w, e + (size_t)(i - lit) * words, words, lit);
+		lit = 0;
+		put_u32(w, g);
+		put_u32(w, (uint32_t)k);
+		const uint32_t *a = e + (size_t)i * words, *b = a + (size_t)g * words;
+		for (size_t t = 0; t < (size_t)g * words; t++) put_u32(w, a[t]);
+		for (size_t t = 0; t < (size_t)g * words; t++) put_u32(w, b[t] - a[t]);
+		i += (uint32_t)(g * k);
+	}
+	put_group(w, e + (size_t)(i - lit) * words, words, lit);
+}
+
 /* Field f of p: its elements (in memory) and their count. */
 static const unsigned char *field_elems(const csf_prog *p, const csf_field *f, uint32_t *n)
 {
@@ -162,6 +220,10 @@ static void put_field(wbuf *w, const csf_prog *p, const csf_field *f)
 	if (f->how == CSF_FC_PREFIX) put_u32(w, n);
 	if (f->runs) {
 		put_runs(w, (const double *)(const void *)e, n);
+		return;
+	}
+	if (f->progs) {
+		put_progs(w, (const uint32_t *)(const void *)e, f->words, n);
 		return;
 	}
 	if (!f->words && !f->dbls) {
@@ -234,7 +296,7 @@ static int get_f64(rbuf *r, double *d)
 }
 
 /*
- * Reads n doubles stored as runs into x, or (x NULL) only checks that the runs cover exactly n
+ * Reads n doubles stored as runs into x (zeroed: the runs of zeros are left as they are), or (x NULL) only checks that the runs cover exactly n
  * within the bytes left (r is not advanced then). -1 on a malformed run: kind 3, length 0, past n
  * or past the end.
  */
@@ -255,8 +317,36 @@ static int get_runs(rbuf *r, double *x, uint32_t n)
 		}
 		double d = 0;
 		if (kind == CSFB_RUN_REPEAT && get_f64(&s, &d)) return -1;
-		for (uint32_t j = 0; x && j < k; j++) x[done + j] = d;
-		done += k;
+		for (uint32_t j = 0; x && kind == CSFB_RUN_REPEAT && j < k; j++) x[done + j] = d;
+		done += k; /* zeros: x is zeroed memory, pages of zeros it never touches */
+	}
+	if (x) *r = s;
+	return 0;
+}
+
+/*
+ * Reads n elements of w words stored as progressions into x, or (x NULL) only checks that they
+ * cover exactly n within the bytes left (r is not advanced then). -1 on a malformed progression:
+ * a group or count of 0, past n or past the end.
+ */
+static int get_progs(rbuf *r, uint32_t *x, uint32_t w, uint32_t n)
+{
+	rbuf s = *r;
+	uint32_t done = 0, g, k;
+	while (done < n) {
+		if (get_u32(&s, &g) || get_u32(&s, &k)) return -1;
+		if (g == 0 || k == 0 || (uint64_t)g * k > n - done) return -1;
+		size_t gw = (size_t)g * w, words = k > 1 ? 2 * gw : gw;
+		if (words > s.left / 4) return -1;
+		if (x) {
+			uint32_t *out = x + (size_t)done * w;
+			for (size_t t = 0; t < gw; t++) out[t] = le32(s.p + 4 * t);
+			for (uint32_t j = 1; j < k; j++, out += gw)
+				for (size_t t = 0; t < gw; t++) out[gw + t] = out[t] + le32(s.p + 4 * (gw + t));
+		}
+		s.p += 4 * words;
+		s.left -= 4 * words;
+		done += g * k;
 	}
 	if (x) *r = s;
 	return 0;
@@ -264,7 +354,8 @@ static int get_runs(rbuf *r, double *x, uint32_t n)
 
 /*
  * Reads field f into p: its count (checked against the bytes left before
- * anything is allocated; a field of runs, checked by reading its runs), the array, its elements.
+ * anything is allocated; a field of runs or progressions, checked by reading them), the array,
+ * its elements.
  */
 static int get_field(rbuf *r, csf_prog *p, const csf_field *f)
 {
@@ -278,12 +369,16 @@ static int get_field(rbuf *r, csf_prog *p, const csf_field *f)
 	} else if (f->how == CSF_FC_NY) {
 		n = p->ny;
 	}
-	if (f->runs ? n > CSFB_RUNS_MAX || get_runs(r, NULL, n) : (size_t)n > r->left / fsize) return -1;
+	if (f->runs ? n > CSFB_RUNS_MAX || get_runs(r, NULL, n)
+	    : f->progs ? (size_t)n > CSFB_PROGS_BYTES_MAX / f->size || get_progs(r, NULL, f->words, n)
+	    : (size_t)n > r->left / fsize)
+		return -1;
 	if (f->how != CSF_FC_INLINE) {
-		if (!(e = malloc(n ? (size_t)n * f->size : 1))) return -1;
+		if (!(e = f->runs ? calloc(n ? n : 1, f->size) : malloc(n ? (size_t)n * f->size : 1))) return -1;
 		memcpy(at, &e, sizeof e);
 	}
 	if (f->runs) return get_runs(r, (double *)(void *)e, n);
+	if (f->progs) return get_progs(r, (uint32_t *)(void *)e, f->words, n);
 	if (fsize == 1) {
 		memcpy(e, r->p, n);
 		r->p += n;

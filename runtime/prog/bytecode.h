@@ -29,7 +29,7 @@
 #define CSF_BYTECODE_H
 
 #define CSFB_MAGIC "CSFB"
-#define CSFB_VERSION 14u
+#define CSFB_VERSION 15u
 #define CSFB_INT_PROBE 0x01020304u
 #define CSFB_FLOAT_PROBE 370.5
 #define CSFB_HEADER_SIZE 28u
@@ -47,6 +47,19 @@ enum { CSFB_RUN_LITERAL, CSFB_RUN_ZEROS, CSFB_RUN_REPEAT };
    the loader allocate more. csfc's scenes have fewer slots in all (compiler/back/slots.c); a million
    objects some 5e7. */
 #define CSFB_RUNS_MAX (1u << 27)
+
+/*
+ * A table of u32 words (csf_field.progs: vpair and every table of structs of u32 but the code) is
+ * a sequence of progressions, each two u32, g (at least 1) and k (at least 1), then g elements (a
+ * group) and, when k > 1, g more: the difference, word by word, from each group to the next (u32
+ * arithmetic, wrapping). It stands for the k groups group + j * difference, j = 0 .. k - 1 (g * k
+ * elements); k = 1 is g elements as they are. The progressions cover the field's count exactly.
+ * A million members' properties, each the same few with slots a stride apart, take one
+ * progression of a group of their few: 8 + 2 * 20 * few bytes.
+ */
+#define CSFB_PROG_GROUP_MAX 16u /* the longest group the encoder looks for */
+/* The most bytes a table of progressions may take in memory (as CSFB_RUNS_MAX: 1 GiB). */
+#define CSFB_PROGS_BYTES_MAX (1u << 30)
 
 /* CRC-32 of len bytes (the format's checksum). */
 unsigned long csf_crc32(const unsigned char *buf, size_t len);

@@ -9,7 +9,9 @@
  * strings is bytes; layout, run and units are not arrays but values in
  * csf_prog itself (a constant count, no count in the file); the code
  * field's elements are instructions, checked by the instruction verifier
- * (csf_verify_code, bytecode.c).
+ * (csf_verify_code, bytecode.c). In the file, the memory image, yscale and
+ * yatol are runs, vpair and the tables of u32 structs progressions
+ * (bytecode.h); in memory every field is a plain array.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -269,21 +271,22 @@ ELEM(line_ok)
 
 /* An array of u32 or of structs of u32 behind pointer ptr, its count n before it in the file. */
 #define U32S(nm, ptr, n, T, ok_, bad_)                                                                            \
-	{ .name = nm, .how = CSF_FC_PREFIX, .sec = -1, .words = sizeof(T) / 4, .at = offsetof(csf_prog, ptr),      \
-	  .count = offsetof(csf_prog, n), .size = sizeof(T), .ok = ok_, .bad = bad_ }
-/* One element of type T (one u32, or one double stored in runs) per state component. */
+	{ .name = nm, .how = CSF_FC_PREFIX, .sec = -1, .words = sizeof(T) / 4, .progs = 1,                         \
+	  .at = offsetof(csf_prog, ptr), .count = offsetof(csf_prog, n), .size = sizeof(T), .ok = ok_, .bad = bad_ }
+/* One element of type T (one u32 in progressions, or one double in runs) per state component. */
 #define PER_Y(nm, ptr, T, ok_, bad_)                                                                              \
 	{ .name = nm, .how = CSF_FC_NY, .sec = -1, .words = sizeof(T) == 4, .dbls = sizeof(T) == 8,                \
-	  .runs = sizeof(T) == 8, .at = offsetof(csf_prog, ptr), .size = sizeof(T), .ok = ok_, .bad = bad_ }
-/* A field of code section s (the array ptr[s] of n[s] elements); SECTION(s): the section's three. */
-#define SEC_U32S(nm, ptr, n, T, s, ok_, bad_, check_)                                                              \
-	{ .name = nm, .how = CSF_FC_PREFIX, .sec = s, .words = sizeof(T) / 4,                                      \
+	  .runs = sizeof(T) == 8, .progs = sizeof(T) == 4, .at = offsetof(csf_prog, ptr), .size = sizeof(T), .ok = ok_, .bad = bad_ }
+/* A field of code section s (the array ptr[s] of n[s] elements, in progressions if progs_);
+   SECTION(s): the section's three. */
+#define SEC_U32S(nm, ptr, n, T, s, progs_, ok_, bad_, check_)                                                      \
+	{ .name = nm, .how = CSF_FC_PREFIX, .sec = s, .words = sizeof(T) / 4, .progs = progs_,                     \
 	  .at = offsetof(csf_prog, ptr) + (s) * sizeof(T *), .count = offsetof(csf_prog, n) + (s) * sizeof(uint32_t), \
 	  .size = sizeof(T), .ok = ok_, .bad = bad_, .check = check_ }
 #define SECTION(s)                                                                                                 \
-	SEC_U32S("targets", targets, ntargets, csf_target, s, target_ok, "target %lu of section %d out of range", NULL), \
-	SEC_U32S("code", code, ncode, uint32_t, s, NULL, NULL, csf_verify_code),                                        \
-	SEC_U32S("lines", lines, nlines, csf_line, s, line_ok, "line table entry %lu of section %d out of range", NULL)
+	SEC_U32S("targets", targets, ntargets, csf_target, s, 1, target_ok, "target %lu of section %d out of range", NULL), \
+	SEC_U32S("code", code, ncode, uint32_t, s, 0, NULL, NULL, csf_verify_code),                                        \
+	SEC_U32S("lines", lines, nlines, csf_line, s, 1, line_ok, "line table entry %lu of section %d out of range", NULL)
 
 const csf_field csf_fields[] = {
 	/* special: bytes */
@@ -317,7 +320,7 @@ const csf_field csf_fields[] = {
 	U32S("whens", whens, nwhens, csf_when, when_ok, "when block %lu out of range"),
 	U32S("cbodies", cbodies, ncbodies, csf_cbody, cbody_ok, "contact body %lu out of range"),
 	U32S("cmembers", cmembers, ncmembers, uint32_t, cmember_ok, "contact list entry %lu out of range"),
-	{ .name = "crules", .how = CSF_FC_PREFIX, .sec = -1, .words = sizeof(csf_crule) / 4,
+	{ .name = "crules", .how = CSF_FC_PREFIX, .sec = -1, .words = sizeof(csf_crule) / 4, .progs = 1,
 	  .at = offsetof(csf_prog, crules), .count = offsetof(csf_prog, ncrules), .size = sizeof(csf_crule),
 	  .check = check_crules },
 	U32S("conbodies", conbodies, nconbodies, csf_conbody, conbody_ok, "constrained body %lu out of range"),

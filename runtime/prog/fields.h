@@ -32,6 +32,7 @@ typedef struct csf_field {
 	signed char sec;     /* a code section's field: the section (CSF_SEC_*); else -1 */
 	unsigned char words, dbls;
 	unsigned char runs;  /* doubles (dbls 1, words 0) stored as runs of equal values and zeros (csf_put_runs) */
+	unsigned char progs; /* elements of u32 words only (size 4 * words) stored as progressions (bytecode.h) */
 	size_t at;           /* offsetof(csf_prog, the pointer to the elements), or (INLINE) of the elements */
 	size_t count;        /* PREFIX: offsetof(csf_prog, the uint32_t count); INLINE: the count */
 	size_t size;         /* sizeof an element in memory */

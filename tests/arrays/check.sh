@@ -4,6 +4,7 @@
 #    launched at its own v0 = (3 + i/1000, 1, 10 - i/2000) m/s (gen_projectiles.sh): ten sampled
 #    members at every row against the closed form to 1e-9 m, both as compiled (the unwatched
 #    members left out) and with --keep-all (every member integrated);
+#  - the --keep-all bytecode holds nothing per member but its values and its name;
 #  - --explain says the members left out between two watched ones in one line, and each property
 #    of the array's members in one line of its parameters (first and last values, or the one);
 #  - the same array read from a data file gives the same output, byte for byte, and the same
@@ -69,6 +70,12 @@ if comp pak "$T/pa.csf" --keep-all; then
 			ok = abs(v[1] - (3 + (n - 1) / 1000)) < 1e-12 && v[2] == 1 && abs(v[3] - (10 - (n - 1) / 2000)) < 1e-12 }
 		END { exit !ok }' "$T/pak.explain"
 	check test "$(sed -n '/^parameters/,$p' "$T/pak.explain" | grep -c '^  p\[')" -lt 20
+	# the bytecode: per member only its own values (v, three doubles: 24 bytes) and its name
+	# ("p[K]" and a NUL); its entries in the tables of properties, targets and state are
+	# progressions (csf(5)), a few hundred bytes whatever N: under 64 KiB beside the members' share
+	check awk -v n=$N -v size="$(wc -c <"$T/pak.csfb")" 'BEGIN {
+		for (i = 0; i < n; i++) own += 24 + length("p[" i "]") + 1
+		exit !(size > own && size - own < 65536) }'
 fi
 # from a data file: the same output, byte for byte
 sh "$D/gen_projectiles.sh" $N data "$W" "$T/proj.csv" >"$T/pd.csf"

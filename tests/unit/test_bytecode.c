@@ -202,6 +202,114 @@ START_TEST(test_memory_runs)
 }
 END_TEST
 
+/* The offset of the runs of n doubles from i on, past them. */
+static size_t skip_runs(const unsigned char *buf, size_t size, size_t i, uint32_t n)
+{
+	uint32_t h;
+	for (uint32_t done = 0; done < n; done += h & CSFB_RUN_MAX) {
+		ck_assert(i + 4 <= size);
+		memcpy(&h, buf + i, 4);
+		i += 4 + ((h >> 30) == CSFB_RUN_LITERAL ? 8 * (size_t)(h & CSFB_RUN_MAX) : (h >> 30) == CSFB_RUN_REPEAT ? 8 : 0);
+	}
+	return i;
+}
+
+/* The encoded program buf with the words of vpair (after the memory, the layout, yscale and yatol,
+   *len words) replaced by words (n of them), cut after them if cut; payload size and CRC-32 made
+   right. NULL words: only *at and *len. */
+static unsigned char *with_vpair(const unsigned char *buf, size_t size, const uint32_t *words, size_t n, int cut,
+                                 size_t *at, size_t *len, size_t *out)
+{
+	uint32_t nstrs, nmem, ny, g, k, done = 0;
+	memcpy(&nstrs, buf + CSFB_HEADER_SIZE, 4);
+	size_t i = CSFB_HEADER_SIZE + 4 + nstrs;
+	memcpy(&nmem, buf + i, 4);
+	i = skip_runs(buf, size, i + 4, nmem);
+	memcpy(&ny, buf + i + 12, 4);
+	i = skip_runs(buf, size, skip_runs(buf, size, i + 20, ny), ny);
+	for (*at = i; done < ny; done += g * k) {
+		memcpy(&g, buf + i, 4);
+		memcpy(&k, buf + i + 4, 4);
+		i += 8 + 4 * (size_t)g * (k > 1 ? 2 : 1);
+	}
+	*len = i - *at;
+	if (!words) return NULL;
+	size_t tail = cut ? 0 : size - i;
+	unsigned char *b = malloc(*at + 4 * n + tail);
+	memcpy(b, buf, *at);
+	memcpy(b + *at, words, 4 * n);
+	memcpy(b + *at + 4 * n, buf + i, tail);
+	*out = *at + 4 * n + tail;
+	uint32_t plen = (uint32_t)(*out - CSFB_HEADER_SIZE), crc = (uint32_t)csf_crc32(b + CSFB_HEADER_SIZE, plen);
+	memcpy(b + 20, &plen, 4);
+	memcpy(b + 24, &crc, 4);
+	return b;
+}
+
+/* Tables of u32 as progressions (bytecode.h): an array's per-member tables come back as they were,
+   each a few progressions whatever the members (40 members' zero vpair: one progression of 4
+   words); other covers of the same elements are read as well; malformed ones refused, and
+   elements out of range that a progression makes refused by the verifier with the element. */
+START_TEST(test_progressions)
+{
+	static const char *arr = "object p[0..39]: x = 0\nobject p[i]: v = i\nobject p[7]: x = 2\nobject q: x = 1\n"
+	                         "rule for p[i]: x' = v\ninc t till 1 by 0.5 watch p[3].x, p.v\n";
+	csf_prog p, q;
+	ck_assert_int_eq(compile_string(arr, &p, NULL), 0);
+	ck_assert_uint_eq(p.ny, 40);
+	ck_assert_uint_ge(p.nprops, 80);
+	unsigned char *buf, *b;
+	size_t len, at, vl, blen;
+	char err[256];
+	ck_assert_int_eq(csf_encode(&p, &buf, &len), 0);
+	ck_assert_msg(csf_decode(buf, len, &q, err, sizeof err) == 0, "%s", err);
+	ck_assert(q.nprops == p.nprops && memcmp(q.props, p.props, p.nprops * sizeof *p.props) == 0);
+	ck_assert(q.nobjects == p.nobjects && memcmp(q.objects, p.objects, p.nobjects * 4) == 0);
+	ck_assert(q.ncols == p.ncols && memcmp(q.cols, p.cols, p.ncols * sizeof *p.cols) == 0);
+	ck_assert(memcmp(q.vpair, p.vpair, p.ny * 4) == 0);
+	for (int s = 0; s < CSF_NSEC; s++) {
+		ck_assert(memcmp(q.targets[s], p.targets[s], p.ntargets[s] * sizeof(csf_target)) == 0);
+		ck_assert(memcmp(q.lines[s], p.lines[s], p.nlines[s] * sizeof(csf_line)) == 0);
+	}
+	csf_prog_free(&q);
+	with_vpair(buf, len, NULL, 0, 0, &at, &vl, &blen);
+	static const uint32_t one[] = { 1, 40, 0, 0 };
+	ck_assert_uint_eq(vl, sizeof one);
+	ck_assert(memcmp(buf + at, one, sizeof one) == 0);
+	/* other covers: 40 elements as they are, 2 x 20, 10 + 3 x 10 */
+	static const struct { uint32_t w[44]; size_t n; } other[] = {
+		{ { 40, 1 }, 42 },
+		{ { 2, 20, 0, 0, 0, 0 }, 6 },
+		{ { 10, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 10, 3 }, 34 },
+	};
+	for (size_t i = 0; i < sizeof other / sizeof other[0]; i++) {
+		b = with_vpair(buf, len, other[i].w, other[i].n, 0, &at, &vl, &blen);
+		ck_assert_msg(csf_decode(b, blen, &q, err, sizeof err) == 0, "cover %zu: %s", i, err);
+		ck_assert(memcmp(q.vpair, p.vpair, p.ny * 4) == 0);
+		csf_prog_free(&q);
+		free(b);
+	}
+	/* malformed: a group of 0, a count of 0, past ny, short of it (the file cut), a group past the end */
+	static const struct { uint32_t w[4]; size_t n; int cut; } bad[] = {
+		{ { 0, 1 }, 2, 0 }, { { 1, 0, 0 }, 3, 0 }, { { 1, 41, 0, 0 }, 4, 0 }, { { 1, 39, 0, 0 }, 4, 1 }, { { 40, 1, 0 }, 3, 1 },
+	};
+	for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+		b = with_vpair(buf, len, bad[i].w, bad[i].n, bad[i].cut, &at, &vl, &blen);
+		ck_assert_msg(csf_decode(b, blen, &q, err, sizeof err) == -1, "malformed progression %zu accepted", i);
+		ck_assert_msg(strstr(err, "malformed payload") != NULL, "malformed progression %zu: %s", i, err);
+		free(b);
+	}
+	/* 0, 5, 10, ...: element 9 is 45, past ny */
+	static const uint32_t five[] = { 1, 40, 0, 5 };
+	b = with_vpair(buf, len, five, 4, 0, &at, &vl, &blen);
+	ck_assert(csf_decode(b, blen, &q, err, sizeof err) == -1);
+	ck_assert_msg(strstr(err, "position/velocity pair 9 out of range") != NULL, "%s", err);
+	free(b);
+	free(buf);
+	csf_prog_free(&p);
+}
+END_TEST
+
 typedef struct defect { uint32_t *w; uint32_t bad; const char *why; } defect;
 
 /* Plants each defect in turn in the valid program p: csf_verify must reject it, giving the reason. */
@@ -810,6 +918,7 @@ Suite *bytecode_suite(void)
 	tcase_add_test(tc, test_crc32);
 	tcase_add_test(tc, test_header_checks);
 	tcase_add_test(tc, test_memory_runs);
+	tcase_add_test(tc, test_progressions);
 	tcase_add_test(tc, test_verifier);
 	tcase_add_test(tc, test_powi_verified);
 	tcase_add_test(tc, test_contact_routine);
