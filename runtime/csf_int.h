@@ -188,6 +188,11 @@ struct csf_prog {
 	uint32_t nstrs;
 	double *mem0;
 	uint32_t nmem;
+	uint32_t nspans; /* the stretches of mem0 that its runs do not make zeros, as decoded: (first slot,
+	                    count) pairs, in order; spans NULL: not known (mem0 is to be copied whole). Not
+	                    in the file: a decoded program's mem0 is zeroed memory whose pages of zeros a
+	                    run can leave untouched, copying the spans alone (run.c) */
+	uint32_t *spans;
 	uint32_t tslot, ystart, dstart, ny;
 	uint32_t jtan;  /* JAC: the tangent of slot s is slot s + jtan (0: no Jacobian) */
 	uint32_t *vpair; /* per state component: 1 + its velocity's index if it is a position (Verlet), else 0 */

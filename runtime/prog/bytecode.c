@@ -295,12 +295,31 @@ static int get_f64(rbuf *r, double *d)
 	return 0;
 }
 
+/* Adds the stretch of k slots from slot at to p's spans (joined to the last when they meet). -1: no memory. */
+static int add_span(csf_prog *p, uint32_t at, uint32_t k)
+{
+	uint32_t *last = p->nspans ? p->spans + 2 * (p->nspans - 1) : NULL;
+	if (last && (uint64_t)last[0] + last[1] == at) {
+		last[1] += k;
+		return 0;
+	}
+	if (!(p->nspans & (p->nspans - 1))) { /* 0, 1, 2, 4, ...: room for twice as many */
+		uint32_t *q = realloc(p->spans, 2 * sizeof *q * (p->nspans ? 2 * (size_t)p->nspans : 1));
+		if (!q) return -1;
+		p->spans = q;
+	}
+	p->spans[2 * p->nspans] = at;
+	p->spans[2 * p->nspans++ + 1] = k;
+	return 0;
+}
+
 /*
- * Reads n doubles stored as runs into x (zeroed: the runs of zeros are left as they are), or (x NULL) only checks that the runs cover exactly n
- * within the bytes left (r is not advanced then). -1 on a malformed run: kind 3, length 0, past n
- * or past the end.
+ * Reads n doubles stored as runs into x (zeroed memory: the runs of zeros leave it as it is, and
+ * sp, if not NULL, gets the stretches the other runs write as its spans), or (x NULL) only checks
+ * that the runs cover exactly n within the bytes left (r is not advanced then). -1 on a malformed
+ * run (kind 3, length 0, past n or past the end), or when memory for the spans runs out.
  */
-static int get_runs(rbuf *r, double *x, uint32_t n)
+static int get_runs(rbuf *r, double *x, uint32_t n, csf_prog *sp)
 {
 	rbuf s = *r;
 	uint32_t done = 0, h;
@@ -308,6 +327,7 @@ static int get_runs(rbuf *r, double *x, uint32_t n)
 		if (get_u32(&s, &h)) return -1;
 		uint32_t kind = h >> 30, k = h & CSFB_RUN_MAX;
 		if (kind > CSFB_RUN_REPEAT || k == 0 || k > n - done) return -1;
+		if (x && sp && kind != CSFB_RUN_ZEROS && add_span(sp, done, k)) return -1;
 		if (kind == CSFB_RUN_LITERAL) {
 			if (k > s.left / 8) return -1;
 			if (!x) s.p += 8 * (size_t)k, s.left -= 8 * (size_t)k, done += k;
@@ -318,7 +338,7 @@ static int get_runs(rbuf *r, double *x, uint32_t n)
 		double d = 0;
 		if (kind == CSFB_RUN_REPEAT && get_f64(&s, &d)) return -1;
 		for (uint32_t j = 0; x && kind == CSFB_RUN_REPEAT && j < k; j++) x[done + j] = d;
-		done += k; /* zeros: x is zeroed memory, pages of zeros it never touches */
+		done += k;
 	}
 	if (x) *r = s;
 	return 0;
@@ -369,7 +389,7 @@ static int get_field(rbuf *r, csf_prog *p, const csf_field *f)
 	} else if (f->how == CSF_FC_NY) {
 		n = p->ny;
 	}
-	if (f->runs ? n > CSFB_RUNS_MAX || get_runs(r, NULL, n)
+	if (f->runs ? n > CSFB_RUNS_MAX || get_runs(r, NULL, n, NULL)
 	    : f->progs ? (size_t)n > CSFB_PROGS_BYTES_MAX / f->size || get_progs(r, NULL, f->words, n)
 	    : (size_t)n > r->left / fsize)
 		return -1;
@@ -377,7 +397,8 @@ static int get_field(rbuf *r, csf_prog *p, const csf_field *f)
 		if (!(e = f->runs ? calloc(n ? n : 1, f->size) : malloc(n ? (size_t)n * f->size : 1))) return -1;
 		memcpy(at, &e, sizeof e);
 	}
-	if (f->runs) return get_runs(r, (double *)(void *)e, n);
+	if (f->runs) /* the memory image's spans with it */
+		return get_runs(r, (double *)(void *)e, n, f->at == offsetof(csf_prog, mem0) ? p : NULL);
 	if (f->progs) return get_progs(r, (uint32_t *)(void *)e, f->words, n);
 	if (fsize == 1) {
 		memcpy(e, r->p, n);
@@ -650,6 +671,7 @@ void csf_prog_free(csf_prog *p)
 		memcpy(&e, (unsigned char *)p + csf_fields[k].at, sizeof e);
 		free(e);
 	}
+	free(p->spans);
 	memset(p, 0, sizeof *p);
 }
 

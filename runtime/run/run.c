@@ -77,7 +77,7 @@ static stop run_alloc(session *S)
 {
 	run *r = &S->r;
 	const csf_prog *p = r->p;
-	r->m = malloc((p->nmem ? p->nmem : 1) * sizeof(double));
+	r->m = p->spans ? calloc(p->nmem ? p->nmem : 1, sizeof(double)) : malloc((p->nmem ? p->nmem : 1) * sizeof(double));
 	S->y = malloc((p->ny ? p->ny : 1) * sizeof(double));
 	for (uint32_t k = 0; k < p->ncons; k++) /* one-sided constraints switch: a guard for each constraint */
 		if (p->cons[k].kind != CSF_CON_EQ) r->ncg = p->ncons;
@@ -114,7 +114,11 @@ static stop run_alloc(session *S)
 	if (!r->m || !S->y || ((S->events || S->autom_on || p->ncons) && !S->work) || r->nomem || (p->ncrules && !r->cs) || (p->ncons && (!r->cons || !r->cw)) ||
 	    (S->sink && !S->sink->place && !S->v) || !S->vec)
 		return stop_kind_only(STOP_NOMEM);
-	memcpy(r->m, p->mem0, p->nmem * sizeof(double));
+	if (p->spans) /* what is not zeros: a million members' tangents and accelerations stay untouched pages */
+		for (uint32_t i = 0; i < p->nspans; i++)
+			memcpy(r->m + p->spans[2 * i], p->mem0 + p->spans[2 * i], p->spans[2 * i + 1] * sizeof(double));
+	else
+		memcpy(r->m, p->mem0, p->nmem * sizeof(double));
 	if (p->ncons) r->m[p->cons[0].want] = r->ncg ? 1 : 0; /* one-sided constraints' guards read g */
 	csf_overlay_apply(S->init, r->m); /* -D's values, a sweep variant's */
 	memcpy(S->y, r->m + p->ystart, p->ny * sizeof(double));
