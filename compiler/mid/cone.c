@@ -49,14 +49,17 @@ static int inst_n(const Inst *I)
 	return !I->iloop && I->nbind > 0 && I->bind[0]->shape ? nmembers(I->bind[0]->shape) : 1;
 }
 
-/* Marks of p (n of them); NULL-safe */
+/* Marks of p: n of them, one per member, then one more, set once every member has been pushed
+   (so that a pair rule's N members, each reading every member of a shape, push its N members
+   once, not N times N). */
 static char *marks(Walk *W, void *p, int n)
 {
-	char *key = xprintf("%p", p);
+	char key[32];
+	snprintf(key, sizeof key, "%p", p);
 	char *m = map_get(&W->seen, key);
 	if (!m) {
-		m = xalloc((size_t)n);
-		map_put(&W->seen, key, m);
+		m = xalloc((size_t)n + 1);
+		map_put(&W->seen, xprintf("%s", key), m);
 	}
 	return m;
 }
@@ -84,9 +87,15 @@ static void need_var(Walk *W, Var *v, int mem)
 		push(W, v, 0, 0);
 		return;
 	}
-	if (mem >= 0) push(W, v, mem, 0);
-	else
-		for (int k = 0; k < v->obj->shape->n; k++) push(W, v, k, 0);
+	if (mem >= 0) {
+		push(W, v, mem, 0);
+		return;
+	}
+	char *m = marks(W, v, v->obj->shape->n);
+	if (m[v->obj->shape->n]) return;
+	m[v->obj->shape->n] = 1;
+	for (int k = 0; k < v->obj->shape->n; k++)
+		if (!m[k]) push(W, v, k, 0);
 }
 
 static void need_inst(Walk *W, Inst *I, int mem)
@@ -94,8 +103,13 @@ static void need_inst(Walk *W, Inst *I, int mem)
 	int n = inst_n(I);
 	if (n == 1) push(W, I, 0, 1);
 	else if (mem >= 0) push(W, I, mem, 1);
-	else
-		for (int k = 0; k < n; k++) push(W, I, k, 1);
+	else {
+		char *m = marks(W, I, n);
+		if (m[n]) return;
+		m[n] = 1;
+		for (int k = 0; k < n; k++)
+			if (!m[k]) push(W, I, k, 1);
+	}
 }
 
 /* The member of an object's shape that instance I's member mem reads: mem for its own $0, every
