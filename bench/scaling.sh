@@ -16,7 +16,11 @@
 #     peak memory as compiled (two members watched, the others left out) and with --keep-all,
 #     the bytecode's bytes, csfvm's start-up (--keep-all, till 0), and one evaluation of the
 #     right-hand side by the VM beside projectiles.c's loop over the same arrays (medians of
-#     ARR_REPS, and whether the derivatives are the same bits).
+#     ARR_REPS, and whether the derivatives are the same bits);
+#   a galaxy of GAL_N (1e5) stars read from a data file, softened gravity (gen_galaxy.sh):
+#     csfc --emit-c's seconds and peak memory, and one evaluation (N (N - 1) pairs) of the
+#     generated code beside galaxy.c's hand-written loop over the same arrays, each timed over
+#     the first GAL_ROWS stars and scaled to N (medians of GAL_REPS; whether the same bits).
 # Each run once: the sizes are exact, the times are for orders of magnitude.
 set -eu
 BUILD=${BUILD:-../build}
@@ -26,6 +30,9 @@ case $BUILD in ..//*) BUILD=${BUILD#..} ;; esac
 README=${README-README.md}
 ARR_N=${ARR_N:-1000000}
 ARR_REPS=${ARR_REPS:-11}
+GAL_N=${GAL_N:-100000}
+GAL_ROWS=${GAL_ROWS:-1000}
+GAL_REPS=${GAL_REPS:-3}
 CSFC=$BUILD/csfc
 CSFVM=$BUILD/csfvm
 TMP=$OUT/scaling.tmp
@@ -130,6 +137,27 @@ awk -v n="$ARR_N" -v cs="$acs" -v mem="$amem" -v ks="$aks" -v kmem="$akmem" -v b
 	       kmem / 1024, b, st, vm * 1e6, hc * 1e6, vm / hc, same ? "yes" : "no" }' >> "$TAB"
 rm -f "$TMP/pa0.csfb"
 say "scaling: $ARR_N projectiles in an array"
+# GAL_N stars from a file under softened gravity: csfc --emit-c, and one evaluation of the
+# generated code (included by galaxy.c, its loops cut to the first GAL_ROWS stars) beside
+# galaxy.c's loop, both scaled to every star
+{
+	echo
+	echo "| scene | N | csfc --emit-c s | csfc peak MiB | pairs per evaluation | emit-c s/evaluation | galaxy.c s/evaluation | emit-c / galaxy.c | same bits |"
+	echo "|---|---:|---:|---:|---:|---:|---:|---:|---|"
+} >> "$TAB"
+sh ./gen_galaxy.sh "$GAL_N" 0 "$TMP/galaxy.csv" "$TMP/galaxy.csf"
+set -- $(run /dev/null "$CSFC" --emit-c "$TMP/galaxy.csf" -o "$TMP/gal_scene.c")
+gcs=$1 gmem=$2
+# shellcheck disable=SC2046 # the libraries' flags are words
+${CC:-cc} -std=c11 -Wall -Wextra -O2 -ffp-contract=off -I../runtime -I"$TMP" -DGALAXY_C='"gal_scene.c"' \
+	-o "$TMP/galaxy" galaxy.c "$BUILD/libcsfrt.a" $(pkg-config --libs gsl) \
+	$(pkg-config --libs hdf5-serial 2>/dev/null || echo -lhdf5) -lm
+set -- $("$TMP/galaxy" "$TMP/galaxy.csv" "$GAL_REPS" "$GAL_ROWS")
+awk -v n="$GAL_N" -v cs="$gcs" -v mem="$gmem" -v e="$2" -v h="$3" -v same="$4" 'BEGIN {
+	printf "| gen_galaxy.sh | %d | %s | %d | %.0f | %.4g | %.4g | %.2f | %s |\n", n, cs, mem / 1024, n * (n - 1), e, h, e / h,
+	       same ? "yes" : "no" }' >> "$TAB"
+rm -f "$TMP/gal_scene.c" "$TMP/galaxy"
+say "scaling: a galaxy of $GAL_N stars"
 cat "$TAB" >&2
 cp "$TAB" "$OUT/scaling.md"
 sh ./readme_section.sh "$README" scaling "$TAB"
