@@ -31,9 +31,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "csf_int.h"
+#include "timing.h"
 
 static uint32_t rows; /* the stars each loop of the generated code runs over (the first) */
 
@@ -50,25 +50,6 @@ static void galaxy_par_for(const csf_prog *p, const csf_exec_ctx *x, uint64_t wo
 #include GALAXY_C
 #undef csf_par_for
 #undef main
-
-static double now(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return (x > y) - (x < y);
-}
-
-static double median(double *t, int n)
-{
-	qsort(t, (size_t)n, sizeof *t, cmp_double);
-	return n % 2 ? t[n / 2] : (t[n / 2 - 1] + t[n / 2]) / 2;
-}
 
 static void die(const char *msg)
 {
