@@ -376,12 +376,21 @@ RExpr *build(Ctx *C, Expr *x)
 		if (x->nargs != nargs)
 			return type_error(C, l, xprintf("'%s' takes %d argument%s, not %d", x->name, nargs, nargs == 1 ? "" : "s", x->nargs)),
 			       rconst(0, l);
+		if (op == CSF_OP_FLOOR && !C->init)
+			return type_error(C, l, xprintf("'%s' is only for initial values (in a rule it would jump where no event "
+			                                "is looked for)", x->name)),
+			       rconst(0, l);
 		RExpr *a[2] = { NULL, NULL };
 		for (int i = 0; i < nargs; i++) {
 			a[i] = build(C, x->args[i]);
 			if (a[i]->isvec || a[i]->isbool)
 				return type_error(C, x->args[i]->loc, xprintf("'%s' needs a scalar argument", x->name)), rconst(0, l);
 		}
+		if (op == CSF_OP_FLOOR && nargs == 2) /* mod(a, b) = a - b floor(a / b): the sign of b, as a floor */
+			return rop(CSF_OP_SUB, 0, l, a[0],
+			           rop(CSF_OP_MUL, 0, l, a[1], rop(CSF_OP_FLOOR, 0, l, rop(CSF_OP_DIV, 0, l, a[0], a[1], NULL), NULL, NULL),
+			               NULL),
+			           NULL);
 		return rop(op, 0, l, a[0], a[1], NULL);
 	}
 	case E_VEC: {

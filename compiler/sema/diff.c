@@ -91,6 +91,7 @@ static const char *op_words(int op)
 	case CSF_OP_MAX: return "max()";
 	case CSF_OP_VANGLE: return "an angle between vectors";
 	case CSF_OP_VPROJ: return "a projection";
+	case CSF_OP_FLOOR: return "floor()";
 	default: return "a comparison";
 	}
 }

@@ -369,6 +369,8 @@ static Aff walk_op(Walk *W, RExpr *e, Aff *x)
 		};
 		return dimless(W, e->a[0], x[0], xprintf("the argument of %s", names[e->op]));
 	}
+	case CSF_OP_FLOOR:
+		return dimless(W, e->a[0], x[0], "the argument of floor (of mod: its first argument over its second)");
 	case CSF_OP_ATAN2:
 		constrain(W, x[0], e->a[0], x[1], e->a[1], e->a[1]->loc, msg_add, "compare (atan2)");
 		return known(0, 0, 0);

@@ -84,7 +84,7 @@ int opcode_of_func(const char *name, int *nargs)
 		{ "sinh", CSF_OP_SINH, 1 }, { "cosh", CSF_OP_COSH, 1 }, { "tanh", CSF_OP_TANH, 1 },
 		{ "exp", CSF_OP_EXP, 1 }, { "log", CSF_OP_LOG, 1 }, { "log10", CSF_OP_LOG10, 1 },
 		{ "sqrt", CSF_OP_SQRT, 1 }, { "abs", CSF_OP_ABS, 1 }, { "atan2", CSF_OP_ATAN2, 2 },
-		{ "min", CSF_OP_MIN, 2 }, { "max", CSF_OP_MAX, 2 },
+		{ "min", CSF_OP_MIN, 2 }, { "max", CSF_OP_MAX, 2 }, { "floor", CSF_OP_FLOOR, 1 }, { "mod", CSF_OP_FLOOR, 2 },
 	};
 	for (size_t i = 0; i < sizeof f / sizeof f[0]; i++)
 		if (strcmp(f[i].n, name) == 0) {

@@ -223,7 +223,7 @@ static const char *nonlinear_why(RExpr *e, Var *const *x, int k)
 		[CSF_OP_SQRT] = "sqrt()", [CSF_OP_ABS] = "abs()", [CSF_OP_ATAN2] = "atan2()", [CSF_OP_MIN] = "min()",
 		[CSF_OP_MAX] = "max()", [CSF_OP_VMAG] = ".mag", [CSF_OP_VDOT] = ".dot()", [CSF_OP_VCROSS] = ".cross()",
 		[CSF_OP_VUNIT] = ".unit", [CSF_OP_VANGLE] = ".angle()", [CSF_OP_VPROJ] = ".proj()",
-		[CSF_OP_VPACK] = "a vector (x, y, z)",
+		[CSF_OP_VPACK] = "a vector (x, y, z)", [CSF_OP_FLOOR] = "floor()",
 	};
 	const char *v = first_unknown(e, x, k)->name;
 	if (e->k == R_COMP) return xprintf("takes a component of %s", v);
