@@ -268,8 +268,9 @@ START_TEST(test_progressions)
 	ck_assert(q.ncols == p.ncols && memcmp(q.cols, p.cols, p.ncols * sizeof *p.cols) == 0);
 	ck_assert(memcmp(q.vpair, p.vpair, p.ny * 4) == 0);
 	for (int s = 0; s < CSF_NSEC; s++) {
-		ck_assert(memcmp(q.targets[s], p.targets[s], p.ntargets[s] * sizeof(csf_target)) == 0);
-		ck_assert(memcmp(q.lines[s], p.lines[s], p.nlines[s] * sizeof(csf_line)) == 0);
+		ck_assert(q.ntargets[s] == p.ntargets[s] && q.nlines[s] == p.nlines[s]);
+		ck_assert(!p.ntargets[s] || memcmp(q.targets[s], p.targets[s], p.ntargets[s] * sizeof(csf_target)) == 0);
+		ck_assert(!p.nlines[s] || memcmp(q.lines[s], p.lines[s], p.nlines[s] * sizeof(csf_line)) == 0);
 	}
 	csf_prog_free(&q);
 	with_vpair(buf, len, NULL, 0, 0, &at, &vl, &blen);
