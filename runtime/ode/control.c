@@ -21,6 +21,7 @@
 typedef struct control {
 	double eps_abs, eps_rel, a_y, a_dydt;
 	const double *scale;
+	size_t *limit; /* where the component of the largest E_i / D_i goes (csf_ode_limit) */
 } control;
 
 static void *control_alloc(void) { return calloc(1, sizeof(control)); }
@@ -44,10 +45,12 @@ static int control_hadjust(void *state, size_t dim, unsigned int ord, const doub
 	const control *c = state;
 	const double S = 0.9, h_old = *h;
 	double rmax = DBL_MIN;
+	size_t imax = dim;
 	for (size_t i = 0; i < dim; i++) {
 		double r = fabs(yerr[i]) / fabs(control_level(c, y[i], yp ? yp[i] : 0, h_old, i));
-		if (r > rmax) rmax = r;
+		if (r > rmax) rmax = r, imax = i;
 	}
+	if (c->limit) *c->limit = imax;
 	if (rmax > 1.1) {
 		double r = S / pow(rmax, 1.0 / ord);
 		*h = (r < 0.2 ? 0.2 : r) * h_old;
@@ -128,11 +131,12 @@ int csf_ode_gsl_setup(csf_ode *o, double h0, double hmax, const uint32_t *vpair,
 {
 	(void)vpair;
 	double tol = o->tol;
+	o->limit = o->n; /* nothing limited this driver's steps yet */
 	o->drv = gsl_odeiv2_driver_alloc_y_new(&o->sys, *o->m->type, h0 < hmax ? h0 : hmax, tol, tol);
 	if (o->drv) {
 		gsl_odeiv2_control_free(o->drv->c);
 		o->drv->c = gsl_odeiv2_control_alloc(&control_type);
-		if (o->drv->c) ((control *)o->drv->c->state)->scale = o->scale;
+		if (o->drv->c) ((control *)o->drv->c->state)->scale = o->scale, ((control *)o->drv->c->state)->limit = &o->limit;
 	}
 	if (!o->drv || !o->drv->c || gsl_odeiv2_control_init(o->drv->c, tol, tol, 1.0, 0.0) != GSL_SUCCESS ||
 	    gsl_odeiv2_control_set_driver(o->drv->c, o->drv) != GSL_SUCCESS ||

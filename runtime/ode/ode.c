@@ -154,6 +154,7 @@ csf_ode *csf_ode_new(const char *method, int fixed, size_t n, double h0, double 
 		o->live[i] = a > 0 ? a / tol : scale[i];
 	}
 	o->scale = o->live;
+	o->limit = n;
 	o->m = m;
 	o->n = n;
 	o->sys = (gsl_odeiv2_system){ gsl_rhs, jac ? gsl_jac : NULL, n, o };
@@ -337,6 +338,8 @@ double csf_ode_fixed_step(const csf_ode *o, double by, double step)
 }
 
 const char *csf_ode_method(const csf_ode *o) { return o->m->name; }
+
+long csf_ode_limit(const csf_ode *o) { return o->limit < o->n ? (long)o->limit : -1; }
 
 double csf_ode_next_step(const csf_ode *o) { return o->drv ? o->drv->h : 0; }
 

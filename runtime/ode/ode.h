@@ -190,6 +190,11 @@ double csf_ode_next_step(const csf_ode *o);
 /* The method's name. */
 const char *csf_ode_method(const csf_ode *o);
 
+/* The state component whose error, against its bound, was the largest in the last step the error
+   control sized (what holds the steps short), or -1 before any (or with fixed steps or a method
+   whose steps this control does not size). */
+long csf_ode_limit(const csf_ode *o);
+
 /*
  * Saves or restores under tag what o keeps from one step to the next (a
  * checkpoint, csf_keep: its step counts, error scales, next step, and a

@@ -83,6 +83,7 @@ struct csf_ode {
 	double *live;              /* the scale now: as the component has grown, within base (owned) */
 	unsigned char *fixed_atol; /* the scene's atol or --atol holds this component's scale fixed (owned) */
 	int live_set;              /* live has been set from a state (ode_live_start) */
+	size_t limit;              /* the component whose error limited the last step the control sized (n: none yet) */
 	const uint32_t *vec;       /* per component: 1 + the first component of its vector, or 0 (csf_ode_vectors) */
 	const uint32_t *vpair;     /* verlet: 1 + velocity index of each position component */
 	double *acc;               /* verlet: the derivative at the current point */

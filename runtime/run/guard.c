@@ -178,21 +178,44 @@ static void warn_stiff(run *r, csf_ode *ode, double t, double h, const csf_eigs 
  */
 enum { SHORT_STEPS = 1000, SHORT_LEFT = 100000 };
 
+/* " (the error of NAME holds them)", NAME the state variable whose error limited the last step the
+   control sized (csf_ode_limit: a property's, or a global's, with its component), else "". */
+static void limit_words(const csf_prog *p, const csf_ode *ode, char *buf, size_t len)
+{
+	long i = csf_ode_limit(ode);
+	buf[0] = '\0';
+	if (i < 0) return;
+	uint64_t slot = (uint64_t)p->ystart + (uint64_t)i;
+	const char *obj = NULL, *name = NULL;
+	uint32_t at = 0, width = 0;
+	for (uint32_t k = 0; k < p->nprops && !name; k++)
+		if (slot >= p->props[k].slot && slot < (uint64_t)p->props[k].slot + p->props[k].width)
+			obj = csf_str(p, p->objects[p->props[k].object]), name = csf_str(p, p->props[k].name),
+			at = p->props[k].slot, width = p->props[k].width;
+	for (uint32_t k = 0; k < p->nglobals && !name; k++)
+		if (slot >= p->globals[k].slot && slot < (uint64_t)p->globals[k].slot + p->globals[k].width)
+			name = csf_str(p, p->globals[k].name), at = p->globals[k].slot, width = p->globals[k].width;
+	if (!name) return;
+	const char *comp = width == 3 ? (const char *[]){ ".x", ".y", ".z" }[slot - at] : "";
+	snprintf(buf, len, " (the error of %s%s%s%s holds them)", obj ? obj : "", obj ? "." : "", name, comp);
+}
+
 static void warn_short(run *r, csf_ode *ode, double t, double h, const csf_eigs *e)
 {
-	char tb[32], more[32], times[32];
+	char tb[32], more[32], times[32], held[256];
 	csf_fmt_double(tb, t);
+	limit_words(r->p, ode, held, sizeof held);
 	csf_run_fmt_ratio(more, (r->tend - t) / h);
 	csf_run_fmt_ratio(times, 1 / (h * e->rho));
 	csf_run_progress_off(r);
 	fprintf(r->g->err,
-	        "warning: at t=%s, after %lu steps, the error control holds %s to steps of %.3g s, %s times shorter "
+	        "warning: at t=%s, after %lu steps, the error control holds %s to steps of %.3g s%s, %s times shorter "
 	        "than the fastest time scale of the scene (%.3g s), and some %s more are to go: either the scene "
 	        "changes faster than that (a fast forcing), or the tolerance asks for more than the rounding of the "
 	        "values allows (a velocity near 0 while large forces cancel on it: the masses of a chain started at "
 	        "rest); --atol bounds the error of such values absolutely (--atol 1e-9), a larger --tol loosens "
 	        "every value\n",
-	        tb, r->g->steps, csf_ode_method(ode), h, times, 1 / e->rho, more);
+	        tb, r->g->steps, csf_ode_method(ode), h, held, times, 1 / e->rho, more);
 	r->g->warned_short = 1;
 }
 
