@@ -131,7 +131,6 @@ int csf_ode_gsl_setup(csf_ode *o, double h0, double hmax, const uint32_t *vpair,
 {
 	(void)vpair;
 	double tol = o->tol;
-	o->limit = o->n; /* nothing limited this driver's steps yet */
 	o->drv = gsl_odeiv2_driver_alloc_y_new(&o->sys, *o->m->type, h0 < hmax ? h0 : hmax, tol, tol);
 	if (o->drv) {
 		gsl_odeiv2_control_free(o->drv->c);
