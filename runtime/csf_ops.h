@@ -17,7 +17,9 @@
 #ifndef CSF_OPS_H
 #define CSF_OPS_H
 
+#include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 
 typedef uint32_t csf_u32;
@@ -25,6 +27,27 @@ typedef uint32_t csf_u32;
 /* Scalar helpers, shared with the compiler's constant folder. */
 static inline double csf_min(double a, double b) { return isnan(a) || isnan(b) ? NAN : (a < b ? a : b); }
 static inline double csf_max(double a, double b) { return isnan(a) || isnan(b) ? NAN : (a > b ? a : b); }
+/* C's fmax (a NaN gives the other argument), inline: gcc calls libm's fmax without -ffinite-math-only */
+static inline double csf_fmax(double a, double b) { return a >= b || isnan(b) ? a : b; }
+/*
+ * Whether v[0..n) are all finite: x - x is 0 for a finite x and NaN for an
+ * infinity or a NaN, and a sum holding a NaN is NaN. Four sums, over blocks
+ * of a fixed length, which the compiler vectorises.
+ */
+static inline int csf_all_finite(const double *v, size_t n)
+{
+	enum { B = 64 };
+	double acc[4] = { 0, 0, 0, 0 };
+	size_t i = 0;
+	for (; i + B <= n; i += B) {
+		for (size_t j = 0; j < B; j += 4)
+			for (int l = 0; l < 4; l++) acc[l] += v[i + j + l] - v[i + j + l];
+		if (acc[0] + acc[1] + acc[2] + acc[3] != 0) return 0;
+	}
+	for (; i < n; i++) acc[0] += v[i] - v[i];
+	return acc[0] + acc[1] + acc[2] + acc[3] == 0;
+}
+
 static inline double csf_bool(int c) { return c ? 1.0 : 0.0; }
 
 static inline double csf_vmag3(double x, double y, double z) { return sqrt(x * x + y * y + z * z); }

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "csf_ops.h"
 #include "ode_int.h"
 
 /*
@@ -104,7 +105,7 @@ void csf_ode_live_grow(csf_ode *o, const double *y)
 		double a = fabs(y[i]);
 		if (o->vec && o->vec[i]) { /* a vector's component: the vector's size (its largest component) */
 			const double *v = y + o->vec[i] - 1;
-			a = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+			a = csf_fmax(fabs(v[0]), csf_fmax(fabs(v[1]), fabs(v[2])));
 		}
 		if (a > o->live[i]) o->live[i] = a < o->base[i] ? a : o->base[i];
 	}

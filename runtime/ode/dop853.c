@@ -39,6 +39,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 
+#include "csf_ops.h"
 #include "dop853.h"
 #include "erk.h"
 
@@ -189,22 +190,28 @@ static const double bhh11 = 0.220588235294117647058823529412e-1;
  */
 static double weight_scale(const csf_erk_state *st, size_t i)
 {
-	double sk = (st->scale ? st->scale[i] : 1.0) + fmax(fabs(st->y0[i]), fabs(st->y1[i]));
+	double sk = (st->scale ? st->scale[i] : 1.0) + csf_fmax(fabs(st->y0[i]), fabs(st->y1[i]));
 	return sk > 0 ? sk : 1.0;
 }
 
-static double err_factor(const csf_erk_state *st, const double *err5, const double *err3)
+/*
+ * Hairer's factor sqrt(s5 / (s5 + 0.01 s3)) of the sums of squares of the
+ * weighted errors r = |err| / sk, each over their largest m. The first pass
+ * keeps r5 in w5 and r3 in err3's place, which the second reads.
+ */
+static double err_factor(const csf_erk_state *st, const double *err5, double *err3, double *w5)
 {
 	double m = 0;
 	for (size_t i = 0; i < st->dim; i++) {
 		double sk = weight_scale(st, i), r5 = fabs(err5[i]) / sk, r3 = fabs(err3[i]) / sk;
 		if (!(r5 <= DBL_MAX && r3 <= DBL_MAX)) return 1; /* inf or NaN: yerr = err5, as unusable as the step */
-		m = fmax(m, fmax(r5, r3));
+		m = csf_fmax(m, csf_fmax(r5, r3));
+		w5[i] = r5, err3[i] = r3;
 	}
 	if (m == 0) return 0;
 	double s5 = 0, s3 = 0;
 	for (size_t i = 0; i < st->dim; i++) {
-		double sk = weight_scale(st, i), r5 = fabs(err5[i]) / sk / m, r3 = fabs(err3[i]) / sk / m;
+		double r5 = w5[i] / m, r3 = err3[i] / m;
 		s5 += r5 * r5;
 		s3 += r3 * r3;
 	}
@@ -214,7 +221,7 @@ static double err_factor(const csf_erk_state *st, const double *err5, const doub
 /*
  * yerr = h err5 q, with bsum = sum b_j k_j (so that y1 = y0 + h bsum). err3
  * is bsum minus the 3rd-order combination; it goes into ysum's place once
- * bsum has been read.
+ * bsum has been read. The extension's F0 is work space: a step unsets it.
  */
 static void error_estimate(const csf_erk_state *st, double h, double *bsum, double *yerr)
 {
@@ -222,7 +229,7 @@ static void error_estimate(const csf_erk_state *st, double h, double *bsum, doub
 	double *const *k = st->k;
 	csf_erk_combine(st->dim, e5, NSTAGE, k, err5);
 	for (size_t i = 0; i < st->dim; i++) err3[i] = bsum[i] - bhh0 * k[0][i] - bhh8 * k[8][i] - bhh11 * k[11][i];
-	double q = err_factor(st, err5, err3);
+	double q = err_factor(st, err5, err3, st->f[0]);
 	for (size_t i = 0; i < st->dim; i++) yerr[i] = h * (err5[i] * q);
 }
 

@@ -19,8 +19,12 @@ struct csf_erk_state;
  * s' = 1 - s, F0 = y1 - y0, F1 = h k0 - F0, F2 = F0 - h k(nstage) - F1 and
  * F(3+r) = h sum_j d_rj k_j for the nd rows of d (nk each). error writes the
  * step's error estimate into yerr, given bsum = sum b_j k_j (which it may
- * overwrite).
+ * overwrite); it may use the extension's vectors f as work space, which
+ * csf_erk_apply has marked as not ready.
  */
+/* The most stages (nk) a method may have: dop853's 16. */
+#define CSF_ERK_MAX_K 16
+
 typedef struct csf_erk_method {
 	const char *name;
 	unsigned order;

@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "csf_int.h"
+#include "csf_ops.h"
 #include "dop853.h"
 #include "dopri5.h"
 #include "erk.h"
@@ -104,8 +105,7 @@ int csf_method_dense(const char *method)
 static int gsl_rhs(double t, const double y[], double dydt[], void *params)
 {
 	csf_ode *o = params;
-	for (size_t i = 0; i < o->n; i++)
-		if (!isfinite(y[i])) return TOO_LONG; /* a trial state that overflowed (f may not look at it) */
+	if (!csf_all_finite(y, o->n)) return TOO_LONG; /* a trial state that overflowed (f may not look at it) */
 	return o->f(t, y, dydt, o->ctx) ? TOO_LONG : GSL_SUCCESS;
 }
 

@@ -26,14 +26,13 @@ int csf_run_rhs(double t, const double *y, double *dydt, void *ctx)
 		r->conflict = 1;
 		return 1;
 	}
-	for (uint32_t i = 0; i < p->ny; i++)
-		if (!isfinite(dydt[i])) {
-			r->fail = 1;
-			r->fail_t = t;
-			/* every value the section computed, in m for report_nonfinite: the VM's, bit for bit the same */
-			csf_vm_exec(p, &r->x, CSF_SEC_RHS, m, y, m + p->dstart);
-			return 1;
-		}
+	if (!csf_all_finite(dydt, p->ny)) {
+		r->fail = 1;
+		r->fail_t = t;
+		/* every value the section computed, in m for report_nonfinite: the VM's, bit for bit the same */
+		csf_vm_exec(p, &r->x, CSF_SEC_RHS, m, y, m + p->dstart);
+		return 1;
+	}
 	return 0;
 }
 

@@ -461,6 +461,50 @@ START_TEST(test_scale)
 }
 END_TEST
 
+/*
+ * The sums over stages run in blocks of components (erk.c): a step of 1000
+ * independent equations y_i' = r_i y_i cos t (so across block ends and a
+ * short last block) gives each component the bits that a step of that
+ * equation alone gives, and its end derivative too.
+ */
+typedef struct {
+	size_t first; /* the index of y[0] among the 1000 */
+} rates;
+
+static int rates_f(double t, const double y[], double dydt[], void *params)
+{
+	const rates *r = params;
+	size_t n = r->first == (size_t)-1 ? 1000 : 1;
+	for (size_t i = 0; i < n; i++) {
+		size_t k = r->first == (size_t)-1 ? i : r->first;
+		dydt[i] = (1 + (double)k / 7) * y[i] * cos(t);
+	}
+	return GSL_SUCCESS;
+}
+
+START_TEST(test_blocks)
+{
+	enum { N = 1000 };
+	static double y[N], yerr[N], dydt[N];
+	rates all = { (size_t)-1 };
+	gsl_odeiv2_system sys = { rates_f, NULL, N, &all };
+	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(csf_step_dop853, N);
+	for (size_t i = 0; i < N; i++) y[i] = 1 + (double)i / 1000;
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0.25, 0.01, y, yerr, NULL, dydt, &sys), GSL_SUCCESS);
+	gsl_odeiv2_step_free(s);
+	for (size_t i = 0; i < N; i++) {
+		rates one = { i };
+		gsl_odeiv2_system sys1 = { rates_f, NULL, 1, &one };
+		gsl_odeiv2_step *s1 = gsl_odeiv2_step_alloc(csf_step_dop853, 1);
+		double y1 = 1 + (double)i / 1000, e1, d1;
+		ck_assert_int_eq(gsl_odeiv2_step_apply(s1, 0.25, 0.01, &y1, &e1, NULL, &d1, &sys1), GSL_SUCCESS);
+		gsl_odeiv2_step_free(s1);
+		ck_assert_msg(memcmp(&y1, &y[i], sizeof y1) == 0 && memcmp(&d1, &dydt[i], sizeof d1) == 0,
+		              "component %zu: %.17g against %.17g alone", i, y[i], y1);
+	}
+}
+END_TEST
+
 /* ---- under GSL's evolve, control and driver ---- */
 
 typedef struct {
@@ -702,6 +746,7 @@ Suite *dop853_suite(void)
 	tcase_add_test(tc, test_global_order);
 	tcase_add_test(tc, test_dense_order);
 	tcase_add_test(tc, test_scale);
+	tcase_add_test(tc, test_blocks);
 	tcase_add_test(tc, test_driver);
 	tcase_add_test(tc, test_evolve_dense);
 	tcase_add_loop_test(tc, test_failing_evaluation, 0, 2 * NSTAGE + 1);

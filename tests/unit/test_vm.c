@@ -1,4 +1,5 @@
 /* Every instruction of the VM against its exact result. */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -212,6 +213,26 @@ START_TEST(test_powi_folder)
 }
 END_TEST
 
+/* csf_all_finite against isfinite: each special value at every place of every length to 200 */
+START_TEST(test_all_finite)
+{
+	static const double special[] = { INFINITY, -INFINITY, NAN, -NAN, DBL_MAX, -DBL_MAX, 0x1p-1074, -0.0 };
+	double v[200];
+	for (size_t n = 0; n <= 200; n++) {
+		for (size_t i = 0; i < n; i++) v[i] = (i % 2 ? -1.0 : 1.0) * (double)i * 1e300;
+		ck_assert(csf_all_finite(v, n));
+		for (size_t k = 0; k < n; k++)
+			for (size_t q = 0; q < sizeof special / sizeof special[0]; q++) {
+				double keep = v[k];
+				v[k] = special[q];
+				ck_assert_msg(csf_all_finite(v, n) == (isfinite(special[q]) != 0), "n %zu, v[%zu] = %g", n, k,
+				              special[q]);
+				v[k] = keep;
+			}
+	}
+}
+END_TEST
+
 Suite *vm_suite(void)
 {
 	Suite *s = suite_create("vm");
@@ -222,6 +243,7 @@ Suite *vm_suite(void)
 	tcase_add_test(tc, test_control_flow);
 	tcase_add_test(tc, test_powi_products);
 	tcase_add_test(tc, test_powi_instruction);
+	tcase_add_test(tc, test_all_finite);
 	tcase_add_loop_test(tc, test_powi_folder, 0, sizeof folder_cases / sizeof folder_cases[0]);
 	suite_add_tcase(s, tc);
 	return s;
