@@ -22,6 +22,11 @@
  *   memory             everything else: m[slot], or m[base + i] for an array
  *                      read through a loop index.
  *
+ * And for the time of one loop, a sum that its body adds into an outer
+ * loop's element (the force on body i1 over every i2) is a local
+ * accumulator, loaded before the loop and stored after it
+ * (find_accumulators).
+ *
  * The runtime sees t, the columns, the events' values and modes, the
  * contact bodies' slots and the Jacobian's tangents of t, the state and
  * the derivatives: those stay in m. When a value must be named after a
@@ -61,6 +66,8 @@ static void comment(FILE *f, const char *s)
 
 /* ---- the C of one function ---- */
 
+enum { ACC_MAX = 8 }; /* accumulators a loop may keep in locals */
+
 typedef struct Emit {
 	Slots *S;
 	const csf_prog *p;
@@ -75,6 +82,8 @@ typedef struct Emit {
 	unsigned char *target; /* a goto jumps there */
 	uint64_t *par;        /* par[pc] > 0: the level-1 loop at pc is the function NAME_parPC, its work + 1 */
 	uint32_t par_pc;      /* the function being written is that of the loop at par_pc (UINT32_MAX: none) */
+	struct { uint32_t w, pc; int vec; } acc[CSF_LOOP_MAX + 1][ACC_MAX]; /* the loops' accumulators (accumulators) */
+	uint32_t nacc[CSF_LOOP_MAX + 1];                                       /* by the depth of their loop */
 } Emit;
 
 /* Slot s's class in the section being written: a local that goes from function to function there is in memory. */
@@ -174,9 +183,28 @@ static int vector_way(const Emit *E, uint32_t b)
 	return V_SLOTS;
 }
 
+/* 1 + the instruction of the accumulator that operand word w is in a loop open now, else 0. */
+static uint32_t is_acc(const Emit *E, uint32_t w)
+{
+	if (!csf_reg(w)) return 0;
+	for (int d = 1; d <= E->L.depth; d++)
+		for (uint32_t k = 0; k < E->nacc[d]; k++)
+			if (E->acc[d][k].w == w) return E->acc[d][k].pc + 1;
+	return 0;
+}
+
+/* Writes the local of the accumulator that operand word w is, if it is one. */
+static int put_acc(Emit *E, uint32_t w)
+{
+	uint32_t a = is_acc(E, w);
+	if (a) fprintf(E->f, "a%lu", (unsigned long)(a - 1));
+	return a != 0;
+}
+
 /* Operand word w of kind kind, read, as a C expression. */
 static void put_read(Emit *E, int kind, uint32_t w)
 {
+	if (kind != CSF_K_N && put_acc(E, w)) return;
 	if (kind == CSF_K_N) {
 		fprintf(E->f, "%d", csf_imm(w));
 		return;
@@ -220,7 +248,10 @@ static void emit_op(Emit *E, const uint32_t *a, const csf_opinfo *oi)
 {
 	uint32_t w = a[0];
 	int vec = oi->kind[0] == CSF_K_DV, way = !vec ? -1 : csf_reg(w) ? V_ARRAY : vector_way(E, w);
-	if (!vec) {
+	if (put_acc(E, w)) {
+		fputs(" = ", E->f);
+		way = V_LOCAL;
+	} else if (!vec) {
 		if (csf_reg(w)) put_place(E, w, 1);
 		else put_slot(E, w);
 		fputs(" = ", E->f);
@@ -263,6 +294,61 @@ static void put_jump(Emit *E, uint32_t t)
 	else fprintf(E->f, "goto L%lu;\n", (unsigned long)t);
 }
 
+/*
+ * The accumulators of the loop at pc, at depth d: operand words that one
+ * instruction of the body writes (and may read) through the index of an
+ * outer loop, which no other operand of the body reaches, such as the sum
+ * of the forces on body i1 over the inner loop's i2. Each is kept in a local
+ * of the function, loaded before the loop and stored after it, where the
+ * bytecode loads and stores it at every iteration: the same operations in
+ * the same order, so the same bits, without a store and a load through
+ * memory that the C compiler cannot prove apart from the body's other
+ * reads (and that a thread sharing m may have to fetch again). The body
+ * may not jump out of itself, return (ASSERT) or call the runtime (CONTACT,
+ * CONSTRAIN), which reads m. Sets E->nacc[d]; returns it.
+ */
+static uint32_t find_accumulators(Emit *E, const uint32_t *code, uint32_t pc, int d)
+{
+	uint32_t next = code[pc + 3] - csf_insn_len(CSF_OP_NEXT), n = 0;
+	Loops L = E->L;
+	E->nacc[d] = 0;
+	for (uint32_t q = pc; q < next; q += csf_insn_len(code[q])) {
+		uint32_t op = code[q], t = op == CSF_OP_JMP ? code[q + 1] : op == CSF_OP_JZ ? code[q + 2]
+		                          : op == CSF_OP_JEQ ? code[q + 3] : pc;
+		if (op == CSF_OP_ASSERT || op == CSF_OP_CONTACT || op == CSF_OP_CONSTRAIN || t < pc || t > next) return 0;
+		const csf_opinfo *oi = &csf_opinfo_table[op];
+		uint32_t w = code[q + 1], r = csf_reg(w);
+		if (op == CSF_OP_LOOP || op == CSF_OP_NEXT || !oi->nops || !csf_kind_write(oi->kind[0]) || !r ||
+		    csf_reg_level(r) >= (uint32_t)d || n == ACC_MAX || is_acc(E, w))
+			continue;
+		E->acc[d][n].w = w, E->acc[d][n].pc = q, E->acc[d][n].vec = oi->kind[0] == CSF_K_DV;
+		n++;
+	}
+	/* each candidate: every other operand of the body (its own instruction's reads of the same word aside) apart from it */
+	uint32_t keep = 0;
+	for (uint32_t k = 0; k < n; k++) {
+		uint32_t w = E->acc[d][k].w, wd = E->acc[d][k].vec ? 3 : 1, ok = 1;
+		uint32_t lo = w & CSF_SLOT_MASK, lv = csf_reg_level(csf_reg(w));
+		uint64_t hi = csf_operand_end(w, wd, L.count[lv]);
+		Loops M = L;
+		for (uint32_t q = pc; q <= next && ok; q += csf_insn_len(code[q])) {
+			const csf_opinfo *oi = &csf_opinfo_table[code[q]];
+			track_loops(&M, code, q);
+			if (code[q] == CSF_OP_LOOP || code[q] == CSF_OP_NEXT) continue;
+			for (int j = 0; j < oi->nops && ok; j++) {
+				uint32_t v = code[q + 1 + j], rv = csf_reg(v), lvv = csf_reg_level(rv);
+				if (!csf_kind_slot(oi->kind[j])) continue;
+				if (q == E->acc[d][k].pc && v == w && csf_kind_width(oi->kind[j]) == wd) continue;
+				uint64_t vlo = v & CSF_SLOT_MASK,
+				         vhi = csf_operand_end(v, csf_kind_width(oi->kind[j]), rv && lvv <= (uint32_t)M.depth ? M.count[lvv] : 1);
+				ok = vhi <= lo || vlo >= hi;
+			}
+		}
+		if (ok) E->acc[d][keep++] = E->acc[d][k];
+	}
+	return E->nacc[d] = keep;
+}
+
 /* The instruction at pc as C. */
 static void emit_insn(Emit *E, const uint32_t *code, uint32_t pc)
 {
@@ -270,9 +356,21 @@ static void emit_insn(Emit *E, const uint32_t *code, uint32_t pc)
 	const uint32_t *a = code + pc + 1; /* only the instruction's own operands: a CONTACT has none */
 	if (code[pc] == CSF_OP_NEXT) {
 		if (E->target[pc]) fprintf(E->f, "L%lu: ;\n", (unsigned long)pc); /* a label needs a statement */
+		int d = E->L.depth;
 		track_loops(&E->L, code, pc);
 		indent(E);
 		fputs("}\n", E->f);
+		if (d > 0 && E->nacc[d]) {
+			for (uint32_t k = 0; k < E->nacc[d]; k++) {
+				indent(E);
+				fputs(E->acc[d][k].vec ? "\tcsf_vstore(" : "\t", E->f);
+				put_place(E, E->acc[d][k].w, !E->acc[d][k].vec);
+				fprintf(E->f, E->acc[d][k].vec ? ", a%lu);\n" : " = a%lu;\n", (unsigned long)E->acc[d][k].pc);
+			}
+			E->nacc[d] = 0;
+			indent(E);
+			fputs("}\n", E->f);
+		}
 		return;
 	}
 	if (E->target[pc]) fprintf(E->f, "L%lu:\n", (unsigned long)pc);
@@ -311,6 +409,18 @@ static void emit_insn(Emit *E, const uint32_t *code, uint32_t pc)
 		return;
 	case CSF_OP_LOOP: { /* a count of 0 runs no iteration, as the VM's jump to the end */
 		unsigned long l = a[0];
+		int d = E->L.depth + 1;
+		if (pc != E->par_pc && d <= CSF_LOOP_MAX && find_accumulators(E, code, pc, d)) {
+			fputs("{\n", E->f);
+			for (uint32_t k = 0; k < E->nacc[d]; k++) {
+				indent(E);
+				fprintf(E->f, E->acc[d][k].vec ? "\tcsf_vec a%lu = csf_vload(" : "\tdouble a%lu = ",
+				        (unsigned long)E->acc[d][k].pc);
+				put_place(E, E->acc[d][k].w, !E->acc[d][k].vec);
+				fputs(E->acc[d][k].vec ? ");\n" : ";\n", E->f);
+			}
+			indent(E);
+		}
 		if (pc == E->par_pc)
 			fputs("for (uint32_t i1 = lo; i1 < hi; i1++) {\n", E->f);
 		else

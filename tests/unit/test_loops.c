@@ -439,6 +439,51 @@ START_TEST(test_loop_c_local_sum)
 END_TEST
 
 /*
+ * A sum over the inner loop into a cell of the outer loop's object (the
+ * forces on body i1 from every i2) is kept in a local across the inner loop,
+ * loaded before it and stored after it; not when the body reads the array
+ * elsewhere, or may return (an assertion).
+ */
+static char *accumulator_c(int variant)
+{
+	uint32_t code[64], n = 0;
+	uint32_t l1 = put(code, &n, CSF_OP_LOOP, 1, NOBJ, 0);
+	uint32_t l2 = put(code, &n, CSF_OP_LOOP, 2, NOBJ, 0);
+	put(code, &n, CSF_OP_ADD, R(X, 1), R(X, 1), R(FLAG, 3));
+	if (variant == 1) put(code, &n, CSF_OP_MOV, R(VEC, 4), R(X, 3), 0); /* x of another object */
+	if (variant == 2) put(code, &n, CSF_OP_ASSERT, R(ONES, 3), R(0, 3), 0);
+	uint32_t nx = put(code, &n, CSF_OP_NEXT, 2, l2 + 4, 0);
+	code[l2 + 3] = n;
+	put(code, &n, CSF_OP_NEXT, 1, l1 + 4, 0);
+	code[l1 + 3] = n;
+	(void)nx;
+	csf_prog p = bare(code, n);
+	char err[256];
+	ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "%s", err);
+	int ret;
+	double *m = run(&p, &ret);
+	ck_assert_int_eq(ret, -1);
+	for (int i = 0; i < NOBJ; i++) ck_assert(m[X + i] == xs[i] + 3); /* the flags add up to 3 */
+	free(m);
+	return emit_string(&p);
+}
+
+START_TEST(test_loop_c_accumulator)
+{
+	char *c = accumulator_c(0);
+	ck_assert_msg(strstr(c, "\t\t{\n\t\t\tdouble a8 = m[11u + i1];\n\t\tfor (uint32_t i2 = 0; i2 < 4u; i2++) {\n"
+	                        "\t\t\ta8 = csf_op_ADD(a8, m[7u + i2]);\n\t\t}\n\t\t\tm[11u + i1] = a8;\n\t\t}\n"),
+	              "%s", c);
+	free(c);
+	for (int v = 1; v <= 2; v++) {
+		c = accumulator_c(v);
+		ck_assert_msg(strstr(c, "m[11u + i1] = csf_op_ADD(m[11u + i1], m[7u + i2]);") && !strstr(c, " a8"), "%s", c);
+		free(c);
+	}
+}
+END_TEST
+
+/*
  * A whole model whose OUT section is replaced by loops: long enough to be
  * split into several C functions, with the split point falling inside a
  * loop and values going from one function to the next in memory; repeated
@@ -598,6 +643,7 @@ Suite *loops_suite(void)
 	tcase_set_timeout(tc, 60);
 	tcase_add_test(tc, test_loop_sum);
 	tcase_add_test(tc, test_loop_fusion);
+	tcase_add_test(tc, test_loop_c_accumulator);
 	tcase_add_test(tc, test_pair_loop);
 	tcase_add_test(tc, test_loop_verifier);
 	tcase_add_test(tc, test_loop_structure);
