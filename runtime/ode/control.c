@@ -111,6 +111,18 @@ void csf_ode_live_grow(csf_ode *o, const double *y)
 	}
 }
 
+double csf_ode_abs_tol(const csf_ode *o, size_t i) { return i < o->n ? o->tol * o->live[i] : 0; }
+
+int csf_ode_raise_abs_tol(csf_ode *o, size_t i, double atol)
+{
+	if (i >= o->n || o->fixed_atol[i] || !(atol > 0)) return 0;
+	double s = fmin(atol / o->tol, o->base[i]);
+	if (!o->live_set) csf_ode_live_init(o);
+	if (!(s > o->live[i])) return 0;
+	o->live[i] = s;
+	return 1;
+}
+
 /* The scales at their floor, before any state has been seen. */
 void csf_ode_live_init(csf_ode *o)
 {

@@ -339,6 +339,8 @@ double csf_ode_fixed_step(const csf_ode *o, double by, double step)
 
 const char *csf_ode_method(const csf_ode *o) { return o->m->name; }
 
+double csf_ode_tol(const csf_ode *o) { return o->tol; }
+
 long csf_ode_limit(const csf_ode *o) { return o->limit < o->n ? (long)o->limit : -1; }
 
 double csf_ode_next_step(const csf_ode *o) { return o->drv ? o->drv->h : 0; }

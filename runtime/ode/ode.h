@@ -195,6 +195,19 @@ const char *csf_ode_method(const csf_ode *o);
    whose steps this control does not size). */
 long csf_ode_limit(const csf_ode *o);
 
+/* The relative tolerance (--tol). */
+double csf_ode_tol(const csf_ode *o);
+
+/* The absolute tolerance of component i now (tol times its scale; --atol's or the scene's atol when set). */
+double csf_ode_abs_tol(const csf_ode *o, size_t i);
+
+/*
+ * Raises the absolute tolerance of component i to at least atol (at most
+ * tol times its unit scale; never one the scene or --atol fixed). Returns
+ * 1 when it raised it, else 0.
+ */
+int csf_ode_raise_abs_tol(csf_ode *o, size_t i, double atol);
+
 /*
  * Saves or restores under tag what o keeps from one step to the next (a
  * checkpoint, csf_keep: its step counts, error scales, next step, and a

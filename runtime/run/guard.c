@@ -5,6 +5,7 @@
  */
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "run_int.h"
@@ -178,11 +179,9 @@ static void warn_stiff(run *r, csf_ode *ode, double t, double h, const csf_eigs 
  */
 enum { SHORT_STEPS = 1000, SHORT_LEFT = 100000 };
 
-/* " (the error of NAME holds them)", NAME the state variable whose error limited the last step the
-   control sized (csf_ode_limit: a property's, or a global's, with its component), else "". */
-static void limit_words(const csf_prog *p, const csf_ode *ode, char *buf, size_t len)
+/* The name of state component i (a property's, or a global's, with its component) into buf, or "". */
+void csf_run_state_name(const csf_prog *p, long i, char *buf, size_t len)
 {
-	long i = csf_ode_limit(ode);
 	buf[0] = '\0';
 	if (i < 0) return;
 	uint64_t slot = (uint64_t)p->ystart + (uint64_t)i;
@@ -197,7 +196,117 @@ static void limit_words(const csf_prog *p, const csf_ode *ode, char *buf, size_t
 			name = csf_str(p, p->globals[k].name), at = p->globals[k].slot, width = p->globals[k].width;
 	if (!name) return;
 	const char *comp = width == 3 ? (const char *[]){ ".x", ".y", ".z" }[slot - at] : "";
-	snprintf(buf, len, " (the error of %s%s%s%s holds them)", obj ? obj : "", obj ? "." : "", name, comp);
+	snprintf(buf, len, "%s%s%s%s", obj ? obj : "", obj ? "." : "", name, comp);
+}
+
+/* " (the error of NAME holds them)", NAME the state variable whose error limited the last step the
+   control sized (csf_ode_limit), else "". */
+static void limit_words(const csf_prog *p, const csf_ode *ode, char *buf, size_t len)
+{
+	char name[200];
+	csf_run_state_name(p, csf_ode_limit(ode), name, sizeof name);
+	if (name[0]) snprintf(buf, len, " (the error of %s holds them)", name);
+	else buf[0] = '\0';
+}
+
+/*
+ * Before the short-step warning: is it rounding that holds the steps? A
+ * value near 0 on which large forces cancel (a velocity in a chain at rest
+ * far from the origin) has a derivative whose rounding no step can make
+ * smaller: its error over a step of h is some h times that rounding,
+ * against a bound of tol (scale + |y|) that its small size makes tiny, so
+ * the control shortens the steps without end. The rounding of each
+ * derivative is measured as how far it moves when every component of the
+ * state moves by one unit in the last place (f at y, and at y so moved).
+ * Each component whose error bound that rounding, over the step h now
+ * taken, fills to 1 % or more gets the absolute tolerance ROUND_MARGIN
+ * times the rounding over the step the scene's own dynamics allow (the
+ * least of its fastest time scale and the caps on a step): the bound the
+ * rounding itself sets, which steps of that length can meet. At most
+ * ROUND_LOOKS looks do it; when none raises anything (a true fast forcing,
+ * whose derivative does not move with the state), the warning comes.
+ * --stats says how many were raised, and which held the steps.
+ */
+enum { ROUND_LOOKS = 2 };
+#define ROUND_MARGIN 10.0
+
+/* qsort: properties by name (ties by index, for a stable order) */
+static const csf_prog *sort_prog;
+static int by_name(const void *a, const void *b)
+{
+	const csf_prop *x = &sort_prog->props[*(const uint32_t *)a], *y = &sort_prog->props[*(const uint32_t *)b];
+	int c = strcmp(csf_str(sort_prog, x->name), csf_str(sort_prog, y->name));
+	return c ? c : (*(const uint32_t *)a > *(const uint32_t *)b) - (*(const uint32_t *)a < *(const uint32_t *)b);
+}
+
+/*
+ * want[i] (an absolute tolerance, 0: none) raised to the largest of its
+ * group: the same component of the same property in every object, as the
+ * program's scales are set per property (a mass whose neighbours' rounding
+ * happened to cancel in the measurement is as near 0 as they are).
+ */
+static void group_wants(const csf_prog *p, double *want)
+{
+	uint32_t *idx = malloc((p->nprops ? p->nprops : 1) * sizeof *idx), n = 0;
+	if (!idx) return; /* each keeps its own */
+	for (uint32_t k = 0; k < p->nprops; k++)
+		if (p->props[k].slot >= p->ystart && p->props[k].slot < p->ystart + p->ny) idx[n++] = k;
+	sort_prog = p;
+	qsort(idx, n, sizeof *idx, by_name);
+	for (uint32_t a = 0, b; a < n; a = b) {
+		const char *name = csf_str(p, p->props[idx[a]].name);
+		for (b = a + 1; b < n && strcmp(csf_str(p, p->props[idx[b]].name), name) == 0; b++) continue;
+		for (uint32_t c = 0; c < p->props[idx[a]].width; c++) {
+			double m = 0;
+			for (uint32_t k = a; k < b; k++)
+				if (c < p->props[idx[k]].width) m = fmax(m, want[p->props[idx[k]].slot - p->ystart + c]);
+			for (uint32_t k = a; k < b && m > 0; k++)
+				if (c < p->props[idx[k]].width) want[p->props[idx[k]].slot - p->ystart + c] = m;
+		}
+	}
+	free(idx);
+}
+
+static int rounding_floors(run *r, csf_ode *ode, double t, const double *y, double h, const csf_eigs *e)
+{
+	guard *g = r->g;
+	const csf_prog *p = r->p;
+	uint32_t n = p->ny;
+	if (g->floor_looks >= ROUND_LOOKS) return 0;
+	g->floor_looks++;
+	long lim = csf_ode_limit(ode);
+	double *want = calloc(n ? n : 1, sizeof *want);
+	if (!want || csf_run_rhs(t, y, g->f0, r)) {
+		free(want);
+		return r->fail = 0;
+	}
+	/* the rounding of each derivative: the most it moves over two patterns of signs (one may cancel
+	   on a component, as equal moves of two neighbours do on the spring between them) */
+	for (uint32_t pat = 0; pat < 2; pat++) {
+		for (uint32_t i = 0; i < n; i++) {
+			double a = fabs(y[i]), ulp = nextafter(a, INFINITY) - a;
+			uint32_t bit = pat ? (i * 2654435761u) >> 16 & 1 : i & 1;
+			g->yd[i] = y[i] + (bit ? ulp : -ulp);
+		}
+		if (csf_run_rhs(t, g->yd, g->fd, r)) {
+			free(want);
+			return r->fail = 0;
+		}
+		for (uint32_t i = 0; i < n; i++) want[i] = fmax(want[i], fabs(g->fd[i] - g->f0[i]));
+	}
+	double tol = csf_ode_tol(ode), hr = fmin(g->hcap, 1 / e->rho);
+	for (uint32_t i = 0; i < n; i++) {
+		double noise = want[i], bound = csf_ode_abs_tol(ode, i) + tol * fabs(y[i]);
+		want[i] = h * noise >= 0.01 * bound ? ROUND_MARGIN * hr * noise : 0;
+	}
+	group_wants(p, want);
+	unsigned long raised = 0;
+	for (uint32_t i = 0; i < n; i++) raised += (unsigned long)csf_ode_raise_abs_tol(ode, i, want[i]);
+	free(want);
+	if (raised && !g->floor_n)
+		g->floor_t = t, g->floor_i = lim, g->floor_atol = lim >= 0 ? csf_ode_abs_tol(ode, (size_t)lim) : 0;
+	g->floor_n += raised;
+	return raised > 0;
 }
 
 static void warn_short(run *r, csf_ode *ode, double t, double h, const csf_eigs *e)
@@ -299,7 +408,8 @@ int csf_run_guard_check(run *r, csf_ode *ode, double t, const double *y, double 
 	}
 out:; /* a label before a declaration: C11 needs a statement */
 	if (looked && !g->fixed && !g->warned_short && g->steps >= SHORT_LEFT / 100 && h > 0 && e.rho > 0 &&
-	    h * e.rho * SHORT_STEPS < 1 && h * SHORT_STEPS < g->hcap && (r->tend - t) / h > SHORT_LEFT)
+	    h * e.rho * SHORT_STEPS < 1 && h * SHORT_STEPS < g->hcap && (r->tend - t) / h > SHORT_LEFT &&
+	    !rounding_floors(r, ode, t, y, h, &e))
 		warn_short(r, ode, t, h, &e);
 	/* the next look: after LOOK_EVERY times this one's cost in evaluations; with fixed steps,
 	   sooner as h rho nears the method's least limit on either axis (the direction of the

@@ -653,6 +653,15 @@ static void stats_guard(const session *S, FILE *err)
 	        "%lu Jacobian-vector products, %.6f s\n",
 	        gd->rho_max, gd->rho_max > 0 ? 1 / gd->rho_max : INFINITY, csf_run_eig_kind(&gd->at_max), rb, hb, gd->checks,
 	        csf_spectrum_products(gd->sp), gd->seconds);
+	if (gd->floor_n) {
+		char tb[32], name[200];
+		csf_fmt_double(tb, gd->floor_t);
+		csf_run_state_name(S->r.p, gd->floor_i, name, sizeof name);
+		fprintf(err,
+		        "stats: rounding: at t=%s the absolute tolerance of %lu values raised to the rounding of their "
+		        "derivatives over the scene's time scale (%s, whose error held the steps: %.3g)\n",
+		        tb, gd->floor_n, name[0] ? name : "?", gd->floor_atol);
+	}
 }
 
 /* The run's counts into o (run_steps, run_rhs, run_seconds), and --stats's lines. */

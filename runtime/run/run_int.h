@@ -206,9 +206,17 @@ typedef struct guard {
 	int warned; /* of stiffness */
 	int warned_short; /* of steps far shorter than the scene's time scale */
 	double hcap;      /* the least cap on a step: by, or --hmax (warn_short: steps far below it) */
+	/* absolute tolerances raised to the rounding of the derivatives (rounding_floors) */
+	int floor_looks;          /* looks that raised some */
+	unsigned long floor_n;    /* components raised */
+	long floor_i;             /* the first look's limiting component, and its new tolerance, at floor_t */
+	double floor_atol, floor_t;
 } guard;
 
 typedef struct watch_ctx { run *r; csf_ode *ode; } watch_ctx;
+
+/* guard.c: the name of state component i (NAME.PROP.x, a global's name), or "" */
+void csf_run_state_name(const csf_prog *p, long i, char *buf, size_t len);
 
 /* progress.c */
 double csf_run_seconds(struct timespec a, struct timespec b);
