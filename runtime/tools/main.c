@@ -227,7 +227,8 @@ int csf_main(int argc, char **argv, const unsigned char *image, size_t image_len
 		csf_opts_free(&o);
 		return 2;
 	}
-	o.hash = csf_hash_bytes(image ? image : buf, len);
+	/* the bytecode's name in a checkpoint and a run record: a pass over every byte, only for them */
+	if (o.record || h5 || o.checkpoint || o.resume || sweep) o.hash = csf_hash_bytes(image ? image : buf, len);
 	free(buf);
 	/* -D's values: an overlay over the program's initial memory, which stays as loaded */
 	csf_overlay init = { 0 };
