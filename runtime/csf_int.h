@@ -222,10 +222,22 @@ struct csf_prog {
 	csf_src *srcs;
 	csf_assert *asserts;
 	uint32_t ntargets[CSF_NSEC], ncode[CSF_NSEC], nlines[CSF_NSEC];
-	csf_target *targets[CSF_NSEC];
+	csf_target *targets[CSF_NSEC]; /* NULL in a decoded program: see targets_file */
+	/* A decoded program's targets as the file has them (progressions, bytecode.h: targets_file_len[s]
+	   bytes), not expanded: read only to name the rule of a value that is not finite
+	   (csf_targets_copy), they would be a million members' largest table. NULL in a program csfc
+	   builds, which has targets. */
+	unsigned char *targets_file[CSF_NSEC];
+	uint32_t targets_file_len[CSF_NSEC];
 	uint32_t *code[CSF_NSEC];
 	csf_line *lines[CSF_NSEC];
 };
+
+/*
+ * The ntargets[sec] targets of section sec of p, in a malloc'd array (the caller frees it), expanded
+ * from targets_file in a decoded program. NULL when memory runs out. (bytecode.c)
+ */
+csf_target *csf_targets_copy(const csf_prog *p, int sec);
 
 /* String at offset off of p's string table. */
 static inline const char *csf_str(const csf_prog *p, uint32_t off) { return p->strs + off; }

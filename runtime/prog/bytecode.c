@@ -216,8 +216,14 @@ static void put_field(wbuf *w, const csf_prog *p, const csf_field *f)
 {
 	uint32_t n, v;
 	double d;
-	const unsigned char *e = field_elems(p, f, &n);
+	const unsigned char *e = field_elems(p, f, &n), *kept = NULL;
 	if (f->how == CSF_FC_PREFIX) put_u32(w, n);
+	if (f->kept) memcpy(&kept, (const unsigned char *)p + f->kept_at, sizeof kept);
+	if (kept && !e) { /* as decoded: the progressions read */
+		memcpy(&v, (const unsigned char *)p + f->kept_len, sizeof v);
+		put(w, kept, v);
+		return;
+	}
 	if (f->runs) {
 		put_runs(w, (const double *)(const void *)e, n);
 		return;
@@ -346,10 +352,10 @@ static int get_runs(rbuf *r, double *x, uint32_t n, csf_prog *sp)
 
 /*
  * Reads n elements of w words stored as progressions into x, or (x NULL) only checks that they
- * cover exactly n within the bytes left (r is not advanced then). -1 on a malformed progression:
- * a group or count of 0, past n or past the end.
+ * cover exactly n within the bytes left (r is not advanced then); *used (if not NULL): the bytes
+ * they take. -1 on a malformed progression: a group or count of 0, past n or past the end.
  */
-static int get_progs(rbuf *r, uint32_t *x, uint32_t w, uint32_t n)
+static int get_progs(rbuf *r, uint32_t *x, uint32_t w, uint32_t n, size_t *used)
 {
 	rbuf s = *r;
 	uint32_t done = 0, g, k;
@@ -368,8 +374,49 @@ static int get_progs(rbuf *r, uint32_t *x, uint32_t w, uint32_t n)
 		s.left -= 4 * words;
 		done += g * k;
 	}
+	if (used) *used = r->left - s.left;
 	if (x) *r = s;
 	return 0;
+}
+
+/*
+ * Applies f's element check to each of the n elements of the progressions at b (checked by
+ * get_progs), made one at a time: the index of the first that fails, or n.
+ */
+static uint32_t progs_check(const csf_prog *p, const csf_field *f, const unsigned char *b, uint32_t n)
+{
+	uint32_t e[CSFB_PROG_WORDS_MAX], i = 0;
+	while (i < n) {
+		uint32_t g = le32(b), k = le32(b + 4);
+		const unsigned char *base = b + 8, *diff = base + 4 * (size_t)g * f->words;
+		for (uint32_t j = 0; j < k; j++)
+			for (uint32_t q = 0; q < g; q++, i++) {
+				for (uint32_t t = 0; t < f->words; t++) {
+					size_t at = 4 * ((size_t)q * f->words + t);
+					e[t] = le32(base + at) + (j ? j * le32(diff + at) : 0);
+				}
+				if (!f->ok(p, f->sec, e, i)) return i;
+			}
+		b = k > 1 ? diff + 4 * (size_t)g * f->words : diff;
+	}
+	return n;
+}
+
+csf_target *csf_targets_copy(const csf_prog *p, int sec)
+{
+	uint32_t n = p->ntargets[sec];
+	csf_target *t = malloc((n ? n : 1) * sizeof *t);
+	if (!t || !n) return t;
+	if (p->targets[sec]) {
+		memcpy(t, p->targets[sec], n * sizeof *t);
+		return t;
+	}
+	rbuf r = { p->targets_file[sec], p->targets_file_len[sec], "" };
+	if (get_progs(&r, (uint32_t *)(void *)t, sizeof *t / 4, n, NULL)) { /* (not after csf_decode) */
+		free(t);
+		return NULL;
+	}
+	return t;
 }
 
 /*
@@ -389,10 +436,21 @@ static int get_field(rbuf *r, csf_prog *p, const csf_field *f)
 	} else if (f->how == CSF_FC_NY) {
 		n = p->ny;
 	}
+	size_t used = 0;
 	if (f->runs ? n > CSFB_RUNS_MAX || get_runs(r, NULL, n, NULL)
-	    : f->progs ? (size_t)n > CSFB_PROGS_BYTES_MAX / f->size || get_progs(r, NULL, f->words, n)
+	    : f->progs ? (size_t)n > CSFB_PROGS_BYTES_MAX / f->size || get_progs(r, NULL, f->words, n, &used)
 	    : (size_t)n > r->left / fsize)
 		return -1;
+	if (f->kept) { /* the progressions as they are (a u32 count of bytes: they fit in the file's payload) */
+		unsigned char *k = malloc(used ? used : 1);
+		if (!k) return -1;
+		memcpy(k, r->p, used);
+		memcpy((unsigned char *)p + f->kept_at, &k, sizeof k);
+		memcpy((unsigned char *)p + f->kept_len, &(uint32_t){ (uint32_t)used }, sizeof(uint32_t));
+		r->p += used;
+		r->left -= used;
+		return 0;
+	}
 	if (f->how != CSF_FC_INLINE) {
 		if (!(e = f->runs ? calloc(n ? n : 1, f->size) : malloc(n ? (size_t)n * f->size : 1))) return -1;
 		csf_advise_large(e, (size_t)n * f->size);
@@ -400,7 +458,7 @@ static int get_field(rbuf *r, csf_prog *p, const csf_field *f)
 	}
 	if (f->runs) /* the memory image's spans with it */
 		return get_runs(r, (double *)(void *)e, n, f->at == offsetof(csf_prog, mem0) ? p : NULL);
-	if (f->progs) return get_progs(r, (uint32_t *)(void *)e, f->words, n);
+	if (f->progs) return get_progs(r, (uint32_t *)(void *)e, f->words, n, NULL);
 	if (fsize == 1) {
 		memcpy(e, r->p, n);
 		r->p += n;
@@ -656,8 +714,13 @@ int csf_verify(const csf_prog *p, char *err, size_t errlen)
 	for (size_t k = 0; k < csf_nfields; k++) {
 		const csf_field *f = &csf_fields[k];
 		uint32_t n;
-		const unsigned char *e = field_elems(p, f, &n);
-		for (uint32_t i = 0; f->ok && i < n; i++, e += f->size)
+		const unsigned char *e = field_elems(p, f, &n), *kept = NULL;
+		if (f->kept) memcpy(&kept, (const unsigned char *)p + f->kept_at, sizeof kept);
+		if (kept && !e) { /* as decoded: each element made from its progression */
+			uint32_t i = progs_check(p, f, kept, n);
+			if (i < n) return csf_fail(err, errlen, f->bad, (unsigned long)i, (int)f->sec);
+		}
+		for (uint32_t i = 0; f->ok && e && i < n; i++, e += f->size)
 			if (!f->ok(p, f->sec, e, i)) return csf_fail(err, errlen, f->bad, (unsigned long)i, (int)f->sec);
 		if (f->check && f->check(p, f->sec, err, errlen)) return -1;
 	}
@@ -670,6 +733,9 @@ void csf_prog_free(csf_prog *p)
 		void *e;
 		if (csf_fields[k].how == CSF_FC_INLINE) continue;
 		memcpy(&e, (unsigned char *)p + csf_fields[k].at, sizeof e);
+		free(e);
+		if (!csf_fields[k].kept) continue;
+		memcpy(&e, (unsigned char *)p + csf_fields[k].kept_at, sizeof e);
 		free(e);
 	}
 	free(p->spans);

@@ -58,6 +58,7 @@ enum { CSFB_RUN_LITERAL, CSFB_RUN_ZEROS, CSFB_RUN_REPEAT };
  * progression of a group of their few: 8 + 2 * 20 * few bytes.
  */
 #define CSFB_PROG_GROUP_MAX 16u /* the longest group the encoder looks for */
+#define CSFB_PROG_WORDS_MAX 8u  /* the most words of an element of a table kept as progressions (fields.c) */
 /* The most bytes a table of progressions may take in memory (as CSFB_RUNS_MAX: 1 GiB). */
 #define CSFB_PROGS_BYTES_MAX (1u << 30)
 

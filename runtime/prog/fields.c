@@ -11,12 +11,14 @@
  * field's elements are instructions, checked by the instruction verifier
  * (csf_verify_code, bytecode.c). In the file, the memory image, yscale and
  * yatol are runs, vpair and the tables of u32 structs progressions
- * (bytecode.h); in memory every field is a plain array.
+ * (bytecode.h); in memory every field is a plain array but the targets,
+ * which a decoded program keeps as progressions (csf_targets_copy).
  */
 #include <math.h>
 #include <stdlib.h>
 
 #include "csf_int.h"
+#include "bytecode.h"
 #include "fields.h"
 
 _Static_assert(sizeof(csf_src) == 12 && sizeof(csf_col) == 8 && sizeof(csf_assert) == 8 && sizeof(csf_prop) == 20 &&
@@ -29,6 +31,7 @@ _Static_assert(offsetof(csf_prog, jtan) == offsetof(csf_prog, tslot) + 16 &&
                offsetof(csf_prog, dstart) == offsetof(csf_prog, tslot) + 8 &&
                offsetof(csf_prog, ny) == offsetof(csf_prog, tslot) + 12, "layout is five u32 in a row");
 _Static_assert(offsetof(csf_prog, by) == offsetof(csf_prog, till) + 8, "run is two doubles in a row");
+_Static_assert(sizeof(csf_target) / 4 <= CSFB_PROG_WORDS_MAX, "a kept table's element fits the verifier's");
 _Static_assert(offsetof(csf_pclass, why) == 4 && offsetof(csf_pclass, known) == 8, "a class starts with three u32");
 
 static int slot_ok(const csf_prog *p, uint32_t s, uint32_t width)
@@ -283,8 +286,16 @@ ELEM(line_ok)
 	{ .name = nm, .how = CSF_FC_PREFIX, .sec = s, .words = sizeof(T) / 4, .progs = progs_,                     \
 	  .at = offsetof(csf_prog, ptr) + (s) * sizeof(T *), .count = offsetof(csf_prog, n) + (s) * sizeof(uint32_t), \
 	  .size = sizeof(T), .ok = ok_, .bad = bad_, .check = check_ }
+/* The targets of section s, kept as progressions (csf_targets_copy) */
+#define SEC_TARGETS(s)                                                                                             \
+	{ .name = "targets", .how = CSF_FC_PREFIX, .sec = s, .words = sizeof(csf_target) / 4, .progs = 1, .kept = 1,  \
+	  .at = offsetof(csf_prog, targets) + (s) * sizeof(csf_target *),                                           \
+	  .count = offsetof(csf_prog, ntargets) + (s) * sizeof(uint32_t), .size = sizeof(csf_target),                \
+	  .kept_at = offsetof(csf_prog, targets_file) + (s) * sizeof(unsigned char *),                                \
+	  .kept_len = offsetof(csf_prog, targets_file_len) + (s) * sizeof(uint32_t), .ok = target_ok,                \
+	  .bad = "target %lu of section %d out of range" }
 #define SECTION(s)                                                                                                 \
-	SEC_U32S("targets", targets, ntargets, csf_target, s, 1, target_ok, "target %lu of section %d out of range", NULL), \
+	SEC_TARGETS(s),                                                                                            \
 	SEC_U32S("code", code, ncode, uint32_t, s, 0, NULL, NULL, csf_verify_code),                                        \
 	SEC_U32S("lines", lines, nlines, csf_line, s, 1, line_ok, "line table entry %lu of section %d out of range", NULL)
 

@@ -33,10 +33,13 @@ typedef struct csf_field {
 	unsigned char words, dbls;
 	unsigned char runs;  /* doubles (dbls 1, words 0) stored as runs of equal values and zeros (csf_put_runs) */
 	unsigned char progs; /* elements of u32 words only (size 4 * words) stored as progressions (bytecode.h) */
+	unsigned char kept;  /* progs, and decoded as they are in the file (the bytes at kept_at, their count at
+	                        kept_len), the elements' pointer left NULL; a program csfc builds has the elements */
 	size_t at;           /* offsetof(csf_prog, the pointer to the elements), or (INLINE) of the elements */
 	size_t count;        /* PREFIX: offsetof(csf_prog, the uint32_t count); INLINE: the count */
 	size_t size;         /* sizeof an element in memory */
 	size_t dbl_at;       /* offset of the doubles in an element */
+	size_t kept_at, kept_len; /* kept: offsetof(csf_prog, the unsigned char *), (the uint32_t byte count) */
 	int (*ok)(const csf_prog *p, int sec, const void *e, uint32_t i);
 	const char *bad;
 	int (*check)(const csf_prog *p, int sec, char *err, size_t errlen); /* 0, or -1 with the reason */

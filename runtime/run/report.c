@@ -4,14 +4,15 @@
  * not be settled.
  */
 #include <math.h>
+#include <stdlib.h>
 
 #include "run_int.h"
 
-/* Index of the first non-finite target computed by section sec, or -1. */
-static long first_nonfinite(const csf_prog *p, int sec, const double *m)
+/* Index of the first non-finite target of section sec's (tgs), or -1. */
+static long first_nonfinite(const csf_prog *p, int sec, const csf_target *tgs, const double *m)
 {
-	for (uint32_t i = 0; i < p->ntargets[sec]; i++) {
-		const csf_target *tg = &p->targets[sec][i];
+	for (uint32_t i = 0; tgs && i < p->ntargets[sec]; i++) {
+		const csf_target *tg = &tgs[i];
 		for (uint32_t k = 0; k < tg->width; k++)
 			if (!isfinite(m[tg->slot + k])) return (long)i;
 	}
@@ -34,8 +35,10 @@ static void report_nonfinite_value(const csf_prog *p, int sec, const double *m, 
 {
 	char tb[32], vb[32];
 	csf_fmt_double(tb, t);
-	long i = first_nonfinite(p, sec, m);
+	csf_target *tgs = csf_targets_copy(p, sec); /* (out of memory: no rule named) */
+	long i = first_nonfinite(p, sec, tgs, m);
 	if (i < 0) {
+		free(tgs);
 		/* no rule computed it: an initial value or a constant; name the column */
 		for (uint32_t c = 0; c < p->ncols; c++)
 			if (!isfinite(m[p->cols[c].slot])) {
@@ -47,7 +50,7 @@ static void report_nonfinite_value(const csf_prog *p, int sec, const double *m, 
 		fprintf(err, "error: non-finite value at t=%s: %s\n", tb, what);
 		return;
 	}
-	const csf_target *tg = &p->targets[sec][i];
+	const csf_target *tg = &tgs[i];
 	const csf_src *s = &p->srcs[tg->src];
 	uint32_t k = 0;
 	while (k + 1 < tg->width && isfinite(m[tg->slot + k])) k++;
@@ -56,6 +59,7 @@ static void report_nonfinite_value(const csf_prog *p, int sec, const double *m, 
 	        csf_str(p, p->files[s->file]), (unsigned long)s->line, tb, csf_str(p, tg->name),
 	        tg->width == 3 ? "." : "", tg->width == 3 ? (const char *[]){ "x", "y", "z" }[k] : "",
 	        csf_str(p, tg->object), vb, csf_str(p, s->text));
+	free(tgs);
 }
 
 /* "file:line: " of statement src, the rule whose guard had the last event (a comparison, or a contact's). */

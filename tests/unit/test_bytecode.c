@@ -269,10 +269,44 @@ START_TEST(test_progressions)
 	ck_assert(memcmp(q.vpair, p.vpair, p.ny * 4) == 0);
 	for (int s = 0; s < CSF_NSEC; s++) {
 		ck_assert(q.ntargets[s] == p.ntargets[s] && q.nlines[s] == p.nlines[s]);
-		ck_assert(!p.ntargets[s] || memcmp(q.targets[s], p.targets[s], p.ntargets[s] * sizeof(csf_target)) == 0);
+		/* the targets kept as progressions, and made from them */
+		ck_assert(q.targets[s] == NULL && q.targets_file[s] != NULL);
+		csf_target *tq = csf_targets_copy(&q, s), *tp = csf_targets_copy(&p, s);
+		ck_assert(tq && tp && (!p.ntargets[s] || memcmp(tq, tp, p.ntargets[s] * sizeof(csf_target)) == 0));
+		ck_assert(!p.ntargets[s] || memcmp(tp, p.targets[s], p.ntargets[s] * sizeof(csf_target)) == 0);
+		free(tq);
+		free(tp);
 		ck_assert(!p.nlines[s] || memcmp(q.lines[s], p.lines[s], p.nlines[s] * sizeof(csf_line)) == 0);
 	}
+	ck_assert_uint_ge(p.ntargets[CSF_SEC_RHS], 40);
+	ck_assert_uint_lt(q.targets_file_len[CSF_SEC_RHS], p.ntargets[CSF_SEC_RHS] * sizeof(csf_target));
+	/* the decoded program encodes to the same bytes */
+	unsigned char *again;
+	size_t alen;
+	ck_assert_int_eq(csf_encode(&q, &again, &alen), 0);
+	ck_assert(alen == len && memcmp(again, buf, len) == 0);
+	free(again);
 	csf_prog_free(&q);
+	/* a target out of range that a progression makes: slots 0, d, 2d, ... past the memory from one on,
+	   refused by the verifier of the kept targets with that target's index */
+	{
+		csf_target *tg = p.targets[CSF_SEC_RHS];
+		uint32_t nt = p.ntargets[CSF_SEC_RHS], d = p.nmem / (nt - 1) + 1, first = 0;
+		csf_target *keep = malloc(nt * sizeof *keep);
+		memcpy(keep, tg, nt * sizeof *keep);
+		for (uint32_t i = 0; i < nt; i++) tg[i].slot = i * d;
+		while ((uint64_t)tg[first].slot + tg[first].width <= p.nmem) first++;
+		unsigned char *bad;
+		size_t blen2;
+		char want[64];
+		ck_assert_int_eq(csf_encode(&p, &bad, &blen2), 0);
+		ck_assert(csf_decode(bad, blen2, &q, err, sizeof err) == -1);
+		snprintf(want, sizeof want, "target %lu of section 0 out of range", (unsigned long)first);
+		ck_assert_msg(strstr(err, want) != NULL, "%s (want %s)", err, want);
+		free(bad);
+		memcpy(tg, keep, nt * sizeof *keep);
+		free(keep);
+	}
 	with_vpair(buf, len, NULL, 0, 0, &at, &vl, &blen);
 	static const uint32_t one[] = { 1, 40, 0, 0 };
 	ck_assert_uint_eq(vl, sizeof one);
