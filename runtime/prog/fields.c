@@ -286,16 +286,14 @@ ELEM(line_ok)
 	{ .name = nm, .how = CSF_FC_PREFIX, .sec = s, .words = sizeof(T) / 4, .progs = progs_,                     \
 	  .at = offsetof(csf_prog, ptr) + (s) * sizeof(T *), .count = offsetof(csf_prog, n) + (s) * sizeof(uint32_t), \
 	  .size = sizeof(T), .ok = ok_, .bad = bad_, .check = check_ }
-/* The targets of section s, kept as progressions (csf_targets_copy) */
-#define SEC_TARGETS(s)                                                                                             \
-	{ .name = "targets", .how = CSF_FC_PREFIX, .sec = s, .words = sizeof(csf_target) / 4, .progs = 1, .kept = 1,  \
-	  .at = offsetof(csf_prog, targets) + (s) * sizeof(csf_target *),                                           \
-	  .count = offsetof(csf_prog, ntargets) + (s) * sizeof(uint32_t), .size = sizeof(csf_target),                \
-	  .kept_at = offsetof(csf_prog, targets_file) + (s) * sizeof(unsigned char *),                                \
-	  .kept_len = offsetof(csf_prog, targets_file_len) + (s) * sizeof(uint32_t), .ok = target_ok,                \
-	  .bad = "target %lu of section %d out of range" }
+/* A field of code section s kept as its progressions (ptr[s] NULL; ptr##_file[s], ptr##_file_len[s]) */
+#define SEC_KEPT(nm, ptr, n, T, s, ok_, bad_)                                                                      \
+	{ .name = nm, .how = CSF_FC_PREFIX, .sec = s, .words = sizeof(T) / 4, .progs = 1, .kept = 1,                \
+	  .at = offsetof(csf_prog, ptr) + (s) * sizeof(T *), .count = offsetof(csf_prog, n) + (s) * sizeof(uint32_t), \
+	  .size = sizeof(T), .kept_at = offsetof(csf_prog, ptr##_file) + (s) * sizeof(unsigned char *),              \
+	  .kept_len = offsetof(csf_prog, ptr##_file_len) + (s) * sizeof(uint32_t), .ok = ok_, .bad = bad_ }
 #define SECTION(s)                                                                                                 \
-	SEC_TARGETS(s),                                                                                            \
+	SEC_KEPT("targets", targets, ntargets, csf_target, s, target_ok, "target %lu of section %d out of range"),        \
 	SEC_U32S("code", code, ncode, uint32_t, s, 0, NULL, NULL, csf_verify_code),                                        \
 	SEC_U32S("lines", lines, nlines, csf_line, s, 1, line_ok, "line table entry %lu of section %d out of range", NULL)
 

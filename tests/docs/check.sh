@@ -33,7 +33,7 @@ F=runtime/prog/fields.c
 {
 	sed -n '/^const csf_field csf_fields\[\] = {/,/^};/p' "$F" |
 		sed -n 's/.*\.name = "\([a-z]*\)".*/\1/p; s/^[[:blank:]][A-Z0-9_]*("\([a-z]*\)".*/\1/p; s/^[[:blank:]]SECTION(.*/sections/p' | uniq
-	sed -n '/^#define SECTION(/,/[^\\]$/p' "$F" | sed -n 's/.*SEC_U32S("\([a-z]*\)".*/\1/p'
+	sed -n '/^#define SECTION(/,/[^\\]$/p' "$F" | sed -n 's/.*SEC_[A-Z0-9]*("\([a-z]*\)".*/\1/p'
 } >"$T/table"
 # csf(5): the name after each .TP of the payload's list, and the three of its "sections" entry
 awk '/^\.SS Bytecode/ { on = 1 } on && /^An instruction is/ { exit } !on { next }
