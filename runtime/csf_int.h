@@ -547,12 +547,6 @@ int csf_compare_methods(const csf_prog *p, csf_exec_fn exec, const csf_overlay *
 unsigned char *csf_read_file(const char *path, size_t *len);
 
 /*
- * Advice that the n bytes at p, fresh from malloc or calloc and not yet touched, be backed by huge
- * pages where the kernel offers them (blocks of 4 MiB or more; nothing else). (file.c)
- */
-void csf_advise_large(void *p, size_t n);
-
-/*
  * The unit table (units.c), defined once for the compiler and the runtime:
  * name, factor to SI, exponents of length, mass, time and current, whether
  * the SI prefixes (csf_unit_find) apply to the name, and the factor's

@@ -453,7 +453,6 @@ static int get_field(rbuf *r, csf_prog *p, const csf_field *f)
 	}
 	if (f->how != CSF_FC_INLINE) {
 		if (!(e = f->runs ? calloc(n ? n : 1, f->size) : malloc(n ? (size_t)n * f->size : 1))) return -1;
-		csf_advise_large(e, (size_t)n * f->size);
 		memcpy(at, &e, sizeof e);
 	}
 	if (f->runs) /* the memory image's spans with it */

@@ -79,8 +79,6 @@ static stop run_alloc(session *S)
 	const csf_prog *p = r->p;
 	r->m = p->spans ? calloc(p->nmem ? p->nmem : 1, sizeof(double)) : malloc((p->nmem ? p->nmem : 1) * sizeof(double));
 	S->y = malloc((p->ny ? p->ny : 1) * sizeof(double));
-	csf_advise_large(r->m, (size_t)p->nmem * sizeof(double));
-	csf_advise_large(S->y, (size_t)p->ny * sizeof(double));
 	for (uint32_t k = 0; k < p->ncons; k++) /* one-sided constraints switch: a guard for each constraint */
 		if (p->cons[k].kind != CSF_CON_EQ) r->ncg = p->ncons;
 	r->gcont = p->nevents + r->ncg;
@@ -108,7 +106,6 @@ static stop run_alloc(session *S)
 	}
 	if (S->sink && !S->sink->place) S->v = malloc((p->ncols + 1) * sizeof *S->v);
 	S->vec = calloc(p->ny ? p->ny : 1, sizeof *S->vec);
-	csf_advise_large(S->vec, (size_t)p->ny * sizeof *S->vec);
 	for (uint32_t i = 0; S->vec && i < p->nprops; i++) { /* a vector in the state: its components, together */
 		const csf_prop *q = &p->props[i];
 		if (q->width == 3 && q->slot >= p->ystart && (uint64_t)q->slot + 3 <= (uint64_t)p->ystart + p->ny)
