@@ -64,7 +64,7 @@ static void *new_block(size_t n)
 
 void *xalloc(size_t n)
 {
-	size_t a = sizeof(max_align_t);
+	size_t a = _Alignof(max_align_t); /* 16, where sizeof(max_align_t) is 32 */
 	n = (n + a - 1) / a * a;
 	if (n > CHUNK / 8) return new_block(n);
 	if ((size_t)(bump_end - bump) < n) {

@@ -24,19 +24,19 @@ typedef enum ExprKind {
 } ExprKind;
 
 typedef struct Expr Expr;
-struct Expr {
+struct Expr { /* (the fields in an order without holes) */
 	ExprKind kind;
 	int op;
 	Loc loc;
+	int n;
+	int nargs;
+	int depth;   /* levels of the tree below and including this node (at most CSF_MAX_DEPTH + 1) */
 	double num;
 	char *name;
-	int n;
 	Unit unit;
 	char *unit_text;
 	Expr *a, *b;
 	Expr **args;
-	int nargs;
-	int depth;   /* levels of the tree below and including this node (at most CSF_MAX_DEPTH + 1) */
 };
 
 typedef struct If If;
@@ -86,12 +86,12 @@ struct Stmt {
 	char *text;   /* the statement's source text, for diagnostics */
 	char *name;   /* global, object, kind; S_VECDECL: first of names */
 	Loc name_loc;
+	int arr;      /* S_OBJKIND, S_PROP: ARR_NONE, or how it names members of the array `name` */
 	char *prop;   /* S_PROP; S_OBJKIND: the kind */
 	Loc prop_loc;
 	int isvec;
 	Expr *value;
 	Expr *atol;   /* S_PROP of an object: `atol A` after the value, or NULL */
-	int arr;      /* S_OBJKIND, S_PROP: ARR_NONE, or how it names members of the array `name` */
 	long lo, hi;  /* ARR_RANGE: the indices A..B; ARR_ONE: the index K (lo) */
 	char *ivar;   /* ARR_EACH: the index name; a rule whose `for` list indexes members: its index name
 	                 (sema sets it) */

@@ -27,6 +27,8 @@ typedef struct YYLoc { int file, first_line, first_column, last_line, last_colum
 typedef struct Parser Parser;
 /* How an object statement names its object (Stmt.arr). */
 typedef struct ObjName { char *name; YYLoc loc; int arr; long lo, hi; char *ivar; } ObjName;
+/* A unit literal (layout.c): its SI factor and dimension, its spelling and place. */
+typedef struct UnitTok { Unit unit; char *text; Loc loc; } UnitTok;
 }
 
 %code provides {
@@ -90,12 +92,12 @@ static Expr *bin(int op, Expr *a, Expr *b, YYLoc l)
 	e->b = b;
 	return nest(e);
 }
-static Expr *with_unit(Expr *a, Token *u)
+static Expr *with_unit(Expr *a, UnitTok u)
 {
-	Expr *e = ast_expr(E_UNIT, u->loc);
+	Expr *e = ast_expr(E_UNIT, u.loc);
 	e->a = a;
-	e->unit = u->unit;
-	e->unit_text = u->text;
+	e->unit = u.unit;
+	e->unit_text = u.text;
 	return nest(e);
 }
 /* The rest of the line from l, without a comment or trailing blanks. */
@@ -214,14 +216,14 @@ static long array_index(double x, YYLoc l)
 	double num;
 	char *str;
 	int n;
-	Token *tok;
+	UnitTok unit; /* (by value, as the object name: nothing allocated for each) */
 	Expr *expr;
 	Eqn *eqn;
 	If *cond;
 	Stmt *stmt;
 	ObjRef *ref;
 	WatchItem *watch;
-	ObjName *oname;
+	ObjName oname;
 	long idx;
 	Vec vec;
 }
@@ -230,7 +232,7 @@ static long array_index(double x, YYLoc l)
 %token <num> NUMBER "number"
 %token <str> IDENT "name"
 %token <n> DOLLAR "object number ($n)"
-%token <tok> UNIT "unit"
+%token <unit> UNIT "unit"
 %token NEWLINE "end of line"
 %token INDENT "indented block"
 %token DEDENT "end of indented block"
@@ -286,25 +288,25 @@ stmt:
 		$$ = stmt(S_GLOBAL, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->value = $4;
 	}
 	| OBJECT objname ':' IDENT {
-		$$ = obj_stmt(S_OBJKIND, @$, $2); $$->prop = $4; $$->prop_loc = LOC(@4);
+		$$ = obj_stmt(S_OBJKIND, @$, &$2); $$->prop = $4; $$->prop_loc = LOC(@4);
 	}
 	| OBJECT objname ':' IDENT STRING {
-		$$ = obj_stmt(S_OBJKIND, @$, $2); $$->prop = $4; $$->prop_loc = LOC(@4); $$->from = $5;
+		$$ = obj_stmt(S_OBJKIND, @$, &$2); $$->prop = $4; $$->prop_loc = LOC(@4); $$->from = $5;
 		if (strcmp($4, "from") != 0) {
-			error_at(LOC(@4), "a string after ':' reads a data file: 'object %s[]: from \"%s\"'", $2->name, $5);
+			error_at(LOC(@4), "a string after ':' reads a data file: 'object %s[]: from \"%s\"'", $2.name, $5);
 			$$ = NULL;
-		} else if ($2->arr != ARR_FILE) {
+		} else if ($2.arr != ARR_FILE) {
 			error_at(LOC(@2), "the members read from a data file are numbered by its rows: 'object %s[]: from \"%s\"'",
-			         $2->name, $5);
+			         $2.name, $5);
 			$$ = NULL;
 		} /* else the members, one per data row: objects.c */
 	}
 	| OBJECT objname ':' IDENT '=' expr atol {
-		$$ = obj_stmt(S_PROP, @$, $2); $$->prop = $4; $$->prop_loc = LOC(@4);
+		$$ = obj_stmt(S_PROP, @$, &$2); $$->prop = $4; $$->prop_loc = LOC(@4);
 		$$->value = $6; $$->atol = $7;
 	}
 	| OBJECT objname ':' VECTOR IDENT '=' expr atol {
-		$$ = obj_stmt(S_PROP, @$, $2); $$->prop = $5; $$->prop_loc = LOC(@5);
+		$$ = obj_stmt(S_PROP, @$, &$2); $$->prop = $5; $$->prop_loc = LOC(@5);
 		$$->value = $7; $$->isvec = 1; $$->atol = $8;
 	}
 	| VECTOR names {
@@ -341,15 +343,15 @@ stmt:
 
 /* An object, or members of an object array (DECISIONS §11). */
 objname:
-	  IDENT                { $$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; }
-	| IDENT '[' index ']'  { $$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; $$->arr = ARR_ONE; $$->lo = $3; }
+	  IDENT                { $$ = (ObjName){ .name = $1, .loc = @1 }; }
+	| IDENT '[' index ']'  { $$ = (ObjName){ .name = $1, .loc = @1, .arr = ARR_ONE, .lo = $3 }; }
 	| IDENT '[' index DOTDOT index ']' {
-		$$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; $$->arr = ARR_RANGE; $$->lo = $3; $$->hi = $5;
+		$$ = (ObjName){ .name = $1, .loc = @1, .arr = ARR_RANGE, .lo = $3, .hi = $5 };
 		if ($5 < $3) error_at(LOC(@5), "an object array 'NAME[A..B]' needs A <= B, not %ld..%ld", $3, $5);
 		else if ($5 - $3 >= 100000000) error_at(LOC(@5), "an object array has at most 100000000 members");
 	}
-	| IDENT '[' IDENT ']'  { $$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; $$->arr = ARR_EACH; $$->ivar = $3; }
-	| IDENT '[' ']'        { $$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; $$->arr = ARR_FILE; }
+	| IDENT '[' IDENT ']'  { $$ = (ObjName){ .name = $1, .loc = @1, .arr = ARR_EACH, .ivar = $3 }; }
+	| IDENT '[' ']'        { $$ = (ObjName){ .name = $1, .loc = @1, .arr = ARR_FILE }; }
 	;
 
 index:

@@ -140,15 +140,18 @@ static void fix_derived(Var *v, Var *read, int line)
 	v->fix_line = line;
 }
 
-/* May constant r replace the value of v (a kind's default, a predefined constant)? Same type, same dimension. */
-static int override_ok(Loc l, const char *what, Var *v, RExpr *r)
+/* May constant r replace the value of v (a kind's default, a predefined constant)? Same type, same
+ * dimension. kind: "property" or "" (a global), the word before v's name in the message. */
+static int override_ok(Loc l, const char *kind, Var *v, RExpr *r)
 {
 	if (v->isvec != r->isvec) {
-		error_at(l, "%s is a %s; it cannot take a %s", what, v->isvec ? "vector" : "scalar", r->isvec ? "vector" : "scalar");
+		error_at(l, "%s%s'%s' is a %s; it cannot take a %s", kind, *kind ? " " : "", v->name, v->isvec ? "vector" : "scalar",
+		         r->isvec ? "vector" : "scalar");
 		return 0;
 	}
 	if (r->dimk == DK_KNOWN && v->dimk == DK_KNOWN && memcmp(r->dim, v->dim, sizeof v->dim) != 0) {
-		error_at(l, "%s is %s; this value is %s", what, dims_describe(v->dim), dims_operand(r, r->dim));
+		error_at(l, "%s%s'%s' is %s; this value is %s", kind, *kind ? " " : "", v->name, dims_describe(v->dim),
+		         dims_operand(r, r->dim));
 		return 0;
 	}
 	return 1;
@@ -224,7 +227,7 @@ void put_prop(Object *o, const char *name, Loc l, Loc at, RExpr *r, int isvec, i
 			                                                 : "defined here");
 			return;
 		}
-		if (!override_ok(at, xprintf("property '%s'", name), p, r)) return;
+		if (!override_ok(at, "property", p, r)) return;
 		memcpy(p->init, r->c, sizeof p->init);
 		p->loc = l;
 		p->from_kind = from_kind;
@@ -294,7 +297,7 @@ void build_objects(Stmt *stmts)
 			if (!ok) break;
 			Var *g = map_get(&sema.globals_by_name, s->name);
 			if (g) {
-				if (!override_ok(s->value->loc, xprintf("'%s'", s->name), g, r)) break;
+				if (!override_ok(s->value->loc, "", g, r)) break;
 				memcpy(g->init, r->c, sizeof g->init);
 				g->loc = s->name_loc;
 				fix_derived(g, read, s->name_loc.line);

@@ -28,12 +28,13 @@ typedef struct Shape {
 
 typedef enum VarKind { V_TIME, V_GLOBAL, V_PROP, V_TEMP } VarKind;
 
-typedef struct Var {
+typedef struct Var { /* (the fields in an order without holes: a million objects have a dozen each) */
 	VarKind kind;
+	int isvec;
 	char *name;
 	Object *obj;     /* owner (props, temps), NULL for globals and t */
-	int isvec;
 	int order;       /* definition order, for the precedence of spec 2.4.1 */
+	int slot;        /* memory slot, -1 until allocated */
 	double init[3];
 	Loc loc;
 	int state;       /* integrated: has a derivative rule */
@@ -41,7 +42,6 @@ typedef struct Var {
 	                    piecewise constant between the events at which the blocks assign it) */
 	Inst *det;       /* the instance that determines it, if any */
 	Inst *deriv;     /* its derivative rule instance (state variables) */
-	int slot;        /* memory slot, -1 until allocated */
 	char *key;       /* temps: lookup key */
 	int from_kind;   /* props: the value is a kind's default, not yet set */
 	int dimk;        /* DK_UNKNOWN until known (dims.c) */
@@ -55,8 +55,8 @@ typedef struct Var {
 	   FIX_DERIVED, it is computed from fix_obj.fix_name's; FIX_RUN, folded into the run's fix_name
 	   (till, by); FIX_CONTACT, its value 0 left contacts out */
 	int fix;
-	const char *fix_obj, *fix_name;
 	int fix_line;
+	const char *fix_obj, *fix_name;
 } Var;
 
 enum { FIX_NONE, FIX_FOLDED, FIX_DERIVED, FIX_RUN, FIX_CONTACT };
