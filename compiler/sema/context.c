@@ -148,7 +148,7 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 		t->loc = l;
 		t->slot = -1;
 		t->isvec = map_get(&sema.vector_decls, name) != NULL;
-		t->key = temp_key(name, bind, nbind);
+		var_more(t)->key = temp_key(name, bind, nbind);
 		t->pair = nbind > 1;
 		t->order = sema.def_counter++;
 		vec_push(C->pending, t);
@@ -165,7 +165,7 @@ static void type_error(Ctx *C, Loc l, const char *msg)
 /* A temporary no rule has determined yet takes the type its use asks for. */
 static int infer_vector(RExpr *r)
 {
-	if (r->k != R_VAR || r->var->kind != V_TEMP || determined(r->var) || map_get(&sema.temps, r->var->key)) return 0;
+	if (r->k != R_VAR || r->var->kind != V_TEMP || determined(r->var) || map_get(&sema.temps, var_more_of(r->var)->key)) return 0;
 	r->isvec = r->var->isvec = 1;
 	return 1;
 }

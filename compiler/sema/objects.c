@@ -170,7 +170,7 @@ static void set_atol(Object *o, Var *p, Stmt *s)
 		         r->isvec ? " (one for every component)" : "");
 		return;
 	}
-	p->atol = r;
+	var_more(p)->atol = r;
 }
 
 /* Defines or overrides property p of o from a property statement. */

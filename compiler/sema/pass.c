@@ -107,7 +107,7 @@ static void check_atols(Model *M)
 		Object *o = M->objects.v[i];
 		for (int j = 0; j < o->props.n; j++) {
 			Var *v = o->props.v[j];
-			RExpr *a = v->atol;
+			RExpr *a = var_more_of(v)->atol;
 			if (!a) continue;
 			if (!v->state)
 				error_at(a->loc, "'atol' is the absolute tolerance of a state variable, and '%s' of '%s' has no "
