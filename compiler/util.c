@@ -25,6 +25,9 @@
 typedef struct Block { struct Block *next; max_align_t data[]; } Block;
 static Block *blocks;
 static char *bump, *bump_end;
+/* The syntax tree's nodes given back by ast_free, linked by their a; forgotten when the arena
+ * releases memory (they may be in what it releases). */
+static Expr *expr_free;
 
 void xoom(void)
 {
@@ -89,6 +92,7 @@ void arena_release(ArenaMark m)
 	}
 	bump = m.bump;
 	bump_end = m.bump_end;
+	expr_free = NULL;
 	sources.v = m.src_v; /* vec_push copies on growth: the table as it was is intact */
 	sources.n = m.src_n;
 	sources.cap = m.src_cap;
@@ -110,6 +114,7 @@ void arena_free(void)
 		blocks = b;
 	}
 	bump = bump_end = NULL;
+	expr_free = NULL;
 }
 
 char *xstrndup(const char *s, size_t n)
@@ -155,10 +160,22 @@ int vec_has(const Vec *a, const void *x)
 
 Expr *ast_expr(ExprKind k, Loc l)
 {
-	Expr *e = xalloc(sizeof *e);
+	Expr *e = expr_free;
+	if (e) {
+		expr_free = e->a;
+		memset(e, 0, sizeof *e);
+	} else {
+		e = xalloc(sizeof *e);
+	}
 	e->kind = k;
 	e->loc = l;
 	return e;
+}
+
+void ast_free(Expr *e)
+{
+	e->a = expr_free;
+	expr_free = e;
 }
 
 Vec sources;

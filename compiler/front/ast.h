@@ -20,8 +20,21 @@ typedef enum ExprKind {
 	E_NEG,    /* -a */
 	E_NOT,    /* not a */
 	E_INDEX,  /* name[a]: a member of the object array name */
-	E_SUM     /* sum(a for name): a summed over the members of the object array name */
+	E_SUM,    /* sum(a for name): a summed over the members of the object array name */
+	E_LIT     /* a number with a unit, `num unit`, or (lit not NULL) a vector of numbers with one,
+	             `(n1, n2, n3) unit`, each ni a number or a negated one: the value E_UNIT over E_NUM or
+	             E_VEC would be, built the same way (one node, not two, or six to nine: the masses,
+	             positions and velocities of a scene written out object by object) */
 } ExprKind;
+
+/* An E_LIT's numbers, as written: the components' values and places, whether each is negated and
+ * where its '-' is, the place of the '('. */
+typedef struct Lit {
+	double v[3];
+	Loc at[3], neg_at[3];
+	Loc vec_at;
+	unsigned char neg[3];
+} Lit;
 
 typedef struct Expr Expr;
 struct Expr { /* (the fields in an order without holes) */
@@ -36,7 +49,10 @@ struct Expr { /* (the fields in an order without holes) */
 	Unit unit;
 	char *unit_text;
 	Expr *a, *b;
-	Expr **args;
+	union {
+		Expr **args; /* nargs of them */
+		Lit *lit;    /* E_LIT of a vector */
+	};
 };
 
 typedef struct If If;
@@ -119,6 +135,9 @@ struct Stmt {
 };
 
 Expr *ast_expr(ExprKind k, Loc l);
+/* Gives back node e, which nothing points to any more (the parser folded it into an E_LIT): the next
+ * ast_expr reuses it. */
+void ast_free(Expr *e);
 
 /* Parses a whole file (with its `using` inclusions) into a statement list. */
 Stmt *parse_file(int file);

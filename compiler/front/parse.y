@@ -168,6 +168,42 @@ static Stmt *when_stmt(YYLoc l, Expr *cond, YYLoc colon, Vec *fors, Eqn *q)
 	s->text = xstrndup(line + a, b - a); /* "when COND" (with `for`: "when for OBJS: COND") */
 	return s;
 }
+/* Is x a number, or a negated number, that an E_LIT can hold? */
+static int lit_part(const Expr *x) { return x->kind == E_NUM || (x->kind == E_NEG && x->a->kind == E_NUM); }
+/* (a, b, c) u, the '(' at l: one E_LIT if a, b and c are numbers (their nodes given back), else E_UNIT over E_VEC. */
+static Expr *vec_unit(YYLoc l, Expr *a, Expr *b, Expr *c, UnitTok u)
+{
+	Expr *x[3] = { a, b, c };
+	if (!lit_part(a) || !lit_part(b) || !lit_part(c)) {
+		Expr *v = ast_expr(E_VEC, LOC(l));
+		v->args = xalloc(3 * sizeof(Expr *));
+		v->nargs = 3;
+		for (int i = 0; i < 3; i++) v->args[i] = x[i];
+		return with_unit(nest(v), u);
+	}
+	Lit *L = xalloc(sizeof *L);
+	int depth = 1;
+	for (int i = 0; i < 3; i++) {
+		Expr *n = x[i];
+		if (n->kind == E_NEG) {
+			L->neg[i] = 1;
+			L->neg_at[i] = n->loc;
+			n = n->a;
+			ast_free(x[i]);
+			depth = 2;
+		}
+		L->v[i] = n->num;
+		L->at[i] = n->loc;
+		ast_free(n);
+	}
+	L->vec_at = LOC(l);
+	Expr *e = ast_expr(E_LIT, u.loc);
+	e->lit = L;
+	e->unit = u.unit;
+	e->unit_text = u.text;
+	e->depth = depth + 2; /* as E_UNIT over E_VEC */
+	return e;
+}
 static Expr *call(ExprKind k, Expr *recv, char *name, Vec *args, YYLoc l)
 {
 	Expr *e = ast_expr(k, LOC(l));
@@ -503,7 +539,9 @@ postfix:
 
 primary:
 	  NUMBER             { $$ = ast_expr(E_NUM, LOC(@1)); $$->num = $1; $$->depth = 1; }
-	| NUMBER UNIT        { Expr *n = ast_expr(E_NUM, LOC(@1)); n->num = $1; n->depth = 1; $$ = with_unit(n, $2); }
+	| NUMBER UNIT {
+		$$ = ast_expr(E_LIT, $2.loc); $$->num = $1; $$->unit = $2.unit; $$->unit_text = $2.text; $$->depth = 2;
+	}
 	| IDENT              { $$ = ast_expr(E_NAME, LOC(@1)); $$->name = $1; $$->depth = 1; }
 	| IDENT DOLLAR       { $$ = ast_expr(E_DOLLAR, LOC(@1)); $$->name = $1; $$->n = $2; $$->depth = 1; }
 	| IDENT '(' args ')' { $$ = call(E_CALL, NULL, $1, &$3, @1); }
@@ -520,11 +558,7 @@ primary:
 		$$ = ast_expr(E_VEC, LOC(@1)); $$->args = xalloc(3 * sizeof(Expr *)); $$->nargs = 3;
 		$$->args[0] = $2; $$->args[1] = $4; $$->args[2] = $6; $$ = nest($$);
 	}
-	| '(' expr ',' expr ',' expr ')' UNIT {
-		Expr *v = ast_expr(E_VEC, LOC(@1)); v->args = xalloc(3 * sizeof(Expr *)); v->nargs = 3;
-		v->args[0] = $2; v->args[1] = $4; v->args[2] = $6;
-		$$ = with_unit(nest(v), $8);
-	}
+	| '(' expr ',' expr ',' expr ')' UNIT { $$ = vec_unit(@1, $2, $4, $6, $8); }
 	;
 
 args:
