@@ -253,7 +253,10 @@ void put_prop(Object *o, const char *name, Loc l, Loc at, RExpr *r, int isvec, i
 	if (o->props.n == PROPS_SCANNED + 1)
 		for (int i = 0; i < o->props.n; i++) map_put(&o->props_by_name, ((Var *)o->props.v[i])->name, o->props.v[i]);
 	else if (o->props.n > PROPS_SCANNED) map_put(&o->props_by_name, p->name, p);
-	map_put(&sema.prop_names, p->name, p);
+	/* (by the name's pointer, interned: a million objects' dozen names are a dozen strings) */
+	const char **seen = &sema.prop_seen[((uintptr_t)p->name / 16) % PROP_SEEN];
+	if (*seen != p->name) map_put(&sema.prop_names, p->name, p);
+	*seen = p->name;
 }
 
 void apply_kind(Object *o, Stmt *s)
@@ -287,6 +290,9 @@ void apply_kind(Object *o, Stmt *s)
 
 void build_objects(Stmt *stmts)
 {
+	/* the object of the statement before: a scene written out object by object names one object on
+	   several lines in a row (the same name, interned by the scanner), found once */
+	Object *last = NULL;
 	for (Stmt *s = stmts; s; s = s->next) {
 		switch (s->kind) {
 		case S_GLOBAL: {
@@ -326,8 +332,8 @@ void build_objects(Stmt *stmts)
 				error_at(s->prop_loc, "unknown kind '%s'", s->prop);
 				break;
 			}
-			Object *o = get_object(s->name, s->name_loc);
-			if (o) apply_kind(o, s);
+			Object *o = last && last->name == s->name ? last : get_object(s->name, s->name_loc);
+			if (o) apply_kind(last = o, s);
 			break;
 		}
 		case S_PROP: {
@@ -335,8 +341,8 @@ void build_objects(Stmt *stmts)
 				array_stmt(s);
 				break;
 			}
-			Object *o = get_object(s->name, s->name_loc);
-			if (o) set_prop(o, s, 0);
+			Object *o = last && last->name == s->name ? last : get_object(s->name, s->name_loc);
+			if (o) set_prop(last = o, s, 0);
 			break;
 		}
 		default:
