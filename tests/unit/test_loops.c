@@ -452,11 +452,10 @@ static char *accumulator_c(int variant)
 	put(code, &n, CSF_OP_ADD, R(X, 1), R(X, 1), R(FLAG, 3));
 	if (variant == 1) put(code, &n, CSF_OP_MOV, R(VEC, 4), R(X, 3), 0); /* x of another object */
 	if (variant == 2) put(code, &n, CSF_OP_ASSERT, R(ONES, 3), R(0, 3), 0);
-	uint32_t nx = put(code, &n, CSF_OP_NEXT, 2, l2 + 4, 0);
+	put(code, &n, CSF_OP_NEXT, 2, l2 + 4, 0);
 	code[l2 + 3] = n;
 	put(code, &n, CSF_OP_NEXT, 1, l1 + 4, 0);
 	code[l1 + 3] = n;
-	(void)nx;
 	csf_prog p = bare(code, n);
 	char err[256];
 	ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "%s", err);
