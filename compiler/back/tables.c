@@ -43,7 +43,7 @@ void gen_state_scales(Model *M, csf_prog *p)
 			if (mag > 0 && mag < one && isfinite(mag)) one = mag;
 			for (int k = 0; k < (v->isvec ? 3 : 1); k++) {
 				p->yscale[(uint32_t)v->slot - p->ystart + (uint32_t)k] = one;
-				p->yatol[(uint32_t)v->slot - p->ystart + (uint32_t)k] = v->atol ? v->atol->c[0] : 0;
+				p->yatol[(uint32_t)v->slot - p->ystart + (uint32_t)k] = var_more_of(v)->atol ? var_more_of(v)->atol->c[0] : 0;
 			}
 		}
 	}

@@ -20,23 +20,39 @@ typedef enum ExprKind {
 	E_NEG,    /* -a */
 	E_NOT,    /* not a */
 	E_INDEX,  /* name[a]: a member of the object array name */
-	E_SUM     /* sum(a for name): a summed over the members of the object array name */
+	E_SUM,    /* sum(a for name): a summed over the members of the object array name */
+	E_LIT     /* a number with a unit, `num unit`, or (lit not NULL) a vector of numbers with one,
+	             `(n1, n2, n3) unit`, each ni a number or a negated one: the value E_UNIT over E_NUM or
+	             E_VEC would be, built the same way (one node, not two, or six to nine: the masses,
+	             positions and velocities of a scene written out object by object) */
 } ExprKind;
 
+/* An E_LIT's numbers, as written: the components' values and places, whether each is negated and
+ * where its '-' is, the place of the '('. */
+typedef struct Lit {
+	double v[3];
+	Loc at[3], neg_at[3];
+	Loc vec_at;
+	unsigned char neg[3];
+} Lit;
+
 typedef struct Expr Expr;
-struct Expr {
+struct Expr { /* (the fields in an order without holes) */
 	ExprKind kind;
 	int op;
 	Loc loc;
+	int n;
+	int nargs;
+	int depth;   /* levels of the tree below and including this node (at most CSF_MAX_DEPTH + 1) */
 	double num;
 	char *name;
-	int n;
 	Unit unit;
 	char *unit_text;
 	Expr *a, *b;
-	Expr **args;
-	int nargs;
-	int depth;   /* levels of the tree below and including this node (at most CSF_MAX_DEPTH + 1) */
+	union {
+		Expr **args; /* nargs of them */
+		Lit *lit;    /* E_LIT of a vector */
+	};
 };
 
 typedef struct If If;
@@ -86,12 +102,12 @@ struct Stmt {
 	char *text;   /* the statement's source text, for diagnostics */
 	char *name;   /* global, object, kind; S_VECDECL: first of names */
 	Loc name_loc;
+	int arr;      /* S_OBJKIND, S_PROP: ARR_NONE, or how it names members of the array `name` */
 	char *prop;   /* S_PROP; S_OBJKIND: the kind */
 	Loc prop_loc;
 	int isvec;
 	Expr *value;
 	Expr *atol;   /* S_PROP of an object: `atol A` after the value, or NULL */
-	int arr;      /* S_OBJKIND, S_PROP: ARR_NONE, or how it names members of the array `name` */
 	long lo, hi;  /* ARR_RANGE: the indices A..B; ARR_ONE: the index K (lo) */
 	char *ivar;   /* ARR_EACH: the index name; a rule whose `for` list indexes members: its index name
 	                 (sema sets it) */
@@ -119,6 +135,9 @@ struct Stmt {
 };
 
 Expr *ast_expr(ExprKind k, Loc l);
+/* Gives back node e, which nothing points to any more (the parser folded it into an E_LIT): the next
+ * ast_expr reuses it. */
+void ast_free(Expr *e);
 
 /* Parses a whole file (with its `using` inclusions) into a statement list. */
 Stmt *parse_file(int file);

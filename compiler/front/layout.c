@@ -49,7 +49,7 @@ struct Parser {
 	int at_end;        /* the main file has ended: close blocks, then END */
 	Token end;
 	Stmt *head, *tail;
-	char *text;        /* spelling of the last token given */
+	const char *text;  /* spelling of the last token given */
 	int skip;          /* drop the block after the line just ended (a syntax error) ... */
 	int skip_indent;   /* ... the lines deeper than this, and the elif and else lines at it */
 	Loc bad;           /* the last line whose indentation was reported */
@@ -389,6 +389,14 @@ static Token next_token(Parser *P)
 	}
 }
 
+/* The spelling of a one-character token (the text of a syntax error), without a string per token. */
+static const char *punct_text(int c)
+{
+	static char text[256][2];
+	text[c][0] = (char)c;
+	return text[c];
+}
+
 int yylex(YYSTYPE *lval, YYLoc *lloc, Parser *P)
 {
 	Token t = next_token(P);
@@ -407,9 +415,7 @@ int yylex(YYSTYPE *lval, YYLoc *lloc, Parser *P)
 			t.kind = UNIT;
 			t.unit = un;
 			t.text = text.s;
-			Token *keep = xalloc(sizeof *keep);
-			*keep = t;
-			lval->tok = keep;
+			lval->unit = (UnitTok){ un, text.s, t.loc };
 		}
 	}
 	if (t.kind == IDENT && !t.bol && !strcmp(t.text, "atol") &&
@@ -417,7 +423,7 @@ int yylex(YYSTYPE *lval, YYLoc *lloc, Parser *P)
 		t.kind = ATOL;
 	if (t.kind == NEWLINE) P->last_colon = P->last == ':';
 	P->last = t.kind;
-	P->text = t.text ? t.text : (t.kind > 0 && t.kind < 256 ? xprintf("%c", t.kind) : NULL);
+	P->text = t.text ? t.text : t.kind > 0 && t.kind < 256 ? punct_text(t.kind) : NULL;
 	lloc->file = t.loc.file;
 	lloc->first_line = lloc->last_line = t.loc.line;
 	lloc->first_column = t.loc.col;

@@ -27,6 +27,8 @@ typedef struct YYLoc { int file, first_line, first_column, last_line, last_colum
 typedef struct Parser Parser;
 /* How an object statement names its object (Stmt.arr). */
 typedef struct ObjName { char *name; YYLoc loc; int arr; long lo, hi; char *ivar; } ObjName;
+/* A unit literal (layout.c): its SI factor and dimension, its spelling and place. */
+typedef struct UnitTok { Unit unit; char *text; Loc loc; } UnitTok;
 }
 
 %code provides {
@@ -90,12 +92,12 @@ static Expr *bin(int op, Expr *a, Expr *b, YYLoc l)
 	e->b = b;
 	return nest(e);
 }
-static Expr *with_unit(Expr *a, Token *u)
+static Expr *with_unit(Expr *a, UnitTok u)
 {
-	Expr *e = ast_expr(E_UNIT, u->loc);
+	Expr *e = ast_expr(E_UNIT, u.loc);
 	e->a = a;
-	e->unit = u->unit;
-	e->unit_text = u->text;
+	e->unit = u.unit;
+	e->unit_text = u.text;
 	return nest(e);
 }
 /* The rest of the line from l, without a comment or trailing blanks. */
@@ -166,6 +168,42 @@ static Stmt *when_stmt(YYLoc l, Expr *cond, YYLoc colon, Vec *fors, Eqn *q)
 	s->text = xstrndup(line + a, b - a); /* "when COND" (with `for`: "when for OBJS: COND") */
 	return s;
 }
+/* Is x a number, or a negated number, that an E_LIT can hold? */
+static int lit_part(const Expr *x) { return x->kind == E_NUM || (x->kind == E_NEG && x->a->kind == E_NUM); }
+/* (a, b, c) u, the '(' at l: one E_LIT if a, b and c are numbers (their nodes given back), else E_UNIT over E_VEC. */
+static Expr *vec_unit(YYLoc l, Expr *a, Expr *b, Expr *c, UnitTok u)
+{
+	Expr *x[3] = { a, b, c };
+	if (!lit_part(a) || !lit_part(b) || !lit_part(c)) {
+		Expr *v = ast_expr(E_VEC, LOC(l));
+		v->args = xalloc(3 * sizeof(Expr *));
+		v->nargs = 3;
+		for (int i = 0; i < 3; i++) v->args[i] = x[i];
+		return with_unit(nest(v), u);
+	}
+	Lit *L = xalloc(sizeof *L);
+	int depth = 1;
+	for (int i = 0; i < 3; i++) {
+		Expr *n = x[i];
+		if (n->kind == E_NEG) {
+			L->neg[i] = 1;
+			L->neg_at[i] = n->loc;
+			n = n->a;
+			ast_free(x[i]);
+			depth = 2;
+		}
+		L->v[i] = n->num;
+		L->at[i] = n->loc;
+		ast_free(n);
+	}
+	L->vec_at = LOC(l);
+	Expr *e = ast_expr(E_LIT, u.loc);
+	e->lit = L;
+	e->unit = u.unit;
+	e->unit_text = u.text;
+	e->depth = depth + 2; /* as E_UNIT over E_VEC */
+	return e;
+}
 static Expr *call(ExprKind k, Expr *recv, char *name, Vec *args, YYLoc l)
 {
 	Expr *e = ast_expr(k, LOC(l));
@@ -214,14 +252,14 @@ static long array_index(double x, YYLoc l)
 	double num;
 	char *str;
 	int n;
-	Token *tok;
+	UnitTok unit; /* (by value, as the object name: nothing allocated for each) */
 	Expr *expr;
 	Eqn *eqn;
 	If *cond;
 	Stmt *stmt;
 	ObjRef *ref;
 	WatchItem *watch;
-	ObjName *oname;
+	ObjName oname;
 	long idx;
 	Vec vec;
 }
@@ -230,7 +268,7 @@ static long array_index(double x, YYLoc l)
 %token <num> NUMBER "number"
 %token <str> IDENT "name"
 %token <n> DOLLAR "object number ($n)"
-%token <tok> UNIT "unit"
+%token <unit> UNIT "unit"
 %token NEWLINE "end of line"
 %token INDENT "indented block"
 %token DEDENT "end of indented block"
@@ -286,25 +324,25 @@ stmt:
 		$$ = stmt(S_GLOBAL, @$); $$->name = $2; $$->name_loc = LOC(@2); $$->value = $4;
 	}
 	| OBJECT objname ':' IDENT {
-		$$ = obj_stmt(S_OBJKIND, @$, $2); $$->prop = $4; $$->prop_loc = LOC(@4);
+		$$ = obj_stmt(S_OBJKIND, @$, &$2); $$->prop = $4; $$->prop_loc = LOC(@4);
 	}
 	| OBJECT objname ':' IDENT STRING {
-		$$ = obj_stmt(S_OBJKIND, @$, $2); $$->prop = $4; $$->prop_loc = LOC(@4); $$->from = $5;
+		$$ = obj_stmt(S_OBJKIND, @$, &$2); $$->prop = $4; $$->prop_loc = LOC(@4); $$->from = $5;
 		if (strcmp($4, "from") != 0) {
-			error_at(LOC(@4), "a string after ':' reads a data file: 'object %s[]: from \"%s\"'", $2->name, $5);
+			error_at(LOC(@4), "a string after ':' reads a data file: 'object %s[]: from \"%s\"'", $2.name, $5);
 			$$ = NULL;
-		} else if ($2->arr != ARR_FILE) {
+		} else if ($2.arr != ARR_FILE) {
 			error_at(LOC(@2), "the members read from a data file are numbered by its rows: 'object %s[]: from \"%s\"'",
-			         $2->name, $5);
+			         $2.name, $5);
 			$$ = NULL;
 		} /* else the members, one per data row: objects.c */
 	}
 	| OBJECT objname ':' IDENT '=' expr atol {
-		$$ = obj_stmt(S_PROP, @$, $2); $$->prop = $4; $$->prop_loc = LOC(@4);
+		$$ = obj_stmt(S_PROP, @$, &$2); $$->prop = $4; $$->prop_loc = LOC(@4);
 		$$->value = $6; $$->atol = $7;
 	}
 	| OBJECT objname ':' VECTOR IDENT '=' expr atol {
-		$$ = obj_stmt(S_PROP, @$, $2); $$->prop = $5; $$->prop_loc = LOC(@5);
+		$$ = obj_stmt(S_PROP, @$, &$2); $$->prop = $5; $$->prop_loc = LOC(@5);
 		$$->value = $7; $$->isvec = 1; $$->atol = $8;
 	}
 	| VECTOR names {
@@ -341,15 +379,15 @@ stmt:
 
 /* An object, or members of an object array (DECISIONS §11). */
 objname:
-	  IDENT                { $$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; }
-	| IDENT '[' index ']'  { $$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; $$->arr = ARR_ONE; $$->lo = $3; }
+	  IDENT                { $$ = (ObjName){ .name = $1, .loc = @1 }; }
+	| IDENT '[' index ']'  { $$ = (ObjName){ .name = $1, .loc = @1, .arr = ARR_ONE, .lo = $3 }; }
 	| IDENT '[' index DOTDOT index ']' {
-		$$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; $$->arr = ARR_RANGE; $$->lo = $3; $$->hi = $5;
+		$$ = (ObjName){ .name = $1, .loc = @1, .arr = ARR_RANGE, .lo = $3, .hi = $5 };
 		if ($5 < $3) error_at(LOC(@5), "an object array 'NAME[A..B]' needs A <= B, not %ld..%ld", $3, $5);
 		else if ($5 - $3 >= 100000000) error_at(LOC(@5), "an object array has at most 100000000 members");
 	}
-	| IDENT '[' IDENT ']'  { $$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; $$->arr = ARR_EACH; $$->ivar = $3; }
-	| IDENT '[' ']'        { $$ = xalloc(sizeof *$$); $$->name = $1; $$->loc = @1; $$->arr = ARR_FILE; }
+	| IDENT '[' IDENT ']'  { $$ = (ObjName){ .name = $1, .loc = @1, .arr = ARR_EACH, .ivar = $3 }; }
+	| IDENT '[' ']'        { $$ = (ObjName){ .name = $1, .loc = @1, .arr = ARR_FILE }; }
 	;
 
 index:
@@ -501,7 +539,9 @@ postfix:
 
 primary:
 	  NUMBER             { $$ = ast_expr(E_NUM, LOC(@1)); $$->num = $1; $$->depth = 1; }
-	| NUMBER UNIT        { Expr *n = ast_expr(E_NUM, LOC(@1)); n->num = $1; n->depth = 1; $$ = with_unit(n, $2); }
+	| NUMBER UNIT {
+		$$ = ast_expr(E_LIT, $2.loc); $$->num = $1; $$->unit = $2.unit; $$->unit_text = $2.text; $$->depth = 2;
+	}
 	| IDENT              { $$ = ast_expr(E_NAME, LOC(@1)); $$->name = $1; $$->depth = 1; }
 	| IDENT DOLLAR       { $$ = ast_expr(E_DOLLAR, LOC(@1)); $$->name = $1; $$->n = $2; $$->depth = 1; }
 	| IDENT '(' args ')' { $$ = call(E_CALL, NULL, $1, &$3, @1); }
@@ -518,11 +558,7 @@ primary:
 		$$ = ast_expr(E_VEC, LOC(@1)); $$->args = xalloc(3 * sizeof(Expr *)); $$->nargs = 3;
 		$$->args[0] = $2; $$->args[1] = $4; $$->args[2] = $6; $$ = nest($$);
 	}
-	| '(' expr ',' expr ',' expr ')' UNIT {
-		Expr *v = ast_expr(E_VEC, LOC(@1)); v->args = xalloc(3 * sizeof(Expr *)); v->nargs = 3;
-		v->args[0] = $2; v->args[1] = $4; v->args[2] = $6;
-		$$ = with_unit(nest(v), $8);
-	}
+	| '(' expr ',' expr ',' expr ')' UNIT { $$ = vec_unit(@1, $2, $4, $6, $8); }
 	;
 
 args:

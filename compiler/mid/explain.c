@@ -117,7 +117,7 @@ static const char *object_line(Object *o)
 		line = xprintf("%s%s %s (%s)", line, j ? "," : "", v->name,
 		               r->state ? (var_integrated(r) ? "state" : "state, left out: nothing needs it")
 		               : r->det   ? xprintf("computed, line %d", r->det->st->loc.line)
-		               : r->latch ? xprintf("latched, when block line %d", r->latch->st->loc.line)
+		               : var_more_of(r)->latch ? xprintf("latched, when block line %d", var_more_of(r)->latch->st->loc.line)
 		                          : "constant");
 	}
 	return line;

@@ -68,11 +68,12 @@ void lint_model(Model *M)
 	/* a property the user set that nothing reads: a misspelling, most often */
 	for (int i = 0; i < M->objects.n; i++) {
 		Object *o = M->objects.v[i];
+		const char **c = NULL; /* the names a misspelt one may stand for: made once for the object */
 		for (int j = 0; j < o->props.n; j++) {
 			Var *p = o->props.v[j];
 			if (p->from_kind || p->state || vec_has(&read, sema_canon(p)) || !users(p->loc)) continue;
 			if (!o->dropped && !first_at(&seen, p->loc)) continue;
-			const char **c = xalloc(((size_t)o->props.n + 1) * sizeof *c);
+			if (!c) c = xalloc(((size_t)o->props.n + 1) * sizeof *c);
 			int nc = 0;
 			for (int k = 0; k < o->props.n; k++) {
 				Var *q = o->props.v[k];

@@ -148,7 +148,7 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 		t->loc = l;
 		t->slot = -1;
 		t->isvec = map_get(&sema.vector_decls, name) != NULL;
-		t->key = temp_key(name, bind, nbind);
+		var_more(t)->key = temp_key(name, bind, nbind);
 		t->pair = nbind > 1;
 		t->order = sema.def_counter++;
 		vec_push(C->pending, t);
@@ -165,7 +165,7 @@ static void type_error(Ctx *C, Loc l, const char *msg)
 /* A temporary no rule has determined yet takes the type its use asks for. */
 static int infer_vector(RExpr *r)
 {
-	if (r->k != R_VAR || r->var->kind != V_TEMP || determined(r->var) || map_get(&sema.temps, r->var->key)) return 0;
+	if (r->k != R_VAR || r->var->kind != V_TEMP || determined(r->var) || map_get(&sema.temps, var_more_of(r->var)->key)) return 0;
 	r->isvec = r->var->isvec = 1;
 	return 1;
 }
@@ -316,6 +316,17 @@ static RExpr *build_sum(Ctx *C, Expr *x)
 	return t[0];
 }
 
+/* a times the unit of x (E_UNIT, E_LIT), at x's place. */
+static RExpr *times_unit(const Expr *x, RExpr *a)
+{
+	double ud[CSF_NDIM];
+	for (int i = 0; i < CSF_NDIM; i++) ud[i] = x->unit.dim[i];
+	RExpr *f = rconst(dims_to_system(x->unit.factor, ud), x->loc);
+	f->dimk = DK_KNOWN;
+	memcpy(f->dim, ud, sizeof ud);
+	return rop(a->isvec ? CSF_OP_VMUL : CSF_OP_MUL, a->isvec, x->loc, a, f, NULL);
+}
+
 RExpr *build(Ctx *C, Expr *x)
 {
 	Loc l = x->loc;
@@ -405,12 +416,18 @@ RExpr *build(Ctx *C, Expr *x)
 	case E_UNIT: {
 		RExpr *a = build(C, x->a);
 		if (a->isbool) return type_error(C, l, "a unit cannot follow a condition"), a;
-		double ud[CSF_NDIM];
-		for (int i = 0; i < CSF_NDIM; i++) ud[i] = x->unit.dim[i];
-		RExpr *f = rconst(dims_to_system(x->unit.factor, ud), l);
-		f->dimk = DK_KNOWN;
-		memcpy(f->dim, ud, sizeof ud);
-		return rop(a->isvec ? CSF_OP_VMUL : CSF_OP_MUL, a->isvec, l, a, f, NULL);
+		return times_unit(x, a);
+	}
+	case E_LIT: { /* as E_UNIT over E_NUM (whose place the product, folded, does not keep), or over E_VEC of
+	                 E_NUM and E_NEG of E_NUM at their places */
+		const Lit *L = x->lit;
+		if (!L) return times_unit(x, rconst(x->num, l));
+		RExpr *c[3];
+		for (int i = 0; i < 3; i++) {
+			c[i] = rconst(L->v[i], L->at[i]);
+			if (L->neg[i]) c[i] = rop(CSF_OP_NEG, 0, L->neg_at[i], c[i], NULL, NULL);
+		}
+		return times_unit(x, rop(CSF_OP_VPACK, 1, L->vec_at, c[0], c[1], c[2]));
 	}
 	case E_BIN: return build_bin(C, x);
 	case E_NEG: {

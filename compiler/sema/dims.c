@@ -202,7 +202,7 @@ static void report(Walk *W, Loc l, const char *msg, const Var *bare)
 	const char *value = bare->isvec ? xprintf("(%g, %g, %g)", bare->init[0], bare->init[1], bare->init[2])
 	                                : xprintf("%g", bare->init[0]);
 	note_at(bare->loc, "'%s' has no unit, and line %d makes it %s: write '%s = %s %s' if that is its unit",
-	        bare->name, bare->dim_from.line, dims_describe(bare->dim), bare->name, value, dims_unit(bare->dim));
+	        bare->name, var_more_of(bare)->dim_from.line, dims_describe(bare->dim), bare->name, value, dims_unit(bare->dim));
 }
 
 const char *dims_operand(const RExpr *e, const double d[CSF_NDIM])
@@ -244,7 +244,7 @@ static void constrain(Walk *W, Aff a, RExpr *ea, Aff b, RExpr *eb, Loc l, MsgFn 
 		for (int i = 0; i < CSF_NDIM; i++)
 			if (!(fabs(d.c[i] / k) <= DIM_MAX_EXP)) return; /* left unknown; the expression reports it */
 		v->dimk = DK_KNOWN;
-		if (v->kind == V_PROP || v->kind == V_GLOBAL) v->dim_from = l;
+		if (v->kind == V_PROP || v->kind == V_GLOBAL) var_more(v)->dim_from = l;
 		for (int i = 0; i < CSF_NDIM; i++) {
 			double x = -d.c[i] / k;
 			x = fabs(x - round(x)) < 1e-9 ? round(x) : x;
@@ -294,7 +294,7 @@ static Aff var_aff(Var *v)
 {
 	if (v->dimk == DK_KNOWN) {
 		Aff a = known_dim(v->dim);
-		if (v->dim_from.line) a.bare = v;
+		if (var_more_of(v)->dim_from.line) a.bare = v;
 		return a;
 	}
 	Aff a = { 0 };

@@ -140,15 +140,18 @@ static void fix_derived(Var *v, Var *read, int line)
 	v->fix_line = line;
 }
 
-/* May constant r replace the value of v (a kind's default, a predefined constant)? Same type, same dimension. */
-static int override_ok(Loc l, const char *what, Var *v, RExpr *r)
+/* May constant r replace the value of v (a kind's default, a predefined constant)? Same type, same
+ * dimension. kind: "property" or "" (a global), the word before v's name in the message. */
+static int override_ok(Loc l, const char *kind, Var *v, RExpr *r)
 {
 	if (v->isvec != r->isvec) {
-		error_at(l, "%s is a %s; it cannot take a %s", what, v->isvec ? "vector" : "scalar", r->isvec ? "vector" : "scalar");
+		error_at(l, "%s%s'%s' is a %s; it cannot take a %s", kind, *kind ? " " : "", v->name, v->isvec ? "vector" : "scalar",
+		         r->isvec ? "vector" : "scalar");
 		return 0;
 	}
 	if (r->dimk == DK_KNOWN && v->dimk == DK_KNOWN && memcmp(r->dim, v->dim, sizeof v->dim) != 0) {
-		error_at(l, "%s is %s; this value is %s", what, dims_describe(v->dim), dims_operand(r, r->dim));
+		error_at(l, "%s%s'%s' is %s; this value is %s", kind, *kind ? " " : "", v->name, dims_describe(v->dim),
+		         dims_operand(r, r->dim));
 		return 0;
 	}
 	return 1;
@@ -167,7 +170,7 @@ static void set_atol(Object *o, Var *p, Stmt *s)
 		         r->isvec ? " (one for every component)" : "");
 		return;
 	}
-	p->atol = r;
+	var_more(p)->atol = r;
 }
 
 /* Defines or overrides property p of o from a property statement. */
@@ -224,7 +227,7 @@ void put_prop(Object *o, const char *name, Loc l, Loc at, RExpr *r, int isvec, i
 			                                                 : "defined here");
 			return;
 		}
-		if (!override_ok(at, xprintf("property '%s'", name), p, r)) return;
+		if (!override_ok(at, "property", p, r)) return;
 		memcpy(p->init, r->c, sizeof p->init);
 		p->loc = l;
 		p->from_kind = from_kind;
@@ -250,7 +253,10 @@ void put_prop(Object *o, const char *name, Loc l, Loc at, RExpr *r, int isvec, i
 	if (o->props.n == PROPS_SCANNED + 1)
 		for (int i = 0; i < o->props.n; i++) map_put(&o->props_by_name, ((Var *)o->props.v[i])->name, o->props.v[i]);
 	else if (o->props.n > PROPS_SCANNED) map_put(&o->props_by_name, p->name, p);
-	map_put(&sema.prop_names, p->name, p);
+	/* (by the name's pointer, interned: a million objects' dozen names are a dozen strings) */
+	const char **seen = &sema.prop_seen[((uintptr_t)p->name / 16) % PROP_SEEN];
+	if (*seen != p->name) map_put(&sema.prop_names, p->name, p);
+	*seen = p->name;
 }
 
 void apply_kind(Object *o, Stmt *s)
@@ -284,6 +290,9 @@ void apply_kind(Object *o, Stmt *s)
 
 void build_objects(Stmt *stmts)
 {
+	/* the object of the statement before: a scene written out object by object names one object on
+	   several lines in a row (the same name, interned by the scanner), found once */
+	Object *last = NULL;
 	for (Stmt *s = stmts; s; s = s->next) {
 		switch (s->kind) {
 		case S_GLOBAL: {
@@ -294,7 +303,7 @@ void build_objects(Stmt *stmts)
 			if (!ok) break;
 			Var *g = map_get(&sema.globals_by_name, s->name);
 			if (g) {
-				if (!override_ok(s->value->loc, xprintf("'%s'", s->name), g, r)) break;
+				if (!override_ok(s->value->loc, "", g, r)) break;
 				memcpy(g->init, r->c, sizeof g->init);
 				g->loc = s->name_loc;
 				fix_derived(g, read, s->name_loc.line);
@@ -323,8 +332,8 @@ void build_objects(Stmt *stmts)
 				error_at(s->prop_loc, "unknown kind '%s'", s->prop);
 				break;
 			}
-			Object *o = get_object(s->name, s->name_loc);
-			if (o) apply_kind(o, s);
+			Object *o = last && last->name == s->name ? last : get_object(s->name, s->name_loc);
+			if (o) apply_kind(last = o, s);
 			break;
 		}
 		case S_PROP: {
@@ -332,8 +341,8 @@ void build_objects(Stmt *stmts)
 				array_stmt(s);
 				break;
 			}
-			Object *o = get_object(s->name, s->name_loc);
-			if (o) set_prop(o, s, 0);
+			Object *o = last && last->name == s->name ? last : get_object(s->name, s->name_loc);
+			if (o) set_prop(last = o, s, 0);
 			break;
 		}
 		default:

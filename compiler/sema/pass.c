@@ -78,26 +78,39 @@ static double const_time(Expr *x, double dflt, const char *what)
 	return r->c[0];
 }
 
-static void check_sections(Stmt *stmts)
+/*
+ * One walk over the statements (a scene written out object by object has a million): checks their
+ * order (objects, then rules, then the start directive), and collects the rules, assertions, stops
+ * and `when` blocks (sema.M->stmts; the rules also in rules) and the vector declarations. Returns
+ * the last start directive (NULL: none).
+ */
+static Stmt *sections(Stmt *stmts, Vec *rules)
 {
 	int section = 0; /* 0 objects, 1 rules, 2 start */
-	Stmt *start = NULL;
+	Stmt *first_start = NULL, *start = NULL;
+	int check = 1;
 	for (Stmt *s = stmts; s; s = s->next) {
 		int rule_sec = s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_STOP || s->kind == S_WHEN ||
 		               s->kind == S_VECDECL;
 		int sec = s->kind == S_START ? 2 : rule_sec ? 1 : 0;
-		if (start) {
+		if (check && first_start) {
 			error_at(s->loc, "the start directive ('inc ...') must be the last statement");
-			note_at(start->loc, "start directive here");
-			return;
+			note_at(first_start->loc, "start directive here");
+			check = 0;
 		}
-		if (sec < section) {
+		if (check && sec < section) {
 			error_at(s->loc, "%s must come before the rules (objects, then rules, then the start directive)",
 			         s->kind == S_DEF ? "a kind definition" : s->kind == S_GLOBAL ? "a global" : "an object definition");
 		}
 		if (sec > section) section = sec;
+		if (s->kind == S_START && !first_start) first_start = s;
 		if (s->kind == S_START) start = s;
+		if (s->kind == S_VECDECL)
+			for (int i = 0; i < s->names.n; i++) map_put(&sema.vector_decls, s->names.v[i], s);
+		if (s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_STOP || s->kind == S_WHEN) vec_push(&sema.M->stmts, s);
+		if (s->kind == S_RULE) vec_push(rules, s);
 	}
+	return start;
 }
 
 /* Every `atol A` is on a state variable's line, with the variable's dimension (a bare A takes it). */
@@ -107,7 +120,7 @@ static void check_atols(Model *M)
 		Object *o = M->objects.v[i];
 		for (int j = 0; j < o->props.n; j++) {
 			Var *v = o->props.v[j];
-			RExpr *a = v->atol;
+			RExpr *a = var_more_of(v)->atol;
 			if (!a) continue;
 			if (!v->state)
 				error_at(a->loc, "'atol' is the absolute tolerance of a state variable, and '%s' of '%s' has no "
@@ -135,20 +148,12 @@ static Model *resolve(Stmt *stmts, int shaped)
 {
 	sema_reset(shaped);
 	predefine();
-	check_sections(stmts);
+	Vec rules = { 0 };
+	Stmt *start = sections(stmts, &rules);
 	build_objects(stmts);
 	for (int i = 0; drop_objects && i < sema.M->objects.n; i++)
 		if (drop_objects[i]) ((Object *)sema.M->objects.v[i])->dropped = 1, sema.M->ndropped++;
 
-	Stmt *start = NULL;
-	Vec rules = { 0 };
-	for (Stmt *s = stmts; s; s = s->next) {
-		if (s->kind == S_START) start = s;
-		if (s->kind == S_VECDECL)
-			for (int i = 0; i < s->names.n; i++) map_put(&sema.vector_decls, s->names.v[i], s);
-		if (s->kind == S_RULE || s->kind == S_ASSERT || s->kind == S_STOP || s->kind == S_WHEN) vec_push(&sema.M->stmts, s);
-		if (s->kind == S_RULE) vec_push(&rules, s);
-	}
 	if (!start) {
 		Loc end = { 0, 1, 1 };
 		for (Stmt *s = stmts; s; s = s->next) end = s->loc;

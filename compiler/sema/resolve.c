@@ -37,9 +37,9 @@ static const char *class_name(Var *v)
 
 static void register_temp(Var *t)
 {
-	if (map_get(&sema.temps, t->key)) return;
+	if (map_get(&sema.temps, var_more_of(t)->key)) return;
 	if (!check_name(t->name, t->loc, "a temporary")) return;
-	map_put(&sema.temps, t->key, t);
+	map_put(&sema.temps, var_more_of(t)->key, t);
 	vec_push(&sema.M->temps, t);
 }
 
@@ -101,7 +101,7 @@ static Ctx inst_ctx(const Inst *I, Vec *reads, Vec *rf, Vec *pending)
  * after an error (a declared vector made a scalar). */
 static int type_new_temp(Var *x, RExpr *lhs, RExpr *rhs, Eqn *q)
 {
-	if (x->kind != V_TEMP || map_get(&sema.temps, x->key)) return 1;
+	if (x->kind != V_TEMP || map_get(&sema.temps, var_more_of(x)->key)) return 1;
 	RExpr *side = lhs->k == R_VAR && lhs->var == x ? lhs : rhs->k == R_VAR && rhs->var == x ? rhs : NULL;
 	if (!side) return 1;
 	side->isvec = (side == lhs ? rhs : lhs)->isvec;
@@ -230,7 +230,7 @@ static int resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src, int may_wait)
 		return EQN_ERROR;
 	}
 	if (!type_new_temp(x, lhs, rhs, q) || sides_differ(lhs, rhs, q)) return EQN_ERROR;
-	if (x->kind == V_TEMP && !map_get(&sema.temps, x->key)) register_temp(x);
+	if (x->kind == V_TEMP && !map_get(&sema.temps, var_more_of(x)->key)) register_temp(x);
 	RExpr *sol = solve(lhs, rhs, x, q->loc, q->text);
 	if (!sol) return EQN_ERROR;
 	if (sol->isvec != x->isvec) {
@@ -501,7 +501,7 @@ void inst_when(Stmt *s, Object **bind, int nbind)
 			add_unique(&I->reads, v);
 		}
 		for (int i = 0; i < rf.n; i++) add_unique(&I->rf_reads, rf.v[i]);
-		if (!x->latch) x->latch = I;
+		if (!var_more_of(x)->latch) var_more(x)->latch = I;
 		Assign *a = xalloc(sizeof *a);
 		a->var = x;
 		a->e = rhs;

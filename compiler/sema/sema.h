@@ -28,36 +28,58 @@ typedef struct Shape {
 
 typedef enum VarKind { V_TIME, V_GLOBAL, V_PROP, V_TEMP } VarKind;
 
-typedef struct Var {
-	VarKind kind;
-	char *name;
-	Object *obj;     /* owner (props, temps), NULL for globals and t */
-	int isvec;
-	int order;       /* definition order, for the precedence of spec 2.4.1 */
-	double init[3];
-	Loc loc;
-	int state;       /* integrated: has a derivative rule */
+/* What few variables have (Var.more), made by var_more when first set; never set inside an arena
+ * mark that a pass releases (set_prop's): the Var would outlive it. */
+typedef struct VarMore {
+	char *key;       /* temps: lookup key */
 	Inst *latch;     /* props, globals: the first `when` block that assigns it (a state variable, or latched:
 	                    piecewise constant between the events at which the blocks assign it) */
-	Inst *det;       /* the instance that determines it, if any */
-	Inst *deriv;     /* its derivative rule instance (state variables) */
-	int slot;        /* memory slot, -1 until allocated */
-	char *key;       /* temps: lookup key */
-	int from_kind;   /* props: the value is a kind's default, not yet set */
-	int dimk;        /* DK_UNKNOWN until known (dims.c) */
-	double dim[CSF_NDIM]; /* exponents of length, mass, time, current */
-	int pair;        /* temps: of a tuple of objects ($1), not of one object */
 	Loc dim_from;    /* props and globals given a bare value: the equation that gave it its dimension
 	                    (line 0: none did) */
 	RExpr *atol;     /* props: the absolute tolerance `atol A` set on its line (a constant), or NULL */
+} VarMore;
+
+/* A variable: 144 bytes (a million objects have a dozen each), its small fields chars, what few
+ * variables have in more. */
+typedef struct Var {
+	char *name;
+	Object *obj;     /* owner (props, temps), NULL for globals and t */
+	double init[3];
+	double dim[CSF_NDIM]; /* exponents of length, mass, time, current */
+	Inst *det;       /* the instance that determines it, if any */
+	Inst *deriv;     /* its derivative rule instance (state variables) */
+	VarMore *more;   /* NULL: none of its fields set (var_more_of reads them as zeros) */
 	/* globals, props: why -D cannot set the initial value (gen.c words it): FIX_FOLDED, its value is
 	   folded into that of fix_obj.fix_name (fix_obj NULL: the global fix_name) on line fix_line;
 	   FIX_DERIVED, it is computed from fix_obj.fix_name's; FIX_RUN, folded into the run's fix_name
-	   (till, by); FIX_CONTACT, its value 0 left contacts out */
-	int fix;
+	   (till, by); FIX_CONTACT, its value 0 left contacts out (fix) */
 	const char *fix_obj, *fix_name;
 	int fix_line;
+	Loc loc;
+	int order;       /* definition order, for the precedence of spec 2.4.1 */
+	int slot;        /* memory slot, -1 until allocated */
+	unsigned char kind; /* VarKind */
+	unsigned char isvec;
+	unsigned char state; /* integrated: has a derivative rule */
+	unsigned char from_kind; /* props: the value is a kind's default, not yet set */
+	unsigned char dimk;  /* DK_UNKNOWN until known (dims.c) */
+	unsigned char pair;  /* temps: of a tuple of objects ($1), not of one object */
+	unsigned char fix;
 } Var;
+
+/* v's rarely set fields, to set (made if need be). */
+static inline VarMore *var_more(Var *v)
+{
+	if (!v->more) v->more = xalloc(sizeof *v->more);
+	return v->more;
+}
+
+/* v's rarely set fields, to read (zeros if none is set). */
+static inline const VarMore *var_more_of(const Var *v)
+{
+	static const VarMore none;
+	return v->more ? v->more : &none;
+}
 
 enum { FIX_NONE, FIX_FOLDED, FIX_DERIVED, FIX_RUN, FIX_CONTACT };
 

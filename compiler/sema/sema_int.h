@@ -19,6 +19,9 @@ typedef struct ObjArray {
 	int first;
 } ObjArray;
 
+/* The size of Sema.prop_seen. */
+#define PROP_SEEN 64
+
 /* The state of one resolution (sema_run resolves twice: by shape, then, if need be, by object);
  * sema_reset starts it anew. */
 typedef struct Sema {
@@ -42,6 +45,7 @@ typedef struct Sema {
 	long idx;
 	long iloop;             /* binding a rule that is one loop over its bindings (Stmt.loop): how many */
 	struct FoldMemo *memo;  /* set_prop's values that are the same for every object (objects.c) */
+	const char *prop_seen[PROP_SEEN]; /* names put_prop has put in prop_names, direct-mapped by pointer */
 } Sema;
 
 /* A resolution context: what an expression is built for (context.c). */

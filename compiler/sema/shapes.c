@@ -41,16 +41,38 @@ static int mark_named(Expr *x, void *named)
 	return 1;
 }
 
+/* Do a and b have the same signature (group): the same properties' names, types, dimension kinds and
+ * dimensions (their bits), in the same order? */
+static int same_signature(const Object *a, const Object *b)
+{
+	if (a->props.n != b->props.n) return 0;
+	for (int j = 0; j < a->props.n; j++) {
+		const Var *v = a->props.v[j], *w = b->props.v[j];
+		if ((v->name != w->name && strcmp(v->name, w->name)) || v->isvec != w->isvec || v->dimk != w->dimk ||
+		    memcmp(v->dim, w->dim, sizeof v->dim))
+			return 0;
+	}
+	return 1;
+}
+
 /* Groups the objects not in named into shapes by their signatures (build_shapes). */
 static void group(Map *named)
 {
 	Map by_sig = { 0 };
+	Object *prev = NULL; /* the last object grouped by its signature: the next often has the same */
 	sema.M->shapes.n = 0;
 	for (int i = 0; i < sema.M->objects.n; i++) {
 		Object *o = sema.M->objects.v[i];
 		char *sig = NULL;
 		ArenaMark mark = arena_mark();
-		if (sema.shaped && !map_get(named, o->name) && !o->dropped) {
+		int by_sig_ok = sema.shaped && !map_get(named, o->name) && !o->dropped;
+		if (by_sig_ok && prev && same_signature(prev, o)) {
+			o->shape = prev->shape;
+			o->sidx = o->shape->n++;
+			continue;
+		}
+		if (by_sig_ok) {
+			prev = o;
 			/* each property: its name, then type, dimension kind and dimension as hex digits */
 			size_t len = 0;
 			for (int j = 0; j < o->props.n; j++) len += strlen(((Var *)o->props.v[j])->name) + 1 + 2 * (2 + CSF_NDIM * 8);

@@ -29,7 +29,7 @@ START_TEST(test_statements)
 	for (int i = 0; i < 8; i++, s = s->next) {
 		ck_assert_ptr_nonnull(s);
 		ck_assert_msg(s->kind == k[i], "statement %d", i);
-		if (i == 2) ck_assert(s->isvec && s->value->kind == E_UNIT);
+		if (i == 2) ck_assert(s->isvec && s->value->kind == E_LIT && s->value->lit && s->value->lit->v[2] == 3);
 		if (i == 5) {
 			ck_assert_str_eq(s->attr, "F");
 			ck_assert_int_eq(s->fors.n, 2);
@@ -152,9 +152,34 @@ START_TEST(test_unit_only_after_literal)
 	/* `2 m` is two metres; `2 * m` is twice the variable m */
 	Stmt *s = parse_string("rule: y = 2 m\nrule: z = 2 * m\ninc t\n", NULL);
 	ck_assert_int_eq(diag_errors, 0);
-	ck_assert(s->eqns->rhs->kind == E_UNIT);
+	ck_assert(s->eqns->rhs->kind == E_LIT && !s->eqns->rhs->lit && s->eqns->rhs->num == 2);
 	ck_assert(s->next->eqns->rhs->kind == E_BIN);
 	ck_assert(s->next->eqns->rhs->b->kind == E_NAME);
+}
+END_TEST
+
+START_TEST(test_literal_vectors)
+{
+	/* numbers, negated or not, in a vector with a unit: one E_LIT, each component's place kept; a vector
+	   with anything else in it: E_UNIT over E_VEC */
+	Stmt *s = parse_string("object b: vector v = (-1.5, 2,  - 3) m/s\nobject b: vector w = (1, k, 3) m\n"
+	                       "object b: vector u = (1, 2, 3)\ninc t\n", NULL);
+	ck_assert_int_eq(diag_errors, 0);
+	Expr *e = s->value;
+	ck_assert(e->kind == E_LIT && e->lit && e->nargs == 0);
+	ck_assert_int_eq(e->loc.col, 38); /* the unit's, as E_UNIT's */
+	const Lit *L = e->lit;
+	ck_assert(L->v[0] == 1.5 && L->v[1] == 2 && L->v[2] == 3);
+	ck_assert(L->neg[0] && !L->neg[1] && L->neg[2]);
+	ck_assert_int_eq(L->vec_at.col, 22);
+	ck_assert_int_eq(L->neg_at[0].col, 23);
+	ck_assert_int_eq(L->at[0].col, 24);
+	ck_assert_int_eq(L->at[1].col, 29);
+	ck_assert_int_eq(L->neg_at[2].col, 33);
+	ck_assert_int_eq(L->at[2].col, 35);
+	e = s->next->value;
+	ck_assert(e->kind == E_UNIT && e->a->kind == E_VEC && e->a->nargs == 3 && e->a->args[1]->kind == E_NAME);
+	ck_assert(s->next->next->value->kind == E_VEC);
 }
 END_TEST
 
@@ -179,6 +204,7 @@ Suite *parse_suite(void)
 	tcase_add_test(tc, test_precedence);
 	tcase_add_test(tc, test_derivative_and_dollar);
 	tcase_add_test(tc, test_unit_only_after_literal);
+	tcase_add_test(tc, test_literal_vectors);
 	tcase_add_test(tc, test_recovery);
 	suite_add_tcase(s, tc);
 	return s;
