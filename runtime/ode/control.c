@@ -98,10 +98,12 @@ static const gsl_odeiv2_control_type control_type = { "csf", control_alloc, cont
  */
 #define LIVE_FLOOR 1e-6
 
-void csf_ode_live_grow(csf_ode *o, const double *y)
+/* The scales of the components not fixed grown to y's sizes; from their floor first when init. */
+static void live_update(csf_ode *o, const double *y, int init)
 {
 	for (size_t i = 0; i < o->n; i++) {
 		if (o->fixed_atol[i]) continue;
+		if (init) o->live[i] = LIVE_FLOOR * o->base[i];
 		double a = fabs(y[i]);
 		if (o->vec && o->vec[i]) { /* a vector's component: the vector's size (its largest component) */
 			const double *v = y + o->vec[i] - 1;
@@ -110,6 +112,8 @@ void csf_ode_live_grow(csf_ode *o, const double *y)
 		if (a > o->live[i]) o->live[i] = a < o->base[i] ? a : o->base[i];
 	}
 }
+
+void csf_ode_live_grow(csf_ode *o, const double *y) { live_update(o, y, 0); }
 
 double csf_ode_abs_tol(const csf_ode *o, size_t i) { return i < o->n ? o->tol * o->live[i] : 0; }
 
@@ -134,8 +138,8 @@ void csf_ode_live_init(csf_ode *o)
 void csf_ode_live_start(csf_ode *o, const double *y)
 {
 	if (o->live_set) return;
-	csf_ode_live_init(o);
-	csf_ode_live_grow(o, y);
+	o->live_set = 1;
+	live_update(o, y, 1); /* csf_ode_live_init, then csf_ode_live_grow, in one pass */
 }
 
 /* GSL's driver, with the error control as driver_alloc_y_new (a_y = 1, a_dydt = 0), the absolute

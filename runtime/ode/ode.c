@@ -253,6 +253,19 @@ static double wrms(const csf_ode *o, const double *v, const double *y)
 	return o->n ? sqrt(s / (double)o->n) : 0;
 }
 
+/* wrms of u and of v in one pass over the state (the same operations as two calls) */
+static void wrms2(const csf_ode *o, const double *u, const double *v, const double *y, double *du, double *dv)
+{
+	double su = 0, sv = 0;
+	for (size_t i = 0; i < o->n; i++) {
+		double w = o->tol * (o->scale[i] + fabs(y[i])), ru = u[i] / w, rv = v[i] / w;
+		su += ru * ru;
+		sv += rv * rv;
+	}
+	*du = o->n ? sqrt(su / (double)o->n) : 0;
+	*dv = o->n ? sqrt(sv / (double)o->n) : 0;
+}
+
 int csf_ode_first_step(csf_ode *o, double t, const double *y)
 {
 	size_t n = o->n;
@@ -261,7 +274,8 @@ int csf_ode_first_step(csf_ode *o, double t, const double *y)
 	csf_ode_live_start(o, y);
 	double *f0 = o->k, *y1 = f0 + n, *f1 = y1 + n;
 	if (o->f(t, y, f0, o->ctx)) return 1;
-	double d0 = wrms(o, y, y), d1 = wrms(o, f0, y);
+	double d0, d1;
+	wrms2(o, y, f0, y, &d0, &d1);
 	double h0 = d0 < 1e-5 || d1 < 1e-5 ? 1e-6 : 0.01 * d0 / d1;
 	if (h0 > d->hmax) h0 = d->hmax;
 	for (;;) { /* an Euler step that overflows is too long, as a trial step is: halved, down to nothing */
