@@ -230,13 +230,13 @@ static void limit_words(const csf_prog *p, const csf_ode *ode, char *buf, size_t
 enum { ROUND_LOOKS = 2 };
 #define ROUND_MARGIN 10.0
 
-/* qsort: properties by name (ties by index, for a stable order) */
-static const csf_prog *sort_prog;
+/* A state property by its name, for sorting (ties by its index, for a stable order). */
+typedef struct named { const char *name; uint32_t k; } named;
 static int by_name(const void *a, const void *b)
 {
-	const csf_prop *x = &sort_prog->props[*(const uint32_t *)a], *y = &sort_prog->props[*(const uint32_t *)b];
-	int c = strcmp(csf_str(sort_prog, x->name), csf_str(sort_prog, y->name));
-	return c ? c : (*(const uint32_t *)a > *(const uint32_t *)b) - (*(const uint32_t *)a < *(const uint32_t *)b);
+	const named *x = a, *y = b;
+	int c = strcmp(x->name, y->name);
+	return c ? c : (x->k > y->k) - (x->k < y->k);
 }
 
 /*
@@ -247,24 +247,24 @@ static int by_name(const void *a, const void *b)
  */
 static void group_wants(const csf_prog *p, double *want)
 {
-	uint32_t *idx = malloc((p->nprops ? p->nprops : 1) * sizeof *idx), n = 0;
-	if (!idx) return; /* each keeps its own */
+	named *v = malloc((p->nprops ? p->nprops : 1) * sizeof *v);
+	uint32_t n = 0;
+	if (!v) return; /* each keeps its own */
 	for (uint32_t k = 0; k < p->nprops; k++)
-		if (p->props[k].slot >= p->ystart && p->props[k].slot < p->ystart + p->ny) idx[n++] = k;
-	sort_prog = p;
-	qsort(idx, n, sizeof *idx, by_name);
+		if (p->props[k].slot >= p->ystart && p->props[k].slot < p->ystart + p->ny)
+			v[n++] = (named){ csf_str(p, p->props[k].name), k };
+	qsort(v, n, sizeof *v, by_name);
 	for (uint32_t a = 0, b; a < n; a = b) {
-		const char *name = csf_str(p, p->props[idx[a]].name);
-		for (b = a + 1; b < n && strcmp(csf_str(p, p->props[idx[b]].name), name) == 0; b++) continue;
-		for (uint32_t c = 0; c < p->props[idx[a]].width; c++) {
+		for (b = a + 1; b < n && strcmp(v[b].name, v[a].name) == 0; b++) continue;
+		for (uint32_t c = 0; c < p->props[v[a].k].width; c++) {
 			double m = 0;
 			for (uint32_t k = a; k < b; k++)
-				if (c < p->props[idx[k]].width) m = fmax(m, want[p->props[idx[k]].slot - p->ystart + c]);
+				if (c < p->props[v[k].k].width) m = fmax(m, want[p->props[v[k].k].slot - p->ystart + c]);
 			for (uint32_t k = a; k < b && m > 0; k++)
-				if (c < p->props[idx[k]].width) want[p->props[idx[k]].slot - p->ystart + c] = m;
+				if (c < p->props[v[k].k].width) want[p->props[v[k].k].slot - p->ystart + c] = m;
 		}
 	}
-	free(idx);
+	free(v);
 }
 
 static int rounding_floors(run *r, csf_ode *ode, double t, const double *y, double h, const csf_eigs *e)
