@@ -229,6 +229,9 @@ struct csf_prog {
 	   builds, which has targets. */
 	unsigned char *targets_file[CSF_NSEC];
 	uint32_t targets_file_len[CSF_NSEC];
+	/* The same for vpair, which only verlet reads (csf_vpair_copy): NULL vpair in a decoded program. */
+	unsigned char *vpair_file;
+	uint32_t vpair_file_len;
 	uint32_t *code[CSF_NSEC];
 	csf_line *lines[CSF_NSEC];
 };
@@ -238,6 +241,10 @@ struct csf_prog {
  * from targets_file in a decoded program. NULL when memory runs out. (bytecode.c)
  */
 csf_target *csf_targets_copy(const csf_prog *p, int sec);
+
+/* p's ny state pairs (vpair) in a malloc'd array, expanded from vpair_file in a decoded program.
+   NULL when memory runs out. (bytecode.c) */
+uint32_t *csf_vpair_copy(const csf_prog *p);
 
 /* String at offset off of p's string table. */
 static inline const char *csf_str(const csf_prog *p, uint32_t off) { return p->strs + off; }

@@ -419,6 +419,22 @@ csf_target *csf_targets_copy(const csf_prog *p, int sec)
 	return t;
 }
 
+uint32_t *csf_vpair_copy(const csf_prog *p)
+{
+	uint32_t n = p->ny, *v = malloc((n ? n : 1) * sizeof *v);
+	if (!v || !n) return v;
+	if (p->vpair) {
+		memcpy(v, p->vpair, n * sizeof *v);
+		return v;
+	}
+	rbuf r = { p->vpair_file, p->vpair_file_len, "" };
+	if (get_progs(&r, v, 1, n, NULL)) { /* (not after csf_decode) */
+		free(v);
+		return NULL;
+	}
+	return v;
+}
+
 /*
  * Reads field f into p: its count (checked against the bytes left before
  * anything is allocated; a field of runs or progressions, checked by reading them), the array,

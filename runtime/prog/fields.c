@@ -11,8 +11,9 @@
  * field's elements are instructions, checked by the instruction verifier
  * (csf_verify_code, bytecode.c). In the file, the memory image, yscale and
  * yatol are runs, vpair and the tables of u32 structs progressions
- * (bytecode.h); in memory every field is a plain array but the targets,
- * which a decoded program keeps as progressions (csf_targets_copy).
+ * (bytecode.h); in memory every field is a plain array but the targets and
+ * vpair, which a decoded program keeps as progressions (csf_targets_copy,
+ * csf_vpair_copy).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -308,7 +309,10 @@ const csf_field csf_fields[] = {
 	  .size = 5 * sizeof(uint32_t), .check = check_layout },
 	PER_Y("yscale", yscale, double, positive_ok, "tolerance scale %lu is not a positive number"),
 	PER_Y("yatol", yatol, double, nonnegative_ok, "absolute tolerance %lu is not a number >= 0"),
-	PER_Y("vpair", vpair, uint32_t, vpair_ok, "position/velocity pair %lu out of range"),
+	/* kept as progressions in a decoded program (csf_vpair_copy): only verlet reads it */
+	{ .name = "vpair", .how = CSF_FC_NY, .sec = -1, .words = 1, .progs = 1, .kept = 1, .at = offsetof(csf_prog, vpair),
+	  .size = sizeof(uint32_t), .kept_at = offsetof(csf_prog, vpair_file), .kept_len = offsetof(csf_prog, vpair_file_len),
+	  .ok = vpair_ok, .bad = "position/velocity pair %lu out of range" },
 	/* special: double till, by in csf_prog */
 	{ .name = "run", .how = CSF_FC_INLINE, .sec = -1, .dbls = 2, .at = offsetof(csf_prog, till), .count = 1,
 	  .size = 2 * sizeof(double), .check = check_run },

@@ -33,6 +33,7 @@ typedef struct session {
 	int fixed;          /* fixed steps */
 	double *y, *work;   /* the rows' state; the events' work vectors */
 	uint32_t *vec;      /* the state's vectors, for the error control (csf_ode_vectors) */
+	uint32_t *vpair;    /* verlet's state pairs, expanded for it in a decoded program (csf_vpair_copy) */
 	csf_ode *ode;
 	double kmax;        /* the last output time is kmax * by */
 	double every;       /* --every: the rows written are those of k a multiple of it, and the last */
@@ -152,7 +153,17 @@ static stop run_method(session *S, csf_opts *o)
 	int unbounded = !o->fixed && csf_method_dense(S->method) && !S->events;
 	double hmax = unbounded ? (r->tend > p->by ? r->tend : p->by) : p->by;
 	if (o->hmax > 0 && o->hmax < hmax) hmax = o->hmax;
-	S->ode = csf_ode_new(S->method, o->fixed, p->ny, p->by, hmax, o->tol, o->atol, p->yatol, p->yscale, p->vpair, csf_run_rhs,
+	const uint32_t *vpair = p->vpair;
+	if (!vpair && S->method && strcmp(S->method, "verlet") == 0) { /* the one method that reads them */
+		if (!S->vpair && !(S->vpair = csf_vpair_copy(p))) {
+			snprintf(S->msg, sizeof S->msg, "out of memory");
+			stop s = stop_kind_only(STOP_SETUP);
+			s.msg = S->msg;
+			return s;
+		}
+		vpair = S->vpair;
+	}
+	S->ode = csf_ode_new(S->method, o->fixed, p->ny, p->by, hmax, o->tol, o->atol, p->yatol, p->yscale, vpair, csf_run_rhs,
 	                     p->jtan ? csf_run_jac : NULL, r, S->msg, sizeof S->msg);
 	if (S->ode) csf_ode_vectors(S->ode, S->vec);
 	if (S->ode && (r->row_y = csf_run_row_state(p, &r->nrow_y))) csf_ode_set_rows(S->ode, r->row_y, r->nrow_y);
@@ -756,6 +767,7 @@ static void run_free(session *S)
 	free(S->gd.y);
 	csf_ode_free(S->ode);
 	csf_ode_free(S->au.m[1]);
+	free(S->vpair);
 	csf_contacts_free(r->cs);
 	csf_cons_free(r->cons);
 	csf_pool_free(r->x.pool);
