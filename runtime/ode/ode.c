@@ -242,28 +242,23 @@ int csf_ode_substep(csf_ode *o, double t, const double *y, double h, double *out
 
 int csf_ode_dense(const csf_ode *o) { return o->m->dense != NULL; }
 
-/* The root mean square of v_i / (tol (scale_i + |y_i|)): the error control's measure. */
-static double wrms(const csf_ode *o, const double *v, const double *y)
-{
-	double s = 0;
-	for (size_t i = 0; i < o->n; i++) {
-		double r = v[i] / (o->tol * (o->scale[i] + fabs(y[i])));
-		s += r * r;
-	}
-	return o->n ? sqrt(s / (double)o->n) : 0;
-}
-
-/* wrms of u and of v in one pass over the state (the same operations as two calls) */
-static void wrms2(const csf_ode *o, const double *u, const double *v, const double *y, double *du, double *dv)
+/*
+ * The root mean square of u_i / (tol (scale_i + |y_i|)), the error control's measure, into *du;
+ * the same of v into *dv in the same pass when v is given.
+ */
+static void wrms(const csf_ode *o, const double *y, const double *u, double *du, const double *v, double *dv)
 {
 	double su = 0, sv = 0;
 	for (size_t i = 0; i < o->n; i++) {
-		double w = o->tol * (o->scale[i] + fabs(y[i])), ru = u[i] / w, rv = v[i] / w;
+		double w = o->tol * (o->scale[i] + fabs(y[i])), ru = u[i] / w;
 		su += ru * ru;
-		sv += rv * rv;
+		if (v) {
+			double rv = v[i] / w;
+			sv += rv * rv;
+		}
 	}
 	*du = o->n ? sqrt(su / (double)o->n) : 0;
-	*dv = o->n ? sqrt(sv / (double)o->n) : 0;
+	if (v) *dv = o->n ? sqrt(sv / (double)o->n) : 0;
 }
 
 int csf_ode_first_step(csf_ode *o, double t, const double *y)
@@ -274,8 +269,8 @@ int csf_ode_first_step(csf_ode *o, double t, const double *y)
 	csf_ode_live_start(o, y);
 	double *f0 = o->k, *y1 = f0 + n, *f1 = y1 + n;
 	if (o->f(t, y, f0, o->ctx)) return 1;
-	double d0, d1;
-	wrms2(o, y, f0, y, &d0, &d1);
+	double d0, d1, d2;
+	wrms(o, y, y, &d0, f0, &d1);
 	double h0 = d0 < 1e-5 || d1 < 1e-5 ? 1e-6 : 0.01 * d0 / d1;
 	if (h0 > d->hmax) h0 = d->hmax;
 	for (;;) { /* an Euler step that overflows is too long, as a trial step is: halved, down to nothing */
@@ -285,7 +280,9 @@ int csf_ode_first_step(csf_ode *o, double t, const double *y)
 		if (t + h0 == t) return 1;
 	}
 	for (size_t i = 0; i < n; i++) f1[i] -= f0[i];
-	double d2 = wrms(o, f1, y) / h0, dm = d1 > d2 ? d1 : d2;
+	wrms(o, y, f1, &d2, NULL, NULL);
+	d2 /= h0;
+	double dm = d1 > d2 ? d1 : d2;
 	double h1 = dm <= 1e-15 ? fmax(1e-6, h0 * 1e-3) : pow(0.01 / dm, 1.0 / (gsl_odeiv2_step_order(d->s) + 1.0));
 	double h = 100 * h0 < h1 ? 100 * h0 : h1;
 	d->h = h < d->hmax ? h : d->hmax;

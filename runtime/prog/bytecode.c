@@ -402,38 +402,31 @@ static uint32_t progs_check(const csf_prog *p, const csf_field *f, const unsigne
 	return n;
 }
 
-csf_target *csf_targets_copy(const csf_prog *p, int sec)
+/* A kept field's n elements of w words in a malloc'd array: a copy of plain, or made from the
+   progressions at file (len bytes) when plain is NULL (a decoded program). NULL: no memory. */
+static uint32_t *kept_copy(const uint32_t *plain, const unsigned char *file, uint32_t len, uint32_t n, uint32_t w)
 {
-	uint32_t n = p->ntargets[sec];
-	csf_target *t = malloc((n ? n : 1) * sizeof *t);
-	if (!t || !n) return t;
-	if (p->targets[sec]) {
-		memcpy(t, p->targets[sec], n * sizeof *t);
-		return t;
-	}
-	rbuf r = { p->targets_file[sec], p->targets_file_len[sec], "" };
-	if (get_progs(&r, (uint32_t *)(void *)t, sizeof *t / 4, n, NULL)) { /* (not after csf_decode) */
-		free(t);
-		return NULL;
-	}
-	return t;
-}
-
-uint32_t *csf_vpair_copy(const csf_prog *p)
-{
-	uint32_t n = p->ny, *v = malloc((n ? n : 1) * sizeof *v);
+	uint32_t *v = malloc(n ? (size_t)n * w * sizeof *v : 1);
 	if (!v || !n) return v;
-	if (p->vpair) {
-		memcpy(v, p->vpair, n * sizeof *v);
+	if (plain) {
+		memcpy(v, plain, (size_t)n * w * sizeof *v);
 		return v;
 	}
-	rbuf r = { p->vpair_file, p->vpair_file_len, "" };
-	if (get_progs(&r, v, 1, n, NULL)) { /* (not after csf_decode) */
+	rbuf r = { file, len, "" };
+	if (get_progs(&r, v, w, n, NULL)) { /* (not after csf_decode) */
 		free(v);
 		return NULL;
 	}
 	return v;
 }
+
+csf_target *csf_targets_copy(const csf_prog *p, int sec)
+{
+	return (csf_target *)(void *)kept_copy((const uint32_t *)(const void *)p->targets[sec], p->targets_file[sec],
+	                                       p->targets_file_len[sec], p->ntargets[sec], sizeof(csf_target) / 4);
+}
+
+uint32_t *csf_vpair_copy(const csf_prog *p) { return kept_copy(p->vpair, p->vpair_file, p->vpair_file_len, p->ny, 1); }
 
 /*
  * Reads field f into p: its count (checked against the bytes left before

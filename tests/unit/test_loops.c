@@ -89,6 +89,17 @@ static double *run(const csf_prog *p, int *ret)
 	return m;
 }
 
+/* p verified, then run: its memory after a run that ends without a failed assertion. */
+static double *run_ok(const csf_prog *p)
+{
+	char err[256];
+	ck_assert_msg(csf_verify(p, err, sizeof err) == 0, "%s", err);
+	int ret;
+	double *m = run(p, &ret);
+	ck_assert_int_eq(ret, -1);
+	return m;
+}
+
 /* A sum over an array and over an array of vectors, each in one loop. */
 START_TEST(test_loop_sum)
 {
@@ -104,10 +115,8 @@ START_TEST(test_loop_sum)
 	ck_assert_uint_eq(n1 + 3, l2);
 	csf_prog p = bare(code, n);
 	char err[256];
-	ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "%s", err);
 	int ret;
-	double *m = run(&p, &ret);
-	ck_assert_int_eq(ret, -1);
+	double *m = run_ok(&p);
 	ck_assert(m[SUM] == 15);
 	ck_assert(m[VACC] == 22 && m[VACC + 1] == 26 && m[VACC + 2] == 30);
 	free(m);
@@ -457,11 +466,7 @@ static char *accumulator_c(int variant)
 	put(code, &n, CSF_OP_NEXT, 1, l1 + 4, 0);
 	code[l1 + 3] = n;
 	csf_prog p = bare(code, n);
-	char err[256];
-	ck_assert_msg(csf_verify(&p, err, sizeof err) == 0, "%s", err);
-	int ret;
-	double *m = run(&p, &ret);
-	ck_assert_int_eq(ret, -1);
+	double *m = run_ok(&p);
 	for (int i = 0; i < NOBJ; i++) ck_assert(m[X + i] == xs[i] + 3); /* the flags add up to 3 */
 	free(m);
 	return emit_string(&p);
