@@ -359,7 +359,7 @@ int csf_run_guard_check(run *r, csf_ode *ode, double t, const double *y, double 
 	if (g->stats && (!g->have_ratio || e.rho > 1.5 * g->ratio_rho)) {
 		double b = guard_evals(r), keep = g->auto_ratio;
 		guard_ratio(r, e.rho);
-		if (r->au) g->aside += guard_evals(r) - b, g->auto_ratio = keep;
+		g->aside += guard_evals(r) - b, g->auto_ratio = keep; /* the schedule of looks as without --stats */
 	}
 	if (!g->fixed && !g->detect_stiff) goto out;
 	autom *au = r->au;

@@ -202,7 +202,7 @@ typedef struct guard {
 	double rho_max, ratio, ratio_rho, hrho, hlim_rho; /* fixed: the largest h / largest stable step, at rho */
 	int ratio_exact, have_ratio;
 	double auto_ratio;         /* auto: the largest ratio of the looks that decide (not --stats's) */
-	double aside;              /* auto: the evaluations of --stats's own ratios, left out of the schedule */
+	double aside;              /* the evaluations of --stats's own ratios, left out of the schedule of looks */
 	int warned; /* of stiffness */
 	int warned_short; /* of steps far shorter than the scene's time scale */
 	double hcap;      /* the least cap on a step: by, or --hmax (warn_short: steps far below it) */
