@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "block.h"
 #include "csf_int.h"
 #include "timing.h"
 
@@ -75,6 +76,7 @@ int main(int argc, char **argv)
 	memcpy(v, mem + sv, 3 * n * sizeof *v);
 	const double g[3] = { mem[sg], mem[sg + 1], mem[sg + 2] };
 	csf_exec_ctx x = { 0 };
+	x.blocks = csf_blocks_new(&p); /* as csfvm runs the loops: a block of iterations at a time (NULL: one by one) */
 	for (int r = 0; r < reps; r++) {
 		double t0 = now();
 		csf_vm_exec(&p, &x, CSF_SEC_RHS, mem, mem + p.ystart, mem + p.dstart);
@@ -95,6 +97,7 @@ int main(int argc, char **argv)
 	int same = !memcmp(vd, dv, 3 * n * sizeof *dv) && !memcmp(pd, dp, 3 * n * sizeof *dp);
 	printf("%zu %.6e %.6e %d\n", n, median(tv, reps), median(th, reps), same);
 	free(mem), free(m), free(k), free(v), free(dv), free(dp), free(tv), free(th);
+	csf_blocks_free(x.blocks);
 	csf_prog_free(&p);
 	return 0;
 }

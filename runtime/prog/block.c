@@ -10,9 +10,10 @@
  * every slot it reaches over the count, a slot through an outer loop's
  * index every slot it reaches over that loop's count.
  *
- * A fixed slot is a temporary when the first operand to reach it writes
- * it, and every operand that reaches it names exactly it (the same slot,
- * the same width). Then, outside the temporaries, the block runs
+ * A region of fixed slots is a temporary when the first operand to reach
+ * it writes it, only fixed operands reach it, and every read of it is of
+ * slots written earlier in the iteration (a slot reused for a scalar, then
+ * for a vector, is one region of three slots: temporaries()). Then, outside the temporaries, the block runs
  * instruction b of iteration j before instruction a < b of iteration
  * j' > j, where the serial loop ran them the other way round: every such
  * pair of footprints must be apart, or both through the index within one
@@ -86,25 +87,56 @@ static uint32_t accesses(const uint32_t *code, uint32_t from, uint32_t to, uint3
 	return n;
 }
 
-/* Marks the temporaries among a[0..n) (temp = 1 + their index), into tmp; returns their number. */
+/*
+ * Is every slot that read a[r] reaches written, in this iteration, by a
+ * write among a[0..r) of the region [lo, hi)? (Accesses are listed in the
+ * order reached: an instruction's reads before its writes.)
+ */
+static int covered(const acc *a, uint32_t r, uint64_t lo, uint64_t hi)
+{
+	for (uint64_t s = a[r].lo; s < a[r].hi; s++) {
+		int w = 0;
+		for (uint32_t j = 0; j < r && !w; j++)
+			w = a[j].write && a[j].kind == A_FIX && a[j].lo >= lo && a[j].hi <= hi && a[j].lo <= s && s < a[j].hi;
+		if (!w) return 0;
+	}
+	return 1;
+}
+
+/*
+ * Marks the temporaries among a[0..n) (temp = 1 + their index), into tmp;
+ * returns their number. A temporary is a region of fixed slots that only
+ * fixed operands reach and that each iteration writes before it reads: the
+ * union of the footprints that overlap, begun by a write (the compiler
+ * reuses a slot for a scalar, then for a vector: one region of three
+ * slots), in which every read is of slots written earlier in the
+ * iteration.
+ */
 static uint32_t temporaries(acc *a, uint32_t n, csf_btemp *tmp)
 {
 	uint32_t nt = 0;
 	for (uint32_t i = 0; i < n; i++) {
 		acc *x = &a[i];
 		if (x->temp || x->kind != A_FIX || !x->write) continue;
-		int ok = 1;
-		for (uint32_t j = 0; j < n && ok; j++) {
-			const acc *y = &a[j];
-			if (!overlap(x->lo, x->hi, y->lo, y->hi)) continue;
-			/* another footprint, or reached before this write: a read first, or an earlier write (decided there) */
-			if (j < i || y->kind != A_FIX || y->base != x->base || y->width != x->width) ok = 0;
+		uint64_t lo = x->lo, hi = x->hi;
+		int ok = 1, grew = 1;
+		while (grew && ok) { /* the region: every footprint that meets it, until none is added */
+			grew = 0;
+			for (uint32_t j = 0; j < n && ok; j++) {
+				const acc *y = &a[j];
+				if (!overlap(lo, hi, y->lo, y->hi)) continue;
+				if (y->kind != A_FIX || y->temp || (j < i && !y->write)) ok = 0;
+				if (y->lo < lo) lo = y->lo, grew = 1;
+				if (y->hi > hi) hi = y->hi, grew = 1;
+			}
 		}
+		for (uint32_t j = 0; j < n && ok; j++)
+			if (overlap(lo, hi, a[j].lo, a[j].hi) && (j < i || (!a[j].write && !covered(a, j, lo, hi)))) ok = 0;
 		if (!ok) continue;
-		tmp[nt] = (csf_btemp){ x->base, x->width, 0 };
+		tmp[nt] = (csf_btemp){ (uint32_t)lo, (uint32_t)(hi - lo), 0 };
 		nt++;
 		for (uint32_t j = i; j < n; j++)
-			if (a[j].kind == A_FIX && a[j].base == x->base) a[j].temp = nt;
+			if (overlap(lo, hi, a[j].lo, a[j].hi)) a[j].temp = nt;
 	}
 	return nt;
 }
@@ -151,7 +183,8 @@ static int analyse(const uint32_t *code, uint32_t pc, const uint32_t *cnt, csf_b
 			for (int k = 0; k < oi->nops; k++) {
 				if (!csf_kind_slot(oi->kind[k]) || (uint32_t)csf_kind_write(oi->kind[k]) != pass) continue;
 				const acc *x = &a[ai++];
-				if (x->temp) b->o[k] = (csf_bopnd){ CSF_BM_TMP, tmp[x->temp - 1].off, x->width };
+				const csf_btemp *tp = &tmp[x->temp ? x->temp - 1 : 0];
+				if (x->temp) b->o[k] = (csf_bopnd){ CSF_BM_TMP, tp->off + (x->base - tp->slot), tp->width };
 				else if (x->kind == A_IDX) b->o[k] = (csf_bopnd){ CSF_BM_IDX, x->base, x->stride };
 				else b->o[k] = (csf_bopnd){ CSF_BM_FIX, code[q + 1 + k], 0 };
 			}

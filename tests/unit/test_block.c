@@ -130,6 +130,24 @@ static void part_of_scratch(uint32_t *c, uint32_t *n)
 	next(c, n, 1, l);
 }
 
+static void reused_slot(uint32_t *c, uint32_t *n)
+{
+	uint32_t l = loop(c, n, 1);
+	put(c, n, CSF_OP_NEG, T, R(X, 1), 0, 0);           /* T a scalar, */
+	put(c, n, CSF_OP_VMUL, R(OV, 2), R(V, 2), T, 0);
+	put(c, n, CSF_OP_VADD, T, R(OV, 2), V0, 0);         /* then T..T+2 a vector (csfc reuses the slot) */
+	put(c, n, CSF_OP_VDIV, R(OV, 2), T, R(X, 1), 0);
+	next(c, n, 1, l);
+}
+
+static void scalar_read_as_vector(uint32_t *c, uint32_t *n)
+{
+	uint32_t l = loop(c, n, 1);
+	put(c, n, CSF_OP_MUL, T, R(X, 1), G, 0);
+	put(c, n, CSF_OP_VADD, R(OV, 2), T, V0, 0); /* T+1 and T+2: the values before the loop */
+	next(c, n, 1, l);
+}
+
 static void conditional(uint32_t *c, uint32_t *n)
 {
 	uint32_t l = loop(c, n, 1), jz = put(c, n, CSF_OP_JZ, R(X, 1), 0, 0, 0);
@@ -164,7 +182,9 @@ static const bcase cases[] = {
 	{ "a sum another instruction reads", 0, sum_read_by_another },
 	{ "a read of the next iteration's cell", 0, next_cell },
 	{ "a read of the previous iteration's cell", 0, previous_cell },
-	{ "one component of a vector temporary", 0, part_of_scratch },
+	{ "one component of a vector temporary", 1, part_of_scratch },
+	{ "a slot a scalar, then a vector", 1, reused_slot },
+	{ "a scalar read as a vector's first component", 0, scalar_read_as_vector },
 	{ "a conditional rule", 0, conditional },
 	{ "writes of one instruction that overlap", 1, overlapping_writes },
 	{ "a sum through the outer index read in the loop", 0, outer_cell_read },
