@@ -360,6 +360,15 @@ t_hmax() {
 	fi
 }
 
+# a run till 0 s writes its one row at t = 0 and evaluates nothing (no step, so no first step's size
+# is estimated): --stats says 0 evaluations, and the row is the initial values
+t_till0() {
+	printf 'using mechanics/mass_point\nobject b: mass_point\nobject b: v = (1, 0, 2) m/s\nobject b: pos = (0.5, 0, 3) m\nusing mechanics/rules\nrule F: W = g.mul(m)\ninc t till 0 s by 0.1 s watch pos, v\n' >"$T/z0.csf"
+	if "$CSFC" "$T/z0.csf" -o "$T/z0.csfb" 2>"$T/err" && "$CSFVM" --stats "$T/z0.csfb" >"$T/z0.csv" 2>"$T/z0.err" &&
+		[ "$(sed -n 2p "$T/z0.csv")" = "0,0.5,0,3,1,0,2" ] && [ "$(wc -l <"$T/z0.csv")" -eq 2 ] &&
+		grep -q ' 0 steps (0 rejected), 0 right-hand side ' "$T/z0.err"; then ok; else bad "till 0: $(cat "$T/z0.csv" "$T/err" "$T/z0.err" | head -n 4)"; fi
+}
+
 # 5b''. the README's example scene and output are the program's (tests/docs/check.sh)
 t_docs() {
 	suite "docs" sh tests/docs/check.sh "$CSFC" "$CSFVM" "$T"
@@ -849,6 +858,7 @@ done
 	echo hostile_vm
 	echo usage
 	echo hmax
+	echo till0
 	echo full_disk
 	echo too_big
 	echo deep

@@ -285,8 +285,8 @@ static stop run_start(session *S)
 		if (!(r->yi = malloc(p->ny * sizeof *r->yi))) return stop_kind_only(STOP_NOMEM);
 		memcpy(r->yi, y, p->ny * sizeof *y);
 	}
-	/* adaptive steps start at the scene's own size, not at by */
-	if (ode && !S->fixed) {
+	/* adaptive steps start at the scene's own size, not at by (a run till 0 takes no step) */
+	if (ode && !S->fixed && p->till > 0) {
 		if (csf_ode_first_step(ode, 0, y)) return stop_at(STOP_NONFINITE, r->fail_t);
 		r->fail = 0; /* an Euler step of the estimate that failed was tried again shorter */
 	}
