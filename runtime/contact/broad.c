@@ -165,6 +165,7 @@ void csf_contacts_free(csf_contacts *c)
 	free(c->T);
 	free(c->fric);
 	free(c->mark);
+	free(c->snap);
 	free(c->dir);
 	free(c->ls);
 	free(c->G);

@@ -86,8 +86,8 @@ enum { APART, SLIDING, STICKING, HOPPING }; /* the modes of a pair */
    the sliding direction, the time a hop lands, the relative velocity before an impact, the
    times it has begun to stick at the instant being settled (csf_contact_settle), whether
    sliding friction locks it (force.c), the margin its gap's guard takes after it lifted off
-   (settle.c's lift_off). A pair that is not a candidate is apart. */
-enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_SS = 14, W_LOCK = 15, W_LIFT = 16, W_N = 17 };
+   (settle.c's lift_off), whether it lifted off at the instant being settled. A pair that is not a candidate is apart. */
+enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_SS = 14, W_LOCK = 15, W_LIFT = 16, W_LO = 17, W_N = 18 };
 
 /* A candidate pair: body i (a mass point, $0) and body j (a mass point, a plane or an anchor, $1). */
 typedef struct cpair {
@@ -140,6 +140,8 @@ struct csf_contacts {
 	unsigned char *mark;       /* per candidate: the pairs csf_contact_choose chooses among, and its choice */
 	double *dir;               /* per candidate, 3: the direction a pair chosen to slide slides in */
 	size_t capmark;
+	double *snap;              /* settle.c's copy of the state and the pairs' work values (a cycle's start) */
+	size_t capsnap;
 	int group;                 /* an impact's impulses are shared by the pairs marked (impulse.c) */
 	uint32_t why_pair, why_np; /* of a cluster that could not be solved: a pair of it, its pairs, */
 	uint32_t why_big;          /* and DIRECT_MAX if its unknowns are more (else 0) */

@@ -98,6 +98,7 @@ static void separate(cpair *c, double *m)
 static void lift_off(const csf_contacts *cs, cpair *c, double *m)
 {
 	separate(c, m);
+	W(c, LO) = 1;
 	W(c, LIFT) = csf_max(1e-12, 10 * cs->tol) * csf_contact_scale(c, m);
 }
 
@@ -415,6 +416,83 @@ uint64_t csf_contact_passes(uint32_t n)
 	return 100 + 10 * (uint64_t)n + 1000000 / ((uint64_t)n + 1);
 }
 
+/*
+ * Cycles. Where the modes of one pair at a time go round (a pair whose
+ * normal force would pull lifts off; apart, it is pressed back at rest),
+ * the passes repeat until their bound, at an evaluation each: hundreds to
+ * thousands at one instant of a pile. A pass is a function of the state,
+ * the pairs' work values and the counts of passes (which only their bounds
+ * read): so when both are what they were some passes before, bit for bit,
+ * every period that follows is the same, up to the period in which a count
+ * would reach a bound. Those periods are skipped, their counts added: the
+ * instant ends as it would have, in the same state, without their
+ * evaluations. The state is compared at the evaluations' passes, with the
+ * one of the pass 1, 2, 4, 8, ... (Brent's cycle finding).
+ */
+typedef struct cycle {
+	uint64_t pass, at, hits, others; /* passes evaluated; the copy's pass and counts */
+	int have;
+} cycle;
+
+/* Room in cs->snap for the state and the pairs' work values. 0, or -1: no memory. */
+static int snap_room(const csf_prog *p, csf_contacts *cs)
+{
+	size_t need = p->ny + (size_t)cs->n * W_N;
+	if (need <= cs->capsnap) return 0;
+	double *q = realloc(cs->snap, need * sizeof *q);
+	if (!q) return -1;
+	cs->snap = q, cs->capsnap = need;
+	return 0;
+}
+
+/* Copies (put) or compares (!put; 1: the same, bit for bit) the state and the pairs' work values. */
+static int snap(const csf_prog *p, csf_contacts *cs, const double *m, int put)
+{
+	double *q = cs->snap;
+	if (put) memcpy(q, m + p->ystart, p->ny * sizeof *q);
+	else if (memcmp(q, m + p->ystart, p->ny * sizeof *q)) return 0;
+	q += p->ny;
+	for (uint32_t i = 0; i < cs->n; i++, q += W_N)
+		if (put) memcpy(q, cs->pairs[i].w, sizeof cs->pairs[i].w);
+		else if (memcmp(q, cs->pairs[i].w, sizeof cs->pairs[i].w)) return 0;
+	return 1;
+}
+
+/* The whole periods of d passes a count c may skip, staying below bound b for a period after them. */
+static uint64_t periods(uint64_t c, uint64_t d, uint64_t b)
+{
+	if (!d) return UINT64_MAX;
+	return c + 2 * d < b ? (b - c) / d - 2 : 0;
+}
+
+/*
+ * At a pass about to evaluate, with the counts of impacts and of other
+ * passes: a cycle found skips its periods (the counts added). 0, or -1
+ * when memory runs out.
+ */
+static int skip_cycle(const csf_prog *p, csf_contacts *cs, const double *m, cycle *y, uint64_t *hits,
+                      uint64_t *others)
+{
+	y->pass++;
+	if (y->have && snap(p, cs, m, 0)) {
+		uint64_t dh = *hits - y->hits, dothers = *others - y->others;
+		uint64_t hb = group_after(cs->n) < csf_contact_passes(cs->n) ? group_after(cs->n) : csf_contact_passes(cs->n);
+		uint64_t k = periods(*hits, dh, hb), ko = periods(*others, dothers, 100 + 10 * (uint64_t)cs->n);
+		if (ko < k) k = ko;
+		if (k != UINT64_MAX) *hits += k * dh, *others += k * dothers; /* (a period without counts never ends) */
+		y->have = 0;
+		y->at = UINT64_MAX; /* found: no more copies at this instant */
+		return 0;
+	}
+	if (y->pass == y->at) {
+		if (snap_room(p, cs)) return -1;
+		snap(p, cs, m, 1);
+		y->have = 1, y->hits = *hits, y->others = *others;
+		y->at *= 2;
+	}
+	return 0;
+}
+
 static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, double tol, csf_eval_fn eval,
                   void *ctx)
 {
@@ -429,14 +507,17 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 		   (the slip its neighbours' sticking leaves, a rounding's worth, against its way) stops
 		   no more than twice at an instant, and slides on: its slip grows the way it slides */
 		W(c, SS) = 0;
+		W(c, LO) = 0;
 		cs->vfloor = csf_max(cs->vfloor, 1e-13 * csf_contact_speeds(c, m));
 	}
 	int fresh = 0; /* the forces and guards of the last evaluation are those of the modes */
+	cycle cy = { 0, 1, 0, 0, 0 };
 	for (;;) {
 		/* between impacts the evaluation is skipped: an impact changes velocities, which the next
 		   impact's choice reads; the accelerations it reads (whether a pair rests) from the
 		   evaluation before are evaluated afresh before anything else changes a mode */
 		if (!fresh) {
+			if (skip_cycle(p, cs, m, &cy, &hits, &others)) return -1;
 			cs->unsolved = 0; /* of the modes of this pass (the driver stops a run on it) */
 			if (eval(ctx)) return -1;
 		}
@@ -479,6 +560,10 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 			if (gap < 0) close_gap(c, m, n, gap), gap = 0; /* apart by rounding: arm its guard */
 			if (hit >= 0) continue;
 			int how = departure(cs, m, c, vn, an, zeno, tol);
+			/* lifted off at this instant (its normal force would pull) and not pressed back beyond the
+			   rounding: it parts, if at all, no faster than the rounding of speeds, and stays apart (as
+			   at rest, a group's collapse, it would take contact and lift off again, pass after pass) */
+			if (how == RESTS && W(c, LO) && !(an < -csf_contact_accel_resolution(c, m, curv))) how = FLIES;
 			if (how == RESTS) { /* pressed together, at rest: contact */
 				close_gap(c, m, n, gap);
 				for (int k = 0; k < 3; k++) vr[k] = -v0 * n[k];
