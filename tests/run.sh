@@ -507,7 +507,7 @@ t_piles_now() {
 		"3 0.5 0.3 default" "3 1 0 default" "3 0.9 0.3 default" "16 0.5 0.3 default" "16 0 0.3 default" \
 		"3 0.5 0.3 rkf45" "16 0.5 0.3 msbdf" "16 1 0 default" "16 1 0.3 default" "3 0 0.3 default" \
 		"3 0.9 0 default" "3 1 0.3 default" "16 0 0.3 rkf45" "3 0 0 msbdf" "3 0.5 0 msbdf" "3 0.9 0 msbdf" \
-		"16 0.5 0.3 rkf45"
+		"16 0.5 0.3 rkf45" "16 0 0 default" "16 0 0 rkf45"
 }
 t_piles_statics() {
 	suite "balls at rest" sh tests/piles/statics.sh "$CSFC" "$CSFVM" "$T"
