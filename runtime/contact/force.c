@@ -114,8 +114,17 @@ static uint32_t cluster_system(csf_contacts *cs, const double *m, const uint32_t
 	}
 	memset(K, 0, (size_t)dim * dim * sizeof *K);
 	memset(K1, 0, (size_t)dim * dim * sizeof *K1);
+	/* only pairs that share a body are coupled: their bodies' slots compared first (a cluster of
+	   np pairs has np^2 pairs of pairs, a few per row coupled) */
+	uint32_t bi[DIRECT_MAX], bj[DIRECT_MAX];
+	for (uint32_t a = 0; a < np; a++) {
+		const cpair *c = &cs->pairs[cl[a]];
+		bi[a] = I(c, POS), bj[a] = c->plane ? UINT32_MAX : J(c, POS);
+	}
 	for (uint32_t a = 0; a < np; a++)
 		for (uint32_t b = 0; b < np; b++) {
+			if (bi[a] != bi[b] && bi[a] != bj[b] && (bj[a] == UINT32_MAX || (bj[a] != bi[b] && bj[a] != bj[b])))
+				continue;
 			double w = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], m);
 			double w1 = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], NULL);
 			if (w == 0 && w1 == 0) continue;
