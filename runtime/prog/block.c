@@ -13,13 +13,13 @@
  * A region of fixed slots is a temporary when the first operand to reach
  * it writes it, only fixed operands reach it, and every read of it is of
  * slots written earlier in the iteration (a slot reused for a scalar, then
- * for a vector, is one region of three slots: temporaries()). Then, outside the temporaries, the block runs
- * instruction b of iteration j before instruction a < b of iteration
- * j' > j, where the serial loop ran them the other way round: every such
- * pair of footprints must be apart, or both through the index within one
- * cell (the same stride, both within one stride: they meet only within an
- * iteration), or nothing is written. Pairs within one instruction keep
- * their order.
+ * for a vector, is one region of three slots: temporaries()). Then,
+ * outside the temporaries, the block runs instruction b of iteration j
+ * before instruction a < b of iteration j' > j, where the serial loop ran
+ * them the other way round: every such pair of footprints must be apart,
+ * or both through the index within one cell (the same stride, both within
+ * one stride: they meet only within an iteration), or nothing is written.
+ * Pairs within one instruction keep their order.
  */
 #include <stdlib.h>
 #include <string.h>
@@ -125,11 +125,12 @@ static uint32_t temporaries(acc *a, uint32_t n, csf_btemp *tmp)
 			for (uint32_t j = 0; j < n && ok; j++) {
 				const acc *y = &a[j];
 				if (!overlap(lo, hi, y->lo, y->hi)) continue;
-				if (y->kind != A_FIX || y->temp || (j < i && !y->write)) ok = 0;
+				if (y->kind != A_FIX || y->temp) ok = 0;
 				if (y->lo < lo) lo = y->lo, grew = 1;
 				if (y->hi > hi) hi = y->hi, grew = 1;
 			}
 		}
+		/* none reaches it before this write, and every read is of slots written before it */
 		for (uint32_t j = 0; j < n && ok; j++)
 			if (overlap(lo, hi, a[j].lo, a[j].hi) && (j < i || (!a[j].write && !covered(a, j, lo, hi)))) ok = 0;
 		if (!ok) continue;
