@@ -70,9 +70,12 @@ static ObjArray *declared(Stmt *s)
 
 /* Applies object statement s (a kind, or a property) to member o; every: s sets every member
    (object NAME[i], NAME[A..B]), which a member's own value that follows (object NAME[K])
-   overrides (put_prop). */
+   overrides (put_prop). A member left out (mid/cone.c's resolution without the objects that
+   nothing watched depends on) takes nothing: no rule, watch or contact reads it, and a million
+   members' properties made only to be left out took a tenth of csfc's time. */
 static void apply(Stmt *s, Object *o, int every)
 {
+	if (sema_dropping(o->index)) return;
 	if (s->kind == S_OBJKIND) apply_kind(o, s);
 	else set_prop(o, s, every ? 2 : 0);
 }

@@ -45,6 +45,8 @@ Sema sema;
 /* sema_run's drop: the objects left out, by index (NULL: none) */
 static const char *drop_objects;
 
+int sema_dropping(int index) { return drop_objects && drop_objects[index]; }
+
 /* Starts a resolution: nothing defined yet, a new model; shaped: once per shape. */
 static void sema_reset(int shaped)
 {

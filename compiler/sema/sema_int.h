@@ -264,6 +264,8 @@ void inst_contact(Stmt *s, Object **bind, int nbind);
  * is positive.
  */
 void contact_pairs(Stmt *s);
+/* Is object index left out in this resolution (the one mid/cone.c asks for without them)? */
+int sema_dropping(int index);
 
 /* Every mass point of a contact rule must have its a determined (by Newton's second law). */
 void contact_accels(void);
