@@ -713,37 +713,18 @@ static int hold_gap(const csf_contacts *cs, cpair *c, double *m)
 }
 
 /*
- * The pairs in contact held, once the modes stand: their velocities, then
- * their gaps, in sweeps; then an apart pair left overlapping (by these
- * moves, or by a gap closed at this instant that moved a body into a third)
- * is placed touching, so that its guard is armed (else it would pass
- * through), and a lift-off's margin is dropped once the gap is clear of it.
- * Returns 1 if a body moved.
+ * Every apart pair armed: one left overlapping by the instant's moves (a
+ * gap closed, or a body pushed out of another by close_gap, moves it into
+ * a third by a few units in the last place) is placed touching, in sweeps
+ * until none moves (at most 64). An apart pair's guard is its gap, and only
+ * a guard that is not negative at a step's start is watched for a
+ * crossing: a ball left 1e-14 m into another at the end of an instant in a
+ * pile sank 1 um into it, and the energy the instant after that took to
+ * part them was gained. Returns 1 if a body moved.
  */
-static int hold_contacts(csf_contacts *cs, double *m)
+static int arm_apart(csf_contacts *cs, double *m)
 {
-	int moved = sweep_contacts(cs, m, hold_velocity) | sweep_contacts(cs, m, hold_gap);
-	for (uint32_t i = 0; i < cs->n; i++) {
-		cpair *c = &cs->pairs[i];
-		double n[3], curv, gap = csf_contact_geometry(c, m, n, &curv);
-		if (W(c, MODE) == APART && gap < 0 && csf_contact_inside(c, m) >= 0) close_gap(c, m, n, gap), moved = 1;
-		if (W(c, MODE) != APART || gap > W(c, LIFT)) W(c, LIFT) = 0;
-	}
-	return moved;
-}
-
-/*
- * Every apart pair armed: one left overlapping by the last moves of the
- * instant (a gap closed, or a body pushed out of another by close_gap,
- * moves it into a third by a few units in the last place) is placed
- * touching, in sweeps until none moves (at most 64). An apart pair's guard
- * is its gap, and only a guard that is not negative at a step's start is
- * watched for a crossing: a ball left 1e-14 m into another at the end of an
- * instant in a pile sank 1 um into it, and the energy the instant after
- * that took to part them was gained.
- */
-static void arm_apart(csf_contacts *cs, double *m)
-{
+	int any = 0;
 	for (int sweep = 0; sweep < 64; sweep++) {
 		int moved = 0;
 		for (uint32_t i = 0; i < cs->n; i++) {
@@ -752,10 +733,29 @@ static void arm_apart(csf_contacts *cs, double *m)
 			if (W(c, MODE) != APART || (gap = csf_contact_geometry(c, m, n, &curv)) >= 0 || csf_contact_inside(c, m) < 0)
 				continue;
 			close_gap(c, m, n, gap);
-			moved = 1;
+			moved = any = 1;
 		}
-		if (!moved) return;
+		if (!moved) break;
 	}
+	return any;
+}
+
+/*
+ * The pairs in contact held, once the modes stand: their velocities, then
+ * their gaps, in sweeps; then the apart pairs these moves left overlapping
+ * armed (arm_apart), and a lift-off's margin dropped once the gap is clear
+ * of it. Returns 1 if a body moved.
+ */
+static int hold_contacts(csf_contacts *cs, double *m)
+{
+	int moved = sweep_contacts(cs, m, hold_velocity) | sweep_contacts(cs, m, hold_gap);
+	moved |= arm_apart(cs, m);
+	for (uint32_t i = 0; i < cs->n; i++) {
+		cpair *c = &cs->pairs[i];
+		double n[3], curv;
+		if (W(c, MODE) != APART || csf_contact_geometry(c, m, n, &curv) > W(c, LIFT)) W(c, LIFT) = 0;
+	}
+	return moved;
 }
 
 /* The instant's modes (settle), with the speed that counts at the instant (speed_resolution). */

@@ -65,7 +65,7 @@ static const struct method methods[] = {
 	  .sub = STEP(rk4imp), .stab = &csf_ode_stab_implicit, .jacobian = 1, .tol = CSF_DEFAULT_TOL, .history = 1 },
 	/* velocity Verlet, written here: symplectic, fixed steps */
 	{ .name = "verlet", .skip_compare = 1, .setup = csf_ode_verlet_setup, .step = csf_ode_verlet_fixed, .substep = csf_ode_verlet_substep,
-	  .fixed_h = csf_ode_verlet_h, .stab = &csf_ode_stab_verlet, .tol = CSF_DEFAULT_TOL },
+	  .fixed_h = csf_ode_verlet_h, .stab = &csf_ode_stab_verlet, .tol = CSF_DEFAULT_TOL, .pairs = 1 },
 };
 #undef STEP
 
@@ -94,6 +94,12 @@ double csf_method_tol(const char *method)
 {
 	const struct method *m = method ? find_method(method) : &methods[0];
 	return m ? m->tol : CSF_DEFAULT_TOL;
+}
+
+int csf_method_pairs(const char *method)
+{
+	const struct method *m = method ? find_method(method) : &methods[0];
+	return m && m->pairs;
 }
 
 int csf_method_dense(const char *method)

@@ -56,6 +56,9 @@ int csf_method_contacts(const char *method);
  * it steps past the output times and computes the rows from it (dop853)?
  */
 int csf_method_dense(const char *method);
+/* Does the named method (NULL: the default) read the state's position/velocity pairs, csf_ode_new's
+   vpair (verlet)? Another may be given NULL. */
+int csf_method_pairs(const char *method);
 int csf_ode_dense(const csf_ode *o);
 
 /*

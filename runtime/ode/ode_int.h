@@ -61,6 +61,7 @@ struct method {
 	const struct stability *stab;
 	int jacobian;  /* the stepper uses the Jacobian */
 	int history;   /* a multistep method: a restart loses the history its order rests on */
+	int pairs;     /* setup reads the state's position/velocity pairs (vpair: verlet) */
 	int skip_compare; /* left out of --compare-methods' table (rk1imp, rk2imp: the low-order implicit
 	                     methods, which only spend its budget; verlet, fixed steps, has its own row) */
 	double tol;    /* the default local error bound (the work-precision benchmark: the cheapest that keeps

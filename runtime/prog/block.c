@@ -184,9 +184,10 @@ static int analyse(const uint32_t *code, uint32_t pc, const uint32_t *cnt, csf_b
 			for (int k = 0; k < oi->nops; k++) {
 				if (!csf_kind_slot(oi->kind[k]) || (uint32_t)csf_kind_write(oi->kind[k]) != pass) continue;
 				const acc *x = &a[ai++];
-				const csf_btemp *tp = &tmp[x->temp ? x->temp - 1 : 0];
-				if (x->temp) b->o[k] = (csf_bopnd){ CSF_BM_TMP, tp->off + (x->base - tp->slot), tp->width };
-				else if (x->kind == A_IDX) b->o[k] = (csf_bopnd){ CSF_BM_IDX, x->base, x->stride };
+				if (x->temp) { /* at its place in its region's copy for the index */
+					const csf_btemp *tp = &tmp[x->temp - 1];
+					b->o[k] = (csf_bopnd){ CSF_BM_TMP, tp->off + (x->base - tp->slot), tp->width };
+				} else if (x->kind == A_IDX) b->o[k] = (csf_bopnd){ CSF_BM_IDX, x->base, x->stride };
 				else b->o[k] = (csf_bopnd){ CSF_BM_FIX, code[q + 1 + k], 0 };
 			}
 	}

@@ -154,7 +154,7 @@ static stop run_method(session *S, csf_opts *o)
 	double hmax = unbounded ? (r->tend > p->by ? r->tend : p->by) : p->by;
 	if (o->hmax > 0 && o->hmax < hmax) hmax = o->hmax;
 	const uint32_t *vpair = p->vpair;
-	if (!vpair && S->method && strcmp(S->method, "verlet") == 0) { /* the one method that reads them */
+	if (!vpair && csf_method_pairs(S->method)) { /* expanded only for a method that reads them */
 		if (!S->vpair && !(S->vpair = csf_vpair_copy(p))) {
 			snprintf(S->msg, sizeof S->msg, "out of memory");
 			stop s = stop_kind_only(STOP_SETUP);
@@ -170,7 +170,7 @@ static stop run_method(session *S, csf_opts *o)
 	if (S->ode && S->autom_on) { /* the implicit method ends its steps on the rows: at most by */
 		S->au.m[0] = S->ode;
 		S->au.m[1] = csf_ode_new(AUTO_STIFF, 0, p->ny, p->by, o->hmax > 0 && o->hmax < p->by ? o->hmax : p->by,
-		                         o->tol, o->atol, p->yatol, p->yscale, p->vpair, csf_run_rhs, csf_run_jac, r, S->msg, sizeof S->msg);
+		                         o->tol, o->atol, p->yatol, p->yscale, vpair, csf_run_rhs, csf_run_jac, r, S->msg, sizeof S->msg);
 		r->au = &S->au;
 		if (S->au.m[1]) csf_ode_vectors(S->au.m[1], S->vec);
 		if (!S->au.m[1]) {
