@@ -160,6 +160,7 @@ void csf_contacts_free(csf_contacts *c)
 	free(c->direct);
 	free(c->K);
 	free(c->kb);
+	free(c->blk);
 	free(c->K1);
 	free(c->G1);
 	free(c->T);

@@ -242,6 +242,7 @@ static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, con
 	uint32_t nf = 0, nn, cn[DIRECT_MAX], cf[DIRECT_MAX];
 	for (uint32_t j = 0; T && j < dim; j++) nf += fric[j] != 0;
 	nn = dim - nf;
+	if (!nn) nf = 0; /* friction alone (a block of it: csf_contact_solve): T is orthogonal, the least-norm forces */
 	size_t need = 2 * (size_t)dim * dim + 2 * (size_t)dim * nf + 14 * (size_t)dim;
 	if (need > cs->capls) {
 		double *ls = realloc(cs->ls, need * sizeof *ls);
@@ -372,8 +373,8 @@ static int solve_lu(double *K, double *b, double *x, uint32_t dim, double tiny)
  * coefficient, gives its forces, large as they may be. K, rhs and K1 are
  * destroyed.
  */
-int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio, const double *T,
-                      const unsigned char *fric)
+static int solve_whole(csf_contacts *cs, uint32_t dim, double *K1, double wratio, const double *T,
+                       const unsigned char *fric)
 {
 	double *K = cs->K, *b = cs->rhs, big = 0, big1 = 0;
 	for (uint32_t k = 0; k < dim * dim; k++) big = csf_max(big, fabs(K[k]));
@@ -399,4 +400,117 @@ int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio,
 	memcpy(K, cs->kb, (size_t)dim * dim * sizeof *K);
 	memcpy(b, cs->kb + (size_t)dim * dim, dim * sizeof *b);
 	return solve_lu(K, b, cs->x, dim, 1e-14 * big);
+}
+
+/* Union-find over the nodes of a system (blocks): the root of x, halving the paths. */
+static uint32_t root(uint32_t *up, uint32_t x)
+{
+	while (up[x] != x) x = up[x] = up[up[x]];
+	return x;
+}
+
+/*
+ * The blocks of a system K x = b whose unknowns x = T y are solved in the
+ * frames y (T NULL: x itself): its equations, unknowns x and unknowns y
+ * are the nodes of a graph, an equation joined to the x that K or K1
+ * gives it, an x to the y that T makes it of. Each part of the graph is a
+ * block: a system of its own, square (as many equations as unknowns of
+ * each sort) where the whole is solvable. Into eq, xs and ys (3 dim
+ * entries each: each block's, one after the other) and start (nb + 1
+ * entries: block q is from start[q] to start[q + 1] in each) the blocks,
+ * each in the order of the whole; returns their number, or 1 when one is
+ * not square.
+ */
+static uint32_t blocks(uint32_t dim, const double *K, const double *K1, const double *T, uint32_t *eq, uint32_t *xs,
+                       uint32_t *ys, uint32_t *start)
+{
+	uint32_t up[3 * DIRECT_MAX], id[3 * DIRECT_MAX], count[3 * DIRECT_MAX], nb = 0;
+	for (uint32_t v = 0; v < 3 * dim; v++) up[v] = v;
+	for (uint32_t i = 0; i < dim; i++)
+		for (uint32_t k = 0; k < dim; k++) {
+			size_t ik = (size_t)i * dim + k;
+			if (K[ik] != 0 || (K1 && K1[ik] != 0)) up[root(up, i)] = root(up, dim + k);
+			if (T ? T[ik] != 0 : i == k) up[root(up, dim + i)] = root(up, 2 * dim + k);
+		}
+	for (uint32_t v = 0; v < 3 * dim; v++) id[v] = UINT32_MAX;
+	for (uint32_t v = 0; v < 3 * dim; v++) {
+		uint32_t r = root(up, v);
+		if (id[r] == UINT32_MAX) id[r] = nb++, count[id[r]] = 0;
+	}
+	if (nb <= 1) return 1;
+	/* each block's equations, x and y counted by sort (rows, x, y: 0, 1, 2), each sort's must agree */
+	uint32_t n[3][3 * DIRECT_MAX];
+	memset(n, 0, sizeof n);
+	for (uint32_t v = 0; v < 3 * dim; v++) n[v / dim][id[root(up, v)]]++;
+	for (uint32_t q = 0; q < nb; q++)
+		if (n[0][q] != n[1][q] || n[1][q] != n[2][q] || !n[0][q]) return 1;
+	start[0] = 0;
+	for (uint32_t q = 0; q < nb; q++) start[q + 1] = start[q] + n[0][q];
+	for (uint32_t q = 0; q < nb; q++) count[q] = start[q];
+	for (uint32_t i = 0; i < dim; i++) eq[count[id[root(up, i)]]++] = i;
+	for (uint32_t q = 0; q < nb; q++) count[q] = start[q];
+	for (uint32_t k = 0; k < dim; k++) xs[count[id[root(up, dim + k)]]++] = k;
+	for (uint32_t q = 0; q < nb; q++) count[q] = start[q];
+	for (uint32_t j = 0; j < dim; j++) ys[count[id[root(up, 2 * dim + j)]]++] = j;
+	return nb;
+}
+
+/*
+ * The system of cs->K, cs->rhs (dim unknowns), as solve_whole solves it,
+ * but block by block (blocks): the unknowns that nothing couples are
+ * solved apart, each block as a system of its own. The answer is the
+ * same, and exact where it should be: in a scene in a plane, the friction
+ * across the plane is a block of its own whose right-hand side is 0, and
+ * so is its answer, where a solve of the whole would leave rounding there
+ * (1e-16 of the forces), which the motion then takes out of the plane.
+ * Where a block alone fails (its residual, measured against its own sizes,
+ * is more than those of the whole allow), the whole is solved as one.
+ */
+int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio, const double *T,
+                      const unsigned char *fric)
+{
+	uint32_t eq[DIRECT_MAX], xs[DIRECT_MAX], ys[DIRECT_MAX], start[DIRECT_MAX + 1];
+	uint32_t nb = dim <= DIRECT_MAX ? blocks(dim, cs->K, K1, T, eq, xs, ys, start) : 1;
+	if (nb <= 1) return solve_whole(cs, dim, K1, wratio, T, fric);
+	/* the whole system aside: K, K1, rhs, T (dim^2 each but rhs), and the answer */
+	size_t d2 = (size_t)dim * dim, need = 3 * d2 + 2 * (size_t)dim;
+	if (need > cs->capblk) {
+		double *w = realloc(cs->blk, need * sizeof *w);
+		if (!w) return -1;
+		cs->blk = w, cs->capblk = need;
+	}
+	double *K0 = cs->blk, *K10 = K0 + d2, *T0 = K10 + d2, *b0 = T0 + d2, *x0 = b0 + dim;
+	unsigned char fric0[DIRECT_MAX];
+	memcpy(K0, cs->K, d2 * sizeof *K0);
+	if (K1) memcpy(K10, K1, d2 * sizeof *K10);
+	if (T) memcpy(T0, T, d2 * sizeof *T0);
+	if (fric) memcpy(fric0, fric, dim);
+	memcpy(b0, cs->rhs, dim * sizeof *b0);
+	double *Tb = T ? cs->T : NULL; /* T is cs->T where given: the blocks' frames go there once it is aside */
+	for (uint32_t q = 0; q < nb; q++) {
+		const uint32_t *e = eq + start[q], *xq = xs + start[q], *yq = ys + start[q];
+		uint32_t n = start[q + 1] - start[q];
+		for (uint32_t r = 0; r < n; r++) {
+			cs->rhs[r] = b0[e[r]];
+			if (fric) cs->fric[r] = fric0[yq[r]];
+			for (uint32_t c = 0; c < n; c++) {
+				cs->K[r * n + c] = K0[(size_t)e[r] * dim + xq[c]];
+				if (K1) K1[r * n + c] = K10[(size_t)e[r] * dim + xq[c]];
+				if (Tb) Tb[r * n + c] = T0[(size_t)xq[r] * dim + yq[c]];
+			}
+		}
+		if (solve_whole(cs, n, K1, wratio, Tb, fric ? cs->fric : NULL)) { /* the whole, as if not split */
+			memcpy(cs->K, K0, d2 * sizeof *K0);
+			if (K1) memcpy(K1, K10, d2 * sizeof *K10);
+			if (Tb) memcpy(Tb, T0, d2 * sizeof *T0);
+			if (fric) memcpy(cs->fric, fric0, dim);
+			memcpy(cs->rhs, b0, dim * sizeof *b0);
+			return solve_whole(cs, dim, K1, wratio, T, fric);
+		}
+		for (uint32_t r = 0; r < n; r++) x0[xq[r]] = cs->x[r];
+	}
+	memcpy(cs->x, x0, dim * sizeof *x0);
+	if (Tb) memcpy(Tb, T0, d2 * sizeof *T0);
+	if (fric) memcpy(cs->fric, fric0, dim);
+	return 0;
 }

@@ -136,7 +136,8 @@ struct csf_contacts {
 	double *K1, *G1;           /* K and G with every mass 1 (DIRECT_MAX^2 each) */
 	double *T;                 /* the frames of K's unknowns (DIRECT_MAX^2), and which are friction */
 	unsigned char *fric;
-	size_t capkb, capls;
+	double *blk;               /* a system set aside while csf_contact_solve solves its blocks */
+	size_t capkb, capls, capblk;
 	unsigned char *mark;       /* per candidate: the pairs csf_contact_choose chooses among, and its choice */
 	double *dir;               /* per candidate, 3: the direction a pair chosen to slide slides in */
 	size_t capmark;
