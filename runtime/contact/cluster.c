@@ -243,7 +243,7 @@ static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, con
 	for (uint32_t j = 0; T && j < dim; j++) nf += fric[j] != 0;
 	nn = dim - nf;
 	if (!nn) nf = 0; /* friction alone (a block of it: csf_contact_solve): T is orthogonal, the least-norm forces */
-	size_t need = 2 * (size_t)dim * dim + 2 * (size_t)dim * nf + 14 * (size_t)dim;
+	size_t need = 2 * (size_t)dim * dim + 2 * (size_t)dim * nf + 16 * (size_t)dim;
 	if (need > cs->capls) {
 		double *ls = realloc(cs->ls, need * sizeof *ls);
 		if (!ls) return -1;
@@ -265,8 +265,9 @@ static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, con
 	double tol = 1e-10 * max_column(A, dim, dim, dim);
 	lsq qn, qf;
 	gsl_set_error_handler_off();
+	double *wf = yn + dim, *r = wf + 4 * dim, *x0 = r + dim; /* the friction's own work, past qn's */
 	if (!nf) { /* the least-norm forces */
-		if (lsq_factor(&qn, A, dim, dim, tol, w) || lsq_solve(&qn, b, cs->x, NULL)) return -1;
+		if (lsq_factor(&qn, A, dim, dim, tol, w)) return -1;
 	} else {
 		nn = nf = 0;
 		for (uint32_t j = 0; j < dim; j++) {
@@ -283,27 +284,54 @@ static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, con
 			if (lsq_solve(&qn, v, yn, c)) return -1;
 			for (uint32_t i = 0; i < dim; i++) M[(size_t)i * nf + j] = c[i];
 		}
-		if (lsq_solve(&qn, b, yn, c)) return -1; /* c = P b */
-		double *wf = yn + dim; /* the friction's own work, past qn's */
-		if (lsq_factor(&qf, M, dim, nf, tol, wf) || lsq_solve(&qf, c, yf, NULL)) return -1;
-		for (uint32_t i = 0; i < dim; i++) { /* the normal forces for what friction leaves */
-			v[i] = b[i];
-			for (uint32_t j = 0; j < nf; j++) v[i] -= AF[(size_t)i * nf + j] * yf[j];
-		}
-		if (lsq_solve(&qn, v, yn, NULL)) return -1;
-		for (uint32_t j = 0; j < nn; j++) y[cn[j]] = yn[j];
-		for (uint32_t j = 0; j < nf; j++) y[cf[j]] = yf[j];
-		for (uint32_t i = 0; i < dim; i++) { /* x = T y */
-			double s = 0;
-			for (uint32_t j = 0; j < dim; j++) s += T[(size_t)i * dim + j] * y[j];
-			cs->x[i] = s;
-		}
+		if (lsq_factor(&qf, M, dim, nf, tol, wf)) return -1;
 	}
-	double rn = 0, bn = 0, xn = 0;
+	/* the forces for b, then once more for what they leave of it (its residual r, computed from K
+	   itself), kept if that leaves less: the second pass takes the rounding of the first (a
+	   ball at rest in a corner pressing the floor with its weight to the last bit, not 4 ulp less) */
+	double rn = 0, bn = 0, xn = 0, rn0 = 0;
+	for (int pass = 0; pass < 2; pass++) {
+		const double *rhs = pass ? r : b;
+		double *dx = pass ? x0 : cs->x;
+		if (!nf) {
+			if (lsq_solve(&qn, rhs, dx, NULL)) return -1;
+		} else {
+			if (lsq_solve(&qn, rhs, yn, c) || lsq_solve(&qf, c, yf, NULL)) return -1; /* c = P rhs */
+			for (uint32_t i = 0; i < dim; i++) { /* the normal forces for what friction leaves */
+				v[i] = rhs[i];
+				for (uint32_t j = 0; j < nf; j++) v[i] -= AF[(size_t)i * nf + j] * yf[j];
+			}
+			if (lsq_solve(&qn, v, yn, NULL)) return -1;
+			for (uint32_t j = 0; j < nn; j++) y[cn[j]] = yn[j];
+			for (uint32_t j = 0; j < nf; j++) y[cf[j]] = yf[j];
+			for (uint32_t i = 0; i < dim; i++) { /* x = T y */
+				double sum = 0;
+				for (uint32_t j = 0; j < dim; j++) sum += T[(size_t)i * dim + j] * y[j];
+				dx[i] = sum;
+			}
+		}
+		if (pass) { /* x0: the first pass's forces plus the correction; kept if their residual is less */
+			for (uint32_t i = 0; i < dim; i++) x0[i] += cs->x[i];
+			double rn1 = 0;
+			for (uint32_t i = 0; i < dim; i++) {
+				double e = -b[i];
+				for (uint32_t j = 0; j < dim; j++) e += K[(size_t)i * dim + j] * x0[j];
+				rn1 = hypot(rn1, e);
+			}
+			if (rn1 < rn0) memcpy(cs->x, x0, dim * sizeof *x0);
+			break;
+		}
+		for (uint32_t i = 0; i < dim; i++) {
+			double e = b[i];
+			for (uint32_t j = 0; j < dim; j++) e -= K[(size_t)i * dim + j] * cs->x[j];
+			r[i] = e, rn0 = hypot(rn0, e);
+		}
+		if (rn0 == 0) break;
+	}
 	for (uint32_t i = 0; i < dim; i++) {
-		double r = -b[i];
-		for (uint32_t j = 0; j < dim; j++) r += K[(size_t)i * dim + j] * cs->x[j];
-		rn = hypot(rn, r), bn = hypot(bn, b[i]), xn = hypot(xn, cs->x[i]);
+		double e = -b[i];
+		for (uint32_t j = 0; j < dim; j++) e += K[(size_t)i * dim + j] * cs->x[j];
+		rn = hypot(rn, e), bn = hypot(bn, b[i]), xn = hypot(xn, cs->x[i]);
 	}
 	for (uint32_t i = 0; i < dim; i++)
 		if (!isfinite(cs->x[i])) return -1;
