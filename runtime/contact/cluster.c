@@ -8,6 +8,8 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_linalg.h>
 
+#include <float.h>
+
 #include "contact_int.h"
 
 /*
@@ -196,8 +198,14 @@ static double max_column(const double *A, uint32_t rows, uint32_t cols, uint32_t
 {
 	double big = 0;
 	for (uint32_t j = 0; j < cols; j++) {
-		double c = 0;
-		for (uint32_t i = 0; i < rows; i++) c = hypot(c, A[(size_t)i * ld + j]);
+		double c = 0; /* the sum of squares (hypot's care for overflow only where it overflows: it is slow) */
+		for (uint32_t i = 0; i < rows; i++) c += A[(size_t)i * ld + j] * A[(size_t)i * ld + j];
+		if (!(c <= DBL_MAX)) {
+			c = 0;
+			for (uint32_t i = 0; i < rows; i++) c = hypot(c, A[(size_t)i * ld + j]);
+		} else {
+			c = sqrt(c);
+		}
 		big = csf_max(big, c);
 	}
 	return big;
