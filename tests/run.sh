@@ -820,7 +820,7 @@ done
 	done
 	echo piles_statics
 	echo piles_now
-	for c in "6 10" "9 10" "10 10"; do echo "galton $c"; done
+	for c in "6 10" "9 10" "10 10" "10 8"; do echo "galton $c"; done
 	if [ -n "${CSF_TEST_PILES:-}" ]; then
 		for n in 64 16 3; do echo "piles $n"; done
 	fi

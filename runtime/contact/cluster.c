@@ -244,6 +244,27 @@ static int lsq_solve(lsq *q, const double *b, double *y, double *r)
 	return 0;
 }
 
+/* The 2-norm of v[0..n): the root of the sum of squares, or hypot's where that overflows. */
+static double norm2(const double *v, uint32_t n)
+{
+	double s = 0;
+	for (uint32_t i = 0; i < n; i++) s += v[i] * v[i];
+	if (s <= DBL_MAX) return sqrt(s);
+	s = 0;
+	for (uint32_t i = 0; i < n; i++) s = hypot(s, v[i]);
+	return s;
+}
+
+/* b - K x (K dim x dim, row-major) into r. */
+static void residual_of(const double *K, const double *b, const double *x, uint32_t dim, double *r)
+{
+	for (uint32_t i = 0; i < dim; i++) {
+		double e = b[i];
+		for (uint32_t j = 0; j < dim; j++) e -= K[(size_t)i * dim + j] * x[j];
+		r[i] = e;
+	}
+}
+
 static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, const double *b, const double *T,
                             const unsigned char *fric, int check)
 {
@@ -297,7 +318,7 @@ static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, con
 	/* the forces for b, then once more for what they leave of it (its residual r, computed from K
 	   itself), kept if that leaves less: the second pass takes the rounding of the first (a
 	   ball at rest in a corner pressing the floor with its weight to the last bit, not 4 ulp less) */
-	double rn = 0, bn = 0, xn = 0, rn0 = 0;
+	double rn = 0, bn, xn, rn0 = 0;
 	for (int pass = 0; pass < 2; pass++) {
 		const double *rhs = pass ? r : b;
 		double *dx = pass ? x0 : cs->x;
@@ -320,27 +341,16 @@ static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, con
 		}
 		if (pass) { /* x0: the first pass's forces plus the correction; kept if their residual is less */
 			for (uint32_t i = 0; i < dim; i++) x0[i] += cs->x[i];
-			double rn1 = 0;
-			for (uint32_t i = 0; i < dim; i++) {
-				double e = -b[i];
-				for (uint32_t j = 0; j < dim; j++) e += K[(size_t)i * dim + j] * x0[j];
-				rn1 = hypot(rn1, e);
-			}
-			if (rn1 < rn0) memcpy(cs->x, x0, dim * sizeof *x0);
+			residual_of(K, b, x0, dim, v);
+			double rn1 = norm2(v, dim);
+			if (rn1 < rn0) memcpy(cs->x, x0, dim * sizeof *x0), rn = rn1;
 			break;
 		}
-		for (uint32_t i = 0; i < dim; i++) {
-			double e = b[i];
-			for (uint32_t j = 0; j < dim; j++) e -= K[(size_t)i * dim + j] * cs->x[j];
-			r[i] = e, rn0 = hypot(rn0, e);
-		}
+		residual_of(K, b, cs->x, dim, r);
+		rn = rn0 = norm2(r, dim);
 		if (rn0 == 0) break;
 	}
-	for (uint32_t i = 0; i < dim; i++) {
-		double e = -b[i];
-		for (uint32_t j = 0; j < dim; j++) e += K[(size_t)i * dim + j] * cs->x[j];
-		rn = hypot(rn, e), bn = hypot(bn, b[i]), xn = hypot(xn, cs->x[i]);
-	}
+	bn = norm2(b, dim), xn = norm2(cs->x, dim);
 	for (uint32_t i = 0; i < dim; i++)
 		if (!isfinite(cs->x[i])) return -1;
 	return !check || rn <= 1e-9 * csf_max(bn, colmax * xn) ? 0 : -1;
@@ -466,8 +476,10 @@ static uint32_t blocks(uint32_t dim, const double *K, const double *K1, const do
 		for (uint32_t k = 0; k < dim; k++) {
 			size_t ik = (size_t)i * dim + k;
 			if (K[ik] != 0 || (K1 && K1[ik] != 0)) up[root(up, i)] = root(up, dim + k);
-			if (T ? T[ik] != 0 : i == k) up[root(up, dim + i)] = root(up, 2 * dim + k);
 		}
+	for (uint32_t k = 0; k < dim; k++)
+		for (uint32_t j = 0; j < dim; j++)
+			if (T ? T[(size_t)k * dim + j] != 0 : k == j) up[root(up, dim + k)] = root(up, 2 * dim + j);
 	for (uint32_t v = 0; v < 3 * dim; v++) id[v] = UINT32_MAX;
 	for (uint32_t v = 0; v < 3 * dim; v++) {
 		uint32_t r = root(up, v);
@@ -476,7 +488,7 @@ static uint32_t blocks(uint32_t dim, const double *K, const double *K1, const do
 	if (nb <= 1) return 1;
 	/* each block's equations, x and y counted by sort (rows, x, y: 0, 1, 2), each sort's must agree */
 	uint32_t n[3][3 * DIRECT_MAX];
-	memset(n, 0, sizeof n);
+	for (uint32_t q = 0; q < nb; q++) n[0][q] = n[1][q] = n[2][q] = 0;
 	for (uint32_t v = 0; v < 3 * dim; v++) n[v / dim][id[root(up, v)]]++;
 	for (uint32_t q = 0; q < nb; q++)
 		if (n[0][q] != n[1][q] || n[1][q] != n[2][q] || !n[0][q]) return 1;
