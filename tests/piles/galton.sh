@@ -15,31 +15,22 @@
 # chaotic), only that they add up to NBALLS (galton.awk prints them).
 #
 # What passes today (rows every 0.01 s, the default method, TILL as above):
-# 3 to 10 and 12 balls through 10 rows, 10 balls through 4 and 6 rows
-# (tests/run.sh runs 6, 9 and 10 through 10 rows; 10 takes some 7 s). What
-# does not (measured with GALTON_LIMIT=90 on a loaded machine):
-#  - 10 balls through 8 rows, 15 and 30 through 10: csfvm exit 1 at t =
-#    1.110, 0.905 and 0.716 s, "the contact forces among bodies in contact
-#    could not be solved ...: N contacts there, among them 'b0' with 'd1_1',
-#    contradict each other" (a ball wedged among pegs and balls whose
-#    sticking and sliding have no consistent set);
-#  - 20 balls through 10 rows: not finished in 90 s (0.9 s simulated).
-# What goes wrong in the first (15 balls, t = 0.9045 s, a cluster of 10
-# pairs: five balls, two pegs, a divider's wall and the floor): the modes
-# chosen at the event hold there, but within the next step a sliding pair's
-# slip turns back, and past the turn its equations gain the friction across
-# its way (csf_contact_basis), so the cluster's system has no solution.
-# Keeping the turned pair's basis (friction along its way only, as the
-# sweeps do) gets past that instant, but the run then crawls at steps of
-# 1e-10 s: velocities across the plane of the board (y, 0 at the start)
-# of about 1e-12 m/s, the rounding of the forces of statically
-# indeterminate clusters, hold dop853's error control. At other instants
-# no set of modes of the cluster holds at all (all 3^10 tried), the
-# closest failing the static friction limit by less than its rounding.
-# Before the pairs in contact were held at every event (csf(5), "Contacts
-# held"), 7, 8, 10 and more balls stopped between t = 0.62 and 0.97 s with
-# the step size collapsed: a wedged ball slid at a slip of the integrator's
-# error, in a direction that was noise.
+# 3 to 10, 12 and 15 balls through 10 rows, 10 balls through 4, 6 and 8
+# rows (tests/run.sh runs 6, 9 and 10 through 10 rows and 10 through 8; 10
+# takes some 7 s, 15 some 20 s). What does not: 20 and 30 balls through 10
+# rows crawl from t = 0.9 s (events in quick succession, each located on
+# exact substeps) and do not finish in 300 s.
+# Until the contact systems were solved by blocks (csf(5), "Contacts
+# held"), 10 balls through 8 rows and 15 and 30 through 10 stopped at t =
+# 0.92, 1.08 and 0.72 s ("the contact forces ... could not be solved", or
+# the step size collapsed): the least-norm forces of a statically
+# indeterminate cluster carried 1e-15 N of friction across the plane of
+# the board, the sliding pairs' friction then turned that into velocities
+# across it, and their slips, in directions that were noise, held the
+# error control and left clusters with no consistent set of modes. Before
+# that, the pairs in contact were not held at every event, and 7, 8, 10 and
+# more balls stopped between t = 0.62 and 0.97 s with the step size
+# collapsed.
 # Dividers are columns of anchors, not planes with an edge: a plane is
 # one-sided, and a ball behind it is put on its face (gen_galton.sh).
 #
