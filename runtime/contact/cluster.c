@@ -470,8 +470,8 @@ static uint32_t root(uint32_t *up, uint32_t x)
 static uint32_t blocks(uint32_t dim, const double *K, const double *K1, const double *T, uint32_t *eq, uint32_t *xs,
                        uint32_t *ys, uint32_t *start)
 {
-	uint32_t up[3 * DIRECT_MAX], id[3 * DIRECT_MAX], count[3 * DIRECT_MAX], nb = 0;
-	for (uint32_t v = 0; v < 3 * dim; v++) up[v] = v;
+	uint32_t up[3 * DIRECT_MAX], id[3 * DIRECT_MAX], blk[3 * DIRECT_MAX], nb = 0;
+	for (uint32_t v = 0; v < 3 * dim; v++) up[v] = v, id[v] = UINT32_MAX;
 	for (uint32_t i = 0; i < dim; i++)
 		for (uint32_t k = 0; k < dim; k++) {
 			size_t ik = (size_t)i * dim + k;
@@ -480,26 +480,24 @@ static uint32_t blocks(uint32_t dim, const double *K, const double *K1, const do
 	for (uint32_t k = 0; k < dim; k++)
 		for (uint32_t j = 0; j < dim; j++)
 			if (T ? T[(size_t)k * dim + j] != 0 : k == j) up[root(up, dim + k)] = root(up, 2 * dim + j);
-	for (uint32_t v = 0; v < 3 * dim; v++) id[v] = UINT32_MAX;
-	for (uint32_t v = 0; v < 3 * dim; v++) {
+	for (uint32_t v = 0; v < 3 * dim; v++) { /* node v's block: its root's number */
 		uint32_t r = root(up, v);
-		if (id[r] == UINT32_MAX) id[r] = nb++, count[id[r]] = 0;
+		if (id[r] == UINT32_MAX) id[r] = nb++;
+		blk[v] = id[r];
 	}
 	if (nb <= 1) return 1;
 	/* each block's equations, x and y counted by sort (rows, x, y: 0, 1, 2), each sort's must agree */
-	uint32_t n[3][3 * DIRECT_MAX];
+	uint32_t n[3][3 * DIRECT_MAX], *out[3] = { eq, xs, ys }, at[3 * DIRECT_MAX];
 	for (uint32_t q = 0; q < nb; q++) n[0][q] = n[1][q] = n[2][q] = 0;
-	for (uint32_t v = 0; v < 3 * dim; v++) n[v / dim][id[root(up, v)]]++;
+	for (uint32_t v = 0; v < 3 * dim; v++) n[v / dim][blk[v]]++;
 	for (uint32_t q = 0; q < nb; q++)
 		if (n[0][q] != n[1][q] || n[1][q] != n[2][q] || !n[0][q]) return 1;
 	start[0] = 0;
 	for (uint32_t q = 0; q < nb; q++) start[q + 1] = start[q] + n[0][q];
-	for (uint32_t q = 0; q < nb; q++) count[q] = start[q];
-	for (uint32_t i = 0; i < dim; i++) eq[count[id[root(up, i)]]++] = i;
-	for (uint32_t q = 0; q < nb; q++) count[q] = start[q];
-	for (uint32_t k = 0; k < dim; k++) xs[count[id[root(up, dim + k)]]++] = k;
-	for (uint32_t q = 0; q < nb; q++) count[q] = start[q];
-	for (uint32_t j = 0; j < dim; j++) ys[count[id[root(up, 2 * dim + j)]]++] = j;
+	for (int sort = 0; sort < 3; sort++) { /* each sort's nodes, block by block, in their order */
+		for (uint32_t q = 0; q < nb; q++) at[q] = start[q];
+		for (uint32_t i = 0; i < dim; i++) out[sort][at[blk[sort * dim + i]]++] = i;
+	}
 	return nb;
 }
 

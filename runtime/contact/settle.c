@@ -647,9 +647,10 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 }
 
 /*
- * Sweeps (Gauss-Seidel) of one correction over the pairs in contact, pair
- * by pair, until a sweep corrects none, at most SWEEPS_MAX. one() corrects
- * a pair and returns 1, or returns 0 when it is within its rounding.
+ * Sweeps (Gauss-Seidel) of one correction over the pairs, pair by pair,
+ * until a sweep corrects none, at most most (the holds: SWEEPS_MAX). one()
+ * corrects a pair and returns 1, or returns 0 when it is within its
+ * rounding or not one it corrects.
  * Returns 1 if any pair was corrected. In a pile the corrections of pairs
  * that share bodies undo each other in part, and a sweep takes away only
  * some of what is left (a sixth, in a pile of 16): 64 sweeps left a ball
@@ -659,13 +660,13 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
  */
 enum { SWEEPS_MAX = 4096 };
 
-static int sweep_contacts(csf_contacts *cs, double *m, int (*one)(const csf_contacts *, cpair *, double *))
+static int sweep_contacts(csf_contacts *cs, double *m, int (*one)(const csf_contacts *, cpair *, double *), int most)
 {
 	int any = 0;
-	for (int sweep = 0; sweep < SWEEPS_MAX; sweep++) {
+	for (int sweep = 0; sweep < most; sweep++) {
 		int moved = 0;
 		for (uint32_t i = 0; i < cs->n; i++)
-			if (in_contact(&cs->pairs[i]) && one(cs, &cs->pairs[i], m)) moved = any = 1;
+			if (one(cs, &cs->pairs[i], m)) moved = any = 1;
 		if (!moved) break;
 	}
 	return any;
@@ -684,6 +685,7 @@ static int sweep_contacts(csf_contacts *cs, double *m, int (*one)(const csf_cont
 static int hold_velocity(const csf_contacts *cs, cpair *c, double *m)
 {
 	double n[3], curv, vr[3], dv[3];
+	if (!in_contact(c)) return 0;
 	csf_contact_geometry(c, m, n, &curv);
 	rel(c, m, I(c, V), J(c, V), vr);
 	double vn = dot3(vr, n);
@@ -705,10 +707,20 @@ static int hold_velocity(const csf_contacts *cs, cpair *c, double *m)
  */
 static int hold_gap(const csf_contacts *cs, cpair *c, double *m)
 {
-	double n[3], curv, gap = csf_contact_geometry(c, m, n, &curv);
+	double n[3], curv, gap;
 	(void)cs;
-	if (fabs(gap) <= 1e-12 * csf_contact_scale(c, m)) return 0;
+	if (!in_contact(c) || fabs(gap = csf_contact_geometry(c, m, n, &curv)) <= 1e-12 * csf_contact_scale(c, m)) return 0;
 	move_closed(c, m, n, gap);
+	return 1;
+}
+
+/* An apart pair left overlapping placed touching (arm_apart); 1 if it moved. */
+static int arm_one(const csf_contacts *cs, cpair *c, double *m)
+{
+	double n[3], curv, gap;
+	(void)cs;
+	if (W(c, MODE) != APART || (gap = csf_contact_geometry(c, m, n, &curv)) >= 0 || csf_contact_inside(c, m) < 0) return 0;
+	close_gap(c, m, n, gap);
 	return 1;
 }
 
@@ -722,23 +734,7 @@ static int hold_gap(const csf_contacts *cs, cpair *c, double *m)
  * pile sank 1 um into it, and the energy the instant after that took to
  * part them was gained. Returns 1 if a body moved.
  */
-static int arm_apart(csf_contacts *cs, double *m)
-{
-	int any = 0;
-	for (int sweep = 0; sweep < 64; sweep++) {
-		int moved = 0;
-		for (uint32_t i = 0; i < cs->n; i++) {
-			cpair *c = &cs->pairs[i];
-			double n[3], curv, gap;
-			if (W(c, MODE) != APART || (gap = csf_contact_geometry(c, m, n, &curv)) >= 0 || csf_contact_inside(c, m) < 0)
-				continue;
-			close_gap(c, m, n, gap);
-			moved = any = 1;
-		}
-		if (!moved) break;
-	}
-	return any;
-}
+static int arm_apart(csf_contacts *cs, double *m) { return sweep_contacts(cs, m, arm_one, 64); }
 
 /*
  * The pairs in contact held, once the modes stand: their velocities, then
@@ -748,7 +744,7 @@ static int arm_apart(csf_contacts *cs, double *m)
  */
 static int hold_contacts(csf_contacts *cs, double *m)
 {
-	int moved = sweep_contacts(cs, m, hold_velocity) | sweep_contacts(cs, m, hold_gap);
+	int moved = sweep_contacts(cs, m, hold_velocity, SWEEPS_MAX) | sweep_contacts(cs, m, hold_gap, SWEEPS_MAX);
 	moved |= arm_apart(cs, m);
 	for (uint32_t i = 0; i < cs->n; i++) {
 		cpair *c = &cs->pairs[i];
