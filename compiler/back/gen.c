@@ -104,8 +104,9 @@ static void gen_run(Gen *G, Model *M, csf_prog *p)
 	p->ystart = G->nmem;
 	for (int i = 0; i < M->objects.n; i++) {
 		Object *o = M->objects.v[i];
-		for (int j = 0; j < o->props.n; j++) {
-			Var *v = o->props.v[j];
+		const Vec *P = obj_props(o);
+		for (int j = 0; j < P->n && !obj_shares(o); j++) {
+			Var *v = P->v[j];
 			if (var_integrated(v)) var_slot(G, v);
 		}
 	}
@@ -156,6 +157,7 @@ static void gen_drop(Gen *G, csf_prog *p)
 	free(G->mem); /* these go to p only at the end */
 	free(G->strs);
 	free(G->events);
+	free(G->objstr);
 	for (int i = 0; i < 3; i++) free(G->work[i]);
 }
 
@@ -170,5 +172,6 @@ int gen_program(Model *M, csf_prog *p)
 		return 1;
 	}
 	gen_run(G, M, p);
+	free(G->objstr);
 	return 0;
 }

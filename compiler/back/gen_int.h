@@ -32,6 +32,7 @@ typedef struct Gen {
 	uint32_t nstrs, capstrs;
 	Vec *Finsts; /* per object index: its F instances */
 	Map strmap;  /* string -> offset + 1 */
+	uint32_t *objstr; /* per object index: its interned name + 1 (0: not yet; obj_str) */
 	Map pclass;  /* parameter class key -> index + 1 */
 	csf_pclass *pclasses;
 	uint32_t npclasses, cappclasses;
@@ -58,7 +59,11 @@ void section_end(Gen *G, csf_prog *p, int sec);
 void *grow(void *p, uint32_t *cap, uint32_t need, size_t elem);
 uint32_t alloc_mem(Gen *G, uint32_t n, const double *init);
 uint32_t str_intern(Gen *G, const char *s);
+/* Object o's name, interned (once per object: a million members are a million names). */
+uint32_t obj_str(Gen *G, const Object *o);
 uint32_t var_slot(Gen *G, Var *v);
+/* The slot of object o's property v: var_slot, at o's place if o shares v (a lean member, Object.lean). */
+uint32_t prop_slot(Gen *G, Var *v, const Object *o);
 uint32_t param_class(Gen *G, Var *v);
 uint32_t var_operand(Gen *G, Var *v, int place);
 uint32_t const_slot(Gen *G, const double *c, int isvec);

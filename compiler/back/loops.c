@@ -27,11 +27,16 @@ void add_line(Gen *G, uint32_t src)
 	G->lines[G->nlines++] = (csf_line){ pc(G), src };
 }
 
-void add_target(Gen *G, uint32_t slot, Var *v, uint32_t src, const char *name, Object *o)
+/* A target whose name is interned (name). */
+static void add_target_str(Gen *G, uint32_t slot, Var *v, uint32_t src, uint32_t name, Object *o)
 {
 	G->targets = grow(G->targets, &G->captargets, G->ntargets + 1, sizeof(csf_target));
-	G->targets[G->ntargets++] = (csf_target){ slot, v->isvec ? 3u : 1u, src, str_intern(G, name),
-		                                      str_intern(G, o ? o->name : "global") };
+	G->targets[G->ntargets++] = (csf_target){ slot, v->isvec ? 3u : 1u, src, name, o ? obj_str(G, o) : str_intern(G, "global") };
+}
+
+void add_target(Gen *G, uint32_t slot, Var *v, uint32_t src, const char *name, Object *o)
+{
+	add_target_str(G, slot, v, src, str_intern(G, name), o);
 }
 
 /* Targets of v, computed at slot by I (a derivative: at its derivative's slot): one per member in loops. */
@@ -42,7 +47,9 @@ static void add_targets(Gen *G, Inst *I, Var *v, uint32_t slot, uint32_t src, co
 		add_target(G, slot, v, src, name, v->obj);
 		return;
 	}
-	for (int q = 0; q < S->n; q++) add_target(G, slot + (uint32_t)q * (v->isvec ? 3u : 1u), v, src, name, S->members[q]);
+	uint32_t n = str_intern(G, name);
+	for (int q = 0; q < S->n; q++)
+		add_target_str(G, slot + (uint32_t)q * (v->isvec ? 3u : 1u), v, src, n, S->members[q]);
 }
 
 static void emit_block(Gen *G, Inst *I, Branch *B);

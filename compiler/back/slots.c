@@ -28,10 +28,27 @@ uint32_t alloc_mem(Gen *G, uint32_t n, const double *init)
 		            SCRATCH / 2 / 131072);
 		longjmp(*G->fail, 1); /* back to gen_program, which frees what it holds and returns 1 */
 	}
-	G->mem = grow(G->mem, &G->capmem, G->nmem + n, sizeof(double));
-	for (uint32_t i = 0; i < n; i++) G->mem[G->nmem + i] = init ? init[i] : 0.0;
+	if (G->nmem + n > G->capmem) {
+		/* a new block of zeros, of which only the slots in use are written: the rest, zeros, take no
+		   memory until they are (the Jacobian's tangents, one for every slot, most never set) */
+		uint32_t c = G->capmem ? G->capmem : 64;
+		while (c < G->nmem + n) c *= 2;
+		double *m = xcalloc(c, sizeof *m);
+		if (G->nmem) memcpy(m, G->mem, G->nmem * sizeof *m);
+		free(G->mem);
+		G->mem = m;
+		G->capmem = c;
+	}
+	if (init) memcpy(G->mem + G->nmem, init, n * sizeof *init);
 	G->nmem += n;
 	return G->nmem - n;
+}
+
+uint32_t obj_str(Gen *G, const Object *o)
+{
+	if (!G->objstr) G->objstr = xcalloc((size_t)G->M->objects.n + 1, sizeof *G->objstr);
+	if (!G->objstr[o->index]) G->objstr[o->index] = str_intern(G, o->name) + 1;
+	return G->objstr[o->index] - 1;
 }
 
 uint32_t str_intern(Gen *G, const char *s)
@@ -56,8 +73,13 @@ uint32_t var_slot(Gen *G, Var *v)
 {
 	if (v->slot >= 0) return (uint32_t)v->slot;
 	uint32_t w = v->isvec ? 3 : 1;
+	Var *r = sema_canon(v);
+	if (r != v && v->obj->lean) { /* lean members' (Object.lean): the shape's array, at its start */
+		var_slot(G, r);
+		return (uint32_t)v->slot;
+	}
 	if (!sema_per_member(v)) {
-		v->slot = (int)alloc_mem(G, w, v->kind == V_TEMP ? NULL : v->init);
+		v->slot = (int)alloc_mem(G, w, v->kind == V_TEMP ? NULL : member_init(v, v->obj));
 		return (uint32_t)v->slot;
 	}
 	Shape *S = v->obj->shape;
@@ -67,9 +89,10 @@ uint32_t var_slot(Gen *G, Var *v)
 		return base;
 	}
 	for (int q = 0; q < S->n; q++) {
-		Var *m = prop_of_obj(S->members[q], v->name);
-		m->slot = (int)(base + (uint32_t)q * w);
-		memcpy(G->mem + m->slot, m->init, w * sizeof(double));
+		Object *o = S->members[q];
+		Var *m = prop_of_obj(o, v->name);
+		m->slot = (int)(base + (o->lean ? 0 : (uint32_t)q * w)); /* (lean members share m: prop_slot) */
+		memcpy(G->mem + base + (uint32_t)q * w, member_init(m, o), w * sizeof(double));
 	}
 	return (uint32_t)v->slot;
 }
@@ -130,6 +153,11 @@ uint32_t param_class(Gen *G, Var *v)
 		map_put(&G->pclass, key, (void *)(uintptr_t)(++G->npclasses));
 		return G->npclasses - 1;
 	}
+}
+
+uint32_t prop_slot(Gen *G, Var *v, const Object *o)
+{
+	return var_slot(G, v) + (o && o->lean ? (uint32_t)o->sidx * (v->isvec ? 3u : 1u) : 0u);
 }
 
 /* The operand word for v read at place ($n) of the instance being emitted: relative to

@@ -11,27 +11,50 @@
 #include "sema.h"
 #include "gen_int.h"
 
-/* The magnitude of v's initial value. */
-static double init_mag(const Var *v) { return v->isvec ? csf_vmag3(v->init[0], v->init[1], v->init[2]) : fabs(v->init[0]); }
+/* The magnitude of the initial value of object o's property v. */
+static double init_mag(const Var *v, const Object *o)
+{
+	const double *x = member_init(v, o);
+	return v->isvec ? csf_vmag3(x[0], x[1], x[2]) : fabs(x[0]);
+}
+
+/* The largest magnitude of the initial values of v over the objects that have it (v's, or every
+ * member's that shares it). */
+static double most_mag(const Var *v)
+{
+	const Object *o = v->obj;
+	if (!o->lean || !o->shape) return init_mag(v, o);
+	double most = init_mag(v, o);
+	for (int q = o->sidx + 1; q < o->shape->n; q++) {
+		const Object *m = o->shape->members[q];
+		if (m->lean == o->lean && init_mag(v, m) > most) most = init_mag(v, m);
+	}
+	return most;
+}
 
 /* Each state component's scale (one SI unit, or smaller: csf_prog.yscale) and absolute tolerance. */
 void gen_state_scales(Model *M, csf_prog *p)
 {
 	p->yscale = xmalloc((p->ny ? p->ny : 1) * sizeof *p->yscale);
 	p->yatol = xcalloc(p->ny ? p->ny : 1, sizeof *p->yatol);
-	/* the state variable of each property name that starts largest, over all objects */
+	/* the largest magnitude each property name starts at, over all objects, of a state variable */
 	Map largest = { 0 };
 	for (int i = 0; i < M->objects.n; i++) {
 		Object *o = M->objects.v[i];
-		for (int j = 0; j < o->props.n; j++) {
-			Var *v = o->props.v[j], *w = var_integrated(v) ? map_get(&largest, v->name) : NULL;
-			if (var_integrated(v) && (!w || init_mag(v) > init_mag(w))) map_put(&largest, v->name, v);
+		const Vec *P = obj_props(o);
+		for (int j = 0; j < P->n && !obj_shares(o); j++) {
+			Var *v = P->v[j];
+			if (!var_integrated(v)) continue;
+			double *w = map_get(&largest, v->name), m = most_mag(v);
+			if (!w) map_put(&largest, v->name, w = xalloc(sizeof *w)), *w = m;
+			else if (m > *w) *w = m;
 		}
 	}
 	for (int i = 0; i < M->objects.n; i++) {
 		Object *o = M->objects.v[i];
-		for (int j = 0; j < o->props.n; j++) {
-			Var *v = o->props.v[j];
+		const Vec *P = obj_props(o);
+		for (int j = 0; j < P->n && !obj_shares(o); j++) {
+			Var *v = P->v[j];
 			if (!var_integrated(v)) continue;
 			/* one SI unit of v, in the system's units; smaller when the property starts
 			   smaller in every object (so that a 1e-20 m orbit keeps the relative accuracy
@@ -39,11 +62,17 @@ void gen_state_scales(Model *M, csf_prog *p)
 			   mode's node: cos(pi/2) is 6e-17) */
 			double one = v->dimk == DK_KNOWN ? dims_to_system(1.0, v->dim) : 1.0;
 			if (!(one > 0) || !isfinite(one)) one = 1.0; /* a dimension such as m^100 kg^100 in cgs */
-			double mag = init_mag(map_get(&largest, v->name));
+			double mag = *(double *)map_get(&largest, v->name);
 			if (mag > 0 && mag < one && isfinite(mag)) one = mag;
-			for (int k = 0; k < (v->isvec ? 3 : 1); k++) {
-				p->yscale[(uint32_t)v->slot - p->ystart + (uint32_t)k] = one;
-				p->yatol[(uint32_t)v->slot - p->ystart + (uint32_t)k] = var_more_of(v)->atol ? var_more_of(v)->atol->c[0] : 0;
+			/* (every member's that shares v, at its place) */
+			for (int q = o->lean ? o->sidx : 0; q < (o->lean ? o->shape->n : 1); q++) {
+				const Object *m = o->lean ? o->shape->members[q] : o;
+				if (m->lean != o->lean) continue;
+				uint32_t at = (uint32_t)v->slot + (uint32_t)m->sidx * (v->isvec ? 3 : 1) * (m->lean != NULL) - p->ystart;
+				for (uint32_t k = 0; k < (v->isvec ? 3u : 1u); k++) {
+					p->yscale[at + k] = one;
+					p->yatol[at + k] = var_more_of(v)->atol ? var_more_of(v)->atol->c[0] : 0;
+				}
 			}
 		}
 	}
@@ -122,7 +151,7 @@ void gen_contact_tables(Gen *G, Model *M, csf_prog *p)
 		pb->object = (uint32_t)b->o->index;
 		for (int f = 0; f < CSF_CF_N; f++) {
 			Var *v = b->f[f];
-			pb->s[f] = v ? var_slot(G, v) : p->tslot;
+			pb->s[f] = v ? prop_slot(G, v, b->o) : p->tslot;
 			/* the radius, or a plane's or an anchor's geometry, computed or integrated: not known from positions */
 			if (v && (f == CSF_CF_R || (b->kind && (f == CSF_CF_POS || f == CSF_CF_V))) && (var_integrated(v) || v->det))
 				pb->varies = 1;
@@ -179,20 +208,39 @@ void gen_objects(Gen *G, Model *M, csf_prog *p)
 {
 	p->nobjects = (uint32_t)M->objects.n;
 	p->objects = xcalloc(p->nobjects + 1, sizeof *p->objects);
-	Vec props = { 0 };
+	uint32_t n = 0;
 	for (int i = 0; i < M->objects.n; i++) {
 		Object *o = M->objects.v[i];
-		p->objects[i] = str_intern(G, o->name);
-		for (int j = 0; j < o->props.n; j++)
-			if (((Var *)o->props.v[j])->slot >= 0) vec_push(&props, o->props.v[j]);
+		const Vec *P = obj_props(o);
+		p->objects[i] = obj_str(G, o);
+		for (int j = 0; j < P->n && !o->dropped; j++) n += ((Var *)P->v[j])->slot >= 0;
 	}
-	p->nprops = (uint32_t)props.n;
+	p->nprops = n;
 	p->props = xcalloc(p->nprops + 1, sizeof *p->props);
-	for (int i = 0; i < props.n; i++) {
-		Var *v = props.v[i];
-		p->props[i] = (csf_prop){ (uint32_t)v->obj->index, str_intern(G, v->name), (uint32_t)v->slot, v->isvec ? 3u : 1u,
-		                          param_class(G, v) };
+	n = 0;
+	const ObjArray *known = NULL; /* the array whose shared properties' names and classes are in name, cls */
+	uint32_t *name = NULL, *cls = NULL;
+	for (int i = 0; i < M->objects.n; i++) {
+		Object *o = M->objects.v[i];
+		const Vec *P = obj_props(o);
+		if (o->lean && !o->dropped && o->lean != known) {
+			known = o->lean;
+			name = xrealloc(name, (size_t)P->n * sizeof *name + 1);
+			cls = xrealloc(cls, (size_t)P->n * sizeof *cls + 1);
+			for (int j = 0; j < P->n; j++) {
+				Var *v = P->v[j];
+				if (v->slot >= 0) name[j] = str_intern(G, v->name), cls[j] = param_class(G, v);
+			}
+		}
+		for (int j = 0; j < P->n && !o->dropped; j++) {
+			Var *v = P->v[j];
+			if (v->slot >= 0)
+				p->props[n++] = (csf_prop){ (uint32_t)o->index, o->lean ? name[j] : str_intern(G, v->name),
+				                            prop_slot(G, v, o), v->isvec ? 3u : 1u, o->lean ? cls[j] : param_class(G, v) };
+		}
 	}
+	free(name);
+	free(cls);
 	p->npclasses = G->npclasses;
 	p->pclasses = G->pclasses ? G->pclasses : xcalloc(1, sizeof *p->pclasses);
 }

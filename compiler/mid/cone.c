@@ -218,7 +218,7 @@ static void walk(Walk *W, const Model *M)
 	for (int i = 0; i < M->cols.n; i++) {
 		WatchCol *w = M->cols.v[i];
 		Var *v = sema_canon(w->var);
-		need_var(W, v, !sema_per_member(v) ? 0 : v->kind == V_TEMP ? w->member : w->var->obj->sidx);
+		need_var(W, v, !sema_per_member(v) ? 0 : v->kind == V_TEMP || w->var->obj->lean ? w->member : w->var->obj->sidx);
 	}
 	for (int i = 0; i < M->insts.n; i++) {
 		Inst *I = M->insts.v[i];

@@ -112,8 +112,8 @@ static const char *object_line(Object *o)
 {
 	if (o->dropped) return " left out: nothing watched, asserted or stopped on depends on it (csfc --keep-all keeps it)";
 	char *line = "";
-	for (int j = 0; j < o->props.n; j++) {
-		Var *v = o->props.v[j], *r = sema_canon(v);
+	for (int j = 0; j < obj_props(o)->n; j++) {
+		Var *v = obj_props(o)->v[j], *r = sema_canon(v);
 		line = xprintf("%s%s %s (%s)", line, j ? "," : "", v->name,
 		               r->state ? (var_integrated(r) ? "state" : "state, left out: nothing needs it")
 		               : r->det   ? xprintf("computed, line %d", r->det->st->loc.line)

@@ -69,14 +69,15 @@ void lint_model(Model *M)
 	for (int i = 0; i < M->objects.n; i++) {
 		Object *o = M->objects.v[i];
 		const char **c = NULL; /* the names a misspelt one may stand for: made once for the object */
-		for (int j = 0; j < o->props.n; j++) {
-			Var *p = o->props.v[j];
+		const Vec *P = obj_props(o);
+		for (int j = 0; j < P->n && !obj_shares(o); j++) {
+			Var *p = P->v[j];
 			if (p->from_kind || p->state || vec_has(&read, sema_canon(p)) || !users(p->loc)) continue;
 			if (!o->dropped && !first_at(&seen, p->loc)) continue;
-			if (!c) c = xalloc(((size_t)o->props.n + 1) * sizeof *c);
+			if (!c) c = xalloc(((size_t)P->n + 1) * sizeof *c);
 			int nc = 0;
-			for (int k = 0; k < o->props.n; k++) {
-				Var *q = o->props.v[k];
+			for (int k = 0; k < P->n; k++) {
+				Var *q = P->v[k];
 				if (q != p && (q->from_kind || vec_has(&read, sema_canon(q)) || q->state)) c[nc++] = q->name;
 			}
 			const char *s = csf_suggest_name(p->name, c, nc);

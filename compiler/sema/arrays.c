@@ -23,6 +23,17 @@
 
 ObjArray *array_of(const char *name) { return map_get(&sema.arrays, name); }
 
+Object *object_named(const char *name)
+{
+	Object *o = map_get(&sema.objects_by_name, name);
+	const char *br = o ? NULL : strchr(name, '[');
+	if (!br || (!isdigit((unsigned char)br[1]) && br[1] != '-')) return o;
+	char *end;
+	long k = strtol(br + 1, &end, 10);
+	ObjArray *A = strcmp(end, "]") ? NULL : array_of(xstrndup(name, (size_t)(br - name)));
+	return A ? array_member(A, k) : NULL;
+}
+
 Object *array_member(const ObjArray *A, long k)
 {
 	if (k < A->lo || k > A->hi) return NULL;
@@ -53,9 +64,25 @@ static ObjArray *declare(const char *name, Loc l, long lo, long hi)
 	A->lo = lo;
 	A->hi = hi;
 	A->first = sema.M->objects.n;
-	for (long k = lo; k <= hi; k++)
-		if (!get_object(xprintf("%s[%ld]", name, k), l)) return NULL;
+	size_t len = strlen(name);
+	for (long k = lo; k <= hi; k++) {
+		/* NAME[K], written without printf: a million of them */
+		char digits[24], *d = digits + sizeof digits;
+		unsigned long u = k < 0 ? 0UL - (unsigned long)k : (unsigned long)k;
+		*--d = '\0';
+		*--d = ']';
+		do *--d = (char)('0' + u % 10); while (u /= 10);
+		if (k < 0) *--d = '-';
+		size_t nd = (size_t)(digits + sizeof digits - d);
+		char *n = xalloc(len + 1 + nd);
+		memcpy(n, name, len);
+		n[len] = '[';
+		memcpy(n + len + 1, d, nd);
+		new_object(n, l)->lean = sema.shaped ? A : NULL; /* by object, every object has its own properties */
+	}
+	A->owner = sema.shaped ? sema.M->objects.v[A->first] : NULL;
 	map_put(&sema.arrays, A->name, A);
+	vec_push(&sema.array_list, A);
 	return A;
 }
 
@@ -80,6 +107,79 @@ static void apply(Stmt *s, Object *o, int every)
 	else set_prop(o, s, every ? 2 : 0);
 }
 
+/* Does x read only numbers and globals: is its value the same for every member? */
+static int reads_constants(const Expr *x)
+{
+	if (!x) return 1;
+	if (x->kind == E_NAME) return map_get(&sema.globals_by_name, x->name) != NULL;
+	if (x->kind == E_DOLLAR || x->kind == E_INDEX || x->kind == E_SUM) return 0;
+	if (!reads_constants(x->a) || !reads_constants(x->b)) return 0;
+	for (int i = 0; x->kind != E_LIT && i < x->nargs; i++)
+		if (!reads_constants(x->args[i])) return 0;
+	return 1;
+}
+
+/* Does x raise to a power that reads the name n (a dimension that depends on the member)? */
+static int power_reads(const Expr *x, const char *n)
+{
+	if (!x) return 0;
+	if (x->kind == E_BIN && x->op == '^' && expr_reads_name(x->b, n)) return 1;
+	if (power_reads(x->a, n) || power_reads(x->b, n)) return 1;
+	for (int i = 0; x->kind != E_LIT && i < x->nargs; i++)
+		if (power_reads(x->args[i], n)) return 1;
+	return 0;
+}
+
+/* Having applied s to lean member o, the first: does every other lean member take the same, so that
+   nothing is left to do for them? Its values read only constants, and no member has a value of its own
+   of a property it sets (that would be an error to report). */
+static int same_for_all(Stmt *s, Object *o)
+{
+	if (s->kind == S_PROP) {
+		Var *p = prop_of_obj(o, s->prop);
+		return p && !var_more_of(p)->own && reads_constants(s->value) && (!s->atol || reads_constants(s->atol));
+	}
+	Stmt *k = map_get(&sema.kinds, s->prop);
+	for (Stmt *p = k ? k->body : NULL; p; p = p->next) {
+		Var *v = prop_of_obj(o, p->prop);
+		if (!v || var_more_of(v)->own || !reads_constants(p->value) || (p->atol && !reads_constants(p->atol))) return 0;
+	}
+	return k != NULL;
+}
+
+/* Applies s to every member of A, ivar (if not NULL) naming the member's index; as names every member
+   in -D's messages (sema.fold_as). One report, not one per member. The lean members (Object.lean) after
+   the first need nothing if they all take the same; and a value's dimension, which the first's
+   folding found, is theirs too, unless a power reads the index. */
+static void every_member(Stmt *s, ObjArray *A, const char *ivar, const char *as)
+{
+	sema.arr_stmt = s;
+	sema.arr_set = A;
+	sema.fold_as = as;
+	int first = 1, alike = 0, dims = 0;
+	for (long k = A->lo; k <= A->hi; k++) {
+		Object *o = array_member(A, k);
+		if (o->lean && alike) continue;
+		int before = diag_errors;
+		sema.ivar = ivar;
+		sema.idx = k;
+		sema.dims_off = o->lean && dims;
+		apply(s, o, 1);
+		sema.dims_off = 0;
+		sema.ivar = NULL;
+		if (diag_errors > before) break;
+		if (o->lean && first && !sema_dropping(o->index)) {
+			first = 0;
+			alike = same_for_all(s, o);
+			dims = s->kind == S_PROP && !(ivar && power_reads(s->value, ivar)) && sema.dims_set;
+		}
+	}
+	sema.arr_stmt = NULL;
+	sema.arr_set = NULL;
+	sema.fold_as = NULL;
+	sema.dims_set = 0;
+}
+
 static void from_file(Stmt *s);
 
 void array_stmt(Stmt *s)
@@ -92,11 +192,7 @@ void array_stmt(Stmt *s)
 			return;
 		}
 		if (!(A = declare(s->name, s->name_loc, s->lo, s->hi))) return;
-		for (long k = A->lo; k <= A->hi; k++) {
-			int before = diag_errors;
-			apply(s, array_member(A, k), 1);
-			if (diag_errors > before) return; /* one report, not one per member */
-		}
+		every_member(s, A, NULL, xprintf("%s[%ld..%ld]", A->name, A->lo, A->hi));
 		return;
 	case ARR_EACH:
 		if (!(A = declared(s)) || !check_name(s->ivar, s->name_loc, "an index")) return;
@@ -104,14 +200,7 @@ void array_stmt(Stmt *s)
 			error_at(s->prop_loc, "unknown kind '%s'", s->prop);
 			return;
 		}
-		for (long k = A->lo; k <= A->hi; k++) {
-			int before = diag_errors;
-			sema.ivar = s->ivar;
-			sema.idx = k;
-			apply(s, array_member(A, k), 1);
-			sema.ivar = NULL;
-			if (diag_errors > before) return;
-		}
+		every_member(s, A, s->ivar, xprintf("%s[%s]", A->name, s->ivar));
 		return;
 	case ARR_ONE: {
 		if (!(A = declared(s))) return;
@@ -438,7 +527,9 @@ static void read_file(Stmt *s);
 static void from_file(Stmt *s)
 {
 	int before = diag_errors;
+	sema.arr_stmt = s;
 	read_file(s);
+	sema.arr_stmt = NULL;
 	if (diag_errors > before) map_put(&sema.arrays_failed, s->name, s);
 }
 

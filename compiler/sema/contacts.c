@@ -146,10 +146,18 @@ static Contact *new_contact(Stmt *s, int every)
 	return r;
 }
 
-/* A radius of 0 decided at compile time that two points never touch: -D cannot change it. */
+/* A radius of 0 decided at compile time that two points never touch: -D cannot change it. (A radius lean
+   members share: if every member's is 0.) */
 static void contact_radius_fixed(Var *r)
 {
-	if (r && !r->isvec && r->init[0] == 0 && !r->fix) r->fix = FIX_CONTACT;
+	if (!r || r->isvec || r->init[0] != 0 || r->fix) return;
+	const double *vals = var_more_of(r)->vals;
+	if (vals) {
+		const ObjArray *A = r->obj->lean;
+		for (long k = 0; A && k <= A->hi - A->lo; k++)
+			if (vals[k] != 0) return;
+	}
+	r->fix = FIX_CONTACT;
 }
 
 /* Rule s with `for`: the pair (bind[0], bind[1]), unless it is two points (they never touch) or
@@ -175,32 +183,53 @@ typedef struct Body {
 	int geo[2];       /* has the geometry (an anchor has none as $0) */
 	int bad[2];       /* lacks a field the contact routine reads, or is not integrated: an error */
 	int kind;         /* as $1: enum csf_cbody_kind (nonzero: immovable, meets every $0 of another object) */
+	int own;          /* f is its own (malloc'd), not the one the lean members of its array share */
 	double r[2];      /* radius */
-	Var *f[2][CSF_CF_N];
+	Var *(*f)[CSF_CF_N]; /* [2]: as $0 and as $1 */
 } Body;
 
 /* What contact rule s needs of every object, in an array indexed like M->objects (malloc'd: the
-   caller frees it; 200 bytes an object, for each contact rule, are not kept for a million members). */
+   caller frees it with free_bodies). The lean members of an array (Object.lean) share their array's
+   properties: their array is looked at once, and each takes its own radius. */
 static Body *contact_bodies(Stmt *s)
 {
-	Body *B = xcalloc((size_t)sema.M->objects.n + 1, sizeof *B);
-	for (int i = 0; i < sema.M->objects.n; i++) {
+	int n = sema.M->objects.n;
+	Body *B = xcalloc((size_t)n + 1, sizeof *B), *seen = NULL; /* seen: the last lean member's */
+	for (int i = 0; i < n; i++) {
+		Object *o = sema.M->objects.v[i];
+		if (o->dropped) continue;
+		if (o->lean && seen && ((Object *)sema.M->objects.v[seen - B])->lean == o->lean) {
+			B[i] = *seen;
+			B[i].own = 0;
+			for (int k = 0; k < 2; k++)
+				if (B[i].geo[k]) B[i].r[k] = member_init(B[i].f[k][CSF_CF_R], o)[0];
+			continue;
+		}
+		B[i].f = xcalloc(2, sizeof *B[i].f);
+		B[i].own = 1;
+		if (o->lean) seen = &B[i];
 		for (int k = 0; k < 2; k++) {
 			Var *geo[2];
-			Object *o = sema.M->objects.v[i];
-			if (o->dropped || !contact_geo(s, o, k, geo) || (!k && is_anchor(o, geo))) continue;
+			if (!contact_geo(s, o, k, geo) || (!k && is_anchor(o, geo))) continue;
 			CPair c = { 0 };
 			c.a = c.b = o;
 			c.kind = k ? body_kind(o, geo) : CSF_CB_POINT;
 			B[i].geo[k] = 1;
 			B[i].bad[k] = !contact_body(&c, k, geo, s, 0) || !contact_integrated(&c, k);
 			if (k) B[i].kind = c.kind;
-			B[i].r[k] = geo[1]->init[0];
+			B[i].r[k] = member_init(geo[1], o)[0];
 			if (B[i].kind != CSF_CB_PLANE || !k) contact_radius_fixed(geo[1]);
 			memcpy(B[i].f[k], c.f[k], sizeof B[i].f[k]);
 		}
 	}
 	return B;
+}
+
+static void free_bodies(Body *B)
+{
+	for (int i = 0; i < sema.M->objects.n; i++)
+		if (B[i].own) free(B[i].f);
+	free(B);
 }
 
 /* The first binding (*ea, *eb) of n bodies B that is an error, in binding order: $0 in order,
@@ -247,7 +276,7 @@ void contact_pairs(Stmt *s)
 	if (ea < n) {
 		CPair c;
 		contact_binding(s, sema.M->objects.v[ea], sema.M->objects.v[eb], &c);
-		free(B);
+		free_bodies(B);
 		return;
 	}
 	/* the bodies it applies to (a bad one here has no binding) */
@@ -266,7 +295,7 @@ void contact_pairs(Stmt *s)
 		if (B[i].geo[0] && B[i].r[0] > maxr0) maxr0 = B[i].r[0];
 	}
 	if (!touch) {
-		free(B);
+		free_bodies(B);
 		return;
 	}
 	Contact *r = new_contact(s, 1);
@@ -277,7 +306,7 @@ void contact_pairs(Stmt *s)
 		r->nanchors += B[i].geo[1] && B[i].kind == CSF_CB_ANCHOR;
 	}
 	vec_push(&sema.M->contacts, r);
-	free(B);
+	free_bodies(B);
 }
 
 /* Every mass point of a contact rule must have its a determined (by Newton's second law). */

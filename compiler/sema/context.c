@@ -44,7 +44,7 @@ static Var *find_temp(const char *name, Object **bind, int nbind)
 	return v;
 }
 
-static RExpr *var_ref(Ctx *C, Var *v, Loc l, int place)
+static RExpr *var_ref(Ctx *C, Var *v, Loc l, int place, Object *o)
 {
 	if (C->init) {
 		if (v->kind == V_TIME) {
@@ -52,14 +52,18 @@ static RExpr *var_ref(Ctx *C, Var *v, Loc l, int place)
 			C->failed = 1;
 			return rconst(0, l);
 		}
-		if (C->fold && !v->fix) {
+		if (C->fold && o && o->lean && o != C->self) /* another member's: it gets its own properties */
+			own_later(o, v->name, C->fold, C->fold_obj, C->fold_name, C->fold_line);
+		else if (C->fold && !v->fix) {
 			v->fix = C->fold;
 			v->fix_obj = C->fold_obj;
 			v->fix_name = C->fold_name;
 			v->fix_line = C->fold_line;
 		}
 		if (!C->first_read) C->first_read = v;
-		return rvarconst(v, l);
+		RExpr *e = rvarconst(v, l);
+		memcpy(e->c, member_init(v, o), (v->isvec ? 3 : 1) * sizeof *e->c); /* o's own, if it shares v */
+		return e;
 	}
 	RExpr *e = rnew(R_VAR, l);
 	e->var = v;
@@ -83,7 +87,7 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 	/* (explicit_obj 3: a member in a sum, read as itself: its own slot of its shape's arrays) */
 	if (sema.shaped && o && !C->init && o->sidx && explicit_obj != 3) o = o->shape->members[0];
 	if (!explicit_obj) {
-		if (strcmp(name, "t") == 0) return var_ref(C, sema.M->time, l, -1);
+		if (strcmp(name, "t") == 0) return var_ref(C, sema.M->time, l, -1, NULL);
 		if (strcmp(name, "RF") == 0) {
 			if (C->init || !o) {
 				error_at(l, "RF is only defined in rules");
@@ -98,11 +102,11 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 			return e;
 		}
 		Var *g = map_get(&sema.globals_by_name, name);
-		if (g) return var_ref(C, g, l, -1);
+		if (g) return var_ref(C, g, l, -1, NULL);
 	}
 	if (o) {
 		Var *p = prop_of_obj(o, name);
-		if (p) return var_ref(C, p, l, place);
+		if (p) return var_ref(C, p, l, place, o);
 	}
 	if (C->init) {
 		if (explicit_obj) error_at(l, "object '%s' has no property '%s' (yet)", o->name, name);
@@ -119,7 +123,7 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 		if (explicit_obj) {
 			Var *t = map_get(&sema.temps, temp_key(name, &o, 1));
 			if (t && explicit_obj == 2) unshape("a rule among neighbours reads a temporary of a member");
-			if (t) return var_ref(C, t, l, -1);
+			if (t) return var_ref(C, t, l, -1, NULL);
 			error_at(l, "object '%s' has no property '%s'", o->name, name);
 		}
 		C->failed = 2; /* not applicable to this binding */
@@ -153,7 +157,7 @@ static RExpr *build_name(Ctx *C, Expr *x, const char *name, Object *o, int expli
 		t->order = sema.def_counter++;
 		vec_push(C->pending, t);
 	}
-	return var_ref(C, t, l, place);
+	return var_ref(C, t, l, place, NULL);
 }
 
 static void type_error(Ctx *C, Loc l, const char *msg)

@@ -70,7 +70,7 @@ RExpr *rop(int op, int isvec, Loc l, RExpr *a, RExpr *b, RExpr *c)
 		RExpr *k = rnew(R_CONST, l);
 		memcpy(k->c, out, sizeof out);
 		k->isvec = isvec;
-		dims_fold(op, e->a, e->n, k, l);
+		if (!sema.dims_off) dims_fold(op, e->a, e->n, k, l);
 		return k;
 	}
 	return e;

@@ -23,6 +23,15 @@ int check_name(const char *n, Loc l, const char *what)
 	return 1;
 }
 
+/* How -D's messages name object o: a member of the array a statement gives every member a value, while it
+   does, as any member ("star[i]"). */
+static const char *obj_label(const Object *o)
+{
+	const ObjArray *A = sema.arr_set;
+	if (!o) return NULL;
+	return A && o->index >= A->first && o->index - A->first <= A->hi - A->lo ? sema.fold_as : o->name;
+}
+
 static Var *new_global(const char *name, int isvec, const double *v, Loc l)
 {
 	Var *g = xalloc(sizeof *g);
@@ -79,7 +88,7 @@ RExpr *const_value(Expr *x, Object *obj, const char *name, int fold, int line, i
 	C.init = 1;
 	C.self = obj;
 	C.fold = fold;
-	C.fold_obj = obj ? obj->name : NULL;
+	C.fold_obj = obj_label(obj);
 	C.fold_name = name;
 	C.fold_line = line;
 	C.ivar = sema.ivar;
@@ -96,6 +105,7 @@ RExpr *const_value(Expr *x, Object *obj, const char *name, int fold, int line, i
 
 Var *prop_of_obj(const Object *o, const char *name)
 {
+	if (o->lean) o = &o->lean->proto;
 	if (o->props.n > PROPS_SCANNED) return map_get(&o->props_by_name, name);
 	for (int i = 0; i < o->props.n; i++) {
 		Var *v = o->props.v[i];
@@ -118,12 +128,18 @@ Object *get_object(const char *name, Loc l)
 		error_at(l, "'%s' is a global and cannot name an object", name);
 		return NULL;
 	}
-	o = xalloc(sizeof *o);
+	o = new_object(name, l);
+	map_put(&sema.objects_by_name, o->name, o);
+	return o;
+}
+
+Object *new_object(const char *name, Loc l)
+{
+	Object *o = xalloc(sizeof *o);
 	o->name = (char *)name;
 	o->loc = l;
 	o->index = sema.M->objects.n;
 	vec_push(&sema.M->objects, o);
-	map_put(&sema.objects_by_name, o->name, o);
 	return o;
 }
 
@@ -135,7 +151,7 @@ static void fix_derived(Var *v, Var *read, int line)
 		return;
 	}
 	v->fix = FIX_DERIVED;
-	v->fix_obj = read->obj ? read->obj->name : NULL;
+	v->fix_obj = obj_label(read->obj);
 	v->fix_name = read->name;
 	v->fix_line = line;
 }
@@ -199,6 +215,14 @@ void set_prop(Object *o, Stmt *s, int from_kind)
 		ArenaMark mark = arena_mark();
 		rv = *const_value(s->value, o, s->prop, FIX_FOLDED, s->prop_loc.line, &ok, &read);
 		arena_release(mark);
+		if (sema.dims_off) { /* the dimension another member's value had (arrays.c) */
+			rv.dimk = sema.dimk;
+			memcpy(rv.dim, sema.dim, sizeof rv.dim);
+		} else if (sema.arr_stmt) {
+			sema.dims_set = 1;
+			sema.dimk = rv.dimk;
+			memcpy(sema.dim, rv.dim, sizeof rv.dim);
+		}
 		if (ok && !read && !(sema.ivar && expr_reads_name(s->value, sema.ivar))) *m = (FoldMemo){ s, rv };
 	}
 	if (!ok) return;
@@ -209,6 +233,176 @@ void set_prop(Object *o, Stmt *s, int from_kind)
 	put_prop(o, s->prop, s->prop_loc, s->value->loc, &rv, rv.isvec, from_kind, read, s);
 }
 
+/* Appends property p to the properties of o (an object, or an array's proto). */
+static void add_prop(Object *o, Var *p)
+{
+	vec_push(&o->props, p);
+	if (o->props.n == PROPS_SCANNED + 1)
+		for (int i = 0; i < o->props.n; i++) map_put(&o->props_by_name, ((Var *)o->props.v[i])->name, o->props.v[i]);
+	else if (o->props.n > PROPS_SCANNED) map_put(&o->props_by_name, p->name, p);
+}
+
+/* A new property name of object o, at l, of value r, in the properties of to (o's, or its array's that
+   its members share, o->lean->proto); norders: how many definition orders it takes (Var.order, one per
+   member that shares it). */
+static Var *new_prop(Object *o, Object *to, const char *name, Loc l, RExpr *r, int isvec, int from_kind, Var *read, Stmt *s,
+                     int norders)
+{
+	Var *p = xalloc(sizeof *p);
+	p->kind = V_PROP;
+	p->name = (char *)name;
+	p->obj = o->lean ? o->lean->owner : o;
+	p->isvec = isvec;
+	memcpy(p->init, r->c, sizeof p->init);
+	p->loc = l;
+	p->slot = -1;
+	p->order = sema.def_counter;
+	sema.def_counter += norders;
+	p->from_kind = from_kind;
+	fix_derived(p, read, l.line);
+	if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
+	if (s) set_atol(o, p, s);
+	add_prop(to, p);
+	/* (by the name's pointer, interned: a million objects' dozen names are a dozen strings) */
+	const char **seen = &sema.prop_seen[((uintptr_t)p->name / 16) % PROP_SEEN];
+	if (*seen != p->name) map_put(&sema.prop_names, p->name, p);
+	*seen = p->name;
+	return p;
+}
+
+/* Property p of object o takes the value r anew, defined at l (from_kind: as put_prop). */
+static void override_prop(Object *o, Var *p, Loc l, RExpr *r, int from_kind, Var *read, Stmt *s)
+{
+	memcpy(p->init, r->c, sizeof p->init);
+	p->loc = l;
+	p->from_kind = from_kind;
+	fix_derived(p, read, l.line);
+	if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
+	if (s) set_atol(o, p, s);
+}
+
+/* The error of a property defined twice: at l, the first time at first (own_first: the first was
+ * one member's own value, the second every member's). */
+static void defined_twice(const char *name, const Object *o, Loc l, Loc first, int own_first)
+{
+	error_at(l, "property '%s' of object '%s' is already defined", name, o->name);
+	note_at(first, own_first ? "defined here: one member's own value comes after the value every member takes"
+	                         : "defined here");
+}
+
+/* Member o's index in its array (Object.lean). */
+static size_t member_k(const Object *o) { return (size_t)(o->index - o->lean->first); }
+
+/* Lean member o's value of the property p its array's members share: c. */
+static void set_member_value(Var *p, Object *o, const double *c)
+{
+	size_t w = p->isvec ? 3 : 1, k = member_k(o);
+	VarMore *m = var_more(p);
+	if (!m->vals) {
+		if (!memcmp(c, p->init, w * sizeof *c)) return;
+		size_t n = (size_t)(o->lean->hi - o->lean->lo + 1);
+		m->vals = xalloc(n * w * sizeof *m->vals);
+		for (size_t q = 0; q < n; q++) memcpy(m->vals + q * w, p->init, w * sizeof *c);
+	}
+	memcpy(m->vals + k * w, c, w * sizeof *c);
+}
+
+void array_own(Object *o)
+{
+	ObjArray *A = o->lean;
+	if (!A) return;
+	const Vec *P = &A->proto.props;
+	size_t k = member_k(o);
+	for (int i = 0; i < P->n; i++) {
+		Var *p = P->v[i], *q = xalloc(sizeof *q);
+		*q = *p;
+		q->obj = o;
+		q->order = p->order + (int)k;
+		q->more = NULL;
+		memcpy(q->init, member_init(p, o), (p->isvec ? 3 : 1) * sizeof *q->init);
+		if (var_more_of(p)->atol) var_more(q)->atol = var_more_of(p)->atol;
+		if (var_more_of(p)->own && var_more_of(p)->own[k].line) q->from_kind = 0, q->loc = var_more_of(p)->own[k];
+		add_prop(o, q);
+	}
+	o->lean = NULL;
+	if (A->owner != o) return;
+	/* the shared properties belong to the next lean member, if any is left */
+	A->owner = NULL;
+	long n = A->hi - A->lo + 1;
+	for (long j = 1; j < n && !A->owner; j++) {
+		Object *m = sema.M->objects.v[A->first + (int)(((long)k + j) % n)];
+		if (m->lean) A->owner = m;
+	}
+	for (int i = 0; A->owner && i < P->n; i++) ((Var *)P->v[i])->obj = A->owner;
+}
+
+/* The reads own_later records (malloc'd: they outlive the arena marks they are made in). */
+typedef struct OwnRead { Object *o; const char *prop, *fold_obj, *fold_name; int fold, line; } OwnRead;
+static OwnRead *own_reads;
+static size_t nown, capown;
+
+void own_later(Object *o, const char *prop, int fold, const char *fold_obj, const char *fold_name, int line)
+{
+	if (nown == capown) {
+		capown = capown ? 2 * capown : 16;
+		own_reads = xrealloc(own_reads, capown * sizeof *own_reads);
+	}
+	own_reads[nown++] = (OwnRead){ o, prop, fold_obj, fold_name, fold, line };
+}
+
+void own_pending(void)
+{
+	for (size_t i = 0; i < nown; i++) {
+		OwnRead *r = &own_reads[i];
+		array_own(r->o);
+		Var *v = prop_of_obj(r->o, r->prop);
+		if (v && !v->fix) v->fix = r->fold, v->fix_obj = r->fold_obj, v->fix_name = r->fold_name, v->fix_line = r->line;
+	}
+	nown = 0;
+}
+
+/* put_prop for lean member o: 1 if done (or reported), 0 if o needs properties of its own (made, then
+   put_prop goes on as for any object). A statement that gives every member a value (sema.arr_stmt)
+   sets the shared property's value anew at the first member it reaches, each member's after. */
+static int put_lean(Object *o, const char *name, Loc l, Loc at, RExpr *r, int isvec, int from_kind, Var *read, Stmt *s)
+{
+	Var *p = prop_of_obj(o, name);
+	const void *by = sema.arr_stmt;
+	size_t k = member_k(o);
+	if (!p) {
+		if (!by) return 0; /* a property of one member alone */
+		/* (each member's is defined after the member before's: orders apart, array_own) */
+		p = new_prop(o, &o->lean->proto, name, l, r, isvec, from_kind, read, s, (int)(o->lean->hi - o->lean->lo + 1));
+		var_more(p)->by = by;
+		return 1;
+	}
+	const VarMore *m = var_more_of(p);
+	int own = m->own && m->own[k].line, fk = own ? 0 : p->from_kind;
+	if (by && m->by == by && !own) { /* the statement that set it at another member */
+		if (override_ok(at, "property", p, r)) set_member_value(p, o, r->c);
+		return 1;
+	}
+	if (!fk || (fk == 2 && from_kind == 2)) {
+		defined_twice(name, o, l, own ? m->own[k] : p->loc, from_kind == 2 && !fk);
+		return 1;
+	}
+	if (!override_ok(at, "property", p, r)) return 1;
+	if (by) { /* every member's value anew */
+		VarMore *w = var_more(p);
+		w->vals = NULL;
+		w->by = by;
+		override_prop(o, p, l, r, from_kind, read, s);
+		return 1;
+	}
+	/* this member's own value: its own properties if it differs from the others' in more than the value */
+	if (read || (s && s->atol) || (r->dimk == DK_KNOWN && p->dimk != DK_KNOWN)) return 0;
+	set_member_value(p, o, r->c);
+	VarMore *w = var_more(p);
+	if (!w->own) w->own = xalloc((size_t)(o->lean->hi - o->lean->lo + 1) * sizeof *w->own);
+	w->own[k] = l;
+	return 1;
+}
+
 void put_prop(Object *o, const char *name, Loc l, Loc at, RExpr *r, int isvec, int from_kind, Var *read, Stmt *s)
 {
 	if (!check_name(name, l, "a property")) return;
@@ -216,47 +410,22 @@ void put_prop(Object *o, const char *name, Loc l, Loc at, RExpr *r, int isvec, i
 		error_at(l, "'%s' is a global constant; a property cannot have the same name", name);
 		return;
 	}
+	if (o->lean) {
+		if (put_lean(o, name, l, at, r, isvec, from_kind, read, s)) return;
+		array_own(o);
+	}
 	Var *p = prop_of_obj(o, name);
 	if (p) {
 		/* the value every member of an array takes (object NAME[i], from_kind 2) gives way to a
 		   member's own that follows it (object NAME[K]), as a kind's default does */
 		if (!p->from_kind || (p->from_kind == 2 && from_kind == 2)) {
-			error_at(l, "property '%s' of object '%s' is already defined", name, o->name);
-			note_at(p->loc, from_kind == 2 && !p->from_kind ? "defined here: one member's own value comes after "
-			                                                   "the value every member takes"
-			                                                 : "defined here");
+			defined_twice(name, o, l, p->loc, from_kind == 2 && !p->from_kind);
 			return;
 		}
-		if (!override_ok(at, "property", p, r)) return;
-		memcpy(p->init, r->c, sizeof p->init);
-		p->loc = l;
-		p->from_kind = from_kind;
-		fix_derived(p, read, l.line);
-		if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
-		if (s) set_atol(o, p, s);
+		if (override_ok(at, "property", p, r)) override_prop(o, p, l, r, from_kind, read, s);
 		return;
 	}
-	p = xalloc(sizeof *p);
-	p->kind = V_PROP;
-	p->name = (char *)name;
-	p->obj = o;
-	p->isvec = isvec;
-	memcpy(p->init, r->c, sizeof p->init);
-	p->loc = l;
-	p->slot = -1;
-	p->order = sema.def_counter++;
-	p->from_kind = from_kind;
-	fix_derived(p, read, l.line);
-	if (r->dimk == DK_KNOWN) set_dim(p, DK_KNOWN, r->dim);
-	if (s) set_atol(o, p, s);
-	vec_push(&o->props, p);
-	if (o->props.n == PROPS_SCANNED + 1)
-		for (int i = 0; i < o->props.n; i++) map_put(&o->props_by_name, ((Var *)o->props.v[i])->name, o->props.v[i]);
-	else if (o->props.n > PROPS_SCANNED) map_put(&o->props_by_name, p->name, p);
-	/* (by the name's pointer, interned: a million objects' dozen names are a dozen strings) */
-	const char **seen = &sema.prop_seen[((uintptr_t)p->name / 16) % PROP_SEEN];
-	if (*seen != p->name) map_put(&sema.prop_names, p->name, p);
-	*seen = p->name;
+	new_prop(o, o, name, l, r, isvec, from_kind, read, s, 1);
 }
 
 void apply_kind(Object *o, Stmt *s)
@@ -268,11 +437,14 @@ void apply_kind(Object *o, Stmt *s)
 	}
 	for (Stmt *p = k->body; p; p = p->next) {
 		Var *v = prop_of_obj(o, p->prop);
-		if (!v) {
+		/* (a property of lean members that this statement made at another member: this one's value) */
+		if (!v || (o->lean && sema.arr_stmt && var_more_of(v)->by == sema.arr_stmt)) {
 			set_prop(o, p, 1);
 			continue;
 		}
 		if (v->from_kind || v->dimk != DK_KNOWN) continue;
+		if (o->lean && var_more_of(v)->checked == s) continue; /* checked at another member */
+		if (o->lean) var_more(v)->checked = s;
 		/* set before the kind (a data file's column, say): of the kind's type and dimension */
 		int ok;
 		ArenaMark mark = arena_mark();
@@ -293,7 +465,8 @@ void build_objects(Stmt *stmts)
 	/* the object of the statement before: a scene written out object by object names one object on
 	   several lines in a row (the same name, interned by the scanner), found once */
 	Object *last = NULL;
-	for (Stmt *s = stmts; s; s = s->next) {
+	nown = 0; /* (what another resolution left: its objects are gone) */
+	for (Stmt *s = stmts; s; s = s->next, own_pending()) {
 		switch (s->kind) {
 		case S_GLOBAL: {
 			if (!check_name(s->name, s->name_loc, "a global")) break;

@@ -120,8 +120,9 @@ static void check_atols(Model *M)
 {
 	for (int i = 0; i < M->objects.n; i++) {
 		Object *o = M->objects.v[i];
-		for (int j = 0; j < o->props.n; j++) {
-			Var *v = o->props.v[j];
+		const Vec *P = obj_props(o);
+		for (int j = 0; j < P->n && !obj_shares(o); j++) {
+			Var *v = P->v[j];
 			RExpr *a = var_more_of(v)->atol;
 			if (!a) continue;
 			if (!v->state)

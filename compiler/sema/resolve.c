@@ -50,7 +50,7 @@ static const char *near_name(Inst *I, Var *u)
 {
 	Vec c = { 0 };
 	for (int b = 0; b < I->nbind; b++)
-		for (int j = 0; j < I->bind[b]->props.n; j++) vec_push(&c, ((Var *)I->bind[b]->props.v[j])->name);
+		for (int j = 0; j < obj_props(I->bind[b])->n; j++) vec_push(&c, ((Var *)obj_props(I->bind[b])->v[j])->name);
 	for (int j = 0; j < sema.M->globals.n; j++) vec_push(&c, ((Var *)sema.M->globals.v[j])->name);
 	const char *s = csf_suggest_name(u->name, (const char *const *)c.v, c.n);
 	for (int j = 0; !s && j < sema.M->temps.n; j++) {
@@ -366,7 +366,7 @@ void inst_deriv(Stmt *s, Object **bind, int nbind)
 	}
 	v->state = 1;
 	v->deriv = I;
-	for (int q = 1; sema.shaped && q < bind[0]->shape->n; q++) { /* every member's is state */
+	for (int q = 1; sema.shaped && q < bind[0]->shape->n; q++) { /* every member's is state (lean ones' again) */
 		Var *w = prop_of_obj(bind[0]->shape->members[q], v->name);
 		w->state = 1;
 		w->deriv = I;

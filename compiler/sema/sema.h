@@ -37,6 +37,13 @@ typedef struct VarMore {
 	Loc dim_from;    /* props and globals given a bare value: the equation that gave it its dimension
 	                    (line 0: none did) */
 	RExpr *atol;     /* props: the absolute tolerance `atol A` set on its line (a constant), or NULL */
+	/* a property the members of an array share (ObjArray): member k's value at vals + k (a vector's at
+	   vals + 3 k; NULL: every member's is init); own[k]: where member k was given a value of its own (line
+	   0, or own NULL: it was not); by: the statement that last gave every member a value, and checked:
+	   the last kind statement that checked it (objects.c) */
+	double *vals;
+	Loc *own;
+	const void *by, *checked;
 } VarMore;
 
 /* A variable: 144 bytes (a million objects have a dozen each), its small fields chars, what few
@@ -88,12 +95,49 @@ struct Object {
 	Loc loc;
 	int index;
 	Vec props;       /* of Var* (V_PROP), in definition order */
-	Map props_by_name; /* the same, by name, once there are more than PROPS_SCANNED (an array's
-	                      million members, of a dozen properties each, have none: prop_of_obj) */
+	Map props_by_name; /* the same, by name, once there are more than PROPS_SCANNED */
 	Shape *shape;
 	int sidx;        /* its index among the shape's members */
 	int dropped;     /* left out: nothing watched depends on it (mid/cone.c); no rule applies to it */
+	struct ObjArray *lean; /* a member of this array without properties of its own: it shares the array's
+	                          (ObjArray.proto), its values in theirs (VarMore.vals); NULL: its own */
 };
+
+/*
+ * An object array (DECISIONS §11): its members NAME[lo] .. NAME[hi] are the
+ * objects first .. first + hi - lo, in order (arrays.c). Resolved by shape,
+ * its members are lean: they have no variables of their own, but share
+ * proto's properties, whose values are arrays over the members (member k's
+ * in VarMore.vals). They are in one shape (with other objects of their
+ * signature, if any), proto's properties belong (Var.obj) to the first of
+ * them, and a member's slot of a property is the shape's array at its
+ * place (prop_slot). A member that a rule names, that is given a property
+ * the others lack, or that is summed over, gets properties of its own
+ * (objects.c, array_own).
+ */
+typedef struct ObjArray {
+	char *name;
+	Loc loc;
+	long lo, hi;
+	int first;
+	Object proto;     /* props, props_by_name: the properties the lean members share */
+	Object *owner;    /* the lean member they belong to (Var.obj): the first (not left out, shapes.c) */
+} ObjArray;
+
+/* The properties of object o: its own, or those it shares with the lean members of its array. */
+static inline const Vec *obj_props(const Object *o) { return o->lean ? &o->lean->proto.props : &o->props; }
+
+/* Does o share its properties with another member that stands for it (its shape's representative,
+ * whose properties they are)? Walks over every object's properties visit them once, at that member. */
+static inline int obj_shares(const Object *o) { return o->lean && o->lean->owner != o; }
+
+/* The initial value of property v of object o: o's own (vals) if v is shared by an array's members. */
+static inline const double *member_init(const Var *v, const Object *o)
+{
+	if (o && o->lean && v->more && v->more->vals)
+		return v->more->vals + (v->isvec ? 3 : 1) * (size_t)(o->index - o->lean->first);
+	return v->init;
+}
 
 typedef enum RKind { R_CONST, R_VAR, R_RF, R_OP, R_COMP } RKind;
 
@@ -212,7 +256,9 @@ typedef struct Constraint {
 	double dim[CSF_NDIM];
 } Constraint;
 
-typedef struct WatchCol { char *name; Var *var; int comp; int member; /* index in var's shape (temps) */ } WatchCol;
+/* A column: component comp of var, of its shape's member member (a temporary, or a property the members of
+ * an array share: Object.lean); otherwise of var's object. */
+typedef struct WatchCol { char *name; Var *var; int comp; int member; } WatchCol;
 
 typedef struct Model {
 	Vec objects;     /* of Object* */

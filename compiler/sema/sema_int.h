@@ -10,15 +10,6 @@
 #include "ast.h"
 #include "sema.h"
 
-/* An object array (DECISIONS §11): its members NAME[lo] .. NAME[hi] are the objects first ..
- * first + hi - lo, in order (arrays.c). */
-typedef struct ObjArray {
-	char *name;
-	Loc loc;
-	long lo, hi;
-	int first;
-} ObjArray;
-
 /* The size of Sema.prop_seen. */
 #define PROP_SEEN 64
 
@@ -38,6 +29,14 @@ typedef struct Sema {
 	Map waits_of;           /* "%p" of an unknown of theirs: a Vec of them */
 	Map group_vars;         /* "%p" of a variable they determined (its rule waited) */
 	Map arrays;             /* ObjArray* by name */
+	Vec array_list;         /* the same, in the order declared */
+	const void *arr_stmt;   /* the statement giving every member of an array a value, while it does (arrays.c) */
+	const struct ObjArray *arr_set; /* meanwhile, its array, */
+	const char *fold_as;    /* and how -D's messages name any member ("star[i]"): see Var.fix */
+	int dims_off;           /* folding a value whose dimension is known: rop leaves it out, */
+	int dims_set;           /* and set_prop gives the value this one (set by the last value it folded) */
+	int dimk;
+	double dim[CSF_NDIM];
 	Map arrays_failed;      /* the arrays whose data files are wrong (reported once) */
 	/* the index of the member being defined (`object star[i]: ...`) or bound (`for node[i], ...`):
 	   its name stands for it in expressions */
@@ -125,12 +124,24 @@ void set_prop(Object *o, Stmt *s, int from_kind);
 void put_prop(Object *o, const char *name, Loc l, Loc at, RExpr *r, int isvec, int from_kind, Var *read, Stmt *s);
 /* The object name, made if new (NULL after an error at l). */
 Object *get_object(const char *name, Loc l);
+/* A new object, the last (not in Sema.objects_by_name). */
+Object *new_object(const char *name, Loc l);
 /* Applies kind statement s (`object NAME: KIND`) to object o. */
 void apply_kind(Object *o, Stmt *s);
 
 /* ---- arrays.c: object arrays (DECISIONS §11) ---- */
 
+/* Gives lean member o (Object.lean) properties of its own, of its values (objects.c). */
+void array_own(Object *o);
+/* Lean member o's property prop is read by an initial value, folded (Var.fix) into fold_obj.fold_name on
+ * line: o gets properties of its own, and that one the fix, once the statement is done (own_pending);
+ * not at once: the read is inside an arena mark that set_prop releases. */
+void own_later(Object *o, const char *prop, int fold, const char *fold_obj, const char *fold_name, int line);
+void own_pending(void);
+
 ObjArray *array_of(const char *name);
+/* The object named name (a member of an array: NAME[K], which Sema.objects_by_name does not hold), or NULL. */
+Object *object_named(const char *name);
 /* Member k of array A, or NULL. */
 Object *array_member(const ObjArray *A, long k);
 /* An object statement naming members of an array (s->arr): declares them, reads them from a data file,

@@ -26,11 +26,14 @@ static void mark_members(const char *name, Expr *idx, Map *named)
 }
 
 /* Marks in named (a Map) the objects expression x names (NAME.PROP, NAME[K].PROP; not the members of a
-   sum, which reads each member's own slot of its shape's arrays). Returns 1. */
+   sum, which reads each member's own slot of its shape's arrays, but has properties of its own).
+   Returns 1. */
 static int mark_named(Expr *x, void *named)
 {
 	if (!x) return 1;
 	if (x->kind == E_INDEX) mark_members(x->name, x->a, named);
+	ObjArray *A = x->kind == E_SUM ? array_of(x->name) : NULL;
+	for (long k = 0; A && k <= A->hi - A->lo; k++) array_own(array_member(A, A->lo + k));
 	if (x->kind == E_FIELD && x->a->kind == E_NAME) {
 		Object *o = map_get(&sema.objects_by_name, x->a->name);
 		if (o) map_put(named, o->name, o);
@@ -45,9 +48,11 @@ static int mark_named(Expr *x, void *named)
  * dimensions (their bits), in the same order? */
 static int same_signature(const Object *a, const Object *b)
 {
-	if (a->props.n != b->props.n) return 0;
-	for (int j = 0; j < a->props.n; j++) {
-		const Var *v = a->props.v[j], *w = b->props.v[j];
+	const Vec *P = obj_props(a), *Q = obj_props(b);
+	if (P == Q) return 1; /* lean members of one array */
+	if (P->n != Q->n) return 0;
+	for (int j = 0; j < P->n; j++) {
+		const Var *v = P->v[j], *w = Q->v[j];
 		if ((v->name != w->name && strcmp(v->name, w->name)) || v->isvec != w->isvec || v->dimk != w->dimk ||
 		    memcmp(v->dim, w->dim, sizeof v->dim))
 			return 0;
@@ -74,11 +79,12 @@ static void group(Map *named)
 		if (by_sig_ok) {
 			prev = o;
 			/* each property: its name, then type, dimension kind and dimension as hex digits */
+			const Vec *P = obj_props(o);
 			size_t len = 0;
-			for (int j = 0; j < o->props.n; j++) len += strlen(((Var *)o->props.v[j])->name) + 1 + 2 * (2 + CSF_NDIM * 8);
+			for (int j = 0; j < P->n; j++) len += strlen(((Var *)P->v[j])->name) + 1 + 2 * (2 + CSF_NDIM * 8);
 			char *at = sig = xalloc(len + 1);
-			for (int j = 0; j < o->props.n; j++) {
-				Var *v = o->props.v[j];
+			for (int j = 0; j < P->n; j++) {
+				Var *v = P->v[j];
 				unsigned char bits[2 + CSF_NDIM * 8] = { (unsigned char)v->isvec, (unsigned char)v->dimk };
 				memcpy(bits + 2, v->dim, sizeof v->dim);
 				size_t n = strlen(v->name);
@@ -109,6 +115,26 @@ static void group(Map *named)
 		if (!o->shape->members) o->shape->members = xalloc((size_t)o->shape->n * sizeof(Object *));
 		o->shape->members[fill[o->shape->index]++] = o;
 	}
+	/* the properties lean members share belong to the first of them that is not left out (in their shape,
+	   the representative's stand for them, sema_canon) */
+	for (int i = 0; i < sema.array_list.n; i++) {
+		ObjArray *A = sema.array_list.v[i];
+		for (long k = 0; A->owner && k <= A->hi - A->lo; k++) {
+			Object *o = array_member(A, A->lo + k);
+			if (o->lean && !o->dropped) {
+				A->owner = o;
+				break;
+			}
+		}
+		for (int j = 0; A->owner && j < A->proto.props.n; j++) ((Var *)A->proto.props.v[j])->obj = A->owner;
+	}
+}
+
+/* The objects in named have properties of their own, not their array's. */
+static void own_named(Map *named)
+{
+	for (size_t i = 0; i < named->cap; i++)
+		if (named->keys[i]) array_own(named->vals[i]);
 }
 
 /*
@@ -140,13 +166,14 @@ void build_shapes(Stmt *start)
 	}
 	for (int i = 0; start && i < start->watch.n; i++) {
 		WatchItem *w = start->watch.v[i];
-		Object *o = w->obj ? map_get(&sema.objects_by_name, w->obj) : NULL;
+		Object *o = w->obj ? object_named(w->obj) : NULL;
 		if (o && !prop_of_obj(o, w->prop)) map_put(&named, o->name, o);
 	}
 	/* a loop over neighbours needs its array's members in one shape, in index order: where they are
 	   not (some named, left out, or of other properties), its rule is one instance per binding, and
 	   its members shapes of their own */
 	for (int again = 1; again;) {
+		own_named(&named);
 		group(&named);
 		again = 0;
 		for (int i = 0; i < sema.M->stmts.n; i++) {

@@ -25,7 +25,7 @@ static void add_col(Var *v, const char *label, int member)
 static Var *watch_var(Object *o, const char *name, int *member)
 {
 	Var *v = prop_of_obj(o, name);
-	*member = 0;
+	*member = o->lean ? o->sidx : 0; /* a property lean members share: o's place in it */
 	if (v) return v;
 	Object *r = sema.shaped ? o->shape->members[0] : o;
 	v = map_get(&sema.temps, temp_key(name, &r, 1));
@@ -59,13 +59,17 @@ void build_watch(Stmt *st)
 	if (!st || !st->has_watch) {
 		for (int i = 0; i < sema.M->objects.n; i++) {
 			Object *o = sema.M->objects.v[i];
-			for (int j = 0; j < o->props.n && !o->dropped; j++) add_col(o->props.v[j], var_label(o->props.v[j]), 0);
+			const Vec *P = obj_props(o);
+			for (int j = 0; j < P->n && !o->dropped; j++) {
+				Var *v = P->v[j];
+				add_col(v, o->lean ? xprintf("%s.%s", o->name, v->name) : var_label(v), o->lean ? o->sidx : 0);
+			}
 		}
 		return;
 	}
 	for (int i = 0; i < st->watch.n; i++) {
 		WatchItem *w = st->watch.v[i];
-		if (w->obj && !w->comp && !map_get(&sema.objects_by_name, w->obj) &&
+		if (w->obj && !w->comp && !object_named(w->obj) &&
 		    (map_get(&sema.prop_names, w->obj) || map_get(&sema.globals_by_name, w->obj))) {
 			/* PROP.c: that component of every object's PROP (or of a global) */
 			WatchItem c = *w;
@@ -98,7 +102,7 @@ void build_watch(Stmt *st)
 			continue;
 		}
 		if (w->obj) {
-			Object *o = map_get(&sema.objects_by_name, w->obj);
+			Object *o = object_named(w->obj);
 			if (!o && (map_get(&sema.prop_names, w->obj) || map_get(&sema.globals_by_name, w->obj))) {
 				error_at(w->loc, "'%s.%s': watch the whole variable ('watch %s' gives its x, y and z columns)", w->obj,
 				         w->prop, w->obj);

@@ -143,5 +143,100 @@ check test $? -eq 1
 check grep -q "own2.csf:4:14: error: property 'm' of object 'p\[1\]' is already defined" "$T/own2.err"
 check grep -q "one member's own value comes after the value every member takes" "$T/own2.err"
 
+# Members share their array's properties (csf(5), OBJECT ARRAYS): six balls b[i] of radius 0.02 + 0.005 i m
+# dropped from 0.3 + 0.1 i m onto a floor, restitution 0.5 (b[5] its own 0.9, b[4] its own mass), in
+# one shape with an object of their kind (ball, elastic) and a point dropped from b[2]'s place raised
+# 1 m (top: it reads b[2]'s value, which then is b[2]'s own). Each against the closed form of its
+# bounces (at rest once their times add up), to 1e-9 m; the same scene written object by object gives
+# the same rows; -D sets one member's restitution and refuses b[2].pos, folded into top.pos; watching
+# b[4] alone (the others left out) gives its columns of the whole run.
+cat >"$T/lean.csf" <<'EOS'
+using mechanics/mass_point
+object floor: plane
+object floor: point = (0, 0, 0) m
+object floor: normal = (0, 0, 1)
+object ball: mass_point
+object ball: pos = (-1, 0, 0.5) m
+object ball: radius = 0.05 m
+object b[0..5]: mass_point
+object b[i]: radius = (0.02 + 0.005 * i) m
+object b[i]: pos = (0.5 * i, 0, 0.3 + 0.1 * i) m
+object b[i]: cr = 0.5
+object b[4]: m = 3 kg
+object b[5]: cr = 0.9
+object top: mass_point
+object top: pos = b[2].pos + (0.2, 0, 1) m
+rule F: W = g.mul(m)
+using mechanics/rules
+inc t till 1 s by 0.05 s watch b.pos, ball.pos, top.pos
+EOS
+{
+	sed -n 1,7p "$T/lean.csf"
+	for i in 0 1 2 3 4 5; do
+		printf 'object b%d: mass_point\nobject b%d: radius = (0.02 + 0.005 * %d) m\n' $i $i $i
+		printf 'object b%d: pos = (0.5 * %d, 0, 0.3 + 0.1 * %d) m\nobject b%d: cr = %s\n' $i $i $i $i "$([ $i = 5 ] && echo 0.9 || echo 0.5)"
+		[ $i = 4 ] && printf 'object b4: m = 3 kg\n'
+	done
+	printf 'object top: mass_point\nobject top: pos = b2.pos + (0.2, 0, 1) m\nrule F: W = g.mul(m)\nusing mechanics/rules\n'
+	printf 'inc t till 1 s by 0.05 s watch b0.pos, b1.pos, b2.pos, b3.pos, b4.pos, b5.pos, ball.pos, top.pos\n'
+} >"$T/leanl.csf"
+bounces() { # bounces CSV [CR1]: every row against the closed forms (b[1]'s restitution CR1, 0.5 if not given)
+	awk -F, -v cr1="${2:-0.5}" 'function abs(x) { return x < 0 ? -x : x }
+		function zb(t, z0, r, c,   g, t1, v) { # a ball of radius r dropped from z0 at rest, restitution c
+			g = 9.80665; t1 = sqrt(2 * (z0 - r) / g)
+			if (t <= t1) return z0 - g * t * t / 2
+			v = c * g * t1; t -= t1
+			if (c < 1 && t >= 2 * v / (g * (1 - c))) return r
+			while (t > 2 * v / g) { t -= 2 * v / g; v *= c }
+			return r + v * t - g * t * t / 2 }
+		NR > 1 { n++
+			for (i = 0; i < 6; i++) {
+				z = zb($1, 0.3 + 0.1 * i, 0.02 + 0.005 * i, i == 5 ? 0.9 : i == 1 ? cr1 : 0.5)
+				if (abs($(4 + 3 * i) - z) > 1e-9 || $(2 + 3 * i) != 0.5 * i) { printf "FAIL: b[%d] at t=%s\n", i, $1; exit 1 } }
+			if (abs($22 - zb($1, 0.5, 0.05, 1)) > 1e-9 || abs($25 - zb($1, 1.5, 0, 1)) > 1e-9 || $23 != 1.2) exit 1 }
+		END { exit n != 21 }' "$1"
+}
+if comp lean "$T/lean.csf" && comp leanl "$T/leanl.csf"; then
+	"$CSFVM" "$T/lean.csfb" >"$T/lean.csv" && "$CSFVM" "$T/leanl.csfb" >"$T/leanl.csv"
+	check bounces "$T/lean.csv"
+	tail -n +2 "$T/lean.csv" >"$T/lean.rows" && tail -n +2 "$T/leanl.csv" >"$T/leanl.rows"
+	check cmp -s "$T/lean.rows" "$T/leanl.rows"
+	"$CSFVM" -D 'b[1].cr=1' "$T/lean.csfb" >"$T/lean1.csv"
+	check bounces "$T/lean1.csv" 1
+	"$CSFVM" -D 'b[2].pos=(1,0,1) m' "$T/lean.csfb" >/dev/null 2>"$T/lean2.err"
+	check test $? -eq 2
+	check grep -q "b\[2\].pos cannot be overridden: its value is folded at compile time into the value of top.pos" "$T/lean2.err"
+fi
+sed 's/ watch b.pos, ball.pos, top.pos/ watch b[4].pos/' "$T/lean.csf" >"$T/lean4.csf"
+if comp lean4 "$T/lean4.csf"; then
+	"$CSFVM" "$T/lean4.csfb" | tail -n +2 >"$T/lean4.rows"
+	check test "$(cut -d, -f1,14-16 "$T/lean.rows")" = "$(cat "$T/lean4.rows")"
+fi
+# a kind's value that reads a member's own (k = 4 m 1/s^2, from each member's mass in a data file):
+# x = x0 cos 2t, y = (v0 / 2) sin 2t for q[i] from (i + 1, 0, 0) m at (0, i, 0) m/s
+printf 'm [kg],pos.x [m],pos.y [m],pos.z [m]\n1,1,0,0\n2,2,0,0\n4,3,0,0\n' >"$T/q.csv"
+cat >"$T/kind.csf" <<'EOS'
+def probe:
+    m = 1 kg
+    k = m * 4 1/s^2
+    vector pos = (0, 0, 0) m
+    vector v = (0, 0, 0) m/s
+object q[]: from "q.csv"
+object q[i]: probe
+object q[i]: v = (0, i, 0) m/s
+rule: v' = pos.mul(-k / m)
+rule: pos' = v
+inc t till 1 s by 0.25 s watch q.pos, q.k
+EOS
+if comp kind "$T/kind.csf"; then
+	"$CSFVM" --tol 1e-12 "$T/kind.csfb" >"$T/kind.csv"
+	check awk -F, 'function abs(x) { return x < 0 ? -x : x }
+		NR > 1 { n++
+			for (i = 0; i < 3; i++)
+				if (abs($(2 + 3 * i) - (i + 1) * cos(2 * $1)) > 1e-9 || abs($(3 + 3 * i) - i / 2 * sin(2 * $1)) > 1e-9) exit 1
+			if ($11 != 4 || $12 != 8 || $13 != 16) exit 1 }
+		END { exit n != 5 }' "$T/kind.csv"
+fi
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
