@@ -17,6 +17,8 @@
 #     the bytecode's bytes, csfvm's start-up (--keep-all, till 0), and one evaluation of the
 #     right-hand side by the VM beside projectiles.c's loop over the same arrays (medians of
 #     ARR_REPS, and whether the derivatives are the same bits);
+#   the same array of 1e4 and 1e5 members with their momentum, a sum over them, watched: csfc's
+#     seconds and peak memory;
 #   a galaxy of GAL_N (1e5) stars read from a data file, softened gravity (gen_galaxy.sh):
 #     csfc --emit-c's seconds and peak memory, and one evaluation (N (N - 1) pairs) of the
 #     generated code beside galaxy.c's hand-written loop over the same arrays, each timed over
@@ -137,6 +139,20 @@ awk -v n="$ARR_N" -v cs="$acs" -v mem="$amem" -v ks="$aks" -v kmem="$akmem" -v b
 	       kmem / 1024, b, st, vm * 1e6, hc * 1e6, vm / hc, same ? "yes" : "no" }' >> "$TAB"
 rm -f "$TMP/pa0.csfb"
 say "scaling: $ARR_N projectiles in an array"
+# the same array with its momentum, a sum over its members, watched (the members summed are compiled
+# with properties of their own): csfc for 1e4 and 1e5 members
+{
+	echo
+	echo "| scene | N | csfc s | csfc peak MiB |"
+	echo "|---|---:|---:|---:|"
+} >> "$TAB"
+for n in 10000 100000; do
+	sh ../tests/arrays/gen_projectiles.sh "$n" array "P, p[0].pos" |
+		sed 's/^using mechanics\/mass_point$/&\nglobal P = (0, 0, 0) kg*m\/s/; s/^using mechanics\/rules$/&\nrule: P = sum(m*v for p)/' > "$TMP/ps.csf"
+	set -- $(run /dev/null "$CSFC" "$TMP/ps.csf" -o "$TMP/ps.csfb")
+	echo "| gen_projectiles.sh array, P = sum(m*v for p) | $n | $1 | $(($2 / 1024)) |" >> "$TAB"
+done
+say "scaling: sums over 1e4 and 1e5 members"
 # GAL_N stars from a file under softened gravity: csfc --emit-c, and one evaluation of the
 # generated code (included by galaxy.c, its loops cut to the first GAL_ROWS stars) beside
 # galaxy.c's loop, both scaled to every star

@@ -43,6 +43,16 @@ typedef struct Vec { void **v; int n, cap; } Vec;
 void vec_push(Vec *a, void *x);
 /* Does a hold x? */
 int vec_has(const Vec *a, const void *x);
+/* Appends to a each element of b that a does not hold yet, other than skip, once, in b's order: in time
+ * linear in both (the reads of a sum over a million members). */
+void vec_add_new(Vec *a, const Vec *b, const void *skip);
+
+/* A set of pointers (heap memory: pset_free). */
+typedef struct PSet { const void **slot; size_t cap, n; } PSet;
+/* Adds p; returns whether it was new. */
+int pset_add(PSet *s, const void *p);
+int pset_has(const PSet *s, const void *p);
+void pset_free(PSet *s);
 
 /* A string-keyed hash map (keys are not copied). */
 typedef struct Map { char **keys; void **vals; size_t cap, n; } Map;

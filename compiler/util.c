@@ -9,6 +9,7 @@
  * fatal error (a binary file) is the last.
  */
 #include <errno.h>
+#include <stdint.h>
 #include <sys/stat.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -156,6 +157,52 @@ int vec_has(const Vec *a, const void *x)
 	for (int i = 0; i < a->n; i++)
 		if (a->v[i] == x) return 1;
 	return 0;
+}
+
+static size_t pset_at(const PSet *s, const void *p)
+{
+	uint64_t h = (uint64_t)(uintptr_t)p * 0x9E3779B97F4A7C15ull;
+	size_t i = (size_t)(h >> 20) & (s->cap - 1);
+	while (s->slot[i] && s->slot[i] != p) i = (i + 1) & (s->cap - 1);
+	return i;
+}
+
+int pset_has(const PSet *s, const void *p) { return s->cap && s->slot[pset_at(s, p)] == p; }
+
+int pset_add(PSet *s, const void *p)
+{
+	if (2 * (s->n + 1) > s->cap) {
+		PSet g = { xcalloc(s->cap ? 2 * s->cap : 64, sizeof *g.slot), s->cap ? 2 * s->cap : 64, 0 };
+		for (size_t i = 0; i < s->cap; i++)
+			if (s->slot[i]) g.slot[pset_at(&g, s->slot[i])] = s->slot[i], g.n++;
+		free(s->slot);
+		*s = g;
+	}
+	size_t i = pset_at(s, p);
+	if (s->slot[i]) return 0;
+	s->slot[i] = p;
+	s->n++;
+	return 1;
+}
+
+void pset_free(PSet *s)
+{
+	free(s->slot);
+	*s = (PSet){ 0 };
+}
+
+void vec_add_new(Vec *a, const Vec *b, const void *skip)
+{
+	if (a->n + b->n <= 32) { /* small: scanning is quicker */
+		for (int i = 0; i < b->n; i++)
+			if (b->v[i] != skip && !vec_has(a, b->v[i])) vec_push(a, b->v[i]);
+		return;
+	}
+	PSet s = { 0 };
+	for (int i = 0; i < a->n; i++) pset_add(&s, a->v[i]);
+	for (int i = 0; i < b->n; i++)
+		if (b->v[i] != skip && pset_add(&s, b->v[i])) vec_push(a, b->v[i]);
+	pset_free(&s);
 }
 
 Expr *ast_expr(ExprKind k, Loc l)

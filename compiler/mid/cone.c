@@ -43,10 +43,12 @@ typedef struct Walk {
 static int nmembers(const Shape *S) { return S ? S->n : 1; }
 
 /* An instance is per member when it is the loop over its shape's members; a rule among neighbours
-   (Inst.iloop) is one, reading every member it binds. */
+   (Inst.iloop) is one, reading every member it binds, and so is a rule that applies once (Stmt.once: a
+   sum over a million members, bound to the first object, read a million times by its million members
+   took N^2 steps). */
 static int inst_n(const Inst *I)
 {
-	return !I->iloop && I->nbind > 0 && I->bind[0]->shape ? nmembers(I->bind[0]->shape) : 1;
+	return !I->iloop && !I->st->once && I->nbind > 0 && I->bind[0]->shape ? nmembers(I->bind[0]->shape) : 1;
 }
 
 /* Marks of p: n of them, one per member, then one more, set once every member has been pushed

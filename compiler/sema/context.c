@@ -290,16 +290,14 @@ static RExpr *build_sum(Ctx *C, Expr *x)
 	}
 	long n = A->hi - A->lo + 1;
 	RExpr **t = xalloc((size_t)n * sizeof *t);
+	Vec all = { 0 }; /* every member's reads, added to C's once (vec_add_new: linear in them) */
 	for (long k = 0; k < n; k++) {
 		Ctx D = *C;
 		Vec reads = { 0 };
 		D.sum_obj = array_member(A, A->lo + k);
 		D.reads = C->reads ? &reads : NULL;
 		t[k] = build(&D, x->a);
-		for (int i = 0; i < reads.n; i++) {
-			add_unique(C->reads, reads.v[i]);
-			add_unique(C->summed, reads.v[i]);
-		}
+		for (int i = 0; i < reads.n; i++) vec_push(&all, reads.v[i]);
 		if (!C->first_read) C->first_read = D.first_read;
 		if (D.failed) {
 			C->failed = D.failed;
@@ -310,6 +308,8 @@ static RExpr *build_sum(Ctx *C, Expr *x)
 			return rconst(0, x->loc);
 		}
 	}
+	if (C->reads) vec_add_new(C->reads, &all, NULL);
+	if (C->summed) vec_add_new(C->summed, &all, NULL);
 	while (n > 1) {
 		long m = 0;
 		for (long k = 0; k + 1 < n; k += 2)

@@ -142,9 +142,8 @@ void resolve_assign(Inst *I, Var *x, RExpr *sol, RExpr *lhs, RExpr *rhs, Eqn *q,
 	a->loc = q->loc;
 	a->text = q->text;
 	vec_push(branch, a);
-	for (int i = 0; i < reads->n; i++)
-		if (reads->v[i] != x) add_unique(&I->reads, reads->v[i]);
-	for (int i = 0; i < rf->n; i++) add_unique(&I->rf_reads, rf->v[i]);
+	vec_add_new(&I->reads, reads, x);
+	vec_add_new(&I->rf_reads, rf, NULL);
 	x->det = I;
 	for (int i = 0; i < I->targets.n; i++)
 		if (I->targets.v[i] == x) return; /* the other branch of a conditional rule: already listed */
@@ -192,11 +191,14 @@ static int resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src, int may_wait)
 		return EQN_ERROR;
 	}
 	Var *x = NULL;
+	PSet sums = { 0 };
+	for (int i = 0; i < summed.n; i++) pset_add(&sums, summed.v[i]);
 	for (int i = 0; i < reads.n; i++) {
 		Var *v = reads.v[i];
-		if (determined(v) || vec_has(&summed, v)) continue; /* a sum's terms are read, never solved for */
+		if (determined(v) || pset_has(&sums, v)) continue; /* a sum's terms are read, never solved for */
 		if (!x || var_class(v) < var_class(x) || (var_class(v) == var_class(x) && v->order > x->order)) x = v;
 	}
+	pset_free(&sums);
 	if (!x) {
 		error_at(q->loc, "rule \"%s\" is overdetermined%s%s: every variable in it is already determined", q->text,
 		         I->nbind > 0 ? " for object " : "", I->nbind > 0 ? I->bind[0]->name : "");
@@ -258,9 +260,9 @@ static RExpr *build_cond(Inst *I, Expr *cond, const char *what)
 			error_at(read_loc(r, NULL, v, cond->loc), "%s reads '%s', which no rule determines", what, v->name);
 			return NULL;
 		}
-		add_unique(&I->reads, v);
 	}
-	for (int i = 0; i < rf.n; i++) add_unique(&I->rf_reads, rf.v[i]);
+	vec_add_new(&I->reads, &reads, NULL);
+	vec_add_new(&I->rf_reads, &rf, NULL);
 	return r;
 }
 
@@ -498,9 +500,9 @@ void inst_when(Stmt *s, Object **bind, int nbind)
 				         s->text, v->name);
 				return;
 			}
-			add_unique(&I->reads, v);
 		}
-		for (int i = 0; i < rf.n; i++) add_unique(&I->rf_reads, rf.v[i]);
+		vec_add_new(&I->reads, &reads, NULL);
+		vec_add_new(&I->rf_reads, &rf, NULL);
 		if (!var_more_of(x)->latch) var_more(x)->latch = I;
 		Assign *a = xalloc(sizeof *a);
 		a->var = x;
