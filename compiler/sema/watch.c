@@ -69,7 +69,8 @@ void build_watch(Stmt *st)
 	}
 	for (int i = 0; i < st->watch.n; i++) {
 		WatchItem *w = st->watch.v[i];
-		if (w->obj && !w->comp && !object_named(w->obj) &&
+		/* (an object or an array of that name comes first: `watch a.pos`, a an array, is its members' pos) */
+		if (w->obj && !w->comp && !object_named(w->obj) && !array_of(w->obj) &&
 		    (map_get(&sema.prop_names, w->obj) || map_get(&sema.globals_by_name, w->obj))) {
 			/* PROP.c: that component of every object's PROP (or of a global) */
 			WatchItem c = *w;
@@ -79,7 +80,8 @@ void build_watch(Stmt *st)
 				add_comp(&c, g, g->name, 0);
 				continue;
 			}
-			for (int j = 0; j < sema.M->objects.n; j++) {
+			int before = diag_errors;
+			for (int j = 0; j < sema.M->objects.n && diag_errors == before; j++) { /* one report, not one per object */
 				Object *o = sema.M->objects.v[j];
 				Var *v = o->dropped ? NULL : watch_var(o, c.prop, &member);
 				if (v) add_comp(&c, v, xprintf("%s.%s", o->name, c.prop), member);

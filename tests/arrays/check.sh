@@ -237,6 +237,37 @@ if comp kind "$T/kind.csf"; then
 			if ($11 != 4 || $12 != 8 || $13 != 16) exit 1 }
 		END { exit n != 5 }' "$T/kind.csv"
 fi
+# two arrays and an object of one kind in one shape, on springs of 2 N/m under gravity; the array a
+# is named as mass_point's acceleration is: `watch a.pos` is its members' positions. a[i] (1 kg) from
+# (i, 0, 0) m at (0, 0, 1 + i) m/s: x = i cos wt, z = -g/2 (1 - cos wt) + (1 + i)/w sin wt, w = sqrt 2;
+# b[1] (2 kg) from (0, 1, 1) m at (1, 0, 0) m/s: x = sin t, z = (1 + g) cos t - g
+cat >"$T/two.csf" <<'EOS'
+using mechanics/mass_point
+object a[0..3]: mass_point
+object a[i]: pos = (i, 0, 0) m
+object a[i]: v = (0, 0, 1 + i) m/s
+object c0: mass_point
+object c0: pos = (0, 5, 0) m
+object b[0..2]: mass_point
+object b[j]: pos = (0, j, 1) m
+object b[j]: m = (1 + j) kg
+object b[1]: v = (1, 0, 0) m/s
+rule F: W = g.mul(m)
+rule F: S = pos.mul(-2 N/m)
+using mechanics/rules
+inc t till 1 s by 0.1 s watch a.pos, b.pos, c0.pos
+EOS
+if comp two "$T/two.csf"; then
+	"$CSFVM" --tol 1e-12 "$T/two.csfb" >"$T/two.csv"
+	check test "$(head -n 1 "$T/two.csv" | cut -d, -f1-2)" = "t,a[0].pos.x [m]"
+	check awk -F, 'function abs(x) { return x < 0 ? -x : x }
+		NR > 1 { k++; t = $1; w = sqrt(2); g = 9.80665
+			for (i = 0; i < 4; i++)
+				if (abs($(2 + 3 * i) - i * cos(w * t)) > 1e-9 ||
+				    abs($(4 + 3 * i) - (-g / 2 * (1 - cos(w * t)) + (1 + i) / w * sin(w * t))) > 1e-9) exit 1
+			if (abs($17 - sin(t)) > 1e-9 || abs($19 - ((1 + g) * cos(t) - g)) > 1e-9) exit 1 }
+		END { exit k != 11 }' "$T/two.csv"
+fi
 # the momentum of N/5 projectiles, a sum over them: P = e^(-t/tau) P0 + M g tau (e^(-t/tau) - 1), to 1e-9
 # relative (the sum's terms read once each: a sum over 1e4 members took 23 s when they were read in
 # N^2 steps)
