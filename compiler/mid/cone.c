@@ -137,8 +137,10 @@ static void visit_inst(Walk *W, Inst *I, int mem)
 {
 	for (int k = 0; k < I->reads.n; k++) {
 		Var *r = I->reads.v[k], *v = sema_canon(r);
-		/* a member's own variable (in a sum): that member */
-		need_var(W, v, !sema_per_member(v) ? 0 : r != v ? r->obj->sidx : member_read(I, v->obj, mem));
+		/* a member's own variable (in a sum): that member; one lean members share (Object.lean), in a
+		   sum: every member */
+		int all = r->obj && r->obj->lean && vec_has(&I->summed, r);
+		need_var(W, v, !sema_per_member(v) ? 0 : all ? -1 : r != v ? r->obj->sidx : member_read(I, v->obj, mem));
 	}
 	for (int k = 0; k < I->rf_reads.n; k++) {
 		Object *o = I->rf_reads.v[k];

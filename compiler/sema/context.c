@@ -46,13 +46,16 @@ static Var *find_temp(const char *name, Object **bind, int nbind)
 
 static RExpr *var_ref(Ctx *C, Var *v, Loc l, int place, Object *o)
 {
+	/* a term of a sum at a lean member: every member's value is read (folded into this one, or at its
+	   place), none gets properties of its own */
+	int term = C->sum_obj && o == C->sum_obj && o->lean;
 	if (C->init) {
 		if (v->kind == V_TIME) {
 			error_at(l, "'t' is not known at compile time; an initial value must be a constant");
 			C->failed = 1;
 			return rconst(0, l);
 		}
-		if (C->fold && o && o->lean && o != C->self) /* another member's: it gets its own properties */
+		if (C->fold && o && o->lean && o != C->self && !term) /* another member's: it gets its own properties */
 			own_later(o, v->name, C->fold, C->fold_obj, C->fold_name, C->fold_line);
 		else if (C->fold && !v->fix) {
 			v->fix = C->fold;
@@ -68,6 +71,7 @@ static RExpr *var_ref(Ctx *C, Var *v, Loc l, int place, Object *o)
 	RExpr *e = rnew(R_VAR, l);
 	e->var = v;
 	e->place = place;
+	if (term) e->mem = o->sidx + 1;
 	e->isvec = v->isvec;
 	add_unique(C->reads, v);
 	return e;

@@ -82,9 +82,10 @@ static Loc read_loc(RExpr *lhs, RExpr *rhs, Var *u, Loc at)
 }
 
 /* The context that builds instance I's expressions, recording what they read into reads, rf and pending. */
-static Ctx inst_ctx(const Inst *I, Vec *reads, Vec *rf, Vec *pending)
+static Ctx inst_ctx(Inst *I, Vec *reads, Vec *rf, Vec *pending)
 {
 	Ctx C = { 0 };
+	C.summed = &I->summed;
 	C.bind = I->bind;
 	C.nbind = I->nbind;
 	C.reads = reads;
@@ -186,6 +187,7 @@ static int resolve_eqn(Inst *I, Eqn *q, Vec *branch, int src, int may_wait)
 	C.summed = &summed;
 	RExpr *lhs = build(&C, q->lhs), *rhs = build(&C, q->rhs);
 	if (C.failed) return EQN_ERROR;
+	vec_add_new(&I->summed, &summed, NULL);
 	if (lhs->isbool || rhs->isbool) {
 		error_at(q->loc, "an equation relates values, not conditions");
 		return EQN_ERROR;

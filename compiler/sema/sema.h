@@ -149,6 +149,8 @@ struct RExpr {
 	Var *var;        /* R_VAR */
 	int place;       /* R_VAR: the place of the binding ($n) whose object it belongs to; -1: a global,
 	                    t, or a property of a named object */
+	int mem;         /* R_VAR: a property lean members share (Object.lean) read at member mem - 1 of its
+	                    shape, a term of a sum; 0: none */
 	Object *obj;     /* R_RF */
 	int comp;        /* R_COMP: 0..2 of a[0] */
 	RExpr *a[3];
@@ -197,6 +199,7 @@ struct Inst {
 	Vec targets;     /* of Var*: every variable it determines (union of branches) */
 	Vec reads;       /* of Var*: every variable it reads */
 	Vec rf_reads;    /* of Object*: whose RF it reads */
+	Vec summed;      /* of Var*: the variables it reads in a sum (at every member, when lean members share them) */
 	int needed[2];   /* by the RHS section, by the OUT section */
 	int src;         /* its statement in the source table */
 	int assert_index;

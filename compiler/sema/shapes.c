@@ -26,14 +26,11 @@ static void mark_members(const char *name, Expr *idx, Map *named)
 }
 
 /* Marks in named (a Map) the objects expression x names (NAME.PROP, NAME[K].PROP; not the members of a
-   sum, which reads each member's own slot of its shape's arrays, but has properties of its own).
-   Returns 1. */
+   sum, which reads each member's own slot of its shape's arrays). Returns 1. */
 static int mark_named(Expr *x, void *named)
 {
 	if (!x) return 1;
 	if (x->kind == E_INDEX) mark_members(x->name, x->a, named);
-	ObjArray *A = x->kind == E_SUM ? array_of(x->name) : NULL;
-	for (long k = 0; A && k <= A->hi - A->lo; k++) array_own(array_member(A, A->lo + k));
 	if (x->kind == E_FIELD && x->a->kind == E_NAME) {
 		Object *o = map_get(&sema.objects_by_name, x->a->name);
 		if (o) map_put(named, o->name, o);

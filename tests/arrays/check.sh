@@ -268,9 +268,9 @@ if comp two "$T/two.csf"; then
 			if (abs($17 - sin(t)) > 1e-9 || abs($19 - ((1 + g) * cos(t) - g)) > 1e-9) exit 1 }
 		END { exit k != 11 }' "$T/two.csv"
 fi
-# the momentum of N/5 projectiles, a sum over them: P = e^(-t/tau) P0 + M g tau (e^(-t/tau) - 1), to 1e-9
-# relative (the sum's terms read once each: a sum over 1e4 members took 23 s when they were read in
-# N^2 steps)
+# the momentum of N/5 projectiles, a sum over them: P = e^(-t/tau) P0 + M g tau (1 - e^(-t/tau)), to 1e-9
+# relative; the members summed keep sharing their array's properties (a sum over 1e4 members took 23 s
+# when they were read in N^2 steps)
 NS=$((N / 5))
 sh "$D/gen_projectiles.sh" "$NS" array "P" |
 	sed 's/^using mechanics\/mass_point$/&\nglobal P = (0, 0, 0) kg*m\/s/; s/^using mechanics\/rules$/&\nrule: P = sum(m*v for p)/' >"$T/psum.csf"
