@@ -64,7 +64,7 @@ static int expr_same(const RExpr *a, const RExpr *b)
 	if (a->k != b->k || a->isvec != b->isvec) return 0;
 	switch (a->k) {
 	case R_CONST: return memcmp(a->c, b->c, sizeof a->c) == 0;
-	case R_VAR: return a->var == b->var && a->place == b->place && a->mem == b->mem;
+	case R_VAR: return a->var == b->var && a->place == b->place && a->obj == b->obj;
 	case R_RF: return a->obj == b->obj;
 	case R_COMP: return a->comp == b->comp && expr_same(a->a[0], b->a[0]);
 	case R_OP:
@@ -143,7 +143,7 @@ uint32_t emit(Gen *G, RExpr *e)
 	switch (e->k) {
 	case R_CONST: return const_slot(G, e->c, e->isvec);
 	case R_VAR: /* (a term of a sum at a lean member: its place of the shape's array) */
-		if (e->mem) return var_slot(G, e->var) + (uint32_t)(e->mem - 1) * (e->var->isvec ? 3u : 1u);
+		if (e->obj) return prop_slot(G, e->var, e->obj);
 		return e->var->kind == V_TIME ? G->p->tslot : var_operand(G, e->var, e->place);
 	case R_COMP: return emit(G, e->a[0]) + (uint32_t)e->comp;
 	case R_RF: {

@@ -64,6 +64,11 @@ uint32_t obj_str(Gen *G, const Object *o);
 uint32_t var_slot(Gen *G, Var *v);
 /* The slot of object o's property v: var_slot, at o's place if o shares v (a lean member, Object.lean). */
 uint32_t prop_slot(Gen *G, Var *v, const Object *o);
+/* o's place in the array of property v that lean members share, from its start (0 if o has its own). */
+static inline uint32_t member_offset(const Var *v, const Object *o)
+{
+	return o && o->lean ? (uint32_t)o->sidx * (v->isvec ? 3u : 1u) : 0u;
+}
 uint32_t param_class(Gen *G, Var *v);
 uint32_t var_operand(Gen *G, Var *v, int place);
 uint32_t const_slot(Gen *G, const double *c, int isvec);

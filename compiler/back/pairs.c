@@ -21,7 +21,7 @@ static Var *pair_velocity(Inst *I)
 {
 	if (!I->isderiv || I->idle) return NULL;
 	Assign *a = I->then.v[0];
-	Var *x = a->var, *v = a->e->k == R_VAR && !a->e->mem ? a->e->var : NULL;
+	Var *x = a->var, *v = a->e->k == R_VAR && !a->e->obj ? a->e->var : NULL;
 	return v && var_integrated(v) && v != x && v->isvec == x->isvec ? v : NULL;
 }
 

@@ -157,7 +157,7 @@ uint32_t param_class(Gen *G, Var *v)
 
 uint32_t prop_slot(Gen *G, Var *v, const Object *o)
 {
-	return var_slot(G, v) + (o && o->lean ? (uint32_t)o->sidx * (v->isvec ? 3u : 1u) : 0u);
+	return var_slot(G, v) + member_offset(v, o);
 }
 
 /* The operand word for v read at place ($n) of the instance being emitted: relative to

@@ -68,7 +68,7 @@ void gen_state_scales(Model *M, csf_prog *p)
 			for (int q = o->lean ? o->sidx : 0; q < (o->lean ? o->shape->n : 1); q++) {
 				const Object *m = o->lean ? o->shape->members[q] : o;
 				if (m->lean != o->lean) continue;
-				uint32_t at = (uint32_t)v->slot + (uint32_t)m->sidx * (v->isvec ? 3 : 1) * (m->lean != NULL) - p->ystart;
+				uint32_t at = (uint32_t)v->slot + member_offset(v, m) - p->ystart;
 				for (uint32_t k = 0; k < (v->isvec ? 3u : 1u); k++) {
 					p->yscale[at + k] = one;
 					p->yatol[at + k] = var_more_of(v)->atol ? var_more_of(v)->atol->c[0] : 0;

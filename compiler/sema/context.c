@@ -71,7 +71,7 @@ static RExpr *var_ref(Ctx *C, Var *v, Loc l, int place, Object *o)
 	RExpr *e = rnew(R_VAR, l);
 	e->var = v;
 	e->place = place;
-	if (term) e->mem = o->sidx + 1;
+	if (term) e->obj = o;
 	e->isvec = v->isvec;
 	add_unique(C->reads, v);
 	return e;

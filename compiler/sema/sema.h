@@ -111,9 +111,9 @@ struct Object {
  * in VarMore.vals). They are in one shape (with other objects of their
  * signature, if any), proto's properties belong (Var.obj) to the first of
  * them, and a member's slot of a property is the shape's array at its
- * place (prop_slot). A member that a rule names, that is given a property
- * the others lack, or that is summed over, gets properties of its own
- * (objects.c, array_own).
+ * place (prop_slot; a sum reads each member there). A member that a rule
+ * names, that is given a property the others lack, or whose value another
+ * initial value reads, gets properties of its own (objects.c, array_own).
  */
 typedef struct ObjArray {
 	char *name;
@@ -149,9 +149,8 @@ struct RExpr {
 	Var *var;        /* R_VAR */
 	int place;       /* R_VAR: the place of the binding ($n) whose object it belongs to; -1: a global,
 	                    t, or a property of a named object */
-	int mem;         /* R_VAR: a property lean members share (Object.lean) read at member mem - 1 of its
-	                    shape, a term of a sum; 0: none */
-	Object *obj;     /* R_RF */
+	Object *obj;     /* R_RF; R_VAR: the lean member (Object.lean) whose place of a property it reads, a term
+	                    of a sum (prop_slot); NULL: none */
 	int comp;        /* R_COMP: 0..2 of a[0] */
 	RExpr *a[3];
 	int n;

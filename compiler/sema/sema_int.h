@@ -128,16 +128,15 @@ Object *get_object(const char *name, Loc l);
 Object *new_object(const char *name, Loc l);
 /* Applies kind statement s (`object NAME: KIND`) to object o. */
 void apply_kind(Object *o, Stmt *s);
-
-/* ---- arrays.c: object arrays (DECISIONS §11) ---- */
-
-/* Gives lean member o (Object.lean) properties of its own, of its values (objects.c). */
+/* Gives lean member o (Object.lean) properties of its own, of its values. */
 void array_own(Object *o);
 /* Lean member o's property prop is read by an initial value, folded (Var.fix) into fold_obj.fold_name on
  * line: o gets properties of its own, and that one the fix, once the statement is done (own_pending);
  * not at once: the read is inside an arena mark that set_prop releases. */
 void own_later(Object *o, const char *prop, int fold, const char *fold_obj, const char *fold_name, int line);
 void own_pending(void);
+
+/* ---- arrays.c: object arrays (DECISIONS §11) ---- */
 
 ObjArray *array_of(const char *name);
 /* The object named name (a member of an array: NAME[K], which Sema.objects_by_name does not hold), or NULL. */

@@ -148,8 +148,8 @@ check grep -q "one member's own value comes after the value every member takes" 
 # one shape with an object of their kind (ball, elastic) and a point dropped from b[2]'s place raised
 # 1 m (top: it reads b[2]'s value, which then is b[2]'s own). Each against the closed form of its
 # bounces (at rest once their times add up), to 1e-9 m; the same scene written object by object gives
-# the same rows; -D sets one member's restitution and refuses b[2].pos, folded into top.pos; watching
-# b[4] alone (the others left out) gives its columns of the whole run.
+# the same rows; -D sets one member's restitution and refuses b[2].pos, folded into top.pos; b[4]
+# watched alone (the others left out) follows its closed form too.
 cat >"$T/lean.csf" <<'EOS'
 using mechanics/mass_point
 object floor: plane
@@ -180,8 +180,9 @@ EOS
 	printf 'object top: mass_point\nobject top: pos = b2.pos + (0.2, 0, 1) m\nrule F: W = g.mul(m)\nusing mechanics/rules\n'
 	printf 'inc t till 1 s by 0.05 s watch b0.pos, b1.pos, b2.pos, b3.pos, b4.pos, b5.pos, ball.pos, top.pos\n'
 } >"$T/leanl.csf"
-bounces() { # bounces CSV [CR1]: every row against the closed forms (b[1]'s restitution CR1, 0.5 if not given)
-	awk -F, -v cr1="${2:-0.5}" 'function abs(x) { return x < 0 ? -x : x }
+bounces() { # bounces CSV [CR1 [K]]: every row against the closed forms (b[1]'s restitution CR1, 0.5 if not
+	# given); with K, the CSV holds b[K].pos alone
+	awk -F, -v cr1="${2:-0.5}" -v only="${3:-}" 'function abs(x) { return x < 0 ? -x : x }
 		function zb(t, z0, r, c,   g, t1, v) { # a ball of radius r dropped from z0 at rest, restitution c
 			g = 9.80665; t1 = sqrt(2 * (z0 - r) / g)
 			if (t <= t1) return z0 - g * t * t / 2
@@ -190,10 +191,11 @@ bounces() { # bounces CSV [CR1]: every row against the closed forms (b[1]'s rest
 			while (t > 2 * v / g) { t -= 2 * v / g; v *= c }
 			return r + v * t - g * t * t / 2 }
 		NR > 1 { n++
-			for (i = 0; i < 6; i++) {
+			for (i = only == "" ? 0 : only; i < (only == "" ? 6 : only + 1); i++) {
 				z = zb($1, 0.3 + 0.1 * i, 0.02 + 0.005 * i, i == 5 ? 0.9 : i == 1 ? cr1 : 0.5)
-				if (abs($(4 + 3 * i) - z) > 1e-9 || $(2 + 3 * i) != 0.5 * i) { printf "FAIL: b[%d] at t=%s\n", i, $1; exit 1 } }
-			if (abs($22 - zb($1, 0.5, 0.05, 1)) > 1e-9 || abs($25 - zb($1, 1.5, 0, 1)) > 1e-9 || $23 != 1.2) exit 1 }
+				c = only == "" ? 3 * i : 0
+				if (abs($(4 + c) - z) > 1e-9 || $(2 + c) != 0.5 * i) { printf "FAIL: b[%d] at t=%s\n", i, $1; exit 1 } }
+			if (only == "" && (abs($22 - zb($1, 0.5, 0.05, 1)) > 1e-9 || abs($25 - zb($1, 1.5, 0, 1)) > 1e-9 || $23 != 1.2)) exit 1 }
 		END { exit n != 21 }' "$1"
 }
 if comp lean "$T/lean.csf" && comp leanl "$T/leanl.csf"; then
@@ -209,8 +211,8 @@ if comp lean "$T/lean.csf" && comp leanl "$T/leanl.csf"; then
 fi
 sed 's/ watch b.pos, ball.pos, top.pos/ watch b[4].pos/' "$T/lean.csf" >"$T/lean4.csf"
 if comp lean4 "$T/lean4.csf"; then
-	"$CSFVM" "$T/lean4.csfb" | tail -n +2 >"$T/lean4.rows"
-	check test "$(cut -d, -f1,14-16 "$T/lean.rows")" = "$(cat "$T/lean4.rows")"
+	"$CSFVM" "$T/lean4.csfb" >"$T/lean4.csv"
+	check bounces "$T/lean4.csv" 0.5 4
 fi
 # a kind's value that reads a member's own (k = 4 m 1/s^2, from each member's mass in a data file):
 # x = x0 cos 2t, y = (v0 / 2) sin 2t for q[i] from (i + 1, 0, 0) m at (0, i, 0) m/s
