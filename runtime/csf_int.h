@@ -393,8 +393,10 @@ void csf_contacts_after_kick(csf_contacts *cs, double *m, double zeno);
 /* The number of candidate pairs (two guards each, after the events'). */
 uint32_t csf_contacts_count(const csf_contacts *c);
 /* Whether the contact forces of some evaluation could not be solved (masses that differ by more than about 1e10,
-   or a cluster that neither the direct solve nor the sweeps solve). */
+   or a cluster that neither the direct solve nor the sweeps solve); set back (the stability guard's
+   evaluations at states near the run's, which are not the run's). */
 int csf_contacts_unsolved(const csf_contacts *c);
+void csf_contacts_set_unsolved(csf_contacts *c, int unsolved);
 /* Of the cluster whose forces or impulses could not be solved: a pair of it (a candidate), its pairs, and,
    when its unknowns were too many for the direct solve, the most it takes (else 0). */
 void csf_contacts_why(const csf_contacts *c, uint32_t *pair, uint32_t *np, uint32_t *big);

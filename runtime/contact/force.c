@@ -403,6 +403,7 @@ static double residual(const csf_contacts *cs, const double *m)
 }
 
 int csf_contacts_unsolved(const csf_contacts *c) { return c->unsolved; }
+void csf_contacts_set_unsolved(csf_contacts *c, int unsolved) { c->unsolved = unsolved; }
 
 /*
  * An apart pair's guard at positions pi, pj: the gap, beyond the smallest

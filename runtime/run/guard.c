@@ -341,6 +341,10 @@ int csf_run_guard_check(run *r, csf_ode *ode, double t, const double *y, double 
 	struct timespec c0, c1;
 	clock_gettime(CLOCK_MONOTONIC, &c0);
 	double before = guard_evals(r);
+	/* its evaluations at states near y (its products) are not the run's: contact forces that do
+	   not hold there (a ball wedged between two others, moved off their plane by 1e-8 m) do not
+	   stop the run, which evaluates its own states afresh */
+	int unsolved = r->cs ? csf_contacts_unsolved(r->cs) : 0;
 	/* a look for a fixed step is as long as it needs; another spends at most its share of the run */
 	int maxprod = g->fixed ? 1000 : (int)fmin(1000, fmax(3, before / LOOK_EVERY / 2));
 	int halt = 0, looked = 0;
@@ -423,6 +427,7 @@ out:; /* a label before a declaration: C11 needs a statement */
 			every *= fmax(0, 1 - g->h * g->rho_max / g->smin) / 0.5;
 		g->next_step = g->steps + (unsigned long)fmax(1, floor(every));
 	}
+	if (r->cs) csf_contacts_set_unsolved(r->cs, unsolved);
 	clock_gettime(CLOCK_MONOTONIC, &c1);
 	g->seconds += csf_run_seconds(c0, c1);
 	return halt;
