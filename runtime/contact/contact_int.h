@@ -62,6 +62,7 @@
  *               friction, directly or by Gauss-Seidel sweeps; the guards
  *   modes.c     the modes of a cluster with friction (apart, sliding,
  *               sticking), chosen for the whole cluster at an instant
+ *   lemke.c     Lemke's method for a linear complementarity problem
  *   impulse.c   impacts: impulses by active sets, or by sweeps
  *   settle.c    the settle state machine (csf_contact_settle): impacts,
  *               rest, hops, lift-off, sticking and sliding at an instant
@@ -239,6 +240,12 @@ int csf_contact_basis(const cpair *c, const double *m, const double n[3], double
 void csf_contact_choose(csf_contacts *cs, double *m, int fresh);
 /* modes.c: the modes of cluster cl[0..np) with friction, chosen together (0), or -1 (not chosen) */
 int csf_contact_choose_modes(csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np);
+
+/* lemke.c: the linear complementarity problem w = M z + q >= 0, z >= 0, w . z = 0 (M n x n,
+   row-major) by Lemke's method, into z, with T (csf_lcp_work(n) doubles) and basis (n) to work in:
+   0, or -1 when it finds no solution */
+size_t csf_lcp_work(uint32_t n);
+int csf_lcp_lemke(uint32_t n, const double *M, const double *q, double *z, double *T, uint32_t *basis);
 
 /* impulse.c: a change dv of a pair's relative velocity; the impact of pair hit, whose relative
    normal velocity vn becomes target (1: not solved); the velocities before an impact, into W_VR */

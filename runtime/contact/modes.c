@@ -27,15 +27,19 @@
  * order of the number of pairs whose mode changes: first the modes as
  * they are (a pair that does not slip taken as sticking: at zero relative
  * velocity friction is static, and a pair sticks when it can), then every
- * set that changes one pair, then two, and so on; among as many changes,
- * those of the earliest pairs in the order of pairs first, each pair
- * trying sticking, then sliding, then parting. The first consistent set is
- * the cluster's. Clusters are small (a handful of pairs) and most sets are
- * found within a change or two; a cluster of more than MODES_MAX pairs, or
- * whose first sets (as many as MODES_WORK allows) are inconsistent, or
- * that has none (with sliding friction, Painlevé's paradox), is left to
- * the complementarity problem of its normal forces and its pairs' own
- * guards (force.c, settle.c).
+ * set that changes one pair; among as many changes, those of the earliest
+ * pairs in the order of pairs first, each pair trying sticking, then
+ * sliding, then parting. Most sets are found so. A pile's cluster of 20
+ * pairs can need many changes, which that order reaches only after
+ * millions of sets: then the worst pair at a time is mended (guided_set, a
+ * pivoting method); then the sets of two changes and more, as many as
+ * MODES_WORK allows; last the cluster's complementarity problem with
+ * Coulomb friction, by Lemke's method (lcp_set). The first consistent set
+ * found is the cluster's. A cluster of more than MODES_MAX pairs, or for
+ * which none of these finds a consistent set, or that has none (with
+ * sliding friction, Painlevé's paradox), is left to the complementarity
+ * problem of its normal forces and its pairs' own guards (force.c,
+ * settle.c).
  */
 #include "contact_int.h"
 
@@ -87,7 +91,7 @@ static int solve_set(search *s)
 {
 	csf_contacts *cs = s->cs;
 	uint32_t np = s->np, dim = 0, at[MODES_MAX];
-	unsigned char dc[MODES_MAX];
+	unsigned char dc[MODES_MAX] = { 0 };
 	double *B = cs->B, *E = cs->E;
 	for (uint32_t a = 0; a < np; a++) {
 		mpair *p = &s->p[a];
@@ -183,14 +187,15 @@ static int consistent(search *s)
  * The sets of modes in order (the header): those that change d pairs,
  * for d = 0, 1, ..., np; the pairs changed, idx[0..d), in lexicographic
  * order, and each one's alternatives (its options after the first) in
- * theirs. Returns 0 with the consistent set in s->p[].mode and .u, 1 when
- * there is none, -1 when the sets it may try (MODES_WORK) are done.
+ * theirs, up to depth changes. Returns 0 with the consistent set in
+ * s->p[].mode and .u, 1 when there is none, -1 when the sets it may try
+ * (MODES_WORK) are done.
  */
-static int find_set(search *s)
+static int find_set(search *s, uint32_t depth)
 {
 	uint32_t np = s->np, tries = 0, idx[MODES_MAX], alt[MODES_MAX];
 	double dim = 3.0 * np, most = csf_max(csf_min(MODES_TRIES, MODES_WORK / (dim * dim * dim)), 1 + 3.0 * np);
-	for (uint32_t d = 0; d <= np; d++) {
+	for (uint32_t d = 0; d <= np && d <= depth; d++) {
 		for (uint32_t k = 0; k < d; k++) idx[k] = k;
 		for (;;) {
 			for (uint32_t k = 0; k < d; k++) alt[k] = 1;
@@ -211,6 +216,230 @@ static int find_set(search *s)
 		}
 	}
 	return 1;
+}
+
+/*
+ * The pair of the set in s->p[].mode (each slide along its u) whose mode
+ * is furthest from consistent (as consistent() judges, measured in the
+ * rounding of its forces), and the mode and way (u) that would mend it: a
+ * pair apart that would close comes into contact (sticking, where it does
+ * not slip and has friction); one in contact that would pull parts; one
+ * that sticks beyond mu_s N slides against its friction; one that slides
+ * from rest (it does not slip) and is pulled back sticks, or without a way
+ * takes the way it is pulled. Returns the pair, or -1 when the set is
+ * consistent, or -2 when its system has no solution.
+ */
+static long worst_pair(search *s, unsigned char *mode, double u[3])
+{
+	uint32_t np = s->np;
+	long worst = -1;
+	double most = 1;
+	if (solve_set(s)) return -2;
+	for (uint32_t a = 0; a < np; a++) {
+		mpair *p = &s->p[a];
+		double acc[3], *F = s->F + 3 * a, f[3], t[3], bad = 0, w[3] = { 0, 0, 0 };
+		unsigned char to = p->mode;
+		memcpy(acc, p->ar, sizeof acc);
+		for (uint32_t b = 0; b < np; b++)
+			for (int k = 0; k < 3; k++) acc[k] += s->cs->G[a * np + b] * s->F[3 * b + k];
+		double an = (dot3(acc, p->n) + p->curv) / p->wn, N = dot3(F, p->n);
+		int fr = has_friction(p->c, s->m);
+		csf_contact_tangential(acc, p->n, t);
+		for (int k = 0; k < 3; k++) f[k] = F[k] - N * p->n[k];
+		if (p->mode == O_APART) {
+			bad = -an / p->res, to = fr && !p->slips ? O_STICK : O_SLIDE;
+		} else if (N < -p->res) {
+			bad = -N / p->res, to = O_APART;
+		} else if (fr && p->mode == O_STICK) {
+			bad = (mag3(f) - mu_s(p->c, s->m) * fabs(N)) / p->res, to = O_SLIDE;
+			for (int k = 0; k < 3; k++) w[k] = -f[k];
+		} else if (fr && !p->slips && !(mag3(p->u) > 0)) { /* no way to slide: pulled one way, or sticks */
+			bad = csf_max(mag3(t) / p->wn / p->res, 2), to = mag3(t) / p->wn > p->res ? O_SLIDE : O_STICK;
+			memcpy(w, t, sizeof w);
+		} else if (fr && !p->slips) {
+			bad = -dot3(t, p->u) / p->wn / p->res, to = O_STICK;
+			if (csf_max(mu_s(p->c, s->m), mu_k(p->c, s->m)) * fabs(N) < mag3(f))
+				bad = csf_max(bad, 1 + (mag3(f) - csf_max(mu_s(p->c, s->m), mu_k(p->c, s->m)) * fabs(N)) / p->res);
+		}
+		if (bad > most) {
+			most = bad, worst = (long)a, *mode = to;
+			if (!unit(w, u)) memcpy(u, p->u, 3 * sizeof *u);
+		}
+	}
+	return worst;
+}
+
+/*
+ * A consistent set found by mending the worst pair at a time (worst_pair),
+ * from the modes as they are: a pivoting method, as Baraff's for contact
+ * forces, which follows the pairs that disagree instead of trying every
+ * set of few changes (find_set), and so reaches the sets of many changes
+ * that a cluster of many pairs can need. At most 4 np + 8 mends; a set met
+ * before (a cycle) ends it. Returns 0 with the set in s->p[].mode and .u,
+ * or -1.
+ */
+static int guided_set(search *s)
+{
+	uint32_t np = s->np;
+	enum { SEEN = 64 };
+	uint64_t seen[SEEN];
+	uint32_t nseen = 0;
+	for (uint32_t a = 0; a < np; a++) s->p[a].mode = s->p[a].opt[0], memcpy(s->p[a].u, s->p[a].u0, sizeof s->p[a].u);
+	for (uint32_t it = 0; it < 4 * np + 8; it++) {
+		unsigned char to = 0;
+		double u[3];
+		long a = worst_pair(s, &to, u);
+		if (a == -1) return 0;
+		if (a < 0) return -1;
+		uint64_t h = 1469598103934665603ull; /* FNV-1a of the modes */
+		for (uint32_t b = 0; b < np; b++) h = (h ^ s->p[b].mode) * 1099511628211ull;
+		for (uint32_t k = 0; k < nseen; k++)
+			if (seen[k] == h) return -1;
+		if (nseen < SEEN) seen[nseen++] = h;
+		s->p[a].mode = to;
+		memcpy(s->p[a].u, u, sizeof u);
+	}
+	return -1;
+}
+
+/*
+ * The set of modes that the cluster's complementarity problem gives, for a
+ * cluster whose sets in order of changes (find_set) are not consistent as
+ * far as they were tried. The problem (Baraff, "Fast contact force
+ * computation for nonpenetrating rigid bodies", 1994; Stewart and Trinkle,
+ * 1996, here at the level of accelerations): each pair's normal force N >=
+ * 0 and its relative normal acceleration a_n >= 0, one of them 0; a pair
+ * that slips has friction -mu_k N along its slip; one that does not has
+ * friction f = D b, b >= 0, in the four directions +-t1, +-t2 of its
+ * tangent plane (t1 along its relative tangential acceleration without
+ * contact forces), within the pyramid mu_s N - sum b >= 0, whose
+ * complement l >= 0 is the size of its tangential acceleration: D^T a_t +
+ * l >= 0 with b. It sticks where l is 0 and otherwise slides against its
+ * friction. In a scene in a plane the pyramid is the cone (t2 across the
+ * plane, where nothing moves); elsewhere it is close to it. Solved by
+ * Lemke's method (lemke.c), it names the pairs that part, stick and slide,
+ * and the way each slide begins: a guess, taken where consistent() finds
+ * it consistent with the cluster's exact system (mu_k's friction, the
+ * cone). Returns 0 with the set in s->p[].mode and .u, or -1.
+ */
+static int lcp_set(search *s)
+{
+	csf_contacts *cs = s->cs;
+	const double *m = s->m;
+	uint32_t np = s->np, nv = 0, iN[MODES_MAX], iB[MODES_MAX];
+	double D[MODES_MAX][4][3], f0[MODES_MAX][3];
+	for (uint32_t a = 0; a < np; a++) { /* the unknowns: N, and for a pair at rest with friction b and l */
+		mpair *p = &s->p[a];
+		iN[a] = nv++;
+		iB[a] = UINT32_MAX;
+		double *f = f0[a];
+		for (int k = 0; k < 3; k++) f[k] = p->n[k];
+		if (!has_friction(p->c, m)) continue;
+		if (p->slips) { /* -mu_k N along the way it slips (csf_contact_basis) */
+			double vt[3], u[3];
+			csf_contact_slip_velocity(p->c, m, p->n, vt);
+			if (!unit(vt, u)) memcpy(u, p->u0, sizeof u);
+			for (int k = 0; k < 3; k++) f[k] -= mu_k(p->c, m) * u[k];
+			continue;
+		}
+		double t1[3], t2[3];
+		csf_contact_tangential(p->ar, p->n, t1);
+		if (!unit(t1, t1)) { /* any direction across the normal */
+			double e[3] = { fabs(p->n[0]) < 0.6, fabs(p->n[0]) < 0.6 ? 0 : 1, 0 };
+			csf_contact_tangential(e, p->n, t1);
+			unit(t1, t1);
+		}
+		t2[0] = p->n[1] * t1[2] - p->n[2] * t1[1], t2[1] = p->n[2] * t1[0] - p->n[0] * t1[2];
+		t2[2] = p->n[0] * t1[1] - p->n[1] * t1[0];
+		for (int k = 0; k < 3; k++)
+			D[a][0][k] = t1[k], D[a][1][k] = -t1[k], D[a][2][k] = t2[k], D[a][3][k] = -t2[k];
+		iB[a] = nv;
+		nv += 5;
+	}
+	/* a pair whose t2 no force of the cluster and no acceleration has a part along (a scene in a
+	   plane: t2 across it) takes no friction along it: its +-t2 are dropped, which the problem,
+	   degenerate in them, would otherwise carry along */
+	uint32_t nd[MODES_MAX];
+	for (uint32_t a = 0; a < np; a++) {
+		nd[a] = 4;
+		if (iB[a] == UINT32_MAX) continue;
+		const double *t2 = D[a][2];
+		int off = fabs(dot3(t2, s->p[a].ar)) > 0;
+		for (uint32_t b = 0; b < np && !off; b++) {
+			if (cs->G[a * np + b] == 0) continue;
+			off = fabs(dot3(t2, f0[b])) > 0;
+			for (int j = 0; iB[b] != UINT32_MAX && j < 2 && !off; j++) off = fabs(dot3(t2, D[b][j])) > 0;
+		}
+		if (!off) nd[a] = 2;
+	}
+	nv = 0;
+	for (uint32_t a = 0; a < np; a++) {
+		iN[a] = nv++;
+		if (iB[a] != UINT32_MAX) iB[a] = nv, nv += nd[a] + 1;
+	}
+	size_t nw = (size_t)nv * nv + csf_lcp_work(nv) + 3 * (size_t)nv;
+	double *M = calloc(nw, sizeof *M);
+	uint32_t *basis = malloc(nv * sizeof *basis);
+	int ok = -1;
+	if (!M || !basis) goto out;
+	double *T = M + (size_t)nv * nv, *q = T + csf_lcp_work(nv), *z = q + nv, *w = z + nv;
+	for (uint32_t a = 0; a < np; a++) {
+		const mpair *p = &s->p[a];
+		/* the rows of pair a: its normal acceleration, and (at rest, with friction) its tangential
+		   acceleration along each direction, and its pyramid */
+		uint32_t rows = iB[a] == UINT32_MAX ? 1 : 1 + nd[a], row[5] = { iN[a], iB[a], iB[a] + 1, iB[a] + 2, iB[a] + 3 };
+		const double *dir[5] = { p->n, D[a][0], D[a][1], D[a][2], D[a][3] };
+		for (uint32_t r = 0; r < rows; r++) {
+			double *Mr = M + (size_t)row[r] * nv;
+			q[row[r]] = dot3(dir[r], p->ar) + (r == 0 ? p->curv : 0);
+			for (uint32_t b = 0; b < np; b++) {
+				double g = cs->G[a * np + b];
+				if (g == 0) continue;
+				Mr[iN[b]] += g * dot3(dir[r], f0[b]);
+				for (uint32_t j = 0; iB[b] != UINT32_MAX && j < nd[b]; j++) Mr[iB[b] + j] += g * dot3(dir[r], D[b][j]);
+			}
+			if (r > 0) Mr[iB[a] + nd[a]] += 1;
+		}
+		if (iB[a] != UINT32_MAX) {
+			double *Ml = M + (size_t)(iB[a] + nd[a]) * nv;
+			Ml[iN[a]] = mu_s(p->c, m);
+			for (uint32_t j = 0; j < nd[a]; j++) Ml[iB[a] + j] = -1;
+			q[iB[a] + nd[a]] = 0;
+		}
+	}
+	if (csf_lcp_lemke(nv, M, q, z, T, basis)) goto out;
+	for (uint32_t i = 0; i < nv; i++) { /* w = M z + q */
+		w[i] = q[i];
+		for (uint32_t k = 0; k < nv; k++) w[i] += M[(size_t)i * nv + k] * z[k];
+	}
+	double u0[MODES_MAX][3];
+	for (uint32_t a = 0; a < np; a++) {
+		mpair *p = &s->p[a];
+		memcpy(u0[a], p->u0, sizeof u0[a]);
+		if (!(z[iN[a]] > p->res)) { /* no force: it parts (a_n >= 0) */
+			p->mode = O_APART;
+			continue;
+		}
+		p->mode = O_SLIDE;
+		if (iB[a] == UINT32_MAX) continue; /* frictionless, or slipping: as it slides */
+		if (!(z[iB[a] + nd[a]] > p->res * p->wn)) { /* no tangential acceleration: it sticks */
+			p->mode = O_STICK;
+			continue;
+		}
+		double f[3] = { 0, 0, 0 }, t[3];
+		for (uint32_t j = 0; j < nd[a]; j++)
+			for (int k = 0; k < 3; k++) f[k] -= z[iB[a] + j] * D[a][j][k];
+		if (!unit(f, p->u0)) { /* against its friction; or along its tangential acceleration */
+			csf_contact_tangential(p->ar, p->n, t);
+			unit(t, p->u0);
+		}
+	}
+	ok = consistent(s) ? 0 : -1;
+	for (uint32_t a = 0; a < np; a++) memcpy(s->p[a].u0, u0[a], sizeof u0[a]);
+out:
+	free(M);
+	free(basis);
+	return ok;
 }
 
 /*
@@ -289,7 +518,7 @@ int csf_contact_choose_modes(csf_contacts *cs, const double *m, const uint32_t *
 			cs->G[a * np + b] = csf_contact_coupling(cs, s.p[a].c, s.p[b].c, m);
 			cs->G1[a * np + b] = csf_contact_coupling(cs, s.p[a].c, s.p[b].c, NULL);
 		}
-	if (find_set(&s)) return -1;
+	if (find_set(&s, 1) && guided_set(&s) && find_set(&s, np) && lcp_set(&s)) return -1;
 	for (uint32_t a = 0; a < np; a++) {
 		const mpair *p = &s.p[a];
 		const cpair *c = p->c;

@@ -28,6 +28,7 @@ Suite *dop853_suite(void);
 Suite *dopri5_suite(void);
 Suite *stability_suite(void);
 Suite *signals_suite(void);
+Suite *lcp_suite(void);
 
 /*
  * Compiles source text (file name "t.csf") to a verified program in *p.
