@@ -217,18 +217,22 @@ static int cluster_locks(csf_contacts *cs, double *m, const uint32_t *cl, uint32
 static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np)
 {
 	if (np > DIRECT_MAX) return -1;
-	/* a sliding pair's friction is -mu_k N along its way, N signed: where N turns negative its
-	   guard says it lifts off, and the force goes on smoothly past that instant, so that the
-	   step that crosses it passes the error control and the crossing is located (as |N|, with
-	   its kink at 0, the steps shrank towards it, rejected by their error estimates) */
-	double sign[DIRECT_MAX]; /* 1 (cluster_locks takes a sliding pair's friction away: 0) */
+	double sign[DIRECT_MAX]; /* a sliding pair's friction is against its way for N > 0: |N| = sign N */
 	double *n = cs->nv, *B = cs->B;
 	for (uint32_t a = 0; a < np; a++) sign[a] = 1;
-	uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs);
-	if (!dim) return -1;
-	csf_contact_frames(np, cs->dc, cs->nv, dim, cs->T, cs->fric);
-	if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m), cs->T, cs->fric))
-		return cluster_locks(cs, m, cl, np, sign);
+	for (int attempt = 0; attempt < 2; attempt++) {
+		uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs);
+		if (!dim) return -1;
+		csf_contact_frames(np, cs->dc, cs->nv, dim, cs->T, cs->fric);
+		if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m), cs->T, cs->fric))
+			return cluster_locks(cs, m, cl, np, sign);
+		int flip = 0;
+		for (uint32_t a = 0; a < np; a++) {
+			const cpair *c = &cs->pairs[cl[a]];
+			if (has_friction(c, m) && W(c, MODE) == SLIDING && cs->x[cs->at[a]] * sign[a] < 0) sign[a] = -sign[a], flip = 1;
+		}
+		if (!flip || attempt == 1) break;
+	}
 	for (uint32_t a = 0; a < np; a++) {
 		cpair *c = &cs->pairs[cl[a]];
 		double F[3] = { 0, 0, 0 }, *na = n + 3 * a;
@@ -474,7 +478,7 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 				/* against the sliding; once it has turned back (past the guard's zero, before the
 				   event is located) against its direction at the start, so that the force is smooth
 				   up to the crossing and the integrator sees no switching */
-				double s = mag3(vt), k = mu_k(c, m) * W(c, LAM); /* N signed, as cluster_forces */
+				double s = mag3(vt), k = mu_k(c, m) * fabs(W(c, LAM));
 				int ahead = dot3(vt, WV(c, DS)) > csf_contact_speed_resolution(c, m, 0);
 				for (int j = 0; j < 3; j++) f[j] = -k * (ahead ? vt[j] / s : WV(c, DS)[j]);
 			} else { /* sticking: cancel the relative tangential acceleration */
