@@ -78,8 +78,8 @@ int csf_run_room_for_guards(run *r, size_t ng)
 	if (ng <= r->capg) return 0;
 	size_t cap = r->capg ? r->capg : 16;
 	while (cap < ng) cap *= 2;
-	double **g[8] = { &r->ga, &r->gb, &r->gs, &r->gh, &r->gt, &r->gl, &r->gx, &r->gy };
-	for (int i = 0; i < 8; i++) {
+	double **g[6] = { &r->ga, &r->gb, &r->gs, &r->gh, &r->gt, &r->gl };
+	for (int i = 0; i < 6; i++) {
 		double *q = realloc(*g[i], cap * sizeof *q);
 		if (!q) {
 			r->nomem = 1;
@@ -217,31 +217,23 @@ static int substep_guards(run *r, csf_ode *ode, double ta, double tb, const doub
 /*
  * Guard k at time tc of the step from (ta, r->ya) to (tb, yb), into r->gs (the
  * state in r->ys): on the state stepped exactly from the step's start, or
- * (dense) on the step's continuous extension, which costs no step; there an
- * apart pair's gap, which the positions give, costs no evaluation either
- * (the other guards in r->gs are then left as they were).
+ * (dense) on the step's continuous extension, which costs no step.
  */
-static int guard_at(run *r, csf_ode *ode, int dense, uint32_t k, double ta, double tb, const double *yb, double tc,
-                    char *msg, size_t msglen)
+static int guard_at(run *r, csf_ode *ode, int dense, double ta, double tb, const double *yb, double tc, char *msg,
+                    size_t msglen)
 {
 	if (!dense) return substep_guards(r, ode, ta, tb, yb, tc, msg, msglen);
 	if (csf_ode_dense_eval(ode, tc, r->ys)) return CSF_ODE_STOPPED;
-	double rate;
-	if (r->cs && k >= r->gcont && (k - r->gcont) % 2 == 0 &&
-	    csf_contacts_gap_rate(r->cs, (k - r->gcont) / 2, r->m, r->ys, &r->gs[k], &rate))
-		return CSF_ODE_OK;
 	return csf_run_guards_at(r, tc, r->ys, r->gs) ? CSF_ODE_STOPPED : CSF_ODE_OK;
 }
 
 /*
  * Narrows [*lo, *hi], where guard k is >= 0 at *lo (value *glo) and < 0 at
  * *hi (*ghi), to at most tol by the Illinois method, on exact states or on
- * the continuous extension (guard_at). *at_hi (if given) becomes 1 when the
- * last state it looked at (in r->ys, its guards in r->gs) is *hi's, 0 when
- * it is *lo's; it is left as it was when the bracket was narrow already.
+ * the continuous extension (guard_at).
  */
 static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, double tb, const double *yb, double *lo,
-                    double *glo, double *hi, double *ghi, double tol, int *at_hi, char *msg, size_t msglen)
+                    double *glo, double *hi, double *ghi, double tol, char *msg, size_t msglen)
 {
 	int side = 0, st;
 	/* Each pass moves an end of the bracket inwards by at least one double, so the loop ends:
@@ -259,9 +251,8 @@ static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
 		/* tol / 4 can be under half the spacing of doubles at c: the nudge rounds back onto the end */
 		if (c <= *lo) c = nextafter(*lo, *hi);
 		if (c >= *hi) c = nextafter(*hi, *lo);
-		if ((st = guard_at(r, ode, dense, k, ta, tb, yb, c, msg, msglen))) return st;
+		if ((st = guard_at(r, ode, dense, ta, tb, yb, c, msg, msglen))) return st;
 		double gc = r->gs[k];
-		if (at_hi) *at_hi = gc < 0;
 		if (gc < 0) {
 			*hi = c, *ghi = gc;
 			if (side < 0) *glo /= 2;
@@ -276,39 +267,23 @@ static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
 }
 
 /*
- * Guard k's crossing in (lo, hi], where g(lo) = glo >= 0 > g(hi) = ghi, on
- * the continuous extension of the step from (ta, r->ya) that ended at (tb,
- * yb), without steps: the bracket narrowed to the location tolerance there,
- * into d (its ends and their guards: lo, glo, hi, ghi). As substep_guards.
- */
-static int dense_crossing(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const double *yb, double lo,
-                          double glo, double hi, double ghi, double d[4], char *msg, size_t msglen)
-{
-	d[0] = lo, d[1] = glo, d[2] = hi, d[3] = ghi;
-	return illinois(r, ode, 1, k, ta, tb, yb, &d[0], &d[1], &d[2], &d[3], csf_run_location_tol(r->p), NULL, msg,
-	                msglen);
-}
-
-/*
  * The time *tk of guard k's crossing in (lo, hi], where g(lo) >= 0 > g(hi),
  * on states stepped from the step's start (ta, r->ya) that ended at
  * (tb, yb); leaves the state at that time in r->ys. With a continuous
- * extension, the crossing is found on it first, without steps (d, as
- * dense_crossing leaves it, or NULL: found here); then a bracket around it,
- * 1000 times the location tolerance wide (wider, by factors of 1000, when
- * the exact guards do not change sign across it), is narrowed on exact
- * states, a few steps instead of some forty. *tl is the bracket's other
- * end: the guard is >= 0 there. Returns as substep_guards.
+ * extension, the crossing is found on it first, without steps; then a
+ * bracket around it, 1000 times the location tolerance wide (wider, by
+ * factors of 1000, when the exact guards do not change sign across it), is
+ * narrowed on exact states, a few steps instead of some forty. *tl is the
+ * bracket's other end: the guard is >= 0 there. Returns as substep_guards.
  */
 static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const double *yb, double lo, double glo,
-                  double hi, double ghi, const double *d, double *tk, double *tl, char *msg, size_t msglen)
+                  double hi, double ghi, double *tk, double *tl, char *msg, size_t msglen)
 {
 	const double tol = csf_run_location_tol(r->p);
-	int st, at_hi = 0; /* r->ys holds hi's exact state */
+	int st;
 	if (r->dense) {
-		double e[4];
-		if (!d && (st = dense_crossing(r, ode, k, ta, tb, yb, lo, glo, hi, ghi, e, msg, msglen))) return st;
-		double u = d ? d[2] : e[2];
+		double l = lo, gl = glo, u = hi, gu = ghi;
+		if ((st = illinois(r, ode, 1, k, ta, tb, yb, &l, &gl, &u, &gu, tol, msg, msglen))) return st;
 		for (double w = 1e3 * tol; w < hi - lo; w *= 1e3) {
 			double a = u - w > lo ? u - w : lo, b = u + w < hi ? u + w : hi, gla = glo, ghb = ghi;
 			if (a > lo) {
@@ -320,19 +295,17 @@ static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const 
 				ghb = r->gs[k];
 			}
 			if (gla >= 0 && ghb < 0) {
-				at_hi = b < hi;
 				lo = a, glo = gla, hi = b, ghi = ghb;
 				break;
 			}
 		}
 	}
-	if ((st = illinois(r, ode, 0, k, ta, tb, yb, &lo, &glo, &hi, &ghi, tol, &at_hi, msg, msglen))) return st;
+	if ((st = illinois(r, ode, 0, k, ta, tb, yb, &lo, &glo, &hi, &ghi, tol, msg, msglen))) return st;
 	*tk = hi, *tl = lo;
 	if (hi == tb) {
 		memcpy(r->ys, yb, r->p->ny * sizeof *yb);
 		return CSF_ODE_OK;
 	}
-	if (at_hi) return CSF_ODE_OK; /* the last state looked at: the same substep */
 	return substep_guards(r, ode, ta, tb, yb, hi, msg, msglen);
 }
 
@@ -476,46 +449,6 @@ static int graze_point(run *r, csf_ode *ode, double ta, double tb, const double 
 }
 
 /*
- * The bracket [*l, *u] of guard k's crossing in a step from ta to tb (state
- * y at tb) whose guards, interpolated, are >= 0 at lo and negative at hi,
- * on exact states (the interpolant only pointed here): at lo (or ta, where
- * the guard is below at lo already: it crossed earlier) and at hi (or tb,
- * where it is not below at hi; *none when it is not below at tb either),
- * the latter only when upper is 1. The exact guards at lo and hi are
- * computed once a step, into r->gx and r->gy (*have: 1 and 2). As
- * substep_guards.
- */
-static int bracket(run *r, csf_ode *ode, double ta, double tb, const double *y, double lo, double hi, size_t k,
-                   int upper, int *have, double *l, double *gl, double *u, double *gu, int *none, char *msg,
-                   size_t msglen)
-{
-	int st;
-	*l = lo, *gl = r->ga[k], *u = hi, *gu = r->gh[k], *none = 0;
-	if (lo > ta) {
-		if (!(*have & 1)) {
-			if ((st = substep_guards(r, ode, ta, tb, y, lo, msg, msglen))) return st;
-			memcpy(r->gx, r->gs, r->ng * sizeof *r->gx);
-			*have |= 1;
-		}
-		if (r->gx[k] < 0) *l = ta;
-		else *gl = r->gx[k];
-	}
-	if (upper && hi < tb) {
-		if (!(*have & 2)) {
-			if ((st = substep_guards(r, ode, ta, tb, y, hi, msg, msglen))) return st;
-			memcpy(r->gy, r->gs, r->ng * sizeof *r->gy);
-			*have |= 2;
-		}
-		*gu = r->gy[k];
-		if (*gu >= 0) { /* not below on the exact state: try the step's end */
-			*u = tb, *gu = r->gb[k];
-			*none = *gu >= 0;
-		}
-	}
-	return CSF_ODE_OK;
-}
-
-/*
  * After a step from (ta, r->ya), with guards r->ga and derivative r->fa
  * there, to (tb, y): the earliest event in (ta, tb]. *which is its guard, or
  * -1 when there is none (r->ga and r->fa then move on to tb); *te is its
@@ -577,45 +510,10 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
 	   once one is located in (bl, best], a guard that is not yet negative at best crosses later,
 	   and one negative at best but not at bl crosses at the same instant (to the location's
 	   tolerance): neither is located, so that many pairs that switch at once (a row of blocks
-	   that stop together) cost one location, not one each. With a continuous extension, the
-	   guard that crosses first on it is located first: the others then mostly cross later on
-	   the exact states too, and cost no steps (a pile's impacts come two or three to a step) */
-	double best = tb, bl = ta, e[4];
-	double d[4] = { 0, 0, 0, 0 }, ends[4] = { 0, 0, 0, 0 }; /* the first's crossing on the extension, its bracket */
+	   that stop together) cost one location, not one each */
+	double best = tb, bl = ta;
 	int known = 0; /* the guards at best and at bl are in r->gt and r->gl */
-	int have = 0;  /* the exact guards at lo and hi are in r->gx (1) and r->gy (2) */
-	long first = -1;
-	if (found && r->dense) { /* (r->gt holds each one's crossing on the extension, until the first is located) */
-		size_t crossing = 0;
-		double dmin = tb;
-		for (size_t k = 0; k < ng; k++) crossing += r->ga[k] >= 0 && r->gh[k] < 0;
-		for (size_t k = 0; crossing > 1 && k < ng; k++) {
-			double l, gl, u, gu;
-			int none;
-			r->gt[k] = INFINITY;
-			if (!(r->ga[k] >= 0 && r->gh[k] < 0)) continue;
-			if ((st = bracket(r, ode, ta, tb, y, lo, hi, k, 1, &have, &l, &gl, &u, &gu, &none, msg, msglen))) return st;
-			if (none) continue;
-			if ((st = dense_crossing(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, e, msg, msglen))) return st;
-			r->gt[k] = e[2];
-			if (first < 0 || e[2] < dmin) {
-				first = (long)k, dmin = e[2], memcpy(d, e, sizeof d);
-				ends[0] = l, ends[1] = gl, ends[2] = u, ends[3] = gu;
-			}
-		}
-		/* crossings within the extension's error of the first (1000 location tolerances, as
-		   locate's bracket) may be the same instant (a ball landing on two at once): the first
-		   of them in the order of guards is located first, as without the extension */
-		for (size_t k = 0; first >= 0 && k < (size_t)first; k++)
-			if (r->gt[k] <= dmin + 1e3 * csf_run_location_tol(r->p)) {
-				first = (long)k;
-				break;
-			}
-		if (first >= 0 && r->gt[first] != dmin) d[0] = NAN; /* its bracket is not in d */
-	}
-	for (size_t i = 0; found && i <= ng; i++) {
-		size_t k = i == 0 ? (size_t)first : i - 1; /* the first on the extension, then the others */
-		if (i == 0 ? first < 0 : (long)k == first) continue;
+	for (size_t k = 0; found && k < ng; k++) {
 		if (!(r->ga[k] >= 0 && r->gh[k] < 0)) continue;
 		if (*which >= 0 && !known) {
 			if (csf_run_guards_at(r, best, r->ye, r->gt)) return CSF_ODE_STOPPED;
@@ -624,21 +522,26 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
 			known = 1;
 		}
 		if (*which >= 0 && (r->gt[k] >= 0 || r->gl[k] >= 0)) continue;
-		double l, gl, u, gu, tk, tl;
-		if (i == 0 && d[0] == d[0]) { /* its bracket, and its crossing on the extension */
-			l = ends[0], gl = ends[1], u = ends[2], gu = ends[3];
-			if ((st = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, d, &tk, &tl, msg, msglen))) return st;
-		} else {
-			int none;
-			if ((st = bracket(r, ode, ta, tb, y, lo, hi, k, *which < 0, &have, &l, &gl, &u, &gu, &none, msg, msglen)))
-				return st;
-			if (*which >= 0) { /* below at bl: the crossing is before it */
-				if (bl <= l) continue; /* (it cannot be: bl is past a state where the guard is >= 0) */
-				u = bl, gu = r->gl[k], none = 0;
-			}
-			if (none) continue;
-			if ((st = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, NULL, &tk, &tl, msg, msglen))) return st;
+		/* the exact state's guards at lo and hi (the interpolant only pointed here) */
+		double l = lo, gl = r->ga[k], u = hi, gu = r->gh[k];
+		if (lo > ta) {
+			if ((st = substep_guards(r, ode, ta, tb, y, lo, msg, msglen))) return st;
+			if (r->gs[k] < 0) l = ta; /* already below at lo: the crossing is earlier */
+			else gl = r->gs[k];
 		}
+		if (*which >= 0) { /* below at bl: the crossing is before it */
+			if (bl <= l) continue; /* (it cannot be: bl is past a state where the guard is >= 0) */
+			u = bl, gu = r->gl[k];
+		} else if (hi < tb) {
+			if ((st = substep_guards(r, ode, ta, tb, y, hi, msg, msglen))) return st;
+			gu = r->gs[k];
+			if (gu >= 0) { /* not below on the exact state: try the step's end */
+				u = tb, gu = r->gb[k];
+				if (gu >= 0) continue;
+			}
+		}
+		double tk, tl;
+		if ((st = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, &tk, &tl, msg, msglen))) return st;
 		if (tk < best || *which < 0) {
 			best = tk, bl = tl, *which = (long)k, known = 0;
 			memcpy(r->ye, r->ys, n * sizeof *r->ye);

@@ -779,8 +779,6 @@ static void run_free(session *S)
 	free(r->gh);
 	free(r->gt);
 	free(r->gl);
-	free(r->gx);
-	free(r->gy);
 	free(S->work);
 	free(S->y);
 	free(S->r.row_y);

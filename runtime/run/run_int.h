@@ -36,10 +36,10 @@ typedef struct run {
 	double ti, tend;  /* dense: the integrator's time (at or past the last row), the last output time */
 	double *yi;       /* dense: the integrator's state at ti */
 	/* events: guards (conditional rules' comparisons, then two per candidate contact), ng of them
-	   (room for capg; gx and gy: on the exact states at the ends of a bracket), and work vectors */
+	   (room for capg), and work vectors */
 	uint32_t ng;
 	size_t capg;
-	double *ga, *gb, *gs, *gh, *gt, *gl, *gx, *gy, *ya, *fa, *fb, *ys, *fs, *ye;
+	double *ga, *gb, *gs, *gh, *gt, *gl, *ya, *fa, *fb, *ys, *fs, *ye;
 	double *jw; /* with contacts: 3 work vectors for the Jacobian by differences */
 	double *yh; /* with contacts: the 3 interpolated states of a step, one after the other */
 	csf_contacts *cs; /* with contacts: the candidate pairs (runtime/contact/) */
