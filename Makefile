@@ -240,10 +240,12 @@ check:
 
 # the piles of issue 28 (tests/piles/): not yet part of make check, since the
 # contact solver they test is being rewritten; PILE_N limits the sizes (default "3 16 64");
-# with the Galton board of the issue, 100 balls through 10 rows (tests/piles/galton.sh)
+# with a ball dropped onto two jammed between walls (tests/piles/jam.sh) and the Galton
+# board of the issue, 100 balls through 10 rows (tests/piles/galton.sh)
 check-piles: $(BUILD)/csfc $(BUILD)/csfvm
 	@d=$$(mktemp -d) && st=0 && \
 	sh tests/piles/statics.sh $(BUILD)/csfc $(BUILD)/csfvm "$$d" || st=1; \
+	sh tests/piles/jam.sh $(BUILD)/csfc $(BUILD)/csfvm "$$d" || st=1; \
 	sh tests/piles/piles.sh $(BUILD)/csfc $(BUILD)/csfvm "$$d" || st=1; \
 	sh tests/piles/galton.sh $(BUILD)/csfc $(BUILD)/csfvm "$$d" 100 10 || st=1; \
 	rm -rf "$$d"; exit $$st
