@@ -187,11 +187,13 @@ static int consistent(search *s)
  * The sets of modes in order (the header): those that change d pairs,
  * for d = 0, 1, ..., np; the pairs changed, idx[0..d), in lexicographic
  * order, and each one's alternatives (its options after the first) in
- * theirs, up to depth changes. Returns 0 with the consistent set in
+ * theirs, up to depth changes; those of fewer than from changes (tried
+ * before) are counted against the budget but not tried again. Returns 0
+ * with the consistent set in
  * s->p[].mode and .u, 1 when there is none, -1 when the sets it may try
  * (MODES_WORK) are done.
  */
-static int find_set(search *s, uint32_t depth)
+static int find_set(search *s, uint32_t from, uint32_t depth)
 {
 	uint32_t np = s->np, tries = 0, idx[MODES_MAX], alt[MODES_MAX];
 	double dim = 3.0 * np, most = csf_max(csf_min(MODES_TRIES, MODES_WORK / (dim * dim * dim)), 1 + 3.0 * np);
@@ -203,7 +205,7 @@ static int find_set(search *s, uint32_t depth)
 				for (uint32_t a = 0; a < np; a++) s->p[a].mode = s->p[a].opt[0];
 				for (uint32_t k = 0; k < d; k++) s->p[idx[k]].mode = s->p[idx[k]].opt[alt[k]];
 				if (++tries > most) return -1;
-				if (consistent(s)) return 0;
+				if (d >= from && consistent(s)) return 0;
 				uint32_t k = d;
 				while (k > 0 && ++alt[k - 1] >= (uint32_t)s->p[idx[k - 1]].nopt) alt[k - 1] = 1, k--;
 				if (k == 0) break;
@@ -328,9 +330,8 @@ static int lcp_set(search *s)
 	const double *m = s->m;
 	uint32_t np = s->np, nv = 0, iN[MODES_MAX], iB[MODES_MAX];
 	double D[MODES_MAX][4][3], f0[MODES_MAX][3];
-	for (uint32_t a = 0; a < np; a++) { /* the unknowns: N, and for a pair at rest with friction b and l */
+	for (uint32_t a = 0; a < np; a++) { /* each pair's force directions: N's, and at rest with friction D's */
 		mpair *p = &s->p[a];
-		iN[a] = nv++;
 		iB[a] = UINT32_MAX;
 		double *f = f0[a];
 		for (int k = 0; k < 3; k++) f[k] = p->n[k];
@@ -353,8 +354,7 @@ static int lcp_set(search *s)
 		t2[2] = p->n[0] * t1[1] - p->n[1] * t1[0];
 		for (int k = 0; k < 3; k++)
 			D[a][0][k] = t1[k], D[a][1][k] = -t1[k], D[a][2][k] = t2[k], D[a][3][k] = -t2[k];
-		iB[a] = nv;
-		nv += 5;
+		iB[a] = 0; /* (its place comes below, once its directions are known) */
 	}
 	/* a pair whose t2 no force of the cluster and no acceleration has a part along (a scene in a
 	   plane: t2 across it) takes no friction along it: its +-t2 are dropped, which the problem,
@@ -372,17 +372,16 @@ static int lcp_set(search *s)
 		}
 		if (!off) nd[a] = 2;
 	}
-	nv = 0;
-	for (uint32_t a = 0; a < np; a++) {
+	for (uint32_t a = 0; a < np; a++) { /* the unknowns: N, and for a pair at rest with friction b and l */
 		iN[a] = nv++;
 		if (iB[a] != UINT32_MAX) iB[a] = nv, nv += nd[a] + 1;
 	}
-	size_t nw = (size_t)nv * nv + csf_lcp_work(nv) + 3 * (size_t)nv;
+	size_t nw = (size_t)nv * nv + csf_lcp_work(nv) + 2 * (size_t)nv;
 	double *M = calloc(nw, sizeof *M);
 	uint32_t *basis = malloc(nv * sizeof *basis);
 	int ok = -1;
 	if (!M || !basis) goto out;
-	double *T = M + (size_t)nv * nv, *q = T + csf_lcp_work(nv), *z = q + nv, *w = z + nv;
+	double *T = M + (size_t)nv * nv, *q = T + csf_lcp_work(nv), *z = q + nv;
 	for (uint32_t a = 0; a < np; a++) {
 		const mpair *p = &s->p[a];
 		/* the rows of pair a: its normal acceleration, and (at rest, with friction) its tangential
@@ -408,10 +407,6 @@ static int lcp_set(search *s)
 		}
 	}
 	if (csf_lcp_lemke(nv, M, q, z, T, basis)) goto out;
-	for (uint32_t i = 0; i < nv; i++) { /* w = M z + q */
-		w[i] = q[i];
-		for (uint32_t k = 0; k < nv; k++) w[i] += M[(size_t)i * nv + k] * z[k];
-	}
 	double u0[MODES_MAX][3];
 	for (uint32_t a = 0; a < np; a++) {
 		mpair *p = &s->p[a];
@@ -518,7 +513,7 @@ int csf_contact_choose_modes(csf_contacts *cs, const double *m, const uint32_t *
 			cs->G[a * np + b] = csf_contact_coupling(cs, s.p[a].c, s.p[b].c, m);
 			cs->G1[a * np + b] = csf_contact_coupling(cs, s.p[a].c, s.p[b].c, NULL);
 		}
-	if (find_set(&s, 1) && guided_set(&s) && find_set(&s, np) && lcp_set(&s)) return -1;
+	if (find_set(&s, 0, 1) && guided_set(&s) && find_set(&s, 2, np) && lcp_set(&s)) return -1;
 	for (uint32_t a = 0; a < np; a++) {
 		const mpair *p = &s.p[a];
 		const cpair *c = p->c;
