@@ -212,26 +212,59 @@ static int cluster_locks(csf_contacts *cs, double *m, const uint32_t *cl, uint32
  * The contact forces of cluster cl[0..np), solved directly (cluster.c); fails
  * (-1, nothing changed) when it has more than DIRECT_MAX unknowns or its
  * system is singular and has no solution. The accelerations in m are those
- * of the other forces.
+ * of the other forces. Where a pair's normal force would pull beyond its
+ * rounding (a pair lifting off within a step, before the event is located;
+ * or the least-norm forces of a statically indeterminate cluster, which
+ * take no account of N >= 0: two balls jammed between two walls, squeezed
+ * by a third, whose sliding friction turns the squeeze into a vertical
+ * force, may take a squeeze of -39 N), the pairs that press are chosen as a
+ * complementarity problem (cluster_parts), whose forces push only: a
+ * sliding pair's friction is -mu_k N along its slip, with N >= 0, and so
+ * never drives it (before, a sliding pair whose N came out negative was
+ * solved again with its friction turned, and where that gave N > 0 its
+ * friction pushed along its slip: a jammed ball rose, gaining energy).
  */
 static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np)
 {
 	if (np > DIRECT_MAX) return -1;
-	double sign[DIRECT_MAX]; /* a sliding pair's friction is against its way for N > 0: |N| = sign N */
+	double sign[DIRECT_MAX], res[DIRECT_MAX]; /* sign: 1, or 0 for a pair whose friction locks it */
 	double *n = cs->nv, *B = cs->B;
 	for (uint32_t a = 0; a < np; a++) sign[a] = 1;
-	for (int attempt = 0; attempt < 2; attempt++) {
-		uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs);
-		if (!dim) return -1;
-		csf_contact_frames(np, cs->dc, cs->nv, dim, cs->T, cs->fric);
-		if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m), cs->T, cs->fric))
-			return cluster_locks(cs, m, cl, np, sign);
-		int flip = 0;
-		for (uint32_t a = 0; a < np; a++) {
-			const cpair *c = &cs->pairs[cl[a]];
-			if (has_friction(c, m) && W(c, MODE) == SLIDING && cs->x[cs->at[a]] * sign[a] < 0) sign[a] = -sign[a], flip = 1;
+	uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs);
+	if (!dim) return -1;
+	csf_contact_frames(np, cs->dc, cs->nv, dim, cs->T, cs->fric);
+	if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m), cs->T, cs->fric))
+		return cluster_locks(cs, m, cl, np, sign);
+	force_resolutions(cs, m, cl, np, res);
+	for (uint32_t a = 0; a < np; a++) { /* a pair that pulls: the pairs that press (cluster_parts) */
+		double F[3] = { 0, 0, 0 };
+		for (int q = 0; q < cs->dc[a]; q++)
+			for (int k = 0; k < 3; k++) F[k] += B[9 * a + 3 * q + k] * cs->x[cs->at[a] + q];
+		if (!((cs->dc[a] < 3 ? cs->x[cs->at[a]] : dot3(F, n + 3 * a)) < -res[a])) continue;
+		double keep[DIRECT_MAX];
+		memcpy(keep, cs->x, dim * sizeof *keep);
+		if (!cluster_parts(cs, m, cl, np)) return 0;
+		/* none: if it has a solution without its sliding pairs' friction, that friction locks them
+		   (cluster_locks: a ball jammed between a wall and another, whose squeeze its sliding
+		   friction turns into a force along its slip); else the least-norm forces, whose pull its
+		   guard reports */
+		int sliding = 0;
+		for (uint32_t b = 0; b < np; b++) {
+			const cpair *c = &cs->pairs[cl[b]];
+			if (has_friction(c, m) && W(c, MODE) == SLIDING) sign[b] = 0, sliding = 1;
 		}
-		if (!flip || attempt == 1) break;
+		if (sliding && (dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs))) {
+			csf_contact_frames(np, cs->dc, cs->nv, dim, cs->T, cs->fric);
+			if (!csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m), cs->T, cs->fric)) {
+				for (uint32_t b = 0; b < np; b++)
+					if (sign[b] == 0) W(&cs->pairs[cl[b]], LOCK) = 1;
+				break;
+			}
+		}
+		for (uint32_t b = 0; b < np; b++) sign[b] = 1;
+		dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs); /* B, at and dc as they were */
+		memcpy(cs->x, keep, dim * sizeof *keep);
+		break;
 	}
 	for (uint32_t a = 0; a < np; a++) {
 		cpair *c = &cs->pairs[cl[a]];
@@ -256,68 +289,114 @@ static int picks_marked(const cpair *c, const void *arg)
 }
 
 /*
+ * lcp_cluster's set cs->act solved: every pair's unknowns into cs->lam (0
+ * for those apart), its normal force into lam[a] and its relative normal
+ * acceleration (per unit of inverse mass) into an[a]. Returns 1 when the
+ * set's forces keep its accelerations zero, 0 when they cannot (the
+ * least-squares forces), -1 when neither solves.
+ */
+static int lcp_solve(csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np, uint32_t dim, double wratio,
+                     double *lam, double *an)
+{
+	uint32_t sub = 0, rows[DIRECT_MAX];
+	unsigned char dc[DIRECT_MAX];
+	double *x = cs->lam;
+	for (uint32_t a = 0; a < np; a++) {
+		dc[a] = cs->act[a] ? cs->dc[a] : 0;
+		for (int r = 0; r < dc[a]; r++) rows[sub++] = cs->at[a] + (uint32_t)r;
+	}
+	for (uint32_t r = 0; r < sub; r++) {
+		cs->rhs[r] = cs->v0[rows[r]];
+		for (uint32_t k = 0; k < sub; k++) {
+			cs->K[r * sub + k] = cs->G[(size_t)rows[r] * dim + rows[k]];
+			cs->K1[r * sub + k] = cs->G1[(size_t)rows[r] * dim + rows[k]];
+		}
+	}
+	csf_contact_frames(np, dc, cs->nv, sub, cs->T, cs->fric);
+	int solved = !sub || !csf_contact_solve(cs, sub, cs->K1, wratio, cs->T, cs->fric);
+	if (!solved && (!(wratio < 1e6) || csf_contact_least_squares(cs, sub, cs->T, cs->fric))) return -1;
+	memset(x, 0, dim * sizeof *x);
+	for (uint32_t r = 0; r < sub; r++) x[rows[r]] = cs->x[r];
+	for (uint32_t a = 0; a < np; a++) {
+		const cpair *c = &cs->pairs[cl[a]];
+		double *na = cs->nv + 3 * a;
+		an[a] = lam[a] = 0;
+		for (int r = 0; r < cs->dc[a]; r++) {
+			uint32_t row = cs->at[a] + (uint32_t)r;
+			double acc = -cs->v0[row];
+			for (uint32_t k = 0; k < dim; k++) acc += cs->G[(size_t)row * dim + k] * x[k];
+			an[a] += acc * dot3(cs->E + 9 * a + 3 * r, na);
+			lam[a] += dot3(cs->B + 9 * a + 3 * r, na) * x[row];
+		}
+		an[a] /= inv_mass_i(c, m) + inv_mass_j(c, m);
+	}
+	return solved;
+}
+
+/*
  * The pairs of cluster cl[0..np) that press, and their forces: a linear
  * complementarity problem. Each pair either pushes (N >= 0) and keeps its
  * relative normal acceleration zero, or takes no force and is left with a
  * relative normal acceleration that does not close (>= 0); beyond rounding
  * (res, per pair: csf_contact_accel_resolution, in force per unit of
- * inverse mass). By active sets, from the pairs marked in cs->act: the pair
- * that would pull most leaves, or else the apart pair that would close
- * fastest joins, until neither happens; where a set's forces cannot keep
- * all of its accelerations zero (contacts all but redundant that the motion
- * pulls apart: a ball sliding past another between two walls), the pair
- * that the least-squares forces leave parting fastest leaves. Each solve as
- * cluster_forces does, the friction of each pair as its mode says. The
- * accelerations in m are those of the other forces. Returns 0 with the
- * set in cs->act, every pair's unknowns in cs->lam (0 for those apart) and
- * the system in cs->G, cs->v0; -1 when the sets do not settle in 4 np + 8
- * changes.
+ * inverse mass). By active sets, from the pairs marked in cs->act: a pair
+ * that would pull leaves, or else the apart pair that would close fastest
+ * joins, until neither happens. Of the pairs that would pull, the one that
+ * leaves is the one that pulls most among those whose leaving does not
+ * close them (the one that pulls most if every one would close): in a
+ * statically indeterminate cluster the least-norm forces may pull at
+ * several pairs of which one is redundant, and it leaves, the others
+ * holding it at zero acceleration with no force; were another to leave, it
+ * would close, join again, and the sets would go round (a ball jammed
+ * between a wall and another whose squeeze, turned by the friction of its
+ * slides into a vertical force, came out as a pull at both). Where a set's
+ * forces cannot keep all of its accelerations zero (contacts all but
+ * redundant that the motion pulls apart: a ball sliding past another
+ * between two walls), the pair that the least-squares forces leave parting
+ * fastest leaves. Each solve as cluster_forces does, the friction of each
+ * pair as its mode says. The accelerations in m are those of the other
+ * forces. Returns 0 with the set in cs->act, every pair's unknowns in
+ * cs->lam (0 for those apart) and the system in cs->G, cs->v0; -1 when the
+ * sets do not settle in 4 np + 8 changes.
  */
 static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, const double *res, uint32_t *dimp)
 {
 	uint32_t dim = cluster_system(cs, m, cl, np, NULL, cs->G, cs->G1, cs->v0);
 	if (!dim) return -1;
 	*dimp = dim;
-	double *x = cs->lam, wratio = csf_contact_mass_ratio(cs, cl, np, m);
+	double wratio = csf_contact_mass_ratio(cs, cl, np, m), lam[DIRECT_MAX], an[DIRECT_MAX];
 	for (uint32_t iter = 0; iter < 4 * np + 8; iter++) {
-		uint32_t sub = 0, rows[DIRECT_MAX];
-		for (uint32_t a = 0; a < np; a++)
-			for (int r = 0; cs->act[a] && r < cs->dc[a]; r++) rows[sub++] = cs->at[a] + (uint32_t)r;
-		for (uint32_t r = 0; r < sub; r++) {
-			cs->rhs[r] = cs->v0[rows[r]];
-			for (uint32_t k = 0; k < sub; k++) {
-				cs->K[r * sub + k] = cs->G[(size_t)rows[r] * dim + rows[k]];
-				cs->K1[r * sub + k] = cs->G1[(size_t)rows[r] * dim + rows[k]];
-			}
-		}
-		unsigned char dc[DIRECT_MAX];
-		for (uint32_t a = 0; a < np; a++) dc[a] = cs->act[a] ? cs->dc[a] : 0;
-		csf_contact_frames(np, dc, cs->nv, sub, cs->T, cs->fric);
-		int solved = !sub || !csf_contact_solve(cs, sub, cs->K1, wratio, cs->T, cs->fric);
-		if (!solved && (!(wratio < 1e6) || csf_contact_least_squares(cs, sub, cs->T, cs->fric))) return -1;
-		memset(x, 0, dim * sizeof *x);
-		for (uint32_t r = 0; r < sub; r++) x[rows[r]] = cs->x[r];
-		long out = -1, in = -1;
+		int solved = lcp_solve(cs, m, cl, np, dim, wratio, lam, an);
+		if (solved < 0) return -1;
+		long out = -1, in = -1, pulls = 0;
 		double worst = 0;
-		for (uint32_t a = 0; a < np; a++) { /* its normal acceleration, in force per unit of inverse mass */
-			const cpair *c = &cs->pairs[cl[a]];
-			double an = 0, lam = 0, *na = cs->nv + 3 * a;
-			for (int r = 0; r < cs->dc[a]; r++) {
-				uint32_t row = cs->at[a] + (uint32_t)r;
-				double acc = -cs->v0[row];
-				for (uint32_t k = 0; k < dim; k++) acc += cs->G[(size_t)row * dim + k] * x[k];
-				an += acc * dot3(cs->E + 9 * a + 3 * r, na);
-				lam += dot3(cs->B + 9 * a + 3 * r, na) * x[row];
-			}
-			an /= inv_mass_i(c, m) + inv_mass_j(c, m);
+		for (uint32_t a = 0; a < np; a++) {
 			if (!solved) { /* a set that cannot hold: the pair parting fastest leaves */
-				if (cs->act[a] && an > res[a] && -an / res[a] < worst) worst = -an / res[a], out = a;
+				if (cs->act[a] && an[a] > res[a] && -an[a] / res[a] < worst) worst = -an[a] / res[a], out = a;
 			} else if (cs->act[a]) { /* a pair that would pull: its normal force */
-				if (lam < -res[a] && lam / res[a] < worst) worst = lam / res[a], out = a;
-			} else if (an < -res[a] && an / res[a] < worst) /* an apart pair that would close */
-				worst = an / res[a], in = a;
+				if (lam[a] < -res[a] && lam[a] / res[a] < worst) worst = lam[a] / res[a], out = a;
+				pulls += lam[a] < -res[a];
+			} else if (an[a] < -res[a] && an[a] / res[a] < worst) /* an apart pair that would close */
+				worst = an[a] / res[a], in = a;
 		}
 		if (!solved && out < 0) return -1;
+		if (pulls > 1) { /* the pair that pulls most of those whose leaving leaves them open */
+			double pull[DIRECT_MAX], an2[DIRECT_MAX], lam2[DIRECT_MAX];
+			memcpy(pull, lam, np * sizeof *pull);
+			for (long tries = 0; tries < pulls; tries++) {
+				long b = -1;
+				for (uint32_t a = 0; a < np; a++)
+					if (cs->act[a] && pull[a] < -res[a] && (b < 0 || pull[a] / res[a] < pull[b] / res[b])) b = a;
+				if (b < 0) break;
+				pull[b] = 0, cs->act[b] = 0;
+				int open = lcp_solve(cs, m, cl, np, dim, wratio, lam2, an2) > 0 && !(an2[b] < -res[b]);
+				cs->act[b] = 1;
+				if (open) {
+					out = b;
+					break;
+				}
+			}
+		}
 		if (out >= 0) cs->act[out] = 0;
 		else if (in >= 0) cs->act[in] = 1;
 		else return 0;

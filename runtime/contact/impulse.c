@@ -42,10 +42,14 @@ static int picks_impact(const cpair *c, const void *arg)
  * normals) is symmetric and positive definite when it is not singular. It
  * is solved by active sets: starting with the hit alone, the pair in
  * contact that closes fastest joins, or the one that would pull most leaves,
- * until neither happens. Fails (-1, nothing changed) for a cluster of more
- * than DIRECT_MAX pairs, a singular system or one that does not settle in
- * 4 np + 8 changes of the set; size is the scale of the velocities (at
- * least those of the cluster's bodies).
+ * until neither happens; each measured in its own least velocity that
+ * counts (csf_contact_speed_resolution), so that a pair left closing within
+ * it is not struck again, nor does one whose impulse's effect is that small
+ * leave. Fails (-1, nothing changed) for a cluster of more than DIRECT_MAX
+ * pairs, a singular system whose least-squares impulses leave a pair of the
+ * set beyond that velocity, or one that does not settle in 4 np + 8
+ * changes of the set; size is the scale of the velocities (at least those
+ * of the cluster's bodies).
  */
 static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, double target, double size)
 {
@@ -68,6 +72,8 @@ static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, doubl
 		cs->act[a] = a == ih;
 		cs->lam[a] = 0;
 	}
+	double vres[DIRECT_MAX]; /* the least relative velocity that counts, each pair's */
+	for (uint32_t a = 0; a < np; a++) vres[a] = csf_contact_speed_resolution(&cs->pairs[cl[a]], m, 1e-14 * size);
 	for (uint32_t a = 0; a < np; a++) /* G = the normals' coupling, once each normal is known */
 		for (uint32_t b = 0; b < np; b++) {
 			double w = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], m);
@@ -88,20 +94,33 @@ static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, doubl
 				cs->K[r * dim + k] = G[cs->at[r] * np + cs->at[k]];
 				cs->K1[r * dim + k] = cs->G1[cs->at[r] * np + cs->at[k]];
 			}
-		if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m), NULL, NULL)) return -1;
+		double wratio = csf_contact_mass_ratio(cs, cl, np, m);
+		if (csf_contact_solve(cs, dim, cs->K1, wratio, NULL, NULL)) {
+			/* contacts all but redundant (a row jammed between two walls, one of its contacts
+			   tilted by the 1e-10 m a ball has risen), whose velocities agree only to their
+			   rounding: the least-squares impulses, if they leave every pair of the set within
+			   the least velocity that counts of what it is to be */
+			if (!(wratio < 1e6) || csf_contact_least_squares(cs, dim, NULL, NULL)) return -1;
+			for (uint32_t r = 0; r < dim; r++) {
+				double e = (cs->at[r] == ih ? target : 0) - cs->v0[cs->at[r]];
+				for (uint32_t k = 0; k < dim; k++) e -= G[cs->at[r] * np + cs->at[k]] * cs->x[k];
+				if (!(fabs(e) <= vres[cs->at[r]])) return -1;
+			}
+		}
 		for (uint32_t a = 0; a < np; a++) cs->lam[a] = 0;
 		for (uint32_t r = 0; r < dim; r++) cs->lam[cs->at[r]] = cs->x[r];
 		long out = -1, in = -1;
-		double worst = -1e-14 * size;
-		for (uint32_t a = 0; a < np; a++) /* a contact that would pull: its impulse's effect */
-			if (cs->act[a] && a != ih && cs->lam[a] * G[a * np + a] < worst) worst = cs->lam[a] * G[a * np + a], out = a;
+		double worst = 0; /* in units of each pair's vres */
+		for (uint32_t a = 0; a < np; a++) { /* a contact that would pull: its impulse's effect */
+			double pull = cs->lam[a] * G[a * np + a];
+			if (cs->act[a] && a != ih && pull < -vres[a] && pull / vres[a] < worst) worst = pull / vres[a], out = a;
+		}
 		if (out < 0) {
-			worst = -1e-14 * size;
 			for (uint32_t a = 0; a < np; a++) { /* a contact that would close */
 				if (cs->act[a]) continue;
 				double v = cs->v0[a];
 				for (uint32_t b = 0; b < np; b++) v += G[a * np + b] * cs->lam[b];
-				if (v < worst) worst = v, in = a;
+				if (v < -vres[a] && v / vres[a] < worst) worst = v / vres[a], in = a;
 			}
 		}
 		if (out >= 0) cs->act[out] = 0;

@@ -1,5 +1,5 @@
 #!/bin/sh
-# tests/piles/jam.sh CSFC CSFVM DIR - a ball dropped onto two jammed between
+# tests/piles/jam.sh CSFC CSFVM DIR ["X CR" ...] - a ball dropped onto two jammed between
 # the walls of a box (issue 28): the lower balls (2 kg, radius 0.1 m) stand
 # on the floor at x = 0.1 and 0.3 m, each touching the other and its wall
 # (the box 0.4 m wide); the top ball (0.5 kg, radius 0.08 m) falls from
@@ -15,10 +15,18 @@
 # FN + Ff balancing its weight to 1e-9 of the whole weight.
 #
 # The jam is statically indeterminate (the lower balls' squeeze between the
-# walls is not determined, and with it their sliding friction): some cases
-# stop with contacts that could not be solved, and some leave a lower ball
-# rising with friction along its slip. Not part of make check (make
-# check-piles). Prints one line per failure and, last, "N passed, N failed".
+# walls is not determined, and with it their sliding friction). 11 of the
+# 12 pass, and make check runs those (tests/run.sh, jam_now); the whole
+# set is in make check-piles. The one that fails, X = 0.22 with restitution
+# 0.3, gains 1.9e-7 of its energy from t = 0.46 s: the left lower ball,
+# stopped wedged 9.4e-8 m above the floor at the top of a bounce (its
+# neighbour and the wall holding it by friction), is left between rows with
+# normal forces that pull, which no set of pressing pairs replaces, and a
+# guard already negative at the start of a step is not watched. Before the
+# forces were chosen to push only (csf(5), "Normal forces only push"), 7
+# of the 12 passed: a sliding pair whose normal force came out negative was
+# solved again with its friction turned, which then pushed along its slip.
+# Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3
 pass=0 fail=0
 jam() { # X CR
@@ -90,8 +98,13 @@ jam() { # X CR
 		fail=$((fail + 1)); echo "FAIL: $(head -n 1 "$f.chk")"
 	fi
 }
-for x in 0.2 0.205 0.21 0.22 0.24 0.26; do
-	for cr in 0 0.3; do jam "$x" "$cr"; done
-done
+if [ $# -gt 3 ]; then # the cases named, each "X CR"
+	shift 3
+	for c in "$@"; do jam $c; done
+else
+	for x in 0.2 0.205 0.21 0.22 0.24 0.26; do
+		for cr in 0 0.3; do jam "$x" "$cr"; done
+	done
+fi
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
