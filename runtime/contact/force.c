@@ -176,6 +176,25 @@ static int cluster_parts(csf_contacts *cs, double *m, const uint32_t *cl, uint32
 	return 0;
 }
 
+/* The forces of the solution cs->x of cluster_system's system for cl[0..np) added to the bodies. */
+static void cluster_apply(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np)
+{
+	const double *n = cs->nv, *B = cs->B;
+	for (uint32_t a = 0; a < np; a++) {
+		cpair *c = &cs->pairs[cl[a]];
+		double F[3] = { 0, 0, 0 };
+		const double *na = n + 3 * a;
+		for (int q = 0; q < cs->dc[a]; q++)
+			for (int k = 0; k < 3; k++) F[k] += B[9 * a + 3 * q + k] * cs->x[cs->at[a] + q];
+		/* F = N n + the friction force */
+		double lam = cs->dc[a] < 3 ? cs->x[cs->at[a]] : dot3(F, na), fn[3], *f = WV(c, F);
+		for (int k = 0; k < 3; k++) fn[k] = lam * na[k], f[k] = has_friction(c, m) ? F[k] - fn[k] : 0;
+		W(c, LAM) = lam;
+		add_force(c, m, fn, I(c, FN), J(c, FN));
+		add_force(c, m, f, I(c, FF), J(c, FF));
+	}
+}
+
 /*
  * The contact forces of cluster cl[0..np) whose system has no solution
  * (its direct solve failed, sign as there): if it has one without the
@@ -205,6 +224,7 @@ static int cluster_locks(csf_contacts *cs, double *m, const uint32_t *cl, uint32
 		cpair *c = &cs->pairs[cl[a]];
 		if (sign[a] == 0) W(c, LOCK) = 1;
 	}
+	cluster_apply(cs, m, cl, np);
 	return 0;
 }
 
@@ -266,18 +286,7 @@ static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 		memcpy(cs->x, keep, dim * sizeof *keep);
 		break;
 	}
-	for (uint32_t a = 0; a < np; a++) {
-		cpair *c = &cs->pairs[cl[a]];
-		double F[3] = { 0, 0, 0 }, *na = n + 3 * a;
-		for (int q = 0; q < cs->dc[a]; q++)
-			for (int k = 0; k < 3; k++) F[k] += B[9 * a + 3 * q + k] * cs->x[cs->at[a] + q];
-		/* F = N n + the friction force */
-		double lam = cs->dc[a] < 3 ? cs->x[cs->at[a]] : dot3(F, na), fn[3], *f = WV(c, F);
-		for (int k = 0; k < 3; k++) fn[k] = lam * na[k], f[k] = has_friction(c, m) ? F[k] - fn[k] : 0;
-		W(c, LAM) = lam;
-		add_force(c, m, fn, I(c, FN), J(c, FN));
-		add_force(c, m, f, I(c, FF), J(c, FF));
-	}
+	cluster_apply(cs, m, cl, np);
 	return 0;
 }
 
@@ -349,7 +358,9 @@ static int lcp_solve(csf_contacts *cs, const double *m, const uint32_t *cl, uint
  * holding it at zero acceleration with no force; were another to leave, it
  * would close, join again, and the sets would go round (a ball jammed
  * between a wall and another whose squeeze, turned by the friction of its
- * slides into a vertical force, came out as a pull at both). Where a set's
+ * slides into a vertical force, came out as a pull at both); where the sets
+ * so chosen go round (4 np + 8 changes), they are chosen again from the
+ * start with the pair that pulls most leaving, as before. Where a set's
  * forces cannot keep all of its accelerations zero (contacts all but
  * redundant that the motion pulls apart: a ball sliding past another
  * between two walls), the pair that the least-squares forces leave parting
@@ -359,11 +370,9 @@ static int lcp_solve(csf_contacts *cs, const double *m, const uint32_t *cl, uint
  * cs->lam (0 for those apart) and the system in cs->G, cs->v0; -1 when the
  * sets do not settle in 4 np + 8 changes.
  */
-static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, const double *res, uint32_t *dimp)
+static int lcp_sets(csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np, const double *res, uint32_t dim,
+                    int open_first)
 {
-	uint32_t dim = cluster_system(cs, m, cl, np, NULL, cs->G, cs->G1, cs->v0);
-	if (!dim) return -1;
-	*dimp = dim;
 	double wratio = csf_contact_mass_ratio(cs, cl, np, m), lam[DIRECT_MAX], an[DIRECT_MAX];
 	for (uint32_t iter = 0; iter < 4 * np + 8; iter++) {
 		int solved = lcp_solve(cs, m, cl, np, dim, wratio, lam, an);
@@ -380,7 +389,7 @@ static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t
 				worst = an[a] / res[a], in = a;
 		}
 		if (!solved && out < 0) return -1;
-		if (pulls > 1) { /* the pair that pulls most of those whose leaving leaves them open */
+		if (open_first && pulls > 1) { /* the pair that pulls most of those whose leaving leaves them open */
 			double pull[DIRECT_MAX], an2[DIRECT_MAX], lam2[DIRECT_MAX];
 			memcpy(pull, lam, np * sizeof *pull);
 			for (long tries = 0; tries < pulls; tries++) {
@@ -402,6 +411,18 @@ static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t
 		else return 0;
 	}
 	return -1;
+}
+
+static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, const double *res, uint32_t *dimp)
+{
+	uint32_t dim = cluster_system(cs, m, cl, np, NULL, cs->G, cs->G1, cs->v0);
+	if (!dim) return -1;
+	*dimp = dim;
+	unsigned char act[DIRECT_MAX];
+	memcpy(act, cs->act, np);
+	if (!lcp_sets(cs, m, cl, np, res, dim, 1)) return 0;
+	memcpy(cs->act, act, np);
+	return lcp_sets(cs, m, cl, np, res, dim, 0);
 }
 
 /* The rounding of each pair's normal force (lcp_cluster's res). */
