@@ -205,25 +205,34 @@ static void cluster_apply(csf_contacts *cs, double *m, const uint32_t *cl, uint3
  * sliding pair's guard 1 says it stops (W_LOCK): the event that follows
  * stops its slip by an impulse of friction, and it sticks if static
  * friction can hold. Otherwise the pairs that cannot all hold
- * (cluster_parts).
+ * (cluster_parts). lock_solve is the first part: the system without the
+ * sliding pairs' friction (sign 0 for them) solved into cs->x and their
+ * locks set, 0; or -1 (no sliding pair, masses that differ by 1e6 or
+ * more, or no solution).
  */
-static int cluster_locks(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, double *sign)
+static int lock_solve(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, double *sign)
 {
 	int sliding = 0;
 	for (uint32_t a = 0; a < np; a++) {
 		const cpair *c = &cs->pairs[cl[a]];
 		if (has_friction(c, m) && W(c, MODE) == SLIDING) sign[a] = 0, sliding = 1;
 	}
-	if (!sliding || !(csf_contact_mass_ratio(cs, cl, np, m) < 1e6)) return cluster_parts(cs, m, cl, np);
+	double wratio = csf_contact_mass_ratio(cs, cl, np, m);
+	if (!sliding || !(wratio < 1e6)) return -1;
 	uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs);
-	if (!dim) return cluster_parts(cs, m, cl, np);
+	if (!dim) return -1;
 	csf_contact_frames(np, cs->dc, cs->nv, dim, cs->T, cs->fric);
-	if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m), cs->T, cs->fric))
-		return cluster_parts(cs, m, cl, np);
+	if (csf_contact_solve(cs, dim, cs->K1, wratio, cs->T, cs->fric)) return -1;
 	for (uint32_t a = 0; a < np; a++) {
 		cpair *c = &cs->pairs[cl[a]];
 		if (sign[a] == 0) W(c, LOCK) = 1;
 	}
+	return 0;
+}
+
+static int cluster_locks(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, double *sign)
+{
+	if (lock_solve(cs, m, cl, np, sign)) return cluster_parts(cs, m, cl, np);
 	cluster_apply(cs, m, cl, np);
 	return 0;
 }
@@ -268,19 +277,7 @@ static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 		   (cluster_locks: a ball jammed between a wall and another, whose squeeze its sliding
 		   friction turns into a force along its slip); else the least-norm forces, whose pull its
 		   guard reports */
-		int sliding = 0;
-		for (uint32_t b = 0; b < np; b++) {
-			const cpair *c = &cs->pairs[cl[b]];
-			if (has_friction(c, m) && W(c, MODE) == SLIDING) sign[b] = 0, sliding = 1;
-		}
-		if (sliding && (dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs))) {
-			csf_contact_frames(np, cs->dc, cs->nv, dim, cs->T, cs->fric);
-			if (!csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m), cs->T, cs->fric)) {
-				for (uint32_t b = 0; b < np; b++)
-					if (sign[b] == 0) W(&cs->pairs[cl[b]], LOCK) = 1;
-				break;
-			}
-		}
+		if (!lock_solve(cs, m, cl, np, sign)) break;
 		for (uint32_t b = 0; b < np; b++) sign[b] = 1;
 		dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs); /* B, at and dc as they were */
 		memcpy(cs->x, keep, dim * sizeof *keep);
