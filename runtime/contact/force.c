@@ -138,8 +138,9 @@ static uint32_t cluster_system(csf_contacts *cs, const double *m, const uint32_t
 	return dim;
 }
 
-static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, const double *res, uint32_t *dimp);
-static int cluster_parts(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np);
+static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, const double *res, const double *sign,
+                       uint32_t *dimp);
+static int cluster_parts(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, const double *sign);
 static void force_resolutions(const csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np, double *res);
 
 /*
@@ -148,15 +149,16 @@ static void force_resolutions(const csf_contacts *cs, const double *m, const uin
  * those of the pairs that press (lcp_cluster); a pair that does not has no
  * force, and its normal force's place (W_LAM, its guard) holds minus its
  * relative normal acceleration (per unit of inverse mass), so that its
- * guard says it parts and the event that follows separates it. 0, or -1.
+ * guard says it parts and the event that follows separates it; sign as in
+ * cluster_system (NULL: every pair's friction as its mode says). 0, or -1.
  */
-static int cluster_parts(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np)
+static int cluster_parts(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, const double *sign)
 {
 	double res[DIRECT_MAX];
 	uint32_t dim = 0;
 	force_resolutions(cs, m, cl, np, res);
 	for (uint32_t a = 0; a < np; a++) cs->act[a] = 1;
-	if (lcp_cluster(cs, m, cl, np, res, &dim)) return -1;
+	if (lcp_cluster(cs, m, cl, np, res, sign, &dim)) return -1;
 	for (uint32_t a = 0; a < np; a++) {
 		cpair *c = &cs->pairs[cl[a]];
 		double F[3] = { 0, 0, 0 }, *na = cs->nv + 3 * a, fn[3], *f = WV(c, F), an = 0;
@@ -232,7 +234,7 @@ static int lock_solve(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t 
 
 static int cluster_locks(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, double *sign)
 {
-	if (lock_solve(cs, m, cl, np, sign)) return cluster_parts(cs, m, cl, np);
+	if (lock_solve(cs, m, cl, np, sign)) return cluster_parts(cs, m, cl, np, NULL);
 	cluster_apply(cs, m, cl, np);
 	return 0;
 }
@@ -272,11 +274,22 @@ static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 		if (!((cs->dc[a] < 3 ? cs->x[cs->at[a]] : dot3(F, n + 3 * a)) < -res[a])) continue;
 		double keep[DIRECT_MAX];
 		memcpy(keep, cs->x, dim * sizeof *keep);
-		if (!cluster_parts(cs, m, cl, np)) return 0;
-		/* none: if it has a solution without its sliding pairs' friction, that friction locks them
-		   (cluster_locks: a ball jammed between a wall and another, whose squeeze its sliding
-		   friction turns into a force along its slip); else the least-norm forces, whose pull its
-		   guard reports */
+		if (!cluster_parts(cs, m, cl, np, NULL)) return 0;
+		/* none: its sliding pairs' friction locks them (a ball jammed between a wall and another,
+		   whose squeeze its sliding friction turns into a force along its slip, is wedged): the pairs
+		   that press without that friction, or its system's solution without it (lock_solve); else
+		   the least-norm forces, whose pull its guard reports */
+		int sliding = 0;
+		for (uint32_t b = 0; b < np; b++) {
+			const cpair *c = &cs->pairs[cl[b]];
+			if (has_friction(c, m) && W(c, MODE) == SLIDING) sign[b] = 0, sliding = 1;
+		}
+		if (sliding && !cluster_parts(cs, m, cl, np, sign)) {
+			for (uint32_t b = 0; b < np; b++)
+				if (sign[b] == 0) W(&cs->pairs[cl[b]], LOCK) = 1;
+			return 0;
+		}
+		for (uint32_t b = 0; b < np; b++) sign[b] = 1;
 		if (!lock_solve(cs, m, cl, np, sign)) break;
 		for (uint32_t b = 0; b < np; b++) sign[b] = 1;
 		dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs); /* B, at and dc as they were */
@@ -362,7 +375,8 @@ static int lcp_solve(csf_contacts *cs, const double *m, const uint32_t *cl, uint
  * redundant that the motion pulls apart: a ball sliding past another
  * between two walls), the pair that the least-squares forces leave parting
  * fastest leaves. Each solve as cluster_forces does, the friction of each
- * pair as its mode says. The accelerations in m are those of the other
+ * pair as its mode says (sign as in cluster_system: lcp_cluster's, NULL
+ * for every pair's). The accelerations in m are those of the other
  * forces. Returns 0 with the set in cs->act, every pair's unknowns in
  * cs->lam (0 for those apart) and the system in cs->G, cs->v0; -1 when the
  * sets do not settle in 4 np + 8 changes.
@@ -410,9 +424,10 @@ static int lcp_sets(csf_contacts *cs, const double *m, const uint32_t *cl, uint3
 	return -1;
 }
 
-static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, const double *res, uint32_t *dimp)
+static int lcp_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, const double *res, const double *sign,
+                       uint32_t *dimp)
 {
-	uint32_t dim = cluster_system(cs, m, cl, np, NULL, cs->G, cs->G1, cs->v0);
+	uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->G, cs->G1, cs->v0);
 	if (!dim) return -1;
 	*dimp = dim;
 	unsigned char act[DIRECT_MAX];
@@ -456,7 +471,7 @@ static int choose_cluster(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 		add_force(c, m, fn, I(c, FN), J(c, FN));
 		add_force(c, m, f, I(c, FF), J(c, FF));
 	}
-	return lcp_cluster(cs, m, cl, np, res, &dim);
+	return lcp_cluster(cs, m, cl, np, res, NULL, &dim);
 }
 
 /*

@@ -15,20 +15,19 @@
 # FN + Ff balancing its weight to 1e-9 of the whole weight.
 #
 # The jam is statically indeterminate (the lower balls' squeeze between the
-# walls is not determined, and with it their sliding friction). 10 of the
+# walls is not determined, and with it their sliding friction). 11 of the
 # 12 pass, and make check runs those (tests/run.sh, jam_now); the whole
-# set is in make check-piles. The two that fail: X = 0.22 with restitution
-# 0.3 gains 1.9e-7 of its energy from t = 0.46 s (the left lower ball,
-# stopped wedged 9.4e-8 m above the floor at the top of a bounce, its
-# neighbour and the wall holding it by friction, is left between rows with
-# normal forces that pull, which no set of pressing pairs replaces; a
-# guard already negative at the start of a step is not watched); X = 0.2
-# with restitution 0.3 ends with the top ball creeping up at 9e-9 m/s, its
-# contacts with the lower balls opening at 7e-9 m/s while they stay in
-# contact (above the 1e-9 m/s the check allows at rest). Before the forces
-# were chosen to push only (csf(5), "Normal forces only push"), 7 of the 12
-# passed: a sliding pair whose normal force came out negative was solved
-# again with its friction turned, which then pushed along its slip.
+# set is in make check-piles. The one that fails, X = 0.2 with restitution
+# 0.3, ends with the top ball creeping up at 9e-9 m/s, its contacts with
+# the lower balls opening at 7e-9 m/s while they stay in contact (above
+# the 1e-9 m/s the check allows at rest). Before the forces were chosen to
+# push only (csf(5), "Normal forces only push"), 7 of the 12 passed: a
+# sliding pair whose normal force came out negative was solved again with
+# its friction turned, which then pushed along its slip (a lower ball rose,
+# gaining energy); and X = 0.22 with restitution 0.3 needed the last
+# resort there, the pairs that press chosen without the sliding pairs'
+# friction, which locks them (a lower ball wedged by friction 9.4e-8 m above
+# the floor at the top of a bounce).
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3
 pass=0 fail=0
