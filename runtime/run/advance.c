@@ -190,6 +190,16 @@ int csf_run_advance_dense(run *r, double tk, double *y, char *msg, size_t msglen
 		if (csf_run_cons_step(r, ode, r->ti, r->yi)) return CSF_ODE_STOPPED;
 		if (events) memcpy(r->ya, r->yi, n * sizeof *y);
 		st = csf_ode_step(ode, &r->ti, r->dense ? r->tend : tk, 0, 0, r->yi, msg, msglen);
+		if (st == CSF_ODE_FAILED && events && r->au && r->au->cur && !r->fail) {
+			/* the implicit method's step collapsed in a scene with events: its Jacobian, by
+			   differences, spans the switching of contacts' modes (a Galton board whose spectrum
+			   looked stiff at an event, then every step refused): dop853 takes the step again
+			   from its start, and keeps the steps from there on */
+			r->ti = ta;
+			memcpy(r->yi, r->ya, n * sizeof *y);
+			r->au->want = 1, r->au->failed = 1;
+			continue;
+		}
 		if (st != CSF_ODE_OK) return st;
 		r->last_h = r->ti - ta;
 		if (!events) continue;

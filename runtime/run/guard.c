@@ -398,7 +398,7 @@ int csf_run_guard_check(run *r, csf_ode *ode, double t, const double *y, double 
 			halt = 1;
 		}
 	} else if (au) { /* dop853: the implicit method from the next step on when stability holds it */
-		if (h > 0 && hs < INFINITY && (r->tend - t) / h > 1000 &&
+		if (!au->failed && h > 0 && hs < INFINITY && (r->tend - t) / h > 1000 &&
 		    ((h >= AUTO_NEAR * hs && e.re[0] < 0 && fabs(e.im[0]) < -e.re[0] && auto_ratio_at_least(r, e.rho, 1000)) ||
 		     (h >= 0.8 * hs && (auto_ratio_at_least(r, e.rho, 100) || ++g->stiff_hits >= 2))))
 			au->want = 1;

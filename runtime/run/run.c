@@ -640,7 +640,8 @@ static void stats_auto(const session *S, FILE *err)
 	fprintf(err, "stats: auto: %lu switch%s:", au->n, au->n > 1 ? "es" : "");
 	for (unsigned long i = 0; i < au->n && i < AUTO_SHOWN; i++)
 		fprintf(err, "%s at t=%.6g to %s", i ? "," : "", au->at[i], i % 2 ? csf_ode_method(S->ode) : AUTO_STIFF);
-	fprintf(err, "%s\n", au->n > AUTO_SHOWN ? ", ..." : "");
+	fprintf(err, "%s%s\n", au->n > AUTO_SHOWN ? ", ..." : "",
+	        au->failed ? " (" AUTO_STIFF "'s step collapsed: dop853 from there on)" : "");
 }
 
 /* --stats: what the stability guard saw. */

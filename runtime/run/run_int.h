@@ -170,6 +170,7 @@ typedef struct autom {
 	int cur;                    /* the one that takes the steps */
 	int want;                   /* the guard asks for the other from the next step on */
 	int soft;                   /* looks in a row (implicit) that found the stiffness passed */
+	int failed;                 /* the implicit method failed (csf_run_advance_dense): dop853 on */
 	unsigned long n;            /* switches */
 	double at[AUTO_SHOWN];      /* the first ones' times (to m[1], m[0], m[1], ...: they alternate) */
 } autom;
