@@ -252,5 +252,8 @@ int csf_lcp_lemke(uint32_t n, const double *M, const double *q, double *z, doubl
 void csf_contact_add_impulse(cpair *c, double *m, const double dv[3]);
 int csf_contact_collide(csf_contacts *cs, double *m, cpair *hit, double target, double vn);
 void csf_contact_before_impact(csf_contacts *cs, const double *m);
+/* impulse.c: pair hit sticks together with its cluster (0), or -1 (nothing changed); least as in
+   csf_contact_speed_resolution */
+int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double least);
 
 #endif

@@ -187,3 +187,113 @@ void csf_contact_before_impact(csf_contacts *cs, const double *m)
 		if (in_contact(c)) rel(c, m, I(c, V), J(c, V), WV(c, VR));
 	}
 }
+
+/*
+ * Pair hit stops slipping (it sticks) together with the pairs in contact
+ * in its cluster: the impulses that leave hit and every sticking pair at a
+ * relative velocity of zero (normal and tangential), and every other pair
+ * in contact either pushing (its normal impulse >= 0) at a relative normal
+ * velocity of zero, or taking no impulse and not closing: a linear
+ * complementarity problem, solved by active sets as an impact's
+ * (cluster_impulses; a sticking pair's unknown is its whole impulse, and
+ * only the pairs other than hit may leave), each pair measured in its own
+ * least speed that counts (csf_contact_speed_resolution, at least least).
+ * Where the pairs are statically indeterminate (a ball on a peg leaning on
+ * a divider) the impulses with the least friction (csf_contact_solve). A
+ * slip stopped by its own pair's impulse alone drives its neighbours into
+ * each other; their impact starts the slip again, a little slower, and
+ * the slip stops again at the next event: a ball in a Galton board's bin,
+ * leaning on one that rests on a peg, stopped and slipped 3400 times in
+ * 3e-7 s, at 1e-10 m/s. Returns 0, or -1 with nothing changed: a pair
+ * alone, more than DIRECT_MAX unknowns, a system whose impulses do not
+ * make the velocities what they are to be (to 1e-9 of the cluster's
+ * speeds: contacts so nearly redundant that only impulses without bound
+ * would), or sets that do not settle in 4 np + 8 changes.
+ */
+int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double least)
+{
+	impact im = { cs, hit };
+	uint32_t nq = csf_contact_clusters(cs, picks_impact, &im), h = (uint32_t)(hit - cs->pairs), np = 0, ih = 0;
+	const uint32_t *cl = NULL;
+	for (uint32_t q = 0; q < nq && !cl; q++)
+		for (uint32_t a = cs->cstart[q]; a < cs->cstart[q + 1]; a++)
+			if (cs->cl[a] == h) cl = cs->cl + cs->cstart[q], np = cs->cstart[q + 1] - cs->cstart[q], ih = a - cs->cstart[q];
+	if (!cl || np < 2 || np > DIRECT_MAX) return -1;
+	double *n = cs->nv, size = 0, vr[DIRECT_MAX][3], vres[DIRECT_MAX], P[DIRECT_MAX][3], E[DIRECT_MAX][3];
+	unsigned char whole[DIRECT_MAX], dc[DIRECT_MAX];
+	uint32_t dim = 0, pa[DIRECT_MAX];
+	for (uint32_t a = 0; a < np; a++) {
+		const cpair *c = &cs->pairs[cl[a]];
+		double curv;
+		csf_contact_geometry(c, m, n + 3 * a, &curv);
+		rel(c, m, I(c, V), J(c, V), vr[a]);
+		whole[a] = a == ih || (W(c, MODE) == STICKING && has_friction(c, m));
+		dim += whole[a] ? 3 : 1;
+		size = csf_max(size, csf_contact_speeds(c, m));
+		cs->act[a] = 1;
+	}
+	if (dim > DIRECT_MAX) return -1;
+	for (uint32_t a = 0; a < np; a++) vres[a] = csf_contact_speed_resolution(&cs->pairs[cl[a]], m, csf_max(least, 1e-14 * size));
+	for (uint32_t a = 0; a < np; a++) /* the pairs' coupling, with their masses and with every mass 1 */
+		for (uint32_t b = 0; b < np; b++) {
+			cs->G[a * np + b] = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], m);
+			cs->G1[a * np + b] = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], NULL);
+		}
+	double wratio = csf_contact_mass_ratio(cs, cl, np, m);
+	for (uint32_t iter = 0; iter < 4 * np + 8; iter++) {
+		uint32_t sub = 0; /* the rows of the active pairs: a whole pair's three axes, another's normal */
+		for (uint32_t a = 0; a < np; a++) {
+			dc[a] = cs->act[a] ? (whole[a] ? 3 : 1) : 0;
+			for (int r = 0; r < dc[a]; r++, sub++) {
+				for (int k = 0; k < 3; k++) E[sub][k] = dc[a] == 3 ? (k == r) : n[3 * a + k];
+				pa[sub] = a;
+				cs->rhs[sub] = -dot3(E[sub], vr[a]);
+			}
+		}
+		for (uint32_t r = 0; r < sub; r++)
+			for (uint32_t k = 0; k < sub; k++) {
+				double w = cs->G[pa[r] * np + pa[k]], w1 = cs->G1[pa[r] * np + pa[k]], d = dot3(E[r], E[k]);
+				cs->K[r * sub + k] = w == 0 ? 0 : w * d;
+				cs->K1[r * sub + k] = w1 == 0 ? 0 : w1 * d;
+			}
+		csf_contact_frames(np, dc, n, sub, cs->T, cs->fric);
+		if (csf_contact_solve(cs, sub, cs->K1, wratio, cs->T, cs->fric) &&
+		    (!(wratio < 1e6) || csf_contact_least_squares(cs, sub, cs->T, cs->fric)))
+			return -1;
+		for (uint32_t a = 0; a < np; a++) P[a][0] = P[a][1] = P[a][2] = 0;
+		for (uint32_t r = 0; r < sub; r++)
+			for (int k = 0; k < 3; k++) P[pa[r]][k] += E[r][k] * cs->x[r];
+		long out = -1, in = -1;
+		double worst = 0; /* in units of each pair's vres */
+		for (uint32_t a = 0; a < np; a++) { /* each pair's relative velocity after the impulses */
+			const cpair *c = &cs->pairs[cl[a]];
+			double v[3];
+			memcpy(v, vr[a], sizeof v);
+			for (uint32_t b = 0; b < np; b++)
+				for (int k = 0; k < 3; k++) v[k] += cs->G[a * np + b] * P[b][k];
+			if (cs->act[a]) {
+				for (uint32_t r = 0; r < sub; r++) /* a row the impulses do not satisfy */
+					if (pa[r] == a && !(fabs(dot3(E[r], v)) <= 1e-9 * size)) return -1;
+				double pull = dot3(P[a], n + 3 * a) * (inv_mass_i(c, m) + inv_mass_j(c, m));
+				if (a != ih && pull < -vres[a] && pull / vres[a] < worst) worst = pull / vres[a], out = a;
+			} else {
+				double vn = dot3(v, n + 3 * a);
+				if (vn < -vres[a] && vn / vres[a] < worst && out < 0) worst = vn / vres[a], in = a;
+			}
+		}
+		if (out >= 0) cs->act[out] = 0;
+		else if (in >= 0) cs->act[in] = 1;
+		else {
+			for (uint32_t a = 0; a < np; a++) {
+				cpair *c = &cs->pairs[cl[a]];
+				double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m);
+				for (int k = 0; k < 3; k++) {
+					m[I(c, V) + k] += P[a][k] * wi;
+					if (!c->plane) m[J(c, V) + k] -= P[a][k] * wj;
+				}
+			}
+			return 0;
+		}
+	}
+	return -1;
+}

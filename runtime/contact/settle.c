@@ -102,10 +102,17 @@ static void lift_off(const csf_contacts *cs, cpair *c, double *m)
 	W(c, LIFT) = csf_max(1e-12, 10 * cs->tol) * csf_contact_scale(c, m);
 }
 
-/* Sliding has stopped: the relative tangential velocity becomes exactly zero, and the pair sticks. */
-static void stick(cpair *c, double *m)
+/*
+ * Sliding has stopped: the relative tangential velocity becomes exactly
+ * zero, and the pair sticks. The impulse that stops it is its cluster's
+ * (csf_contact_stick_cluster: its neighbours stay in contact, and those
+ * that stick go on sticking); then, or where that cannot be had, the
+ * pair's own impulse takes away what slip is left.
+ */
+static void stick(csf_contacts *cs, cpair *c, double *m)
 {
 	double n[3], curv, vt[3];
+	csf_contact_stick_cluster(cs, m, c, cs->vfloor);
 	csf_contact_geometry(c, m, n, &curv);
 	csf_contact_slip_velocity(c, m, n, vt);
 	for (int k = 0; k < 3; k++) vt[k] = -vt[k];
@@ -278,7 +285,7 @@ static int mark_touching(csf_contacts *cs, const double *m)
  * its relative normal velocity (within the rounding of zero) is taken
  * away; to stick, its slip (as small) too. Returns 1 if its mode changed.
  */
-static int take_mode(const csf_contacts *cs, cpair *c, double *m, int to, const double dir[3])
+static int take_mode(csf_contacts *cs, cpair *c, double *m, int to, const double dir[3])
 {
 	int was = in_contact(c);
 	if (to == TO_APART) {
@@ -298,7 +305,7 @@ static int take_mode(const csf_contacts *cs, cpair *c, double *m, int to, const 
 	} else if (to == TO_CONTACT || (to == TO_STICK && W(c, MODE) == STICKING) ||
 	           (to == TO_SLIDE && W(c, MODE) == SLIDING && memcmp(WV(c, DS), dir, 3 * sizeof *dir) == 0))
 		return 0;
-	if (to == TO_STICK) stick(c, m);
+	if (to == TO_STICK) stick(cs, c, m);
 	if (to == TO_SLIDE) { /* a slip within the rounding, whose way is noise, is taken away: it begins along dir */
 		double n[3], curv, vt[3];
 		csf_contact_geometry(c, m, n, &curv);
@@ -535,7 +542,7 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 				rel(c, m, I(c, V), J(c, V), vr);
 				double vn = dot3(vr, n), res = speed_resolution(cs, c, m);
 				if (vn < -res && vn < worst) worst = vn, hit = (long)i;
-				if (hit < 0 && evaluated && stops_at_once(cs, c, m, zeno)) stick(c, m), W(c, SS)++, changed = 1;
+				if (hit < 0 && evaluated && stops_at_once(cs, c, m, zeno)) stick(cs, c, m), W(c, SS)++, changed = 1;
 				continue;
 			}
 			double gap = csf_contact_geometry(c, m, n, &curv);
@@ -639,7 +646,7 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 			cpair *c = &cs->pairs[i];
 			if (!in_contact(c) || (chose && cs->mark[i] & MODES_CHOSEN)) continue;
 			if (W(c, G0) < 0) lift_off(cs, c, m), changed = 1;
-			else if (W(c, G1) < 0 && W(c, MODE) == SLIDING && W(c, SS) < 2) stick(c, m), W(c, SS)++, changed = 1;
+			else if (W(c, G1) < 0 && W(c, MODE) == SLIDING && W(c, SS) < 2) stick(cs, c, m), W(c, SS)++, changed = 1;
 			else if (W(c, G1) < 0 && W(c, MODE) == STICKING) slide(c, m), changed = 1;
 		}
 		if (!changed || ++others >= 100 + 10 * (uint64_t)cs->n) return 0;
