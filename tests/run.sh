@@ -520,10 +520,10 @@ t_jam_now() {
 }
 # a Galton board (issue 28's proof item, tests/piles/galton.sh; galton NBALLS NROWS): no overlap,
 # no energy gained, every ball at rest in a bin at the end. 9 balls through 10 rows take 0.2 s,
-# 10 balls some 7 s; 20 and more do not finish in 120 s (the script's header says where and how),
-# so only the sizes that pass are here
+# 10 balls some 3 s, 20 balls some 27 s (55 s under the sanitizers); 30 and more do not finish
+# (the script's header says where and how), so only the sizes that pass are here, each within 240 s
 t_galton() {
-	suite "a Galton board of $1 balls, $2 rows" sh tests/piles/galton.sh "$CSFC" "$CSFVM" "$T" "$1" "$2"
+	suite "a Galton board of $1 balls, $2 rows" env GALTON_LIMIT=240 sh tests/piles/galton.sh "$CSFC" "$CSFVM" "$T" "$1" "$2"
 }
 
 # 5r. constraints (rules with attribute C; tests/constraints/check.sh): a double pendulum on rods
@@ -827,7 +827,7 @@ done
 	echo piles_statics
 	echo piles_now
 	echo jam_now
-	for c in "6 10" "9 10" "10 10" "10 8"; do echo "galton $c"; done
+	for c in "20 10" "6 10" "9 10" "10 10" "10 8"; do echo "galton $c"; done
 	if [ -n "${CSF_TEST_PILES:-}" ]; then
 		for n in 64 16 3; do echo "piles $n"; done
 	fi

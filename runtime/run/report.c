@@ -114,6 +114,9 @@ void csf_run_report_unsettled(const run *r, FILE *err)
 		if (big)
 			snprintf(why, sizeof why, "have more unknowns than the direct solve takes (%u), and the Gauss-Seidel "
 			         "sweeps that take them did not converge", (unsigned)big);
+		else if (r->unsettled == CSF_SETTLE_IMPULSES) /* impacts are frictionless: what was measured */
+			snprintf(why, sizeof why, "take no set of pushing impulses that leaves none closing (the direct "
+			         "solve found none, and 1000 Gauss-Seidel sweeps did not converge)");
 		else
 			snprintf(why, sizeof why, "contradict each other (no set of them holds: sticking and sliding, or "
 			         "pressing and parting, decide each other there)");
