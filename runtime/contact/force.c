@@ -212,13 +212,20 @@ static void cluster_apply(csf_contacts *cs, double *m, const uint32_t *cl, uint3
  * locks set, 0; or -1 (no sliding pair, masses that differ by 1e6 or
  * more, or no solution).
  */
-static int lock_solve(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, double *sign)
+/* Sets sign 0 for the sliding pairs with friction of cl[0..np); 1 if there is one. */
+static int drop_sliding(const csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np, double *sign)
 {
 	int sliding = 0;
 	for (uint32_t a = 0; a < np; a++) {
 		const cpair *c = &cs->pairs[cl[a]];
 		if (has_friction(c, m) && W(c, MODE) == SLIDING) sign[a] = 0, sliding = 1;
 	}
+	return sliding;
+}
+
+static int lock_solve(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, double *sign)
+{
+	int sliding = drop_sliding(cs, m, cl, np, sign);
 	double wratio = csf_contact_mass_ratio(cs, cl, np, m);
 	if (!sliding || !(wratio < 1e6)) return -1;
 	uint32_t dim = cluster_system(cs, m, cl, np, sign, cs->K, cs->K1, cs->rhs);
@@ -279,12 +286,7 @@ static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 		   whose squeeze its sliding friction turns into a force along its slip, is wedged): the pairs
 		   that press without that friction, or its system's solution without it (lock_solve); else
 		   the least-norm forces, whose pull its guard reports */
-		int sliding = 0;
-		for (uint32_t b = 0; b < np; b++) {
-			const cpair *c = &cs->pairs[cl[b]];
-			if (has_friction(c, m) && W(c, MODE) == SLIDING) sign[b] = 0, sliding = 1;
-		}
-		if (sliding && !cluster_parts(cs, m, cl, np, sign)) {
+		if (drop_sliding(cs, m, cl, np, sign) && !cluster_parts(cs, m, cl, np, sign)) {
 			for (uint32_t b = 0; b < np; b++)
 				if (sign[b] == 0) W(&cs->pairs[cl[b]], LOCK) = 1;
 			return 0;
