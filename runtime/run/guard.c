@@ -315,16 +315,23 @@ static void warn_short(run *r, csf_ode *ode, double t, double h, const csf_eigs 
 	csf_fmt_double(tb, t);
 	limit_words(r->p, ode, held, sizeof held);
 	csf_run_fmt_ratio(more, (r->tend - t) / h);
-	csf_run_fmt_ratio(times, 1 / (h * e->rho));
+	/* a spectral radius whose time scale is longer than the whole run is no time scale of the scene
+	   (rounding in a scene that J leaves all but still, 3e-19 1/s in a pile of balls in flight):
+	   the steps are compared with the run */
+	int none = !(e->rho * r->p->till > 1);
+	double scale = none ? r->p->till : 1 / e->rho;
+	csf_run_fmt_ratio(times, scale / h);
 	csf_run_progress_off(r);
 	fprintf(r->g->err,
 	        "warning: at t=%s, after %lu steps, the error control holds %s to steps of %.3g s%s, %s times shorter "
-	        "than the fastest time scale of the scene (%.3g s), and some %s more are to go: either the scene "
+	        "than %s (%.3g s), and some %s more are to go: either the scene "
 	        "changes faster than that (a fast forcing), or the tolerance asks for more than the rounding of the "
 	        "values allows (a velocity near 0 while large forces cancel on it: the masses of a chain started at "
 	        "rest); --atol bounds the error of such values absolutely (--atol 1e-9), a larger --tol loosens "
 	        "every value\n",
-	        tb, r->g->steps, csf_ode_method(ode), h, held, times, 1 / e->rho, more);
+	        tb, r->g->steps, csf_ode_method(ode), h, held, times,
+	        none ? "the run, as the scene's dynamics have no shorter time scale" : "the fastest time scale of the scene",
+	        scale, more);
 	r->g->warned_short = 1;
 }
 
@@ -411,7 +418,7 @@ int csf_run_guard_check(run *r, csf_ode *ode, double t, const double *y, double 
 		g->warned = 1;
 	}
 out:; /* a label before a declaration: C11 needs a statement */
-	if (looked && !g->fixed && !g->warned_short && g->steps >= SHORT_LEFT / 100 && h > 0 && e.rho > 0 &&
+	if (looked && !g->fixed && !g->warned_short && g->steps >= SHORT_LEFT / 100 && h > 0 &&
 	    h * e.rho * SHORT_STEPS < 1 && h * SHORT_STEPS < g->hcap && (r->tend - t) / h > SHORT_LEFT &&
 	    !rounding_floors(r, ode, t, y, h, &e))
 		warn_short(r, ode, t, h, &e);

@@ -175,6 +175,14 @@ if [ $st -eq 0 ] && [ -n "$n" ] && [ "$n" -lt 10000 ] && [ "$(grep -c '^warning'
 	tail -n 1 "$T/st.csv" | awk -F, '{ w = 2 * 3.141592653589793 * 1e4; x = 1e-3 * w * sin(2) / (w * w - 1)
 		d = $2 - x; if (d < 0) d = -d; exit !($1 == 2 && d <= 1e-6 * x) }'
 then ok; else bad "forced at 10 kHz: exit $st, warned after '$n' steps, $(head -n 1 "$T/st.err"), last row $(tail -n 1 "$T/st.csv")"; fi
+# a free mass shaken the same way: no time scale of its own (rho 0), so the steps are compared with the run
+"$CSFC" $D/forced_free.csf -o "$T/st_forced_free.csfb" || bad "forced_free does not compile"
+run forced_free
+if [ $st -eq 0 ] && [ "$(grep -c '^warning' "$T/st.err")" -eq 1 ] &&
+	grep -q '^warning: at t=[^,]*, after [0-9]* steps, the error control holds dop853 to steps of .* (the error of b\.v\.x holds them), .* times shorter than the run, as the scene.s dynamics have no shorter time scale (2 s), and some .* more are to go: ' "$T/st.err" &&
+	tail -n 1 "$T/st.csv" | awk -F, '{ x = 2e-3 / (2 * 3.141592653589793 * 1e4)
+		d = $2 - x; if (d < 0) d = -d; exit !($1 == 2 && d <= 1e-6 * x) }'
+then ok; else bad "free mass forced at 10 kHz: exit $st, $(head -n 1 "$T/st.err"), last row $(tail -n 1 "$T/st.csv")"; fi
 # ... and steps held by the output interval are not: the parachute (a when block, so steps of at
 # most by) with rows every 1e-4 s for 15 s, 150001 rows, no warning
 sed 's/^inc t till 60 s by 0.5 s/inc t till 15 s by 0.0001 s/' examples/parachute.csf >"$T/chute.csf"
