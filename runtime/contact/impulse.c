@@ -208,7 +208,9 @@ void csf_contact_before_impact(csf_contacts *cs, const double *m)
  * alone, more than DIRECT_MAX unknowns, a system whose impulses do not
  * make the velocities what they are to be (to 1e-9 of the cluster's
  * speeds: contacts so nearly redundant that only impulses without bound
- * would), or sets that do not settle in 4 np + 8 changes.
+ * would), impulses that turn back or speed up the slip of a pair left
+ * sliding (which friction cannot), or sets that do not settle in 4 np + 8
+ * changes.
  */
 int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double least)
 {
@@ -284,6 +286,21 @@ int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double le
 		if (out >= 0) cs->act[out] = 0;
 		else if (in >= 0) cs->act[in] = 1;
 		else {
+			/* a pair left sliding (its normal row only) keeps its slip or less, never turned back:
+			   friction can stop a slide, not reverse it. Impulses that do are the rounding of a
+			   system all but singular over a tiny pivot (in a pile of 1024 balls, a slip of 2.3e-11
+			   m/s stopped so turned a neighbour's slide of 1.3e-3 m/s back) */
+			for (uint32_t a = 0; a < np; a++) {
+				if (!cs->act[a] || whole[a]) continue;
+				double v[3], t0[3], t1[3], *na = n + 3 * a;
+				memcpy(v, vr[a], sizeof v);
+				for (uint32_t b = 0; b < np; b++)
+					for (int k = 0; k < 3; k++) v[k] += cs->G[a * np + b] * P[b][k];
+				double s0 = dot3(vr[a], na), s1 = dot3(v, na);
+				for (int k = 0; k < 3; k++) t0[k] = vr[a][k] - s0 * na[k], t1[k] = v[k] - s1 * na[k];
+				double m0 = mag3(t0), d[3] = { t1[0] - t0[0], t1[1] - t0[1], t1[2] - t0[2] };
+				if (m0 > vres[a] && !(dot3(t1, t0) >= -vres[a] * m0 && mag3(d) <= m0 + vres[a])) return -1;
+			}
 			for (uint32_t a = 0; a < np; a++) {
 				cpair *c = &cs->pairs[cl[a]];
 				double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m);
