@@ -221,7 +221,7 @@ static int substep_guards(run *r, csf_ode *ode, double ta, double tb, const doub
  * extension, an apart pair's gap (its first guard) is the geometry of the
  * positions alone (csf_contacts_gap_rate, the value its guard takes in an
  * evaluation), with no evaluation of the right-hand side: most events of a
- * pile are impacts, and this was some ten of the 80 evaluations of each.
+ * pile are impacts, and this was some five of the 77 evaluations of each.
  */
 static int guard_at(run *r, csf_ode *ode, int dense, uint32_t k, double ta, double tb, const double *yb, double tc,
                     char *msg, size_t msglen)
