@@ -197,6 +197,17 @@ static void cluster_apply(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 	}
 }
 
+/* Sets sign 0 for the sliding pairs with friction of cl[0..np); 1 if there is one. */
+static int drop_sliding(const csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np, double *sign)
+{
+	int sliding = 0;
+	for (uint32_t a = 0; a < np; a++) {
+		const cpair *c = &cs->pairs[cl[a]];
+		if (has_friction(c, m) && W(c, MODE) == SLIDING) sign[a] = 0, sliding = 1;
+	}
+	return sliding;
+}
+
 /*
  * The contact forces of cluster cl[0..np) whose system has no solution
  * (its direct solve failed, sign as there): if it has one without the
@@ -212,17 +223,6 @@ static void cluster_apply(csf_contacts *cs, double *m, const uint32_t *cl, uint3
  * locks set, 0; or -1 (no sliding pair, masses that differ by 1e6 or
  * more, or no solution).
  */
-/* Sets sign 0 for the sliding pairs with friction of cl[0..np); 1 if there is one. */
-static int drop_sliding(const csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np, double *sign)
-{
-	int sliding = 0;
-	for (uint32_t a = 0; a < np; a++) {
-		const cpair *c = &cs->pairs[cl[a]];
-		if (has_friction(c, m) && W(c, MODE) == SLIDING) sign[a] = 0, sliding = 1;
-	}
-	return sliding;
-}
-
 static int lock_solve(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, double *sign)
 {
 	int sliding = drop_sliding(cs, m, cl, np, sign);

@@ -221,7 +221,8 @@ int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double le
 		for (uint32_t a = cs->cstart[q]; a < cs->cstart[q + 1]; a++)
 			if (cs->cl[a] == h) cl = cs->cl + cs->cstart[q], np = cs->cstart[q + 1] - cs->cstart[q], ih = a - cs->cstart[q];
 	if (!cl || np < 2 || np > DIRECT_MAX) return -1;
-	double *n = cs->nv, size = 0, vr[DIRECT_MAX][3], vres[DIRECT_MAX], P[DIRECT_MAX][3], E[DIRECT_MAX][3];
+	double *n = cs->nv, size = 0, vr[DIRECT_MAX][3], va[DIRECT_MAX][3], vres[DIRECT_MAX], P[DIRECT_MAX][3],
+	       E[DIRECT_MAX][3];
 	unsigned char whole[DIRECT_MAX], dc[DIRECT_MAX];
 	uint32_t dim = 0, pa[DIRECT_MAX];
 	for (uint32_t a = 0; a < np; a++) {
@@ -267,10 +268,10 @@ int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double le
 			for (int k = 0; k < 3; k++) P[pa[r]][k] += E[r][k] * cs->x[r];
 		long out = -1, in = -1;
 		double worst = 0; /* in units of each pair's vres */
-		for (uint32_t a = 0; a < np; a++) { /* each pair's relative velocity after the impulses */
+		for (uint32_t a = 0; a < np; a++) { /* each pair's relative velocity after the impulses, va[a] */
 			const cpair *c = &cs->pairs[cl[a]];
-			double v[3];
-			memcpy(v, vr[a], sizeof v);
+			double *v = va[a];
+			memcpy(v, vr[a], sizeof va[a]);
 			for (uint32_t b = 0; b < np; b++)
 				for (int k = 0; k < 3; k++) v[k] += cs->G[a * np + b] * P[b][k];
 			if (cs->act[a]) {
@@ -292,12 +293,8 @@ int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double le
 			   m/s stopped so turned a neighbour's slide of 1.3e-3 m/s back) */
 			for (uint32_t a = 0; a < np; a++) {
 				if (!cs->act[a] || whole[a]) continue;
-				double v[3], t0[3], t1[3], *na = n + 3 * a;
-				memcpy(v, vr[a], sizeof v);
-				for (uint32_t b = 0; b < np; b++)
-					for (int k = 0; k < 3; k++) v[k] += cs->G[a * np + b] * P[b][k];
-				double s0 = dot3(vr[a], na), s1 = dot3(v, na);
-				for (int k = 0; k < 3; k++) t0[k] = vr[a][k] - s0 * na[k], t1[k] = v[k] - s1 * na[k];
+				double t0[3], t1[3], *na = n + 3 * a, s0 = dot3(vr[a], na), s1 = dot3(va[a], na);
+				for (int k = 0; k < 3; k++) t0[k] = vr[a][k] - s0 * na[k], t1[k] = va[a][k] - s1 * na[k];
 				double m0 = mag3(t0), d[3] = { t1[0] - t0[0], t1[1] - t0[1], t1[2] - t0[2] };
 				if (m0 > vres[a] && !(dot3(t1, t0) >= -vres[a] * m0 && mag3(d) <= m0 + vres[a])) return -1;
 			}

@@ -15,14 +15,15 @@
 # chaotic), only that they add up to NBALLS (galton.awk prints them).
 #
 # What passes today (rows every 0.01 s, the default method, TILL as above):
-# 3 to 10, 12, 15 and 20 balls through 10 rows, 10 balls through 4, 6 and 8
-# rows (tests/run.sh runs 6, 9, 10 and 20 through 10 rows and 10 through 8;
-# 10 takes some 3 s, 15 some 16 s, 20 some 27 s). What does not: 25 and 30
-# balls through 10 rows crawl (from t = 0.72 and 1.59 s: events in quick
-# succession, slips that stop and start again where a cluster's impulses
-# cannot stop them, csf(5)) and do not finish in 150 and 400 s; 50 balls
-# stop at t = 0.86 s with "the contact forces ... could not be solved" (19
-# contacts with no consistent set of modes). Until a slip stopped by its
+# 3 to 10, 12, 15, 20 and 25 balls through 10 rows, 10 balls through 4, 6
+# and 8 rows (tests/run.sh runs 6, 9, 10 and 20 through 10 rows and 10
+# through 8; 10 takes some 3 s, 15 some 16 s, 20 some 27 s). What does not:
+# 30 balls through 10 rows crawl (events in quick succession) and do not
+# finish in 300 s (t = 1.29 s); 50 balls stopped at t = 0.86 s with "the
+# contact forces ... could not be solved" (19 contacts with no consistent
+# set of modes; measured before the rule below). 25 balls crawled from
+# t = 0.72 s until a cluster's impulses that would turn a neighbour's slide
+# back were refused (csf(5), Rest). Until a slip stopped by its
 # whole cluster's impulses (csf(5), Rest), 20 balls crawled from t = 0.90 s:
 # a ball in a bin stopped slipping by its own pair's impulse, which drove
 # a neighbour into a peg, whose impact started the slip again (3400 events
