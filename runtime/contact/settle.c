@@ -346,6 +346,31 @@ static int choose(csf_contacts *cs, double *m, int fresh)
 }
 
 /*
+ * A pair in contact whose normal force pulls again at an instant at which
+ * it has lifted off already: lifted off, it closed and was pressed back
+ * (settle's passes would go round, lift-off and contact, until their
+ * bound, and the step would start with the pull, whose guard, negative
+ * from the start, no event reports). Its cluster's forces push only
+ * where slides stop: sliding friction wedges it (a ball rising between a
+ * wall and a neighbour, each contact's friction pressing it down into the
+ * wedge harder than any squeeze can hold it up: the least-norm forces
+ * took a squeeze of -32.7 N, whose friction, -mu_k N along the slip,
+ * drove the slip and gained energy). That is Painlevé's inconsistent case,
+ * whose motion is an impulse of friction (a tangential impact): each
+ * sliding pair that shares a body with it stops and sticks, at most twice
+ * an instant, as a slide that stops. Returns 1 if one did.
+ */
+static int lock_slides(csf_contacts *cs, const cpair *c, double *m)
+{
+	int any = 0;
+	for (uint32_t j = 0; j < cs->n; j++) {
+		cpair *d = &cs->pairs[j];
+		if (W(d, MODE) == SLIDING && share_body(c, d) && W(d, SS) < 2) stick(cs, d, m), W(d, SS)++, any = 1;
+	}
+	return any;
+}
+
+/*
  * A sliding pair that does not slip ahead (beyond the speeds' rounding, as
  * csf_contact_choose_modes sees it) whose relative tangential acceleration
  * points against the way it slides, beyond its rounding: its friction
@@ -653,8 +678,10 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 		for (uint32_t i = 0; i < cs->n && !changed; i++) {
 			cpair *c = &cs->pairs[i];
 			if (!in_contact(c) || (chose && cs->mark[i] & MODES_CHOSEN)) continue;
-			if (W(c, G0) < 0) lift_off(cs, c, m), changed = 1;
-			else if (W(c, G1) < 0 && W(c, MODE) == SLIDING && W(c, SS) < 2) stick(cs, c, m), W(c, SS)++, changed = 1;
+			if (W(c, G0) < 0) {
+				if (W(c, LO)) changed = lock_slides(cs, c, m);
+				if (!changed) lift_off(cs, c, m), changed = 1;
+			} else if (W(c, G1) < 0 && W(c, MODE) == SLIDING && W(c, SS) < 2) stick(cs, c, m), W(c, SS)++, changed = 1;
 			else if (W(c, G1) < 0 && W(c, MODE) == STICKING) slide(c, m), changed = 1;
 		}
 		if (!changed || ++others >= 100 + 10 * (uint64_t)cs->n) return 0;

@@ -5,7 +5,8 @@
 # (the box 0.4 m wide); the top ball (0.5 kg, radius 0.08 m) falls from
 # (X, 0, 0.45) m onto them. Everything rough (mu_s 0.4, mu_k 0.3) with
 # restitution CR. Twelve cases: X in 0.2 0.205 0.21 0.22 0.24 0.26, CR in 0
-# and 0.3; each runs 2 s (rows every 0.05 s) under the default method.
+# and 0.3; each runs 2 s (rows every 0.05 s, or every BY s where a case
+# names it) under the default method.
 #
 # The checks, from physics alone: exit 0; no overlap beyond 1e-9 m; the
 # energy (kinetic and potential) never grows between rows beyond 1e-9 of
@@ -33,11 +34,32 @@
 # resort there, the pairs that press chosen without the sliding pairs'
 # friction, which locks them (a lower ball wedged by friction 9.4e-8 m above
 # the floor at the top of a bounce).
+# With events a step is at most the rows' spacing long (csfvm(1)), so
+# another spacing takes another path, and the jam at restitution 0.3 fails on some of them
+# (JAM_SPACINGS, below; make check-piles runs them: X in 0.2 0.21 0.22
+# 0.24 0.26, rows every 0.2, 0.7, 1 and 2 ms). At a6bccf2, 14 of those 20
+# failed. Eight gained energy (2.7e-9 to 1.9e-7 of it between two rows: a
+# lower ball wedged 2.6e-7 m above the floor, rising, was held up by the
+# sliding friction of contacts whose least-norm forces pulled, -32.7 N;
+# settle's passes went round between lift-off and contact until their bound,
+# and the step began with the pull, whose guard, negative from the start, no
+# event reports); three stopped as X = 0.2 does; three did not finish in
+# 60 s. Since a pair that pulls again after lifting off at an instant stops
+# the slides beside it (csf(5), "Normal forces only push"), and a crossing
+# after a false alarm of the interpolant in the same step is located (before,
+# the top ball went 1.1e-5 m into a lower one with no impact), 6 of the 20
+# fail: four stop as X = 0.2 does (the impulses of the row jammed between
+# the walls, its contacts redundant to 1e-7 rad, leave a pair closing at
+# 3.2e-12 m/s, above the 2.9e-12 that counts, and their active sets go
+# round), and two gain 1.3e-9 and 1.8e-9 of the energy: a lower ball stuck
+# in the wedge takes a squeeze of 1.6e7 N, whose work through normal
+# velocities of 1e-12 m/s (within the rounding such forces give them) is
+# 1e-5 W. Two of those that now pass are in make check.
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3
 pass=0 fail=0
-jam() { # X CR
-	f=$T/jam_$1_$2
+jam() { # X CR [BY]
+	by=${3:-0.05} f=$T/jam_$1_$2_$by
 	{
 		echo "using mechanics/mass_point"
 		printf 'object lo1: mass_point\nobject lo1: m = 2 kg\nobject lo1: radius = 0.1 m\nobject lo1: pos = (0.1, 0, 0.1) m\n'
@@ -50,9 +72,9 @@ jam() { # X CR
 		done
 		echo "using mechanics/rules"
 		echo "rule F: W = g.mul(m)"
-		echo "inc t till 2 s by 0.05 s watch pos, v, FN, Ff"
+		echo "inc t till 2 s by $by s watch pos, v, FN, Ff"
 	} >"$f.csf"
-	label="jam X=$1 cr=$2"
+	label="jam X=$1 cr=$2 by=$by"
 	if ! timeout -k 10 60 "$CSFC" "$f.csf" -o "$f.csfb" 2>"$f.err"; then
 		fail=$((fail + 1)); echo "FAIL: $label: csfc: $(head -n 1 "$f.err")"; return
 	fi
@@ -105,12 +127,15 @@ jam() { # X CR
 		fail=$((fail + 1)); echo "FAIL: $(head -n 1 "$f.chk")"
 	fi
 }
-if [ $# -gt 3 ]; then # the cases named, each "X CR"
+if [ $# -gt 3 ]; then # the cases named, each "X CR" or "X CR BY"
 	shift 3
 	for c in "$@"; do jam $c; done
 else
 	for x in 0.2 0.205 0.21 0.22 0.24 0.26; do
 		for cr in 0 0.3; do jam "$x" "$cr"; done
+	done
+	for by in $JAM_SPACINGS; do
+		for x in 0.2 0.21 0.22 0.24 0.26; do jam "$x" 0.3 "$by"; done
 	done
 fi
 echo "$pass passed, $fail failed"
