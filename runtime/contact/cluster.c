@@ -356,11 +356,49 @@ static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, con
 	return !check || rn <= 1e-9 * csf_max(bn, colmax * xn) ? 0 : -1;
 }
 
-/* After csf_contact_solve failed: the least-squares solution of least norm of its system (T, fric as
-   there) into cs->x. */
+static uint32_t blocks(uint32_t dim, const double *K, const double *K1, const double *T, uint32_t *eq, uint32_t *xs,
+                       uint32_t *ys, uint32_t *start);
+
+/*
+ * After csf_contact_solve failed: the least-squares solution of least norm
+ * of its system (T, fric as there) into cs->x, block by block as
+ * csf_contact_solve solves (blocks: the least norm of the whole is each
+ * block's), so that a block whose right-hand side is 0 has the answer 0
+ * exactly: solved as one, the friction across the plane of a scene in a
+ * plane took 1e-29 of rounding, which the motion across the plane then
+ * grew (a Galton board whose steps fell to 8e-11 s, held by a velocity
+ * across the board of 1e-12 m/s).
+ */
 int csf_contact_least_squares(csf_contacts *cs, uint32_t dim, const double *T, const unsigned char *fric)
 {
-	return solve_least_norm(cs, dim, cs->kb, cs->kb + (size_t)dim * dim, T, fric, 0);
+	const double *K = cs->kb, *b = cs->kb + (size_t)dim * dim;
+	uint32_t eq[DIRECT_MAX], xs[DIRECT_MAX], ys[DIRECT_MAX], start[DIRECT_MAX + 1];
+	uint32_t nb = dim <= DIRECT_MAX ? blocks(dim, K, NULL, T, eq, xs, ys, start) : 1;
+	if (nb <= 1) return solve_least_norm(cs, dim, K, b, T, fric, 0);
+	size_t d2 = (size_t)dim * dim, need = 2 * d2 + 2 * (size_t)dim;
+	if (need > cs->capblk) {
+		double *w = realloc(cs->blk, need * sizeof *w);
+		if (!w) return -1;
+		cs->blk = w, cs->capblk = need;
+	}
+	double *Kq = cs->blk, *Tq = Kq + d2, *bq = Tq + d2, *x0 = bq + dim;
+	unsigned char fq[DIRECT_MAX];
+	for (uint32_t q = 0; q < nb; q++) {
+		const uint32_t *e = eq + start[q], *xq = xs + start[q], *yq = ys + start[q];
+		uint32_t n = start[q + 1] - start[q];
+		for (uint32_t r = 0; r < n; r++) {
+			bq[r] = b[e[r]];
+			if (fric) fq[r] = fric[yq[r]];
+			for (uint32_t c = 0; c < n; c++) {
+				Kq[r * n + c] = K[(size_t)e[r] * dim + xq[c]];
+				if (T) Tq[r * n + c] = T[(size_t)xq[r] * dim + yq[c]];
+			}
+		}
+		if (solve_least_norm(cs, n, Kq, bq, T ? Tq : NULL, fric ? fq : NULL, 0)) return -1;
+		for (uint32_t r = 0; r < n; r++) x0[xq[r]] = cs->x[r];
+	}
+	memcpy(cs->x, x0, dim * sizeof *x0);
+	return 0;
 }
 
 /*

@@ -780,6 +780,8 @@ static void run_free(session *S)
 	free(r->gh);
 	free(r->gt);
 	free(r->gl);
+	free(r->gp);
+	free(r->order);
 	free(S->work);
 	free(S->y);
 	free(S->r.row_y);

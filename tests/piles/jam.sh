@@ -16,12 +16,13 @@
 # FN + Ff balancing its weight to 1e-9 of the whole weight.
 #
 # The jam is statically indeterminate (the lower balls' squeeze between the
-# walls is not determined, and with it their sliding friction). 11 of the
-# 12 pass, and make check runs those (tests/run.sh, jam_now); the whole
-# set is in make check-piles. The one that fails, X = 0.2 with restitution
-# 0.3, stops at t = 0.405 s: an impact within the jam (5 contacts, the
-# row's nearly redundant) finds no impulses that push and leave no pair
-# closing, directly or by 1000 sweeps. Before slips stopped by their
+# walls is not determined, and with it their sliding friction). All 12
+# pass, and make check runs them (tests/run.sh, jam_now). Before a step's
+# crossings were located in the order of their estimates (csf(5), events),
+# X = 0.2 with restitution 0.3 stopped at t = 0.405 s: an impact within
+# the jam (5 contacts, the row's nearly redundant) found no impulses that
+# push and leave no pair closing, directly or by 1000 sweeps; on another
+# path it does not come. Before slips stopped by their
 # cluster's impulses (csf(5), Rest), it ended with the top ball creeping up
 # at 9e-9 m/s, its contacts with the lower balls opening at 7e-9 m/s while
 # they stayed in contact (above the 1e-9 m/s the check allows at rest); and
@@ -35,26 +36,28 @@
 # friction, which locks them (a lower ball wedged by friction 9.4e-8 m above
 # the floor at the top of a bounce).
 # With events a step is at most the rows' spacing long (csfvm(1)), so
-# another spacing takes another path, and the jam at restitution 0.3 fails on some of them
-# (JAM_SPACINGS, below; make check-piles runs them: X in 0.2 0.21 0.22
-# 0.24 0.26, rows every 0.2, 0.7, 1 and 2 ms). At a6bccf2, 14 of those 20
-# failed. Eight gained energy (2.7e-9 to 1.9e-7 of it between two rows: a
-# lower ball wedged 2.6e-7 m above the floor, rising, was held up by the
-# sliding friction of contacts whose least-norm forces pulled, -32.7 N;
-# settle's passes went round between lift-off and contact until their bound,
-# and the step began with the pull, whose guard, negative from the start, no
-# event reports); three stopped as X = 0.2 does; three did not finish in
-# 60 s. Since a pair that pulls again after lifting off at an instant stops
-# the slides beside it (csf(5), "Normal forces only push"), and a crossing
-# after a false alarm of the interpolant in the same step is located (before,
-# the top ball went 1.1e-5 m into a lower one with no impact), 6 of the 20
-# fail: four stop as X = 0.2 does (the impulses of the row jammed between
-# the walls, its contacts redundant to 1e-7 rad, leave a pair closing at
+# another spacing takes another path, and the jam at restitution 0.3 fails
+# on some of them (JAM_SPACINGS, below; make check-piles runs them: X in
+# 0.2 0.21 0.22 0.24 0.26, rows every 0.2, 0.7, 1 and 2 ms). At a6bccf2,
+# 14 of those 20 failed. Eight gained energy (2.7e-9 to 1.9e-7 of it
+# between two rows: a lower ball wedged 2.6e-7 m above the floor, rising,
+# was held up by the sliding friction of contacts whose least-norm forces
+# pulled, -32.7 N; settle's passes went round between lift-off and contact
+# until their bound, and the step began with the pull, whose guard,
+# negative from the start, no event reports); three stopped as X = 0.2
+# did; three did not finish in 60 s. At 51e9dac (a pair that pulls again
+# after lifting off at an instant stops the slides beside it, csf(5),
+# "Normal forces only push"; a crossing after a false alarm of the
+# interpolant in the same step is located, where the top ball went 1.1e-5
+# m into a lower one with no impact), 6 failed: four impulse errors, and
+# two gained 1.3e-9 and 1.8e-9 of the energy, the work of a squeeze of
+# 1.6e7 N on a ball stuck in the wedge through normal velocities of 1e-12
+# m/s. Now (crossings located earliest first) 6 fail, each stopping with
+# the impulse error above (the impulses of the row jammed between the
+# walls, its contacts redundant to 1e-7 rad, leave a pair closing at
 # 3.2e-12 m/s, above the 2.9e-12 that counts, and their active sets go
-# round), and two gain 1.3e-9 and 1.8e-9 of the energy: a lower ball stuck
-# in the wedge takes a squeeze of 1.6e7 N, whose work through normal
-# velocities of 1e-12 m/s (within the rounding such forces give them) is
-# 1e-5 W. Two of those that now pass are in make check.
+# round), and none gains energy. Two that gained energy at a6bccf2 are in
+# make check.
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3
 pass=0 fail=0
