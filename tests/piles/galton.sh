@@ -19,7 +19,7 @@
 # and 8 rows (tests/run.sh runs 6, 9, 10 and 20 through 10 rows and 10
 # through 8; 10 takes some 3 s, 15 some 16 s, 20 some 27 s). What does not:
 # 30 balls through 10 rows crawl (events in quick succession) and do not
-# finish in 300 s (t = 1.29 s); 50 balls stopped at t = 0.86 s with "the
+# finish in 300 s (t = 0.85 s at 7012420, 1.29 s on the path before); 50 balls stopped at t = 0.86 s with "the
 # contact forces ... could not be solved" (19 contacts with no consistent
 # set of modes; measured before the rule below). 25 balls crawled from
 # t = 0.72 s until a cluster's impulses that would turn a neighbour's slide
