@@ -360,6 +360,30 @@ static uint32_t blocks(uint32_t dim, const double *K, const double *K1, const do
                        uint32_t *ys, uint32_t *start);
 
 /*
+ * Block q of the blocks of a system (eq, xs, ys, start as blocks gives
+ * them) of dim unknowns, K and b (K1, T, fric where not NULL), copied into
+ * the n x n system Kq, bq (K1q, Tq, fq); returns n.
+ */
+static uint32_t take_block(uint32_t dim, const double *K, const double *K1, const double *T, const unsigned char *fric,
+                           const double *b, const uint32_t *eq, const uint32_t *xs, const uint32_t *ys,
+                           const uint32_t *start, uint32_t q, double *Kq, double *K1q, double *Tq, unsigned char *fq,
+                           double *bq)
+{
+	const uint32_t *e = eq + start[q], *xq = xs + start[q], *yq = ys + start[q];
+	uint32_t n = start[q + 1] - start[q];
+	for (uint32_t r = 0; r < n; r++) {
+		bq[r] = b[e[r]];
+		if (fric) fq[r] = fric[yq[r]];
+		for (uint32_t c = 0; c < n; c++) {
+			Kq[r * n + c] = K[(size_t)e[r] * dim + xq[c]];
+			if (K1) K1q[r * n + c] = K1[(size_t)e[r] * dim + xq[c]];
+			if (T) Tq[r * n + c] = T[(size_t)xq[r] * dim + yq[c]];
+		}
+	}
+	return n;
+}
+
+/*
  * After csf_contact_solve failed: the least-squares solution of least norm
  * of its system (T, fric as there) into cs->x, block by block as
  * csf_contact_solve solves (blocks: the least norm of the whole is each
@@ -384,18 +408,9 @@ int csf_contact_least_squares(csf_contacts *cs, uint32_t dim, const double *T, c
 	double *Kq = cs->blk, *Tq = Kq + d2, *bq = Tq + d2, *x0 = bq + dim;
 	unsigned char fq[DIRECT_MAX];
 	for (uint32_t q = 0; q < nb; q++) {
-		const uint32_t *e = eq + start[q], *xq = xs + start[q], *yq = ys + start[q];
-		uint32_t n = start[q + 1] - start[q];
-		for (uint32_t r = 0; r < n; r++) {
-			bq[r] = b[e[r]];
-			if (fric) fq[r] = fric[yq[r]];
-			for (uint32_t c = 0; c < n; c++) {
-				Kq[r * n + c] = K[(size_t)e[r] * dim + xq[c]];
-				if (T) Tq[r * n + c] = T[(size_t)xq[r] * dim + yq[c]];
-			}
-		}
+		uint32_t n = take_block(dim, K, NULL, T, fric, b, eq, xs, ys, start, q, Kq, NULL, Tq, fq, bq);
 		if (solve_least_norm(cs, n, Kq, bq, T ? Tq : NULL, fric ? fq : NULL, 0)) return -1;
-		for (uint32_t r = 0; r < n; r++) x0[xq[r]] = cs->x[r];
+		for (uint32_t r = 0; r < n; r++) x0[xs[start[q] + r]] = cs->x[r];
 	}
 	memcpy(cs->x, x0, dim * sizeof *x0);
 	return 0;
@@ -572,17 +587,9 @@ int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio,
 	memcpy(b0, cs->rhs, dim * sizeof *b0);
 	double *Tb = T ? cs->T : NULL; /* T is cs->T where given: the blocks' frames go there once it is aside */
 	for (uint32_t q = 0; q < nb; q++) {
-		const uint32_t *e = eq + start[q], *xq = xs + start[q], *yq = ys + start[q];
-		uint32_t n = start[q + 1] - start[q];
-		for (uint32_t r = 0; r < n; r++) {
-			cs->rhs[r] = b0[e[r]];
-			if (fric) cs->fric[r] = fric0[yq[r]];
-			for (uint32_t c = 0; c < n; c++) {
-				cs->K[r * n + c] = K0[(size_t)e[r] * dim + xq[c]];
-				if (K1) K1[r * n + c] = K10[(size_t)e[r] * dim + xq[c]];
-				if (Tb) Tb[r * n + c] = T0[(size_t)xq[r] * dim + yq[c]];
-			}
-		}
+		const uint32_t *xq = xs + start[q];
+		uint32_t n = take_block(dim, K0, K1 ? K10 : NULL, Tb ? T0 : NULL, fric ? fric0 : NULL, b0, eq, xs, ys, start, q,
+		                        cs->K, K1, Tb, cs->fric, cs->rhs);
 		if (solve_whole(cs, n, K1, wratio, Tb, fric ? cs->fric : NULL)) { /* the whole, as if not split */
 			memcpy(cs->K, K0, d2 * sizeof *K0);
 			if (K1) memcpy(K1, K10, d2 * sizeof *K10);
