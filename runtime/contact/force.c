@@ -73,7 +73,8 @@ int csf_contact_basis(const cpair *c, const double *m, const double n[3], double
 		csf_contact_slip_velocity(c, m, n, vt);
 		double s = mag3(vt);
 		ahead = dot3(vt, ds) > csf_contact_speed_resolution(c, m, 0);
-		for (int j = 0; j < 3; j++) u[j] = ahead ? vt[j] / s : ds[j];
+		if (ahead) for (int j = 0; j < 3; j++) u[j] = vt[j] / s;
+		else csf_contact_slide_direction(n, ds, u);
 		k = mu_k(c, m) * sign;
 		w[0] = n[1] * u[2] - n[2] * u[1], w[1] = n[2] * u[0] - n[0] * u[2], w[2] = n[0] * u[1] - n[1] * u[0];
 	}
@@ -594,7 +595,10 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 				   up to the crossing and the integrator sees no switching */
 				double s = mag3(vt), k = mu_k(c, m) * fabs(W(c, LAM));
 				int ahead = dot3(vt, WV(c, DS)) > csf_contact_speed_resolution(c, m, 0);
-				for (int j = 0; j < 3; j++) f[j] = -k * (ahead ? vt[j] / s : WV(c, DS)[j]);
+				double u[3];
+				if (ahead) for (int j = 0; j < 3; j++) u[j] = vt[j] / s;
+				else csf_contact_slide_direction(n, WV(c, DS), u);
+				for (int j = 0; j < 3; j++) f[j] = -k * u[j];
 			} else { /* sticking: cancel the relative tangential acceleration */
 				double at[3];
 				rel(c, m, I(c, A), J(c, A), ar);

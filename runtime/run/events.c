@@ -78,8 +78,8 @@ int csf_run_room_for_guards(run *r, size_t ng)
 	if (ng <= r->capg) return 0;
 	size_t cap = r->capg ? r->capg : 16;
 	while (cap < ng) cap *= 2;
-	double **g[7] = { &r->ga, &r->gb, &r->gs, &r->gh, &r->gt, &r->gl, &r->gp };
-	for (int i = 0; i < 7; i++) {
+	double **g[8] = { &r->ga, &r->gb, &r->gs, &r->gh, &r->gt, &r->gl, &r->gp, &r->gx };
+	for (int i = 0; i < 8; i++) {
 		double *q = realloc(*g[i], cap * sizeof *q);
 		if (!q) {
 			r->nomem = 1;
@@ -247,7 +247,7 @@ static int guard_at(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
  * the continuous extension (guard_at).
  */
 static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, double tb, const double *yb, double *lo,
-                    double *glo, double *hi, double *ghi, double tol, int *at_hi, char *msg, size_t msglen)
+                    double *glo, double *hi, double *ghi, double tol, int *at_hi, int *lx, char *msg, size_t msglen)
 {
 	int side = 0, st;
 	*at_hi = 0;
@@ -275,6 +275,7 @@ static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
 			side = -1;
 		} else {
 			*lo = c, *glo = gc;
+			if (lx) memcpy(r->gx, r->gs, r->ng * sizeof *r->gx), *lx = 1;
 			if (side > 0) *ghi /= 2;
 			side = 1;
 		}
@@ -285,39 +286,61 @@ static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
 /*
  * The time *tk of guard k's crossing in (lo, hi], where g(lo) >= 0 > g(hi),
  * on states stepped from the step's start (ta, r->ya) that ended at
- * (tb, yb); leaves the state at that time in r->ys. With a continuous
- * extension, the crossing is found on it first, without steps; then a
- * bracket around it, 1000 times the location tolerance wide (wider, by
- * factors of 1000, when the exact guards do not change sign across it), is
- * narrowed on exact states, a few steps instead of some forty. *tl is the
- * bracket's other end: the guard is >= 0 there. Returns as substep_guards.
+ * (tb, yb); leaves the state at that time in r->ys. *tl is the bracket's
+ * other end: the guard is >= 0 there. With a continuous extension, the
+ * crossing is found on it first, without steps; then the exact guards are
+ * looked at on either side of it, tol / 8 away (a bracket a quarter of
+ * the location's width: two steps, where the exact crossing is most often
+ * within a fraction of tol of the extension's: a pile's impacts; the
+ * event's time is the bracket's far end, and a narrow one keeps it near
+ * the crossing, which a sliding mode's events, each from the last, would
+ * otherwise drift from), and, where they do not change sign across it,
+ * ever wider (by factors of 8), each end looked at narrowing the bracket;
+ * then the bracket is narrowed on
+ * exact states (the Illinois method), some forty steps from a whole step's
+ * bracket. Where ghi is the interpolant's (sure = 0: hi is a sample
+ * inside the step), the exact guard at hi is computed only when the
+ * brackets around the crossing reach hi; where it is not negative there,
+ * the bracket runs to the step's end (its guard r->gb), and *none is set,
+ * with nothing located, when that is not negative either (the
+ * interpolant's alarm was false). Returns as substep_guards.
  */
 static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const double *yb, double lo, double glo,
-                  double hi, double ghi, double *tk, double *tl, char *msg, size_t msglen)
+                  double hi, double ghi, int sure, double *tk, double *tl, int *lx, int *none, char *msg, size_t msglen)
 {
 	const double tol = csf_run_location_tol(r->p);
-	int st, at_hi;
+	int st, at_hi = 0;
+	*none = *lx = 0;
 	if (r->dense) {
 		double l = lo, gl = glo, u = hi, gu = ghi;
-		if ((st = illinois(r, ode, 1, k, ta, tb, yb, &l, &gl, &u, &gu, tol, &at_hi, msg, msglen))) return st;
-		for (double w = 1e3 * tol; w < hi - lo; w *= 1e3) {
-			double a = u - w > lo ? u - w : lo, b = u + w < hi ? u + w : hi, gla = glo, ghb = ghi;
-			if (a > lo) {
-				if ((st = substep_guards(r, ode, ta, tb, yb, a, msg, msglen))) return st;
-				gla = r->gs[k];
+		if ((st = illinois(r, ode, 1, k, ta, tb, yb, &l, &gl, &u, &gu, tol, &at_hi, NULL, msg, msglen))) return st;
+		at_hi = 0; /* the state in r->ys is hi's only when an exact step to hi was the last */
+		for (double w = tol / 8;; w *= 8) {
+			double x[2] = { u - w, u + w };
+			for (int e = 0; e < 2; e++) {
+				if (!(x[e] > lo && x[e] < hi)) continue;
+				if ((st = substep_guards(r, ode, ta, tb, yb, x[e], msg, msglen))) return st;
+				if (r->gs[k] >= 0) {
+					lo = x[e], glo = r->gs[k], at_hi = 0, *lx = 1;
+					memcpy(r->gx, r->gs, r->ng * sizeof *r->gx);
+				} else hi = x[e], ghi = r->gs[k], sure = at_hi = 1;
 			}
-			if (b < hi) {
-				if ((st = substep_guards(r, ode, ta, tb, yb, b, msg, msglen))) return st;
-				ghb = r->gs[k];
-			}
-			if (gla >= 0 && ghb < 0) {
-				lo = a, glo = gla, hi = b, ghi = ghb;
-				break;
-			}
+			if ((sure && hi - lo <= 2 * w) || (x[0] <= lo && x[1] >= hi)) break;
 		}
 	}
-	if ((st = illinois(r, ode, 0, k, ta, tb, yb, &lo, &glo, &hi, &ghi, tol, &at_hi, msg, msglen))) return st;
+	if (!sure) { /* the exact guard at hi; not below there: the step's end */
+		if ((st = substep_guards(r, ode, ta, tb, yb, hi, msg, msglen))) return st;
+		ghi = r->gs[k], at_hi = 1;
+		if (ghi >= 0) {
+			hi = tb, ghi = r->gb[k], at_hi = 0;
+			if (ghi >= 0) return *none = 1, CSF_ODE_OK;
+		}
+	}
+	if (hi - lo > tol && nextafter(lo, hi) < hi &&
+	    (st = illinois(r, ode, 0, k, ta, tb, yb, &lo, &glo, &hi, &ghi, tol, &at_hi, lx, msg, msglen)))
+		return st;
 	*tk = hi, *tl = lo;
+	if (lo == ta) memcpy(r->gx, r->ga, r->ng * sizeof *r->gx), *lx = 1;
 	if (hi == tb) {
 		memcpy(r->ys, yb, r->p->ny * sizeof *yb);
 		return CSF_ODE_OK;
@@ -568,6 +591,7 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
 			if (*which >= 0 && (r->gt[k] >= 0 || r->gl[k] >= 0)) continue;
 			/* the exact state's guards at lo and hi (the interpolant only pointed here) */
 			double l = lo, gl = r->ga[k], u = hi, gu = r->gh[k];
+			int sure = hi == tb, none, lx;
 			if (lo > ta) {
 				if ((st = substep_guards(r, ode, ta, tb, y, lo, msg, msglen))) return st;
 				if (r->gs[k] < 0) l = ta; /* already below at lo: the crossing is earlier */
@@ -575,8 +599,9 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
 			}
 			if (*which >= 0) { /* below at bl: the crossing is before it */
 				if (bl <= l) continue; /* (it cannot be: bl is past a state where the guard is >= 0) */
-				u = bl, gu = r->gl[k];
-			} else if (hi < tb) {
+				u = bl, gu = r->gl[k], sure = 1;
+			} else if (hi < tb && !r->dense) { /* (on the extension, locate looks when it needs to) */
+				sure = 1;
 				if ((st = substep_guards(r, ode, ta, tb, y, hi, msg, msglen))) return st;
 				gu = r->gs[k];
 				if (gu >= 0) { /* not below on the exact state: try the step's end */
@@ -585,10 +610,14 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
 				}
 			}
 			double tk, tl;
-			if ((st = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, &tk, &tl, msg, msglen))) return st;
-			if (tk < best || *which < 0) {
-				best = tk, bl = tl, *which = (long)k, known = 0;
+			if ((st = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, sure, &tk, &tl, &lx, &none, msg, msglen)))
+				return st;
+			if (none) continue;
+			if (tk < best || *which < 0) { /* its guards at tk (locate's last), and at tl where it knows them */
+				best = tk, bl = tl, *which = (long)k, known = lx;
 				memcpy(r->ye, r->ys, n * sizeof *r->ye);
+				memcpy(r->gt, tk < tb ? r->gs : r->gb, ng * sizeof *r->gt);
+				if (lx) memcpy(r->gl, r->gx, ng * sizeof *r->gl);
 			}
 		}
 		lo = hi; /* every alarm at hi was false: the samples after it */

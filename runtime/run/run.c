@@ -784,6 +784,7 @@ static void run_free(session *S)
 	free(r->gt);
 	free(r->gl);
 	free(r->gp);
+	free(r->gx);
 	free(r->order);
 	free(S->work);
 	free(S->y);

@@ -41,6 +41,7 @@ typedef struct run {
 	size_t capg;
 	double *ga, *gb, *gs, *gh, *gt, *gl, *ya, *fa, *fb, *ys, *fs, *ye;
 	double *gp;       /* the guards at the sample before the first where one is negative */
+	double *gx;       /* the exact guards at the lower end of locate's bracket */
 	uint32_t *order;  /* the guards negative there, by their crossings' estimates */
 	double *jw; /* with contacts: 3 work vectors for the Jacobian by differences */
 	double *yh; /* with contacts: the 3 interpolated states of a step, one after the other */
