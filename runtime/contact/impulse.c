@@ -32,6 +32,174 @@ static int picks_impact(const cpair *c, const void *arg)
 	return joins(im->cs, c, im->hit);
 }
 
+/* The factors L D L^T of the n x n symmetric positive definite matrix in L (row-major, lower
+   half read), in place, D on the diagonal: no square roots, so that a system of small integers
+   and halves (equal masses) is solved exactly; -1 if it is not positive definite to rounding
+   (a pivot below 1e-15 of its diagonal element). */
+static int ldl(double *L, uint32_t n)
+{
+	for (uint32_t j = 0; j < n; j++) {
+		double d = L[j * n + j];
+		for (uint32_t k = 0; k < j; k++) d -= L[j * n + k] * L[j * n + k] * L[k * n + k];
+		if (!(d > 1e-15 * L[j * n + j])) return -1;
+		L[j * n + j] = d;
+		for (uint32_t i = j + 1; i < n; i++) {
+			double v = L[i * n + j];
+			for (uint32_t k = 0; k < j; k++) v -= L[i * n + k] * L[j * n + k] * L[k * n + k];
+			L[i * n + j] = v / d;
+		}
+	}
+	return 0;
+}
+
+/* Solves L D L^T x = b with ldl's factors (x may be b). */
+static void ldl_solve(const double *L, uint32_t n, const double *b, double *x)
+{
+	for (uint32_t i = 0; i < n; i++) {
+		double v = b[i];
+		for (uint32_t k = 0; k < i; k++) v -= L[i * n + k] * x[k];
+		x[i] = v;
+	}
+	for (uint32_t i = n; i-- > 0;) {
+		double v = x[i] / L[i * n + i];
+		for (uint32_t k = i + 1; k < n; k++) v -= L[k * n + i] * x[k];
+		x[i] = v;
+	}
+}
+
+/*
+ * How much each pair of an impact yields, in units of its own impulse's
+ * effect: a pair's velocity is taken to change by (1 + YIELD) G_aa P_a
+ * under its own impulse P_a. Contacts that are redundant to within
+ * rounding (a row of balls jammed between two walls, level to 1e-8 rad)
+ * leave the impulses' system singular to rounding, its exact answer
+ * (impulses of 1e12 N s) meaningless; with the yield, each such impulse is
+ * bounded by its pair's velocity over 1e-14 of its effect, and the
+ * velocities it leaves are off by 1e-14 of that effect, far below the
+ * least velocity that counts. Where the set's system is not singular its
+ * answer without the yield is taken (dual_impulses' caller).
+ */
+#define YIELD 1e-14
+
+/* Pair a's relative normal velocity after impulses P (cs->lam), each pair yielding by yield,
+   less its target (the hit's, else 0); into *round (if not NULL) the rounding of that sum:
+   8 DBL_EPSILON its terms' sizes. */
+static double after(const csf_contacts *cs, uint32_t np, uint32_t a, uint32_t ih, double target, double yield,
+                    double *round)
+{
+	double v = cs->v0[a] - (a == ih ? target : 0) + yield * cs->G[a * np + a] * cs->lam[a], size = fabs(v);
+	for (uint32_t b = 0; b < np; b++) v += cs->G[a * np + b] * cs->lam[b], size += fabs(cs->G[a * np + b] * cs->lam[b]);
+	if (round) *round = 8 * DBL_EPSILON * size;
+	return v;
+}
+
+/* G_AA (+ yield on its diagonal) of the set A[0..na) into L, factored; 0, or -1 as ldl. */
+static int factor_set(const csf_contacts *cs, uint32_t np, const uint32_t *A, uint32_t na, double yield, double *L)
+{
+	for (uint32_t i = 0; i < na; i++)
+		for (uint32_t k = 0; k <= i; k++) L[i * na + k] = cs->G[A[i] * np + A[k]] * (k == i ? 1 + yield : 1);
+	return ldl(L, na);
+}
+
+/*
+ * cluster_impulses' complementarity problem by the dual active-set method
+ * of Goldfarb and Idnani ("A numerically stable dual method for solving
+ * strictly convex quadratic programs", 1983): the velocities after the
+ * impact are those nearest to the velocities before it, in the metric of
+ * the masses, among those that leave the hit at its target and no pair
+ * closing: a strictly convex problem, whose answer is unique even where
+ * the impulses are not. From no impulses, the constraints join one at a
+ * time, the hit first, then the pair that closes fastest (in its own least
+ * velocity that counts, vres); each join raises its impulse until its
+ * velocity is its target, the set's changing as that takes (-G_AA^-1 G_Ap
+ * of it); where one of theirs would fall below zero first, that pair
+ * leaves the set (at zero) and the join goes on. Every impulse stays >= 0
+ * (but the hit's), the distance grows at every join, and no set comes
+ * back: the sets cannot go round, as the primal active sets did on a jam
+ * whose contacts were redundant to 1e-7 rad. Each pair yields by YIELD.
+ * Impulses into cs->lam, the set into cs->act and cs->at (*na of them). 0,
+ * or -1: no pushing impulses leave none closing, or rounding defeats it
+ * (4 np + 8 changes).
+ */
+static int dual_impulses(csf_contacts *cs, uint32_t np, uint32_t ih, double target, const double *vres, uint32_t *nap)
+{
+	const double *G = cs->G;
+	double *P = cs->lam, *L = cs->K, *r = cs->x;
+	uint32_t *A = cs->at, na = 0;
+	long p = -1; /* the pair joining */
+	for (uint32_t a = 0; a < np; a++) P[a] = 0, cs->act[a] = 0;
+	for (uint32_t iter = 0; iter < 4 * np + 8; iter++) {
+		if (p < 0) { /* the hit, then the pair that closes fastest */
+			double worst = -1;
+			if (!cs->act[ih]) p = ih;
+			else
+				for (uint32_t a = 0; a < np; a++) {
+					double v = cs->act[a] ? 0 : after(cs, np, a, ih, target, YIELD, NULL);
+					if (v < -vres[a] && v / vres[a] < worst) worst = v / vres[a], p = a;
+				}
+			if (p < 0) return *nap = na, 0;
+		}
+		/* the set's impulses change by -r per unit of p's, and p's velocity by sigma */
+		if (factor_set(cs, np, A, na, YIELD, L)) return -1;
+		for (uint32_t i = 0; i < na; i++) r[i] = G[A[i] * np + (uint32_t)p];
+		ldl_solve(L, na, r, r);
+		double sigma = G[p * np + p] * (1 + YIELD);
+		for (uint32_t i = 0; i < na; i++) sigma -= G[(uint32_t)p * np + A[i]] * r[i];
+		double s = after(cs, np, (uint32_t)p, ih, target, YIELD, NULL);
+		double full = sigma > 0 ? -s / sigma : INFINITY, part = INFINITY;
+		uint32_t out = 0;
+		for (uint32_t i = 0; i < na; i++)
+			if (A[i] != ih && r[i] > 0 && P[A[i]] / r[i] < part) part = P[A[i]] / r[i], out = i;
+		if (isinf(full) && isinf(part)) return -1;
+		double t = full <= part ? full : part;
+		for (uint32_t i = 0; i < na; i++) P[A[i]] -= t * r[i];
+		P[p] += t;
+		if (full <= part) {
+			A[na++] = (uint32_t)p, cs->act[p] = 1, p = -1;
+		} else {
+			P[A[out]] = 0, cs->act[A[out]] = 0;
+			A[out] = A[--na];
+		}
+	}
+	return -1;
+}
+
+/* Whether the impulses in cs->lam leave every pair of the set cs->act at its target and no other
+   closing, each yielding by yield: within its least velocity that counts and the rounding. */
+static int holds(const csf_contacts *cs, uint32_t np, uint32_t ih, double target, const double *vres, double yield)
+{
+	for (uint32_t a = 0; a < np; a++) {
+		double round, v = after(cs, np, a, ih, target, yield, &round);
+		if (!(cs->act[a] ? fabs(v) <= vres[a] + round : v >= -vres[a] - round)) return 0;
+	}
+	return 1;
+}
+
+/*
+ * dual_impulses' set solved again without the yield (the set's impulses
+ * that leave each of its pairs exactly at its target), where its system is
+ * not singular to rounding, its impulses push (but the hit's) and they
+ * hold; otherwise its own impulses, where they hold. 0, or -1.
+ */
+static int set_impulses(csf_contacts *cs, uint32_t np, uint32_t ih, double target, const double *vres, uint32_t na)
+{
+	double *P = cs->lam, *L = cs->K, *b = cs->x, keep[DIRECT_MAX];
+	const uint32_t *A = cs->at;
+	memcpy(keep, P, np * sizeof *keep);
+	if (!factor_set(cs, np, A, na, 0, L)) {
+		for (uint32_t i = 0; i < na; i++) b[i] = (A[i] == ih ? target : 0) - cs->v0[A[i]];
+		ldl_solve(L, na, b, b);
+		int push = 1;
+		for (uint32_t i = 0; i < na; i++) push &= A[i] == ih || b[i] >= 0;
+		if (push) {
+			for (uint32_t i = 0; i < na; i++) P[A[i]] = b[i];
+			if (holds(cs, np, ih, target, vres, 0)) return 0;
+			memcpy(P, keep, np * sizeof *P);
+		}
+	}
+	return holds(cs, np, ih, target, vres, YIELD) ? 0 : -1;
+}
+
 /*
  * The impact of pair hit, whose relative normal velocity is to become
  * target, on the cluster it forms with the pairs in contact, solved
@@ -39,17 +207,14 @@ static int picks_impact(const cpair *c, const void *arg)
  * pair in contact either pushes (P >= 0) and is left with a relative normal
  * velocity of zero, or takes no impulse and does not close (v >= 0): a
  * linear complementarity problem, whose matrix (the coupling of the pairs'
- * normals) is symmetric and positive definite when it is not singular. It
- * is solved by active sets: starting with the hit alone, the pair in
- * contact that closes fastest joins, or the one that would pull most leaves,
- * until neither happens; each measured in its own least velocity that
- * counts (csf_contact_speed_resolution), so that a pair left closing within
- * it is not struck again, nor does one whose impulse's effect is that small
- * leave. Fails (-1, nothing changed) for a cluster of more than DIRECT_MAX
- * pairs, a singular system whose least-squares impulses leave a pair of the
- * set beyond that velocity, or one that does not settle in 4 np + 8
- * changes of the set; size is the scale of the velocities (at least those
- * of the cluster's bodies).
+ * normals) is symmetric and positive semidefinite (dual_impulses). Each
+ * pair is measured in its own least velocity that counts
+ * (csf_contact_speed_resolution), so that a pair left closing within it is
+ * not struck again. Fails (-1, nothing changed) for a cluster of more than
+ * DIRECT_MAX pairs, where dual_impulses fails, or where its answer leaves
+ * a pair closing or a pair of its set off its target beyond that velocity;
+ * size is the scale of the velocities (at least those of the cluster's
+ * bodies).
  */
 static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, double target, double size)
 {
@@ -69,75 +234,25 @@ static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, doubl
 		cs->v0[a] = dot3(vr, n + 3 * a);
 		/* the velocities' own size: a pair that closes within its rounding does not close */
 		size = csf_max(size, csf_contact_speeds(c, m));
-		cs->act[a] = a == ih;
-		cs->lam[a] = 0;
 	}
 	double vres[DIRECT_MAX]; /* the least relative velocity that counts, each pair's */
 	for (uint32_t a = 0; a < np; a++) vres[a] = csf_contact_speed_resolution(&cs->pairs[cl[a]], m, 1e-14 * size);
 	for (uint32_t a = 0; a < np; a++) /* G = the normals' coupling, once each normal is known */
 		for (uint32_t b = 0; b < np; b++) {
 			double w = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], m);
-			double w1 = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], NULL);
 			G[a * np + b] = w == 0 ? 0 : w * dot3(n + 3 * a, n + 3 * b);
-			cs->G1[a * np + b] = w1 == 0 ? 0 : w1 * dot3(n + 3 * a, n + 3 * b);
 		}
-	for (uint32_t iter = 0; iter < 4 * np + 8; iter++) {
-		uint32_t dim = 0;
-		for (uint32_t a = 0; a < np; a++) {
-			if (!cs->act[a]) continue;
-			cs->at[dim] = a;
-			cs->rhs[dim] = (a == ih ? target : 0) - cs->v0[a];
-			dim++;
-		}
-		for (uint32_t r = 0; r < dim; r++)
-			for (uint32_t k = 0; k < dim; k++) {
-				cs->K[r * dim + k] = G[cs->at[r] * np + cs->at[k]];
-				cs->K1[r * dim + k] = cs->G1[cs->at[r] * np + cs->at[k]];
-			}
-		double wratio = csf_contact_mass_ratio(cs, cl, np, m);
-		if (csf_contact_solve(cs, dim, cs->K1, wratio, NULL, NULL)) {
-			/* contacts all but redundant (a row jammed between two walls, one of its contacts
-			   tilted by the 1e-10 m a ball has risen), whose velocities agree only to their
-			   rounding: the least-squares impulses, if they leave every pair of the set within
-			   the least velocity that counts of what it is to be */
-			if (!(wratio < 1e6) || csf_contact_least_squares(cs, dim, NULL, NULL)) return -1;
-			for (uint32_t r = 0; r < dim; r++) {
-				double e = (cs->at[r] == ih ? target : 0) - cs->v0[cs->at[r]];
-				for (uint32_t k = 0; k < dim; k++) e -= G[cs->at[r] * np + cs->at[k]] * cs->x[k];
-				if (!(fabs(e) <= vres[cs->at[r]])) return -1;
-			}
-		}
-		for (uint32_t a = 0; a < np; a++) cs->lam[a] = 0;
-		for (uint32_t r = 0; r < dim; r++) cs->lam[cs->at[r]] = cs->x[r];
-		long out = -1, in = -1;
-		double worst = 0; /* in units of each pair's vres */
-		for (uint32_t a = 0; a < np; a++) { /* a contact that would pull: its impulse's effect */
-			double pull = cs->lam[a] * G[a * np + a];
-			if (cs->act[a] && a != ih && pull < -vres[a] && pull / vres[a] < worst) worst = pull / vres[a], out = a;
-		}
-		if (out < 0) {
-			for (uint32_t a = 0; a < np; a++) { /* a contact that would close */
-				if (cs->act[a]) continue;
-				double v = cs->v0[a];
-				for (uint32_t b = 0; b < np; b++) v += G[a * np + b] * cs->lam[b];
-				if (v < -vres[a] && v / vres[a] < worst) worst = v / vres[a], in = a;
-			}
-		}
-		if (out >= 0) cs->act[out] = 0;
-		else if (in >= 0) cs->act[in] = 1;
-		else {
-			for (uint32_t a = 0; a < np; a++) {
-				cpair *c = &cs->pairs[cl[a]];
-				double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), P = cs->lam[a];
-				for (int k = 0; k < 3; k++) {
-					m[I(c, V) + k] += P * n[3 * a + k] * wi;
-					if (!c->plane) m[J(c, V) + k] -= P * n[3 * a + k] * wj;
-				}
-			}
-			return 0;
+	uint32_t na;
+	if (dual_impulses(cs, np, ih, target, vres, &na) || set_impulses(cs, np, ih, target, vres, na)) return -1;
+	for (uint32_t a = 0; a < np; a++) {
+		cpair *c = &cs->pairs[cl[a]];
+		double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), P = cs->lam[a];
+		for (int k = 0; k < 3; k++) {
+			m[I(c, V) + k] += P * n[3 * a + k] * wi;
+			if (!c->plane) m[J(c, V) + k] -= P * n[3 * a + k] * wj;
 		}
 	}
-	return -1;
+	return 0;
 }
 
 /*
