@@ -296,9 +296,8 @@ static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
  * the crossing, which a sliding mode's events, each from the last, would
  * otherwise drift from), and, where they do not change sign across it,
  * ever wider (by factors of 8), each end looked at narrowing the bracket;
- * then the bracket is narrowed on
- * exact states (the Illinois method), some forty steps from a whole step's
- * bracket. Where ghi is the interpolant's (sure = 0: hi is a sample
+ * then the bracket is narrowed on exact states (the Illinois method), some
+ * forty steps from a whole step's bracket. Where ghi is the interpolant's (sure = 0: hi is a sample
  * inside the step), the exact guard at hi is computed only when the
  * brackets around the crossing reach hi; where it is not negative there,
  * the bracket runs to the step's end (its guard r->gb), and *none is set,
