@@ -199,7 +199,6 @@ double csf_contact_scale(const cpair *c, const double *m);
 double csf_contact_scale_at(const cpair *c, const double *m, const double *pi, const double *pj);
 double csf_contact_resolution(const cpair *c, const double *m);
 void csf_contact_tangential(const double x[3], const double n[3], double out[3]);
-void csf_contact_slide_direction(const double n[3], const double ds[3], double u[3]);
 void csf_contact_slip_velocity(const cpair *c, const double *m, const double n[3], double vt[3]);
 
 /* cluster.c: the coupling of two pairs (m NULL: every mass 1), the clusters of the pairs pick()

@@ -99,21 +99,6 @@ void csf_contact_tangential(const double x[3], const double n[3], double out[3])
 	for (int k = 0; k < 3; k++) out[k] = x[k] - xn * n[k];
 }
 
-/*
- * The way a pair slides whose slip is within its rounding (or turned back):
- * ds, the direction it began to slide in, turned into the tangent plane of
- * normal n as it is now (the normal of two balls turns as they slide). A
- * slip that grows past its rounding along ds slips along that direction,
- * so the friction's direction is continuous where csf_contact_basis turns
- * from ds to the slip; ds itself where it is normal to the plane.
- */
-void csf_contact_slide_direction(const double n[3], const double ds[3], double u[3])
-{
-	csf_contact_tangential(ds, n, u);
-	double s = mag3(u);
-	for (int k = 0; k < 3; k++) u[k] = s > 0 ? u[k] / s : ds[k];
-}
-
 /* The relative tangential velocity of the pair (normal n). */
 void csf_contact_slip_velocity(const cpair *c, const double *m, const double n[3], double vt[3])
 {

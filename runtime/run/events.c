@@ -297,9 +297,10 @@ static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
  * otherwise drift from), and, where they do not change sign across it,
  * ever wider (by factors of 8), each end looked at narrowing the bracket;
  * then the bracket is narrowed on exact states (the Illinois method), some
- * forty steps from a whole step's bracket. Where ghi is the interpolant's (sure = 0: hi is a sample
- * inside the step), the exact guard at hi is computed only when the
- * brackets around the crossing reach hi; where it is not negative there,
+ * forty steps from a whole step's bracket. Where ghi is the interpolant's
+ * (sure = 0: hi is a sample inside the step), the exact guard at hi is
+ * computed only when the brackets around the crossing reach hi (at once
+ * without a continuous extension); where it is not negative there,
  * the bracket runs to the step's end (its guard r->gb), and *none is set,
  * with nothing located, when that is not negative either (the
  * interpolant's alarm was false). Returns as substep_guards.
@@ -578,11 +579,10 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
 			}
 			r->order[at] = (uint32_t)k;
 		}
-		int known = 0; /* the guards at best and at bl are in r->gt and r->gl */
+		int known = 0; /* the guards at bl are in r->gl (those at best, in r->gt, always are) */
 		for (size_t c = 0; c < nc; c++) {
 			size_t k = r->order[c];
 			if (*which >= 0 && !known) {
-				if (csf_run_guards_at(r, best, r->ye, r->gt)) return CSF_ODE_STOPPED;
 				if ((st = substep_guards(r, ode, ta, tb, y, bl, msg, msglen))) return st;
 				memcpy(r->gl, r->gs, ng * sizeof *r->gl);
 				known = 1;
@@ -599,15 +599,7 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
 			if (*which >= 0) { /* below at bl: the crossing is before it */
 				if (bl <= l) continue; /* (it cannot be: bl is past a state where the guard is >= 0) */
 				u = bl, gu = r->gl[k], sure = 1;
-			} else if (hi < tb && !r->dense) { /* (on the extension, locate looks when it needs to) */
-				sure = 1;
-				if ((st = substep_guards(r, ode, ta, tb, y, hi, msg, msglen))) return st;
-				gu = r->gs[k];
-				if (gu >= 0) { /* not below on the exact state: try the step's end */
-					u = tb, gu = r->gb[k];
-					if (gu >= 0) continue;
-				}
-			}
+			} /* else hi's exact guard is locate's to look at, when it needs it */
 			double tk, tl;
 			if ((st = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, sure, &tk, &tl, &lx, &none, msg, msglen)))
 				return st;
