@@ -87,8 +87,10 @@ enum { APART, SLIDING, STICKING, HOPPING }; /* the modes of a pair */
    the sliding direction, the time a hop lands, the relative velocity before an impact, the
    times it has begun to stick at the instant being settled (csf_contact_settle), whether
    sliding friction locks it (force.c), the margin its gap's guard takes after it lifted off
-   (settle.c's lift_off), whether it lifted off at the instant being settled. A pair that is not a candidate is apart. */
-enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_SS = 14, W_LOCK = 15, W_LIFT = 16, W_LO = 17, W_N = 18 };
+   (settle.c's lift_off), whether it lifted off at the instant being settled, whether it would turn
+   back (settle.c's turns_back, on the accelerations of the pass's evaluation). A pair that is not a
+   candidate is apart. */
+enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_SS = 14, W_LOCK = 15, W_LIFT = 16, W_LO = 17, W_TB = 18, W_N = 19 };
 
 /* A candidate pair: body i (a mass point, $0) and body j (a mass point, a plane or an anchor, $1). */
 typedef struct cpair {

@@ -657,10 +657,11 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 		   cluster's all at once (those with friction only on the accelerations of their modes) */
 		int pulls = cs->unsolved, slips = 0, chose = 0;
 		for (uint32_t i = 0; i < cs->n; i++) {
-			const cpair *c = &cs->pairs[i];
+			cpair *c = &cs->pairs[i];
+			W(c, TB) = turns_back(cs, c, m); /* (as the evaluation has it: choose writes its own accelerations) */
 			if (!in_contact(c)) continue;
 			pulls |= W(c, G0) < 0;
-			slips |= W(c, G1) < 0 || turns_back(cs, c, m);
+			slips |= W(c, G1) < 0 || W(c, TB);
 		}
 		if (pulls || (slips && !changed)) {
 			int st = choose(cs, m, !changed);
@@ -671,8 +672,10 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 			}
 			chose = 1;
 		}
-		/* a guard of a pair in contact that is negative, of a cluster whose modes were not chosen
-		   together: its transition (contact_int.h's header); one a pass, the first in the order of
+		/* a guard of a pair in contact that is negative, or a slide that would turn back (W_TB: a
+		   cluster too large for modes.c left a pair sliding within its slip's rounding against its
+		   acceleration, and its stop was found again 8.6e-13 s later, 1001 times), of a cluster whose
+		   modes were not chosen together: its transition (contact_int.h's header); one a pass, the first in the order of
 		   pairs (changing every one at once can go round in a circle, changing the first each
 		   time settles, as Murty's least-index rule does for a complementarity problem) */
 		for (uint32_t i = 0; i < cs->n && !changed; i++) {
@@ -681,7 +684,7 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 			if (W(c, G0) < 0) {
 				if (W(c, LO)) changed = lock_slides(cs, c, m);
 				if (!changed) lift_off(cs, c, m), changed = 1;
-			} else if (W(c, G1) < 0 && W(c, MODE) == SLIDING && W(c, SS) < 2) stick(cs, c, m), W(c, SS)++, changed = 1;
+			} else if ((W(c, G1) < 0 || W(c, TB)) && W(c, MODE) == SLIDING && W(c, SS) < 2) stick(cs, c, m), W(c, SS)++, changed = 1;
 			else if (W(c, G1) < 0 && W(c, MODE) == STICKING) slide(c, m), changed = 1;
 		}
 		if (!changed || ++others >= 100 + 10 * (uint64_t)cs->n) return 0;
