@@ -85,6 +85,43 @@ static int chatter(unsigned long *same, double ta, double te, char *msg, size_t 
 }
 
 /*
+ * Events that crowd: CROWD_EVENTS in a row within a span of time so short
+ * that, at their pace, the time left to the last output time would take
+ * more than CROWD_MORE more (a pile of 64 balls whose contact stuck and
+ * slid every 1e-8 s: the run went on for hours without a word). A warning,
+ * once a run, naming the last event; the run goes on. It depends on the
+ * events' times alone, so that csfvm and a generated program warn alike.
+ */
+enum { CROWD_EVENTS = 1000 };
+static const double CROWD_MORE = 1e6;
+
+static void crowd(run *r, double te)
+{
+	if (r->crowd_n++ == 0) r->crowd_t = te;
+	if (r->crowd_n <= CROWD_EVENTS || r->crowd_warned) return;
+	double span = te - r->crowd_t, more = (r->tend - te) / span * CROWD_EVENTS;
+	r->crowd_n = 0;
+	if (!(span > 0) || !(more > CROWD_MORE)) return;
+	const csf_prog *p = r->p;
+	char tb[32], left[32], last[160] = "";
+	csf_fmt_double(tb, te);
+	csf_run_fmt_ratio(left, more);
+	r->crowd_warned = 1;
+	csf_run_progress_off(r);
+	if (r->last >= (long)r->gcont)
+		snprintf(last, sizeof last, "the contact of '%s' and '%s'", csf_str(p, p->objects[r->last_oi]),
+		         csf_str(p, p->objects[r->last_oj]));
+	else {
+		const csf_src *sr = &p->srcs[r->last_src];
+		snprintf(last, sizeof last, "the rule at %s:%lu", csf_str(p, p->files[sr->file]), (unsigned long)sr->line);
+	}
+	fprintf(r->err,
+	        "warning: at t=%s the last %d events came within %.3g s (the last of them of %s): at that pace "
+	        "the %.3g s left take some %s more\n",
+	        tb, CROWD_EVENTS, span, last, r->tend - te, left);
+}
+
+/*
  * Advances (*t, y) to t1 as csf_ode_step does, stopping at events. On entry
  * r->ga and r->fa hold the guards and derivative at (*t, y), unless an event
  * located at the last output time is pending: it happens first.
@@ -121,6 +158,7 @@ int csf_run_advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed
 		}
 		if ((st = csf_run_take_event(r, ode, best, y))) return st;
 		if ((st = chatter(&same, ta, best, msg, msglen))) return st;
+		crowd(r, best);
 	}
 	return CSF_ODE_OK;
 }
@@ -215,6 +253,7 @@ int csf_run_advance_dense(run *r, double tk, double *y, char *msg, size_t msglen
 		memcpy(r->yi, r->ye, n * sizeof *y);
 		r->pending = 1;
 		if ((st = chatter(&same, ta, te, msg, msglen))) return st;
+		crowd(r, te);
 	}
 	if (tk == r->ti) memcpy(y, r->yi, n * sizeof *y);
 	else if (csf_ode_dense_rows(ode, tk, y)) return CSF_ODE_STOPPED;

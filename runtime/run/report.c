@@ -183,8 +183,7 @@ static void report_chatter(const run *r, const stop *s, const char *tb, FILE *er
 {
 	const csf_prog *p = r->p;
 	if (r->last >= (long)r->gcont) { /* a contact: the bodies are the user's, the rule the library's */
-		uint32_t oi, oj;
-		csf_contacts_objects(r->cs, (uint32_t)(r->last - (long)r->gcont) / 2, &oi, &oj);
+		uint32_t oi = r->last_oi, oj = r->last_oj;
 		fprintf(err,
 		        "error: at t=%s the contact of '%s' and '%s' switches between touching and parting, "
 		        "or sticking and sliding, again and again (%s): no set of contacts among the "
@@ -269,8 +268,7 @@ int csf_run_report_stop(run *r, const stop *s, int fixed, FILE *err)
 		char ob[32];
 		csf_fmt_double(ob, r->con_off);
 		if (r->con_impact) {
-			uint32_t oi = 0, oj = 0;
-			if (r->last >= (long)r->gcont) csf_contacts_objects(r->cs, (uint32_t)(r->last - (long)r->gcont) / 2, &oi, &oj);
+			uint32_t oi = r->last_oi, oj = r->last_oj;
 			fprintf(err, "%s:%lu: error: at t=%s an impact", csf_str(p, p->files[src->file]), (unsigned long)src->line, tb);
 			if (r->last >= (long)r->gcont)
 				fprintf(err, " of '%s' and '%s'", csf_str(p, p->objects[oi]), csf_str(p, p->objects[oj]));

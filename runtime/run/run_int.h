@@ -29,6 +29,8 @@ typedef struct run {
 	unsigned long nevents;
 	long last; /* the guard of the last event */
 	uint32_t last_src; /* its rule's statement */
+	uint32_t last_oi, last_oj; /* a contact's: its objects, as the event found them (the candidates that
+	                              follow are chosen again, and the guard's number names another pair) */
 	int pending; /* it was located at an output time and happens after that row */
 	double last_h; /* the last step's length */
 	double zeno, tol; /* for csf_contact_settle */
@@ -74,6 +76,9 @@ typedef struct run {
 	int own;          /* the integrator has its own time and state (ti, yi), apart from the rows' */
 	struct autom *au; /* --method auto, or NULL */
 	FILE *err;
+	double crowd_t;        /* the time of the first of the events counted in crowd_n (advance.c's crowd) */
+	unsigned long crowd_n; /* the events since; whether their crowding was warned of */
+	int crowd_warned;
 	int prog, shown;  /* the progress line: drawn, and on the screen now */
 	struct timespec start, drawn; /* when the run started, and the line was last drawn */
 	unsigned long rows; /* rows written */
