@@ -674,17 +674,19 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 		}
 		/* a guard of a pair in contact that is negative, or a slide that would turn back (W_TB: a
 		   cluster too large for modes.c left a pair sliding within its slip's rounding against its
-		   acceleration, and its stop was found again 8.6e-13 s later, 1001 times), of a cluster whose
-		   modes were not chosen together: its transition (contact_int.h's header); one a pass, the first in the order of
-		   pairs (changing every one at once can go round in a circle, changing the first each
-		   time settles, as Murty's least-index rule does for a complementarity problem) */
+		   acceleration, and its stop was found again 8.6e-13 s later, 1001 times), of a cluster
+		   whose modes were not chosen together: its transition (contact_int.h's header); one a
+		   pass, the first in the order of pairs (changing every one at once can go round in a
+		   circle, changing the first each time settles, as Murty's least-index rule does for a
+		   complementarity problem) */
 		for (uint32_t i = 0; i < cs->n && !changed; i++) {
 			cpair *c = &cs->pairs[i];
 			if (!in_contact(c) || (chose && cs->mark[i] & MODES_CHOSEN)) continue;
 			if (W(c, G0) < 0) {
 				if (W(c, LO)) changed = lock_slides(cs, c, m);
 				if (!changed) lift_off(cs, c, m), changed = 1;
-			} else if ((W(c, G1) < 0 || W(c, TB)) && W(c, MODE) == SLIDING && W(c, SS) < 2) stick(cs, c, m), W(c, SS)++, changed = 1;
+			} else if ((W(c, G1) < 0 || W(c, TB)) && W(c, MODE) == SLIDING && W(c, SS) < 2)
+				stick(cs, c, m), W(c, SS)++, changed = 1;
 			else if (W(c, G1) < 0 && W(c, MODE) == STICKING) slide(c, m), changed = 1;
 		}
 		if (!changed || ++others >= 100 + 10 * (uint64_t)cs->n) return 0;

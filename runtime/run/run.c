@@ -480,8 +480,9 @@ static int keep_state(session *S, csf_keeper *k)
 	          csf_keep(k, "y", S->y, ny * sizeof *S->y);
 	/* the run's counts, the last event, the integrator's own time */
 	bad |= CSF_KEEP(k, r->fail_t) | CSF_KEEP(k, r->fail) | CSF_KEEP(k, r->nrhs) | CSF_KEEP(k, r->njac) |
-	       CSF_KEEP(k, r->nevents) | CSF_KEEP(k, r->last) | CSF_KEEP(k, r->last_src) | CSF_KEEP(k, r->last_oi) | CSF_KEEP(k, r->last_oj) |
-	       CSF_KEEP(k, r->crowd_t) | CSF_KEEP(k, r->crowd_n) | CSF_KEEP(k, r->crowd_warned) | CSF_KEEP(k, r->pending) |
+	       CSF_KEEP(k, r->nevents) | CSF_KEEP(k, r->last) | CSF_KEEP(k, r->last_src) | CSF_KEEP(k, r->last_oi) |
+	       CSF_KEEP(k, r->last_oj) | CSF_KEEP(k, r->crowd_t) | CSF_KEEP(k, r->crowd_n) |
+	       CSF_KEEP(k, r->crowd_warned) | CSF_KEEP(k, r->pending) |
 	       CSF_KEEP(k, r->last_h) | CSF_KEEP(k, r->dense) | CSF_KEEP(k, r->ti) | CSF_KEEP(k, r->nchoices) |
 	       CSF_KEEP(k, r->ncand) | CSF_KEEP(k, r->maxcand) | CSF_KEEP(k, r->stop_t) | CSF_KEEP(k, r->stop_src) |
 	       CSF_KEEP(k, r->stopped) | CSF_KEEP(k, r->own) | CSF_KEEP(k, r->rows) | CSF_KEEP(k, r->ng) |
