@@ -72,18 +72,6 @@ int csf_run_advance_plain(run *r, csf_ode *ode, double *t, double t1, double *y,
 	return CSF_ODE_OK;
 }
 
-/* One more event at time te after a step from ta: ADV_CHATTER after 1000 in a row that do not advance time. */
-static int chatter(unsigned long *same, double ta, double te, char *msg, size_t msglen)
-{
-	if (te - ta > 1e-12 * (1 + fabs(te))) {
-		*same = 0;
-		return 0;
-	}
-	if (++*same <= 1000) return 0;
-	snprintf(msg, msglen, "%lu events without time advancing", *same);
-	return ADV_CHATTER;
-}
-
 /*
  * Events that crowd: CROWD_EVENTS in a row within a span of time so short
  * that, at their pace, the time left to the last output time would take
@@ -119,6 +107,20 @@ static void crowd(run *r, double te)
 	        "warning: at t=%s the last %d events came within %.3g s (the last of them of %s): at that pace "
 	        "the %.3g s left take some %s more\n",
 	        tb, CROWD_EVENTS, span, last, r->tend - te, left);
+}
+
+/* One more event at time te after a step from ta: ADV_CHATTER after 1000 in a row that do not advance
+   time; a warning where they crowd (crowd). */
+static int chatter(run *r, unsigned long *same, double ta, double te, char *msg, size_t msglen)
+{
+	crowd(r, te);
+	if (te - ta > 1e-12 * (1 + fabs(te))) {
+		*same = 0;
+		return 0;
+	}
+	if (++*same <= 1000) return 0;
+	snprintf(msg, msglen, "%lu events without time advancing", *same);
+	return ADV_CHATTER;
 }
 
 /*
@@ -157,8 +159,7 @@ int csf_run_advance_events(run *r, csf_ode *ode, double *t, double t1, int fixed
 			return CSF_ODE_OK;
 		}
 		if ((st = csf_run_take_event(r, ode, best, y))) return st;
-		if ((st = chatter(&same, ta, best, msg, msglen))) return st;
-		crowd(r, best);
+		if ((st = chatter(r, &same, ta, best, msg, msglen))) return st;
 	}
 	return CSF_ODE_OK;
 }
@@ -252,8 +253,7 @@ int csf_run_advance_dense(run *r, double tk, double *y, char *msg, size_t msglen
 		r->ti = te;
 		memcpy(r->yi, r->ye, n * sizeof *y);
 		r->pending = 1;
-		if ((st = chatter(&same, ta, te, msg, msglen))) return st;
-		crowd(r, te);
+		if ((st = chatter(r, &same, ta, te, msg, msglen))) return st;
 	}
 	if (tk == r->ti) memcpy(y, r->yi, n * sizeof *y);
 	else if (csf_ode_dense_rows(ode, tk, y)) return CSF_ODE_STOPPED;

@@ -620,10 +620,11 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
 	}
 	*te = best;
 	r->last = *which;
-	if (*which >= (long)r->gcont) /* its objects now: the candidates are chosen again at the event */
-		csf_contacts_objects(r->cs, (uint32_t)(*which - (long)r->gcont) / 2, &r->last_oi, &r->last_oj);
-	r->last_src = *which < (long)p->nevents ? p->events[*which].src
-	              : *which < (long)r->gcont ? p->cons[*which - (long)p->nevents].src
-	                                        : csf_contacts_src(r->cs, (uint32_t)(*which - (long)r->gcont) / 2);
+	if (*which >= (long)r->gcont) { /* a contact: its objects now, as the candidates are chosen again */
+		uint32_t pair = (uint32_t)(*which - (long)r->gcont) / 2;
+		csf_contacts_objects(r->cs, pair, &r->last_oi, &r->last_oj);
+		r->last_src = csf_contacts_src(r->cs, pair);
+	} else
+		r->last_src = *which < (long)p->nevents ? p->events[*which].src : p->cons[*which - (long)p->nevents].src;
 	return CSF_ODE_OK;
 }
