@@ -306,7 +306,12 @@ void csf_contact_before_impact(csf_contacts *cs, const double *m)
 /*
  * Pair hit stops slipping (it sticks) together with the pairs in contact
  * in its cluster: the impulses that leave hit and every sticking pair at a
- * relative velocity of zero (normal and tangential), and every other pair
+ * relative velocity of zero (normal and tangential), and so every pair
+ * that slides without slipping (its slip within the rounding of speeds: it
+ * has stopped, and friction holds it as a sticking pair's does; left free,
+ * the impulses of a pile of 64 balls that stopped one slip set its
+ * neighbour slipping at 2.6e-8 m/s, whose stop set the first going again,
+ * an event every 6e-9 s), and every other pair
  * in contact either pushing (its normal impulse >= 0) at a relative normal
  * velocity of zero, or taking no impulse and not closing: a linear
  * complementarity problem, solved by active sets as an impact's
@@ -345,13 +350,18 @@ int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double le
 		double curv;
 		csf_contact_geometry(c, m, n + 3 * a, &curv);
 		rel(c, m, I(c, V), J(c, V), vr[a]);
-		whole[a] = a == ih || (W(c, MODE) == STICKING && has_friction(c, m));
-		dim += whole[a] ? 3 : 1;
 		size = csf_max(size, csf_contact_speeds(c, m));
 		cs->act[a] = 1;
 	}
+	for (uint32_t a = 0; a < np; a++) {
+		const cpair *c = &cs->pairs[cl[a]];
+		double vt[3];
+		vres[a] = csf_contact_speed_resolution(c, m, csf_max(least, 1e-14 * size));
+		csf_contact_slip_velocity(c, m, n + 3 * a, vt);
+		whole[a] = a == ih || (has_friction(c, m) && (W(c, MODE) == STICKING || (W(c, MODE) == SLIDING && !(mag3(vt) > vres[a]))));
+		dim += whole[a] ? 3 : 1;
+	}
 	if (dim > DIRECT_MAX) return -1;
-	for (uint32_t a = 0; a < np; a++) vres[a] = csf_contact_speed_resolution(&cs->pairs[cl[a]], m, csf_max(least, 1e-14 * size));
 	for (uint32_t a = 0; a < np; a++) /* the pairs' coupling, with their masses and with every mass 1 */
 		for (uint32_t b = 0; b < np; b++) {
 			cs->G[a * np + b] = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], m);

@@ -35,19 +35,24 @@
  * pivoting method); then the sets of two changes and more, as many as
  * MODES_WORK allows; last the cluster's complementarity problem with
  * Coulomb friction, by Lemke's method (lcp_set). The first consistent set
- * found is the cluster's. A cluster of more than MODES_MAX pairs, or for
- * which none of these finds a consistent set, or that has none (with
- * sliding friction, Painlevé's paradox), is left to the complementarity
- * problem of its normal forces and its pairs' own guards (force.c,
- * settle.c).
+ * found is the cluster's. A cluster of more than MODES_MAX pairs tries
+ * the modes as they are and then the complementarity problem alone (the
+ * searches between cost some dim^3 a set tried: in a pile of 64 balls a
+ * cluster of 33 pairs, left to its pairs' own guards, went round between
+ * two of them with an event every 1e-8 s). One of more than MODES_LCP_MAX
+ * pairs (or whose set has more than DIRECT_MAX unknowns), or for which none
+ * of these finds a consistent set, or that has none (with sliding
+ * friction, Painlevé's paradox), is left to the complementarity problem of
+ * its normal forces and its pairs' own guards (force.c, settle.c).
  */
 #include "contact_int.h"
 
-/* The most pairs of a cluster, the most sets tried, and the solves a set may take to turn its
-   slides round. The sets tried are fewer for a large cluster: about MODES_WORK operations in all
-   (a set costs some dim^3, dim its unknowns), 0.1 s, but at least every set that changes one
+/* The most pairs of a cluster whose sets are searched, the most whose modes are chosen at all
+   (the complementarity problem's), the most sets tried, and the solves a set may take to turn
+   its slides round. The sets tried are fewer for a large cluster: about MODES_WORK operations in
+   all (a set costs some dim^3, dim its unknowns), 0.1 s, but at least every set that changes one
    pair. */
-enum { MODES_MAX = 32, MODES_TRIES = 4096, MODES_TURNS = 4 };
+enum { MODES_MAX = 32, MODES_LCP_MAX = 256, MODES_TRIES = 4096, MODES_TURNS = 4 };
 static const double MODES_WORK = 2e8;
 
 /* A pair's options: what it is tried in. */
@@ -70,8 +75,10 @@ typedef struct search {
 	const double *m;
 	uint32_t np;
 	double wratio;
-	double F[3 * MODES_MAX]; /* the forces of the set tried (on body i of each pair) */
-	mpair p[MODES_MAX];
+	double *F;      /* the forces of the set tried (on body i of each pair), 3 np */
+	mpair *p;       /* np */
+	uint32_t *at;   /* np: each pair's first unknown in the set's system */
+	unsigned char *dc; /* np: its unknowns */
 } search;
 
 /* The unit vector of x into u; 0 if x is 0. */
@@ -90,8 +97,8 @@ static int unit(const double x[3], double u[3])
 static int solve_set(search *s)
 {
 	csf_contacts *cs = s->cs;
-	uint32_t np = s->np, dim = 0, at[MODES_MAX];
-	unsigned char dc[MODES_MAX] = { 0 };
+	uint32_t np = s->np, dim = 0, *at = s->at;
+	unsigned char *dc = s->dc;
 	double *B = cs->B, *E = cs->E;
 	for (uint32_t a = 0; a < np; a++) {
 		mpair *p = &s->p[a];
@@ -99,6 +106,7 @@ static int solve_set(search *s)
 		if (p->mode == O_APART) continue;
 		int mode = p->mode == O_STICK ? STICKING : SLIDING;
 		dc[a] = (unsigned char)csf_contact_basis(p->c, s->m, p->n, 1, mode, p->u, B + 9 * a, E + 9 * a);
+		if (dim + dc[a] > DIRECT_MAX) return -1;
 		for (int r = 0; r < dc[a]; r++)
 			cs->rhs[dim + r] = -(dot3(E + 9 * a + 3 * r, p->ar) + p->curv * dot3(E + 9 * a + 3 * r, p->n));
 		dim += dc[a];
@@ -328,8 +336,15 @@ static int lcp_set(search *s)
 {
 	csf_contacts *cs = s->cs;
 	const double *m = s->m;
-	uint32_t np = s->np, nv = 0, iN[MODES_MAX], iB[MODES_MAX];
-	double D[MODES_MAX][4][3], f0[MODES_MAX][3];
+	uint32_t np = s->np, nv = 0;
+	/* per pair: N's unknown, b's (or UINT32_MAX), the number of b; its directions D, its force
+	   f0 along N, its first guess u0 kept */
+	uint32_t *iN = malloc(3 * (size_t)np * sizeof *iN), *iB = iN + np, *nd = iB + np;
+	double (*D)[4][3] = malloc(np * sizeof *D), (*f0)[3] = malloc(2 * np * sizeof *f0), (*u0)[3] = f0 + np;
+	double *M = NULL;
+	uint32_t *basis = NULL;
+	int ok = -1;
+	if (!iN || !D || !f0) goto out;
 	for (uint32_t a = 0; a < np; a++) { /* each pair's force directions: N's, and at rest with friction D's */
 		mpair *p = &s->p[a];
 		iB[a] = UINT32_MAX;
@@ -359,7 +374,6 @@ static int lcp_set(search *s)
 	/* a pair whose t2 no force of the cluster and no acceleration has a part along (a scene in a
 	   plane: t2 across it) takes no friction along it: its +-t2 are dropped, which the problem,
 	   degenerate in them, would otherwise carry along */
-	uint32_t nd[MODES_MAX];
 	for (uint32_t a = 0; a < np; a++) {
 		nd[a] = 4;
 		if (iB[a] == UINT32_MAX) continue;
@@ -377,9 +391,7 @@ static int lcp_set(search *s)
 		if (iB[a] != UINT32_MAX) iB[a] = nv, nv += nd[a] + 1;
 	}
 	size_t nw = (size_t)nv * nv + csf_lcp_work(nv) + 2 * (size_t)nv;
-	double *M = calloc(nw, sizeof *M);
-	uint32_t *basis = malloc(nv * sizeof *basis);
-	int ok = -1;
+	M = calloc(nw, sizeof *M), basis = malloc(nv * sizeof *basis);
 	if (!M || !basis) goto out;
 	double *T = M + (size_t)nv * nv, *q = T + csf_lcp_work(nv), *z = q + nv;
 	for (uint32_t a = 0; a < np; a++) {
@@ -407,7 +419,6 @@ static int lcp_set(search *s)
 		}
 	}
 	if (csf_lcp_lemke(nv, M, q, z, T, basis)) goto out;
-	double u0[MODES_MAX][3];
 	for (uint32_t a = 0; a < np; a++) {
 		mpair *p = &s->p[a];
 		memcpy(u0[a], p->u0, sizeof u0[a]);
@@ -434,6 +445,9 @@ static int lcp_set(search *s)
 out:
 	free(M);
 	free(basis);
+	free(iN);
+	free(D);
+	free(f0);
 	return ok;
 }
 
@@ -493,12 +507,13 @@ static void take_pair(search *s, mpair *p, cpair *c)
  * the speeds' rounding at the instant (cs->vfloor). m holds the accelerations of the modes as they are.
  * Returns 0, or -1 with nothing written: the cluster has no friction, a
  * pair locked by its sliding friction (force.c: its impulse settles it),
- * more than MODES_MAX pairs, or no consistent set among those it tries.
+ * more than MODES_LCP_MAX pairs, or no consistent set among those it tries
+ * (or memory runs out).
  */
 int csf_contact_choose_modes(csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np)
 {
 	int friction = 0;
-	if (np > MODES_MAX) return -1;
+	if (np > MODES_LCP_MAX) return -1;
 	for (uint32_t a = 0; a < np; a++) {
 		const cpair *c = &cs->pairs[cl[a]];
 		friction |= has_friction(c, m);
@@ -507,13 +522,20 @@ int csf_contact_choose_modes(csf_contacts *cs, const double *m, const uint32_t *
 	if (!friction) return -1;
 	search s;
 	s.cs = cs, s.m = m, s.np = np, s.wratio = csf_contact_mass_ratio(cs, cl, np, m);
+	s.p = malloc(np * sizeof *s.p), s.F = malloc(3 * (size_t)np * sizeof *s.F);
+	s.at = malloc(np * sizeof *s.at), s.dc = malloc(np);
+	int found = -1;
+	if (!s.p || !s.F || !s.at || !s.dc) goto out;
 	for (uint32_t a = 0; a < np; a++) take_pair(&s, &s.p[a], &cs->pairs[cl[a]]);
 	for (uint32_t a = 0; a < np; a++) /* the pairs' coupling, with their masses and with every mass 1 */
 		for (uint32_t b = 0; b < np; b++) {
 			cs->G[a * np + b] = csf_contact_coupling(cs, s.p[a].c, s.p[b].c, m);
 			cs->G1[a * np + b] = csf_contact_coupling(cs, s.p[a].c, s.p[b].c, NULL);
 		}
-	if (find_set(&s, 0, 1) && guided_set(&s) && find_set(&s, 2, np) && lcp_set(&s)) return -1;
+	if (np <= MODES_MAX ? find_set(&s, 0, 1) && guided_set(&s) && find_set(&s, 2, np) && lcp_set(&s)
+	                    : find_set(&s, 0, 0) && lcp_set(&s))
+		goto out;
+	found = 0;
 	for (uint32_t a = 0; a < np; a++) {
 		const mpair *p = &s.p[a];
 		const cpair *c = p->c;
@@ -524,5 +546,10 @@ int csf_contact_choose_modes(csf_contacts *cs, const double *m, const uint32_t *
 		if (W(c, MODE) == SLIDING && p->slips) memcpy(dir, WV(c, DS), 3 * sizeof *dir);
 		else memcpy(dir, p->u, 3 * sizeof *dir);
 	}
-	return 0;
+out:
+	free(s.p);
+	free(s.F);
+	free(s.at);
+	free(s.dc);
+	return found;
 }
