@@ -536,11 +536,13 @@ t_piles_statics() {
 # (X = 0.2 with restitution 0.3 stopped at t = 0.405 s before a step's crossings were located
 # earliest first), and two
 # with rows every 1 and 0.7 ms (they gained energy, 1.6e-7 and 1.9e-7 of it, before a pull after a
-# lift-off stopped the slides beside it: csf(5), Normal forces only push)
+# lift-off stopped the slides beside it: csf(5), Normal forces only push), and X = 0.22 with rows
+# every 1 and 0.2 ms (3.4e-7 of the energy gained before a stopped slide was held by a stopping
+# neighbour's impulses, 1.1e-9 before sticking pairs were held at a slip of zero: csf(5), Rest)
 t_jam_now() {
 	suite "a ball dropped on a jam" sh tests/piles/jam.sh "$CSFC" "$CSFVM" "$T" "0.2 0" "0.2 0.3" "0.205 0" \
 		"0.205 0.3" "0.21 0" "0.21 0.3" "0.22 0" "0.22 0.3" "0.24 0" "0.24 0.3" "0.26 0" "0.26 0.3" \
-		"0.26 0.3 0.001" "0.21 0.3 0.0007"
+		"0.26 0.3 0.001" "0.21 0.3 0.0007" "0.22 0.3 0.001" "0.22 0.3 0.0002"
 }
 # a Galton board (issue 28's proof item, tests/piles/galton.sh; galton NBALLS NROWS): no overlap,
 # no energy gained, every ball at rest in a bin at the end. 9 balls through 10 rows take 0.2 s,
