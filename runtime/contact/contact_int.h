@@ -150,6 +150,7 @@ struct csf_contacts {
 	uint32_t why_pair, why_np; /* of a cluster that could not be solved: a pair of it, its pairs, */
 	uint32_t why_big;          /* and DIRECT_MAX if its unknowns are more (else 0) */
 	double tol;                /* the integrator's tolerance at the last instant settled (settle.c) */
+	double zeno;               /* and its Zeno time (settle.c) */
 	double vfloor;             /* the least speed that counts at the instant being settled (settle.c) */
 	int unsolved; /* the sweeps left contact forces that do not hold (csf_contacts_unsolved) */
 };

@@ -728,12 +728,13 @@ static int sweep_contacts(csf_contacts *cs, double *m, int (*one)(const csf_cont
  * zero (speed_resolution), the pair takes the impulse along its normal (of
  * either sign) that makes its velocity zero: each such impulse takes away
  * the kinetic energy of the velocity it removes, so this never adds energy.
- * A pair that sticks is held at a relative velocity of zero, its slip too:
- * its forces keep its relative acceleration zero, so a slip left to it
- * (these normal impulses move the bodies of its neighbours' sticking
- * pairs) is kept for ever (five balls settled in a box crept apart at 7.6e-10
- * m/s for good, a ball on top rising between two on the floor, gaining
- * energy).
+ * A pair that sticks is held at a relative velocity of zero, its slip too
+ * (a slip its static friction would stop within the Zeno time, as a slide
+ * that stops at once: stops_at_once): its forces keep its relative
+ * acceleration zero, so a slip left to it (these normal impulses move the
+ * bodies of its neighbours' sticking pairs) is kept for ever (five balls
+ * settled in a box crept apart at 7.6e-10 m/s for good, a ball on top
+ * rising between two on the floor, gaining energy).
  */
 static int hold_velocity(const csf_contacts *cs, cpair *c, double *m)
 {
@@ -744,6 +745,7 @@ static int hold_velocity(const csf_contacts *cs, cpair *c, double *m)
 	double vn = dot3(vr, n), res = speed_resolution(cs, c, m);
 	int sticks = W(c, MODE) == STICKING && has_friction(c, m);
 	for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * n[k];
+	sticks = sticks && mag3(vt) <= mu_s(c, m) * fabs(W(c, LAM)) * (inv_mass_i(c, m) + inv_mass_j(c, m)) * cs->zeno;
 	if (fabs(vn) <= res && !(sticks && mag3(vt) > res)) return 0;
 	for (int k = 0; k < 3; k++) dv[k] = -(sticks ? vr[k] : vn * n[k]);
 	csf_contact_add_impulse(c, m, dv);
@@ -815,7 +817,7 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 {
 	if (!cs) return 0;
 	cs->vfloor = 0;
-	cs->tol = tol;
+	cs->tol = tol, cs->zeno = zeno;
 	/* the modes chosen again (at most 3 times) when holding the pairs in contact moved a body:
 	   velocities changed, and a normal force could pull from the start of the next step */
 	int st;
