@@ -398,14 +398,21 @@ static int turns_back(const csf_contacts *cs, const cpair *c, const double *m)
  * most twice at an instant (W_SS), since static friction that cannot hold
  * sends it sliding again at once, from no slip.
  */
+/* The slip (speed) that friction of coefficient mu at pair c's normal force stops within time
+   zeno: mu |N| (1/m_i + 1/m_j) zeno. */
+static double stopped_within(const cpair *c, const double *m, double mu, double zeno)
+{
+	return mu * fabs(W(c, LAM)) * (inv_mass_i(c, m) + inv_mass_j(c, m)) * zeno;
+}
+
 static int stops_at_once(const csf_contacts *cs, const cpair *c, const double *m, double zeno)
 {
 	double n[3], curv, vt[3];
 	if (W(c, MODE) != SLIDING || !has_friction(c, m) || W(c, SS) >= 2) return 0;
 	csf_contact_geometry(c, m, n, &curv);
 	csf_contact_slip_velocity(c, m, n, vt);
-	double s = mag3(vt), d = mu_k(c, m) * fabs(W(c, LAM)) * (inv_mass_i(c, m) + inv_mass_j(c, m));
-	return s > speed_resolution(cs, c, m) && s <= d * zeno;
+	double s = mag3(vt);
+	return s > speed_resolution(cs, c, m) && s <= stopped_within(c, m, mu_k(c, m), zeno);
 }
 
 /* Hops from time t at normal speed v >= 0 (an < 0): it lands after 2 v/|an|. */
@@ -742,11 +749,10 @@ static int hold_velocity(const csf_contacts *cs, cpair *c, double *m)
 	if (!in_contact(c)) return 0;
 	csf_contact_geometry(c, m, n, &curv);
 	rel(c, m, I(c, V), J(c, V), vr);
-	double vn = dot3(vr, n), res = speed_resolution(cs, c, m);
-	int sticks = W(c, MODE) == STICKING && has_friction(c, m);
-	for (int k = 0; k < 3; k++) vt[k] = vr[k] - vn * n[k];
-	sticks = sticks && mag3(vt) <= mu_s(c, m) * fabs(W(c, LAM)) * (inv_mass_i(c, m) + inv_mass_j(c, m)) * cs->zeno;
-	if (fabs(vn) <= res && !(sticks && mag3(vt) > res)) return 0;
+	csf_contact_slip_velocity(c, m, n, vt);
+	double vn = dot3(vr, n), res = speed_resolution(cs, c, m), s = mag3(vt);
+	int sticks = W(c, MODE) == STICKING && has_friction(c, m) && s <= stopped_within(c, m, mu_s(c, m), cs->zeno);
+	if (fabs(vn) <= res && !(sticks && s > res)) return 0;
 	for (int k = 0; k < 3; k++) dv[k] = -(sticks ? vr[k] : vn * n[k]);
 	csf_contact_add_impulse(c, m, dv);
 	return 1;
