@@ -407,6 +407,13 @@ uint32_t csf_contacts_src(const csf_contacts *c, uint32_t k);
 /* The objects (indices into objects) of candidate k's two bodies. */
 void csf_contacts_objects(const csf_contacts *c, uint32_t k, uint32_t *oi, uint32_t *oj);
 /*
+ * The candidate pairs that overlap at m's positions by more than the
+ * touching tolerance (1e-12 of their scale), where an overlap counts (a
+ * plane's edge); the deepest of them into *deepest, its depth into *depth
+ * (0 if none). The start reports them (csf_run_update_modes).
+ */
+uint32_t csf_contacts_overlaps(const csf_contacts *c, const double *m, uint32_t *deepest, double *depth);
+/*
  * Chooses the next candidates from the ns states ys[0..ns) (state vectors,
  * in time order: the instants at which the guards will be looked at): the
  * pairs in contact or hopping, and every pair whose gap is (nearly) closed

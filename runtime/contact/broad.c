@@ -201,6 +201,19 @@ void csf_contacts_objects(const csf_contacts *c, uint32_t k, uint32_t *oi, uint3
 	*oj = p->cbodies[p->cmembers[cr->first1 + q->k1]].object;
 }
 
+uint32_t csf_contacts_overlaps(const csf_contacts *c, const double *m, uint32_t *deepest, double *depth)
+{
+	uint32_t n = 0;
+	*depth = 0;
+	for (uint32_t k = 0; k < c->n; k++) {
+		const cpair *q = &c->pairs[k];
+		double nv[3], curv, gap = csf_contact_geometry(q, m, nv, &curv);
+		if (!(gap < -1e-12 * csf_contact_scale(q, m)) || csf_contact_inside(q, m) < 0) continue;
+		if (n++ == 0 || -gap > *depth) *deepest = k, *depth = -gap;
+	}
+	return n;
+}
+
 /* Body b's box over the states (a mass point; an anchor's at its place in m), grown by its radius and the
    margin; empty if not a number. */
 static void body_box(csf_contacts *c, const double *m, uint32_t b, const double *const *ys, int ns)

@@ -43,7 +43,7 @@ int csf_run_take_event(run *r, csf_ode *ode, double t, double *y)
 		int st = csf_run_whens(r, t, y, &fired);
 		if (st) return st;
 		if (pass > 0 && !fired) break;
-		if (csf_run_update_modes(r, t, y)) return CSF_ODE_STOPPED;
+		if (csf_run_update_modes(r, t, y, NULL)) return CSF_ODE_STOPPED;
 		if (csf_run_cons_row(r, t, y)) return CSF_ODE_STOPPED; /* impulses the constraints did not see */
 		fired = r->p->nwhens != 0;
 	}

@@ -119,8 +119,33 @@ static int choose_contacts(run *r, const double *const *ys, int ns, double **g[]
 	return 0;
 }
 
-/* Brings every mode up to date at (t, y): at the start, and after an event. */
-int csf_run_update_modes(run *r, double t, double *y)
+/*
+ * Bodies that overlap at the start are placed touching by the modes' first
+ * settling (the bodies moved apart along the normal), so the first row is
+ * not the scene as written: a ball placed a quarter of its radius into a
+ * slope started at the slope's surface without a word. Says so, naming the
+ * deepest pair and its depth in metres.
+ */
+static void report_overlaps(const run *r, FILE *warn)
+{
+	const csf_prog *p = r->p;
+	uint32_t k, oi, oj;
+	double depth;
+	uint32_t n = csf_contacts_overlaps(r->cs, r->m, &k, &depth);
+	if (!n) return;
+	csf_contacts_objects(r->cs, k, &oi, &oj);
+	char db[32];
+	csf_fmt_double(db, depth * p->ubase[0]);
+	fprintf(warn, "warning: at the start, '%s' and '%s' overlap by %s m", csf_str(p, p->objects[oi]),
+	        csf_str(p, p->objects[oj]), db);
+	if (n > 1) fprintf(warn, " (the deepest of %lu overlapping pairs)", (unsigned long)n);
+	fprintf(warn, ": the run starts with them moved apart to touching, along the line of their centres "
+	              "(a plane's normal), not where the model places them\n");
+}
+
+/* Brings every mode up to date at (t, y): at the start (warn: where the overlaps there are reported), and after
+   an event (warn NULL). */
+int csf_run_update_modes(run *r, double t, double *y, FILE *warn)
 {
 	const csf_prog *p = r->p;
 	csf_run_free_modes(r, t, y);
@@ -129,6 +154,7 @@ int csf_run_update_modes(run *r, double t, double *y)
 		if (choose_contacts(r, ys, 1, NULL, NULL, 0)) return 1;
 		settle_ctx s = { r, t, y };
 		memcpy(r->m + p->ystart, y, p->ny * sizeof *y);
+		if (warn) report_overlaps(r, warn);
 		int st = csf_contact_settle(p, r->cs, r->m, r->zeno, r->tol, settle_eval, &s);
 		if (st > 0) r->unsettled = st, r->unsettled_t = t;
 		if (!st && csf_contacts_unsolved(r->cs)) r->unsettled = CSF_SETTLE_FORCES, r->unsettled_t = t, st = 1;

@@ -250,7 +250,7 @@ static stop run_modes(session *S)
 	/* the modes at t = 0: each comparison's side, contacts at rest or colliding; then the conditions
 	   of the `when` blocks (none fires at the start) */
 	int fired;
-	if (csf_run_update_modes(r, 0, y) || csf_run_whens(r, 0, y, &fired) ||
+	if (csf_run_update_modes(r, 0, y, r->err) || csf_run_whens(r, 0, y, &fired) ||
 	    (p->ny && csf_run_guards_at(r, 0, y, r->ga))) {
 		if (r->unsettled) return stop_kind_only(STOP_UNSETTLED);
 		if (r->nomem) return stop_kind_only(STOP_NOMEM);

@@ -285,7 +285,7 @@ void csf_run_write_header(const csf_prog *p, FILE *out);
 int csf_run_guards_at(run *r, double t, const double *y, double *g);
 void csf_run_free_modes(run *r, double t, const double *y);
 int csf_run_room_for_guards(run *r, size_t ng);
-int csf_run_update_modes(run *r, double t, double *y);
+int csf_run_update_modes(run *r, double t, double *y, FILE *warn);
 /*
  * The `when` blocks at an event at (t, y): the EVT section on the values of
  * an RHS evaluation there (with the modes as they are), and again after
