@@ -563,7 +563,12 @@ static uint32_t blocks(uint32_t dim, const double *K, const double *K1, const do
  * so is its answer, where a solve of the whole would leave rounding there
  * (1e-16 of the forces), which the motion then takes out of the plane.
  * Where a block alone fails (its residual, measured against its own sizes,
- * is more than those of the whole allow), the whole is solved as one.
+ * is more than those of the whole allow), the whole is solved as one, and
+ * its answer taken for that block's unknowns only: the others keep their
+ * blocks' own (the blocks do not couple, so together they solve the
+ * whole). Taken whole, the impulses that stopped a slip in a pile of 40
+ * balls in a plane moved a ball across it at 8.6e-36 m/s, which grew to
+ * 1e-6 m/s and held the steps to 3e-11 s.
  */
 int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio, const double *T,
                       const unsigned char *fric)
@@ -586,21 +591,28 @@ int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio,
 	if (fric) memcpy(fric0, fric, dim);
 	memcpy(b0, cs->rhs, dim * sizeof *b0);
 	double *Tb = T ? cs->T : NULL; /* T is cs->T where given: the blocks' frames go there once it is aside */
+	unsigned char own[DIRECT_MAX]; /* an unknown whose block was solved alone */
+	int failed = 0;
 	for (uint32_t q = 0; q < nb; q++) {
 		const uint32_t *xq = xs + start[q];
 		uint32_t n = take_block(dim, K0, K1 ? K10 : NULL, Tb ? T0 : NULL, fric ? fric0 : NULL, b0, eq, xs, ys, start, q,
 		                        cs->K, K1, Tb, cs->fric, cs->rhs);
-		if (solve_whole(cs, n, K1, wratio, Tb, fric ? cs->fric : NULL)) { /* the whole, as if not split */
-			memcpy(cs->K, K0, d2 * sizeof *K0);
-			if (K1) memcpy(K1, K10, d2 * sizeof *K10);
-			if (Tb) memcpy(Tb, T0, d2 * sizeof *T0);
-			if (fric) memcpy(cs->fric, fric0, dim);
-			memcpy(cs->rhs, b0, dim * sizeof *b0);
-			return solve_whole(cs, dim, K1, wratio, T, fric);
-		}
-		for (uint32_t r = 0; r < n; r++) x0[xq[r]] = cs->x[r];
+		int bad = solve_whole(cs, n, K1, wratio, Tb, fric ? cs->fric : NULL);
+		failed |= bad;
+		for (uint32_t r = 0; r < n; r++) x0[xq[r]] = cs->x[r], own[xq[r]] = !bad;
 	}
 	memcpy(cs->x, x0, dim * sizeof *x0);
+	if (failed) { /* the whole, as if not split; but each block solved alone keeps its own answer */
+		memcpy(cs->K, K0, d2 * sizeof *K0);
+		if (K1) memcpy(K1, K10, d2 * sizeof *K10);
+		if (Tb) memcpy(Tb, T0, d2 * sizeof *T0);
+		if (fric) memcpy(cs->fric, fric0, dim);
+		memcpy(cs->rhs, b0, dim * sizeof *b0);
+		if (solve_whole(cs, dim, K1, wratio, T, fric)) return -1;
+		for (uint32_t k = 0; k < dim; k++)
+			if (own[k]) cs->x[k] = x0[k];
+		return 0;
+	}
 	if (Tb) memcpy(Tb, T0, d2 * sizeof *T0);
 	if (fric) memcpy(cs->fric, fric0, dim);
 	return 0;
