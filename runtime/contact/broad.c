@@ -209,7 +209,8 @@ uint32_t csf_contacts_overlaps(const csf_contacts *c, const double *m, uint32_t 
 		const cpair *q = &c->pairs[k];
 		double nv[3], curv, gap = csf_contact_geometry(q, m, nv, &curv);
 		if (!(gap < -1e-12 * csf_contact_scale(q, m)) || csf_contact_inside(q, m) < 0) continue;
-		if (n++ == 0 || -gap > *depth) *deepest = k, *depth = -gap;
+		n++;
+		if (-gap > *depth) *deepest = k, *depth = -gap;
 	}
 	return n;
 }

@@ -388,6 +388,13 @@ static int turns_back(const csf_contacts *cs, const cpair *c, const double *m)
 	return dot3(at, WV(c, DS)) < -csf_contact_accel_resolution(c, m, curv);
 }
 
+/* The slip (speed) that friction of coefficient mu at pair c's normal force stops within time
+   zeno: mu |N| (1/m_i + 1/m_j) zeno. */
+static double stopped_within(const cpair *c, const double *m, double mu, double zeno)
+{
+	return mu * fabs(W(c, LAM)) * (inv_mass_i(c, m) + inv_mass_j(c, m)) * zeno;
+}
+
 /*
  * A sliding pair whose slip its own friction would stop within the Zeno
  * time (the slip over the deceleration mu_k |N| (1/m_i + 1/m_j)): a slip of
@@ -398,13 +405,6 @@ static int turns_back(const csf_contacts *cs, const cpair *c, const double *m)
  * most twice at an instant (W_SS), since static friction that cannot hold
  * sends it sliding again at once, from no slip.
  */
-/* The slip (speed) that friction of coefficient mu at pair c's normal force stops within time
-   zeno: mu |N| (1/m_i + 1/m_j) zeno. */
-static double stopped_within(const cpair *c, const double *m, double mu, double zeno)
-{
-	return mu * fabs(W(c, LAM)) * (inv_mass_i(c, m) + inv_mass_j(c, m)) * zeno;
-}
-
 static int stops_at_once(const csf_contacts *cs, const cpair *c, const double *m, double zeno)
 {
 	double n[3], curv, vt[3];
