@@ -482,7 +482,13 @@ int csf_contacts_keep(csf_contacts *c, csf_keeper *k)
 	if (!c) return 0;
 	const csf_prog *p = c->p;
 	int bad = CSF_KEEP(k, c->n) | CSF_KEEP(k, c->axis) | CSF_KEEP(k, c->nsap);
-	if (bad || grow((void **)&c->pairs, &c->cap, (size_t)c->n + 1, sizeof *c->pairs)) return -1;
+	/* the pairs, and the clusters' work sized by them (csf_contacts_find's, which a resumed run's
+	   first evaluation comes before) */
+	if (bad || grow((void **)&c->pairs, &c->cap, (size_t)c->n + 1, sizeof *c->pairs) ||
+	    grow((void **)&c->cl, &c->capcl, (size_t)c->n + 1, sizeof *c->cl) ||
+	    grow((void **)&c->cstart, &c->capcstart, (size_t)c->n + 2, sizeof *c->cstart) ||
+	    grow((void **)&c->direct, &c->capdirect, (size_t)c->n + 1, sizeof *c->direct))
+		return -1;
 	if (c->nsap) bad |= csf_keep(k, "contacts.sap", c->sap, c->nsap * sizeof *c->sap);
 	for (uint32_t i = 0; i < c->n && !bad; i++) {
 		cpair *q = &c->pairs[i];

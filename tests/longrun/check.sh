@@ -10,6 +10,8 @@
 #    (csfc --emit-c) of the ball; a
 #    checkpoint of csfvm resumed by the generated program;
 #  - SIGTERM ends the run after its row with a checkpoint (exit 143), resumed exactly;
+#  - a checkpoint at a row where an impact is pending, with more pairs in contact than at the
+#    start (land.csf), resumed exactly;
 #  - refusals, exit 2 with the reason: a sweep's --out-dir, --compare-methods, -o FILE.h5,
 #    a multistep method; another model's checkpoint, other options, an
 #    output shorter than the checkpoint's rows, a damaged checkpoint; into
@@ -86,6 +88,22 @@ if [ $st -eq 143 ] && [ ! -f "$T/c" ] && cmp -s "$T/full.csv" "$T/part.csv"; the
 elif [ $st -eq 143 ] && [ -f "$T/c" ] && "$CSFVM" --resume "$T/c" "$T/long.csfb" >>"$T/part.csv" 2>"$T/err" &&
 	cmp -s "$T/full.csv" "$T/part.csv"; then ok
 else bad "SIGTERM with --checkpoint: exit $st (143 expected), checkpoint $(ls "$T/c" 2>&1), $(head -n 1 "$T/err")"; fi
+
+# a checkpoint of a row at which an impact is pending (a ball lands at exactly t = 0.5 s), with
+# more pairs in contact than the start had candidates (20 balls at rest): the resumed run takes the
+# impact first; its clusters' work had been sized for the start's pairs (a heap overflow, found by
+# ASan here, a crash in a pile of 64 balls). Both runs stop at the assertion at t = 1 (exit 1).
+"$CSFC" "$HERE/land.csf" -o "$T/land.csfb" || bad "land.csf does not compile"
+"$CSFVM" "$T/land.csfb" >"$T/full.csv" 2>/dev/null
+rm -f "$T/c"
+"$CSFVM" --checkpoint "$T/c" --checkpoint-every 0 "$T/land.csfb" >"$T/part.csv" 2>/dev/null
+"$KVM" --resume "$T/c" "$T/land.csfb" >>"$T/part.csv" 2>"$T/err"
+st=$?
+# the row at 0.5: top at the floor (z = 0.05 m) at v = -g t = -4.903325 m/s, the impact not yet taken
+if [ $st -eq 1 ] && [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q 'assertion failed at t=1' "$T/err" &&
+	cmp -s "$T/full.csv" "$T/part.csv" && awk -F, 'NR == 3 && $1 == 0.5 && ($10 - 0.05)^2 < 1e-24 && ($13 + 4.903325)^2 < 1e-24 { ok = 1 }
+	END { exit !ok }' "$T/full.csv"; then ok
+else bad "a checkpoint with an impact pending and 20 pairs in contact, resumed: exit $st, $(head -n 1 "$T/err"), $(cmp "$T/full.csv" "$T/part.csv" 2>&1)"; fi
 
 # refusals
 refuse() { # WHAT PATTERN COMMAND...: exit 2 and PATTERN on stderr
