@@ -324,13 +324,20 @@ void csf_contact_before_impact(csf_contacts *cs, const double *m)
  * each other; their impact starts the slip again, a little slower, and
  * the slip stops again at the next event: a ball in a Galton board's bin,
  * leaning on one that rests on a peg, stopped and slipped 3400 times in
- * 3e-7 s, at 1e-10 m/s. Returns 0, or -1 with nothing changed: a pair
- * alone, more than DIRECT_MAX unknowns, a system whose impulses do not
- * make the velocities what they are to be (to 1e-9 of the cluster's
- * speeds: contacts so nearly redundant that only impulses without bound
- * would), impulses that turn back or speed up the slip of a pair left
- * sliding (which friction cannot), or sets that do not settle in 4 np + 8
- * changes.
+ * 3e-7 s, at 1e-10 m/s. A set whose impulses do not make the velocities
+ * what they are to be (to 1e-9 of the cluster's speeds) or that turn back
+ * or speed up the slip of a pair left sliding (which friction cannot) is
+ * one that only impulses without bound would hold: contacts all but
+ * redundant (two balls stuck together resting on two others stuck
+ * together, along normals 8e-7 apart, one pair sliding on the other: the
+ * impulses along the two normals that stop it grow without bound as the
+ * normals align). Then one pair of the set held by its normal alone
+ * parts, on trial, the first in the order of pairs whose parting leaves a
+ * set that is solved (a pile of 64 balls whose slip failed so to stop,
+ * stopped by its pair's own impulse instead, crawled at t = 0.7229 s, an
+ * event every 5e-10 s). Returns 0, or -1 with nothing changed: a pair
+ * alone, more than DIRECT_MAX unknowns, no such set among the trials, or
+ * sets that do not settle in 5 np + 8 changes.
  */
 int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double least)
 {
@@ -368,7 +375,8 @@ int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double le
 			cs->G1[a * np + b] = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], NULL);
 		}
 	double wratio = csf_contact_mass_ratio(cs, cl, np, m);
-	for (uint32_t iter = 0; iter < 4 * np + 8; iter++) {
+	uint32_t trial = UINT32_MAX, next = 0; /* the pair let part on trial, and the next to try (above) */
+	for (uint32_t iter = 0; iter < 5 * np + 8; iter++) {
 		uint32_t sub = 0; /* the rows of the active pairs: a whole pair's three axes, another's normal */
 		for (uint32_t a = 0; a < np; a++) {
 			dc[a] = cs->act[a] ? (whole[a] ? 3 : 1) : 0;
@@ -385,11 +393,10 @@ int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double le
 				cs->K1[r * sub + k] = w1 == 0 ? 0 : w1 * d;
 			}
 		csf_contact_frames(np, dc, n, sub, cs->T, cs->fric);
-		if (csf_contact_solve(cs, sub, cs->K1, wratio, cs->T, cs->fric) &&
-		    (!(wratio < 1e6) || csf_contact_least_squares(cs, sub, cs->T, cs->fric)))
-			return -1;
+		int unmet = csf_contact_solve(cs, sub, cs->K1, wratio, cs->T, cs->fric) &&
+		            (!(wratio < 1e6) || csf_contact_least_squares(cs, sub, cs->T, cs->fric));
 		for (uint32_t a = 0; a < np; a++) P[a][0] = P[a][1] = P[a][2] = 0;
-		for (uint32_t r = 0; r < sub; r++)
+		for (uint32_t r = 0; r < sub && !unmet; r++)
 			for (int k = 0; k < 3; k++) P[pa[r]][k] += E[r][k] * cs->x[r];
 		long out = -1, in = -1;
 		double worst = 0; /* in units of each pair's vres */
@@ -401,7 +408,7 @@ int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double le
 				for (int k = 0; k < 3; k++) v[k] += cs->G[a * np + b] * P[b][k];
 			if (cs->act[a]) {
 				for (uint32_t r = 0; r < sub; r++) /* a row the impulses do not satisfy */
-					if (pa[r] == a && !(fabs(dot3(E[r], v)) <= 1e-9 * size)) return -1;
+					if (pa[r] == a && !(fabs(dot3(E[r], v)) <= 1e-9 * size)) unmet = 1;
 				double pull = dot3(P[a], n + 3 * a) * (inv_mass_i(c, m) + inv_mass_j(c, m));
 				if (a != ih && pull < -vres[a] && pull / vres[a] < worst) worst = pull / vres[a], out = a;
 			} else {
@@ -409,20 +416,28 @@ int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double le
 				if (vn < -vres[a] && vn / vres[a] < worst && out < 0) worst = vn / vres[a], in = a;
 			}
 		}
+		/* a pair left sliding (its normal row only) keeps its slip or less, never turned back:
+		   friction can stop a slide, not reverse it. Impulses that do are the rounding of a
+		   system all but singular over a tiny pivot (in a pile of 1024 balls, a slip of 2.3e-11
+		   m/s stopped so turned a neighbour's slide of 1.3e-3 m/s back) */
+		for (uint32_t a = 0; a < np && !unmet && out < 0 && in < 0; a++) {
+			if (!cs->act[a] || whole[a]) continue;
+			double t0[3], t1[3], *na = n + 3 * a, s0 = dot3(vr[a], na), s1 = dot3(va[a], na);
+			for (int k = 0; k < 3; k++) t0[k] = vr[a][k] - s0 * na[k], t1[k] = va[a][k] - s1 * na[k];
+			double m0 = mag3(t0), d[3] = { t1[0] - t0[0], t1[1] - t0[1], t1[2] - t0[2] };
+			unmet = m0 > vres[a] && !(dot3(t1, t0) >= -vres[a] * m0 && mag3(d) <= m0 + vres[a]);
+		}
+		if (unmet) { /* no impulses hold the pairs as they are: one held by its normal alone parts, on trial */
+			if (trial != UINT32_MAX) cs->act[trial] = 1;
+			while (next < np && (!cs->act[next] || whole[next])) next++;
+			if (next == np) return -1;
+			cs->act[trial = next++] = 0;
+			continue;
+		}
+		trial = UINT32_MAX; /* the impulses of a set, solved: a pair parted on trial stays so (or closes again) */
 		if (out >= 0) cs->act[out] = 0;
 		else if (in >= 0) cs->act[in] = 1;
 		else {
-			/* a pair left sliding (its normal row only) keeps its slip or less, never turned back:
-			   friction can stop a slide, not reverse it. Impulses that do are the rounding of a
-			   system all but singular over a tiny pivot (in a pile of 1024 balls, a slip of 2.3e-11
-			   m/s stopped so turned a neighbour's slide of 1.3e-3 m/s back) */
-			for (uint32_t a = 0; a < np; a++) {
-				if (!cs->act[a] || whole[a]) continue;
-				double t0[3], t1[3], *na = n + 3 * a, s0 = dot3(vr[a], na), s1 = dot3(va[a], na);
-				for (int k = 0; k < 3; k++) t0[k] = vr[a][k] - s0 * na[k], t1[k] = va[a][k] - s1 * na[k];
-				double m0 = mag3(t0), d[3] = { t1[0] - t0[0], t1[1] - t0[1], t1[2] - t0[2] };
-				if (m0 > vres[a] && !(dot3(t1, t0) >= -vres[a] * m0 && mag3(d) <= m0 + vres[a])) return -1;
-			}
 			for (uint32_t a = 0; a < np; a++) {
 				cpair *c = &cs->pairs[cl[a]];
 				double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m);
