@@ -525,14 +525,24 @@ static uint32_t blocks(uint32_t dim, const double *K, const double *K1, const do
 {
 	uint32_t up[3 * DIRECT_MAX], id[3 * DIRECT_MAX], blk[3 * DIRECT_MAX], nb = 0;
 	for (uint32_t v = 0; v < 3 * dim; v++) up[v] = v, id[v] = UINT32_MAX;
-	for (uint32_t i = 0; i < dim; i++)
-		for (uint32_t k = 0; k < dim; k++) {
-			size_t ik = (size_t)i * dim + k;
-			if (K[ik] != 0 || (K1 && K1[ik] != 0)) up[root(up, i)] = root(up, dim + k);
-		}
-	for (uint32_t k = 0; k < dim; k++)
+	/* each row's (each x's) root found once: a node joined to it goes under it, which stays the root */
+	for (uint32_t i = 0; i < dim; i++) {
+		const double *Ki = K + (size_t)i * dim, *K1i = K1 ? K1 + (size_t)i * dim : NULL;
+		uint32_t ri = root(up, i);
+		for (uint32_t k = 0; k < dim; k++)
+			if (Ki[k] != 0 || (K1i && K1i[k] != 0)) {
+				uint32_t rk = root(up, dim + k);
+				if (rk != ri) up[rk] = ri;
+			}
+	}
+	for (uint32_t k = 0; k < dim; k++) {
+		uint32_t rk = root(up, dim + k);
 		for (uint32_t j = 0; j < dim; j++)
-			if (T ? T[(size_t)k * dim + j] != 0 : k == j) up[root(up, dim + k)] = root(up, 2 * dim + j);
+			if (T ? T[(size_t)k * dim + j] != 0 : k == j) {
+				uint32_t rj = root(up, 2 * dim + j);
+				if (rj != rk) up[rj] = rk;
+			}
+	}
 	for (uint32_t v = 0; v < 3 * dim; v++) { /* node v's block: its root's number */
 		uint32_t r = root(up, v);
 		if (id[r] == UINT32_MAX) id[r] = nb++;
