@@ -97,7 +97,7 @@ else bad "SIGTERM with --checkpoint: exit $st (143 expected), checkpoint $(ls "$
 "$CSFVM" "$T/land.csfb" >"$T/full.csv" 2>/dev/null
 rm -f "$T/c"
 "$CSFVM" --checkpoint "$T/c" --checkpoint-every 0 "$T/land.csfb" >"$T/part.csv" 2>/dev/null
-"$KVM" --resume "$T/c" "$T/land.csfb" >>"$T/part.csv" 2>"$T/err"
+"$CSFVM" --resume "$T/c" "$T/land.csfb" >>"$T/part.csv" 2>"$T/err"
 st=$?
 # the row at 0.5: top at the floor (z = 0.05 m) at v = -g t = -4.903325 m/s, the impact not yet taken
 if [ $st -eq 1 ] && [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q 'assertion failed at t=1' "$T/err" &&
