@@ -16,8 +16,9 @@
 #
 # What passes today (rows every 0.01 s, the default method, TILL as above):
 # 3 to 10, 12, 15, 20, 25 and 30 balls through 10 rows, 10 balls through 4,
-# 6 and 8 rows (tests/run.sh runs 6, 9, 10, 20 and 30 through 10 rows and 10
-# through 8; 10 takes some 3 s, 15 some 16 s, 20 some 27 s, 30 some 110 s).
+# 6 and 8 rows (tests/run.sh runs 6, 9, 10 and 20 through 10 rows and 10
+# through 8, make check-piles 30 and 100; 10 takes some 3 s, 15 some 16 s,
+# 20 some 27 s, 30 some 110 s).
 # What does not: 40 and 50 balls through 10 rows do not finish in 300 s
 # (they reach t = 0.74 and 0.91 s, their steps held short by the error of
 # a velocity). 30 balls crawled at t = 0.855 s (events in quick succession;
