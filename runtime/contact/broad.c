@@ -68,6 +68,14 @@ static int grow(void **arr, size_t *cap, size_t need, size_t elem)
 	return 0;
 }
 
+/* Room in the clusters' work (csf_contact_clusters: cl, cstart; the force stage's direct) for n pairs. */
+static int grow_cluster_work(csf_contacts *c, size_t n)
+{
+	return grow((void **)&c->cl, &c->capcl, n + 1, sizeof *c->cl) ||
+	       grow((void **)&c->cstart, &c->capcstart, n + 2, sizeof *c->cstart) ||
+	       grow((void **)&c->direct, &c->capdirect, n + 1, sizeof *c->direct);
+}
+
 static int push_key(csf_contacts *c, uint32_t rule, uint32_t k0, uint32_t k1)
 {
 	if (grow((void **)&c->keys, &c->capkeys, c->nkeys + 1, sizeof *c->keys)) return -1;
@@ -415,10 +423,7 @@ long csf_contacts_find(csf_contacts *c, const double *m, const double *const *ys
 	if (c->nkeys) qsort(c->keys, c->nkeys, sizeof *c->keys, key_cmp);
 	if (grow((void **)&c->next, &c->capnext, c->nkeys + 1, sizeof *c->next) ||
 	    grow((void **)&c->from, &c->capfrom, c->nkeys + 1, sizeof *c->from) ||
-	    grow((void **)&c->old, &c->capold, 2 * (size_t)c->n + 1, sizeof *c->old) ||
-	    grow((void **)&c->cl, &c->capcl, c->nkeys + 1, sizeof *c->cl) ||
-	    grow((void **)&c->cstart, &c->capcstart, c->nkeys + 2, sizeof *c->cstart) ||
-	    grow((void **)&c->direct, &c->capdirect, c->nkeys + 1, sizeof *c->direct))
+	    grow((void **)&c->old, &c->capold, 2 * (size_t)c->n + 1, sizeof *c->old) || grow_cluster_work(c, c->nkeys))
 		return -1;
 	uint32_t o = 0, n = 0;
 	for (size_t k = 0; k < c->nkeys; k++) {
@@ -484,10 +489,7 @@ int csf_contacts_keep(csf_contacts *c, csf_keeper *k)
 	int bad = CSF_KEEP(k, c->n) | CSF_KEEP(k, c->axis) | CSF_KEEP(k, c->nsap);
 	/* the pairs, and the clusters' work sized by them (csf_contacts_find's, which a resumed run's
 	   first evaluation comes before) */
-	if (bad || grow((void **)&c->pairs, &c->cap, (size_t)c->n + 1, sizeof *c->pairs) ||
-	    grow((void **)&c->cl, &c->capcl, (size_t)c->n + 1, sizeof *c->cl) ||
-	    grow((void **)&c->cstart, &c->capcstart, (size_t)c->n + 2, sizeof *c->cstart) ||
-	    grow((void **)&c->direct, &c->capdirect, (size_t)c->n + 1, sizeof *c->direct))
+	if (bad || grow((void **)&c->pairs, &c->cap, (size_t)c->n + 1, sizeof *c->pairs) || grow_cluster_work(c, c->n))
 		return -1;
 	if (c->nsap) bad |= csf_keep(k, "contacts.sap", c->sap, c->nsap * sizeof *c->sap);
 	for (uint32_t i = 0; i < c->n && !bad; i++) {
