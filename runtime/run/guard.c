@@ -360,6 +360,7 @@ int csf_run_guard_check(run *r, csf_ode *ode, double t, const double *y, double 
 	g->t = t;
 	memcpy(g->y, y, p->ny * sizeof *y);
 	csf_eigs e;
+	memset(&e, 0, sizeof e); /* its padding and unused lanes too: g->last goes into a checkpoint's bytes */
 	if ((!g->exact && csf_run_rhs(t, y, g->f0, r)) || csf_spectrum_dominant(g->sp, jvp, r, maxprod, &e)) {
 		r->fail = 0;
 		goto out;
