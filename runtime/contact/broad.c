@@ -169,6 +169,7 @@ void csf_contacts_free(csf_contacts *c)
 	free(c->K);
 	free(c->kb);
 	free(c->blk);
+	csf_contact_forget(c);
 	free(c->K1);
 	free(c->G1);
 	free(c->T);
@@ -192,6 +193,11 @@ void csf_contacts_free(csf_contacts *c)
 }
 
 uint32_t csf_contacts_count(const csf_contacts *c) { return c->n; }
+
+void csf_contacts_solves(const csf_contacts *c, unsigned long *solved, unsigned long *recalled)
+{
+	*solved = (unsigned long)c->solved_clock, *recalled = (unsigned long)c->recalled;
+}
 
 void csf_contacts_guards(const csf_contacts *c, double *g)
 {

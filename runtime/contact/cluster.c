@@ -472,7 +472,7 @@ static int solve_lu(double *K, double *b, double *x, uint32_t dim, double tiny)
  * coefficient, gives its forces, large as they may be. K, rhs and K1 are
  * destroyed.
  */
-static int solve_whole(csf_contacts *cs, uint32_t dim, double *K1, double wratio, const double *T,
+static int solve_direct(csf_contacts *cs, uint32_t dim, double *K1, double wratio, const double *T,
                        const unsigned char *fric)
 {
 	double *K = cs->K, *b = cs->rhs, big = 0, big1 = 0;
@@ -499,6 +499,102 @@ static int solve_whole(csf_contacts *cs, uint32_t dim, double *K1, double wratio
 	memcpy(K, cs->kb, (size_t)dim * dim * sizeof *K);
 	memcpy(b, cs->kb + (size_t)dim * dim, dim * sizeof *b);
 	return solve_lu(K, b, cs->x, dim, 1e-14 * big);
+}
+
+
+/*
+ * The systems solve_direct solved last, with their answers: a system the
+ * same to the last bit as one of them (a pile's balls at rest, whose
+ * blocks are the same at every evaluation while others fall) is not solved
+ * again. Its answer is the one solve_direct would give, bit for bit: the
+ * same function of the same bits. Kept: RECALL_N systems, the one used
+ * least recently replaced (a system solved once, by a moving body, does
+ * not push out those that come back); each holds K, rhs, K1 and T (as
+ * given) and the answer x, its rc, and what solve_direct leaves in cs->kb
+ * (K and rhs themselves), which csf_contact_least_squares reads after a
+ * failure.
+ */
+enum { RECALL_N = 32 };
+typedef struct csf_solved {
+	uint32_t dim;
+	unsigned char has; /* 1: K1 given, 2: T given, 4: fric given */
+	int rc;
+	double wratio;
+	uint64_t used; /* the clock at its last use (0: empty) */
+	double *buf;   /* K, rhs, K1, T (those given), x */
+	size_t cap;
+	unsigned char fric[DIRECT_MAX];
+} csf_solved;
+
+void csf_contact_forget(csf_contacts *cs)
+{
+	if (!cs->solved) return;
+	for (int e = 0; e < RECALL_N; e++) free(cs->solved[e].buf);
+	free(cs->solved);
+	cs->solved = NULL;
+}
+
+/* Does entry e hold this system? */
+static int same_system(const csf_solved *e, uint32_t dim, unsigned char has, double wratio, const double *K,
+                       const double *b, const double *K1, const double *T, const unsigned char *fric)
+{
+	size_t d2 = (size_t)dim * dim;
+	const double *at = e->buf;
+	if (!e->used || e->dim != dim || e->has != has || memcmp(&e->wratio, &wratio, sizeof wratio)) return 0;
+	if (memcmp(at + d2, b, dim * sizeof *b) || memcmp(at, K, d2 * sizeof *K)) return 0;
+	at += d2 + dim;
+	if (K1 && memcmp(at, K1, d2 * sizeof *K1)) return 0;
+	at += K1 ? d2 : 0;
+	if (T && memcmp(at, T, d2 * sizeof *T)) return 0;
+	return !fric || !memcmp(e->fric, fric, dim);
+}
+
+/* solve_direct, or its answer recalled (above). */
+static int solve_whole(csf_contacts *cs, uint32_t dim, double *K1, double wratio, const double *T,
+                       const unsigned char *fric)
+{
+	if (!cs->solved && !(cs->solved = calloc(RECALL_N, sizeof *cs->solved)))
+		return solve_direct(cs, dim, K1, wratio, T, fric);
+	unsigned char has = (unsigned char)((K1 ? 1 : 0) | (T ? 2 : 0) | (fric ? 4 : 0));
+	size_t d2 = (size_t)dim * dim, nx = d2 * (1 + !!K1 + !!T) + dim, x = nx;
+	csf_solved *e = NULL, *old = cs->solved;
+	for (int k = 0; k < RECALL_N && !e; k++) {
+		csf_solved *c = &cs->solved[k];
+		if (same_system(c, dim, has, wratio, cs->K, cs->rhs, K1, T, fric)) e = c;
+		else if (c->used < old->used) old = c;
+	}
+	if (e) { /* what solve_direct leaves: x, and K and rhs in cs->kb */
+		size_t keep = d2 + dim;
+		if (keep > cs->capkb) {
+			double *kb = realloc(cs->kb, keep * sizeof *kb);
+			if (!kb) return -1;
+			cs->kb = kb, cs->capkb = keep;
+		}
+		memcpy(cs->kb, e->buf, keep * sizeof *cs->kb);
+		memcpy(cs->x, e->buf + x, dim * sizeof *cs->x);
+		e->used = ++cs->solved_clock;
+		cs->recalled++;
+		return e->rc;
+	}
+	e = old; /* the one used least recently takes this system, before solve_direct destroys it */
+	e->used = 0;
+	if (nx + dim > e->cap) {
+		double *w = realloc(e->buf, (nx + dim) * sizeof *w);
+		if (!w) return solve_direct(cs, dim, K1, wratio, T, fric);
+		e->buf = w, e->cap = nx + dim;
+	}
+	double *at = e->buf;
+	memcpy(at, cs->K, d2 * sizeof *at);
+	memcpy(at + d2, cs->rhs, dim * sizeof *at);
+	at += d2 + dim;
+	if (K1) memcpy(at, K1, d2 * sizeof *at), at += d2;
+	if (T) memcpy(at, T, d2 * sizeof *at);
+	if (fric) memcpy(e->fric, fric, dim);
+	e->dim = dim, e->has = has, e->wratio = wratio;
+	e->rc = solve_direct(cs, dim, K1, wratio, T, fric);
+	memcpy(e->buf + x, cs->x, dim * sizeof *cs->x);
+	e->used = ++cs->solved_clock;
+	return e->rc;
 }
 
 /* Union-find over the nodes of a system (blocks): the root of x, halving the paths. */

@@ -141,6 +141,8 @@ struct csf_contacts {
 	unsigned char *fric;
 	double *blk;               /* a system set aside while csf_contact_solve solves its blocks */
 	size_t capkb, capls, capblk;
+	struct csf_solved *solved; /* the systems solved last, and their answers (cluster.c, recall) */
+	uint64_t solved_clock, recalled; /* the systems solved or recalled, and those recalled */
 	unsigned char *mark;       /* per candidate: the pairs csf_contact_choose chooses among, and its choice */
 	double *dir;               /* per candidate, 3: the direction a pair chosen to slide slides in */
 	size_t capmark;
@@ -213,6 +215,8 @@ int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio,
                       const unsigned char *fric);
 double csf_contact_mass_ratio(const csf_contacts *cs, const uint32_t *cl, uint32_t np, const double *m);
 void csf_contact_unsolvable(csf_contacts *cs, const uint32_t *cl, uint32_t np, const double *m);
+/* Frees the systems kept for recall (cluster.c). */
+void csf_contact_forget(csf_contacts *cs);
 int csf_contact_least_squares(csf_contacts *cs, uint32_t dim, const double *T, const unsigned char *fric);
 /* cluster.c: the frames of a system's unknowns (pair a's dc[a] of them, normal n + 3a): T turns them
    into normal forces and friction, which fric marks (csf_contact_solve takes the least friction) */

@@ -622,10 +622,15 @@ static stop run_rows(session *S)
 static void stats_run(const session *S, const csf_opts *o, unsigned long steps, unsigned long rejected, FILE *err)
 {
 	const run *r = &S->r;
-	char cand[96] = "";
-	if (r->cs)
-		snprintf(cand, sizeof cand, ", %.1f contact pairs watched (candidates) on average, at most %lu",
-		         r->nchoices ? (double)r->ncand / (double)r->nchoices : 0.0, r->maxcand);
+	char cand[192] = "";
+	if (r->cs) {
+		unsigned long solved, recalled;
+		csf_contacts_solves(r->cs, &solved, &recalled);
+		snprintf(cand, sizeof cand,
+		         ", %.1f contact pairs watched (candidates) on average, at most %lu, %lu contact systems solved "
+		         "(%lu of them recalled)",
+		         r->nchoices ? (double)r->ncand / (double)r->nchoices : 0.0, r->maxcand, solved, recalled);
+	}
 	char fired[48] = "";
 	if (r->p->nwhens) snprintf(fired, sizeof fired, " (%lu when blocks fired)", r->nfired);
 	char name[64];

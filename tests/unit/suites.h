@@ -29,6 +29,7 @@ Suite *dopri5_suite(void);
 Suite *stability_suite(void);
 Suite *signals_suite(void);
 Suite *lcp_suite(void);
+Suite *recall_suite(void);
 
 /*
  * Compiles source text (file name "t.csf") to a verified program in *p.
