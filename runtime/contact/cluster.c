@@ -472,20 +472,28 @@ static int solve_lu(double *K, double *b, double *x, uint32_t dim, double tiny)
  * coefficient, gives its forces, large as they may be. K, rhs and K1 are
  * destroyed.
  */
+/* The system cs->K, cs->rhs (dim unknowns) set aside in cs->kb, K then rhs (csf_contact_least_squares
+   reads it after a failed solve). 0, or -1. */
+static int set_aside(csf_contacts *cs, uint32_t dim)
+{
+	size_t d2 = (size_t)dim * dim;
+	if (d2 + dim > cs->capkb) {
+		double *kb = realloc(cs->kb, (d2 + dim) * sizeof *kb);
+		if (!kb) return -1;
+		cs->kb = kb, cs->capkb = d2 + dim;
+	}
+	memcpy(cs->kb, cs->K, d2 * sizeof *cs->kb);
+	memcpy(cs->kb + d2, cs->rhs, dim * sizeof *cs->kb);
+	return 0;
+}
+
 static int solve_direct(csf_contacts *cs, uint32_t dim, double *K1, double wratio, const double *T,
                        const unsigned char *fric)
 {
 	double *K = cs->K, *b = cs->rhs, big = 0, big1 = 0;
+	if (set_aside(cs, dim)) return -1; /* first: a failure below leaves this system there, not another */
 	for (uint32_t k = 0; k < dim * dim; k++) big = csf_max(big, fabs(K[k]));
 	if (!(big > 0) || !isfinite(big)) return -1;
-	size_t keep = (size_t)dim * dim + dim;
-	if (keep > cs->capkb) {
-		double *kb = realloc(cs->kb, keep * sizeof *kb);
-		if (!kb) return -1;
-		cs->kb = kb, cs->capkb = keep;
-	}
-	memcpy(cs->kb, K, (size_t)dim * dim * sizeof *K);
-	memcpy(cs->kb + (size_t)dim * dim, b, dim * sizeof *b);
 	if (!solve_lu(K, b, cs->x, dim, 1e-10 * big)) return 0;
 	if (!K1) return -1;
 	for (uint32_t k = 0; k < dim * dim; k++) big1 = csf_max(big1, fabs(K1[k]));
@@ -501,7 +509,6 @@ static int solve_direct(csf_contacts *cs, uint32_t dim, double *K1, double wrati
 	return solve_lu(K, b, cs->x, dim, 1e-14 * big);
 }
 
-
 /*
  * The systems solve_direct solved last, with their answers: a system the
  * same to the last bit as one of them (a pile's balls at rest, whose
@@ -510,9 +517,8 @@ static int solve_direct(csf_contacts *cs, uint32_t dim, double *K1, double wrati
  * same function of the same bits. Kept: RECALL_N systems, the one used
  * least recently replaced (a system solved once, by a moving body, does
  * not push out those that come back); each holds K, rhs, K1 and T (as
- * given) and the answer x, its rc, and what solve_direct leaves in cs->kb
- * (K and rhs themselves), which csf_contact_least_squares reads after a
- * failure.
+ * given) and the answer x and its rc; a recall sets the system aside as
+ * solve_direct does (set_aside).
  */
 enum { RECALL_N = 32 };
 typedef struct csf_solved {
@@ -556,22 +562,16 @@ static int solve_whole(csf_contacts *cs, uint32_t dim, double *K1, double wratio
 	if (!cs->solved && !(cs->solved = calloc(RECALL_N, sizeof *cs->solved)))
 		return solve_direct(cs, dim, K1, wratio, T, fric);
 	unsigned char has = (unsigned char)((K1 ? 1 : 0) | (T ? 2 : 0) | (fric ? 4 : 0));
-	size_t d2 = (size_t)dim * dim, nx = d2 * (1 + !!K1 + !!T) + dim, x = nx;
+	size_t d2 = (size_t)dim * dim, nx = d2 * (1 + !!K1 + !!T) + dim; /* the system's doubles, then x's */
 	csf_solved *e = NULL, *old = cs->solved;
 	for (int k = 0; k < RECALL_N && !e; k++) {
 		csf_solved *c = &cs->solved[k];
 		if (same_system(c, dim, has, wratio, cs->K, cs->rhs, K1, T, fric)) e = c;
 		else if (c->used < old->used) old = c;
 	}
-	if (e) { /* what solve_direct leaves: x, and K and rhs in cs->kb */
-		size_t keep = d2 + dim;
-		if (keep > cs->capkb) {
-			double *kb = realloc(cs->kb, keep * sizeof *kb);
-			if (!kb) return -1;
-			cs->kb = kb, cs->capkb = keep;
-		}
-		memcpy(cs->kb, e->buf, keep * sizeof *cs->kb);
-		memcpy(cs->x, e->buf + x, dim * sizeof *cs->x);
+	if (e) { /* what solve_direct leaves: x, and the system set aside */
+		if (set_aside(cs, dim)) return -1;
+		memcpy(cs->x, e->buf + nx, dim * sizeof *cs->x);
 		e->used = ++cs->solved_clock;
 		cs->recalled++;
 		return e->rc;
@@ -592,7 +592,7 @@ static int solve_whole(csf_contacts *cs, uint32_t dim, double *K1, double wratio
 	if (fric) memcpy(e->fric, fric, dim);
 	e->dim = dim, e->has = has, e->wratio = wratio;
 	e->rc = solve_direct(cs, dim, K1, wratio, T, fric);
-	memcpy(e->buf + x, cs->x, dim * sizeof *cs->x);
+	memcpy(e->buf + nx, cs->x, dim * sizeof *cs->x);
 	e->used = ++cs->solved_clock;
 	return e->rc;
 }

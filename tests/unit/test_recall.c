@@ -5,7 +5,8 @@
  * solve leaves for the least-squares solve after it. Known answers: a
  * system of two blocks ((2 1; 1 2) x = (5, 6), x = (4/3, 7/3), and 4 x =
  * 8), one of its blocks changed, two contacts that say the same (singular;
- * least norm (1, 1)), and more systems than are kept.
+ * least norm (1, 1)), a system of zeros (least norm 0), and more systems
+ * than are kept.
  */
 #include <stdlib.h>
 #include <string.h>
@@ -82,6 +83,20 @@ START_TEST(failure_recalled)
 		ck_assert_double_eq_tol(cs->x[0], 1, 1e-15);
 		ck_assert_double_eq_tol(cs->x[1], 1, 1e-15);
 		memset(cs->kb, 0, 6 * sizeof *cs->kb); /* not what the recall reads */
+	}
+	/* a system of zeros (no coupling at all): the solve fails at once, and leaves this system
+	   aside, not the one before, so that the least-squares answer is its own, x = 0; recalled
+	   the same (before, the singular system's (1, 1) came back) */
+	const double Z[4] = { 0, 0, 0, 0 };
+	for (int round = 0; round < 2; round++) {
+		set(cs, 2, K, b); /* the singular system first (recalled): it is what cs->kb holds */
+		ck_assert_int_eq(csf_contact_solve(cs, 2, NULL, 1, NULL, NULL), -1);
+		set(cs, 2, Z, b);
+		ck_assert_int_eq(csf_contact_solve(cs, 2, NULL, 1, NULL, NULL), -1);
+		ck_assert_uint_eq(cs->recalled, (uint64_t)(2 + 2 * round));
+		ck_assert_int_eq(csf_contact_least_squares(cs, 2, NULL, NULL), 0);
+		ck_assert_double_eq(cs->x[0], 0);
+		ck_assert_double_eq(cs->x[1], 0);
 	}
 	csf_contacts_free(cs);
 }
