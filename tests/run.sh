@@ -509,6 +509,14 @@ t_piles_now() {
 		"3 0.9 0 default" "3 1 0.3 default" "16 0 0.3 rkf45" "3 0 0 msbdf" "3 0.5 0 msbdf" "3 0.9 0 msbdf" \
 		"16 0.5 0.3 rkf45" "16 0 0 default" "16 0 0 rkf45"
 }
+# a pile whose slips, stopped one at a time, went round: the 16 balls of restitution 0.9 with
+# friction stopped advancing at t = 1.30 s (a slip stopped, its neighbours' set slipping again);
+# their stops are now the impulses of the whole cluster (csf(5), Contacts held). Some 40 s plain:
+# its own limit (600 s) and the programs themselves, not the suite's wrappers (as galton)
+t_piles_slow() {
+	suite "a pile whose stops went round" env PILES_LIMIT=600 sh tests/piles/piles.sh "$B/csfc" "$B/csfvm" "$T" \
+		"16 0.9 0.3 default"
+}
 # friction's force is continuous inside a step (csf(5), Forces: a slide's direction d turned into
 # the tangent plane): the error control of the 16-ball pile rejects at most 1 in 20 of its steps
 # (7 of 706; 488 of 1368 when d kept the part along the normal it takes as two balls turn); and
@@ -858,6 +866,7 @@ done
 	done
 	echo piles_statics
 	echo piles_now
+	echo piles_slow
 	echo pile_steps
 	echo jam_now
 	for c in "30 10 900" "20 10" "6 10" "9 10" "10 10" "10 8"; do echo "galton $c"; done

@@ -303,6 +303,218 @@ void csf_contact_before_impact(csf_contacts *cs, const double *m)
 	}
 }
 
+/* The impulses P[a] (on body i of cluster pair cl[a], -P[a] on j) applied to the velocities. */
+static void apply_impulses(const csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, double (*P)[3])
+{
+	for (uint32_t a = 0; a < np; a++) {
+		const cpair *c = &cs->pairs[cl[a]];
+		double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m);
+		for (int k = 0; k < 3; k++) {
+			m[I(c, V) + k] += P[a][k] * wi;
+			if (!c->plane) m[J(c, V) + k] -= P[a][k] * wj;
+		}
+	}
+}
+
+/* The coupling of rows r and k: the change of r's velocity per unit impulse along k. */
+static double row_g(const csf_contacts *cs, uint32_t np, const csf_srow *R, uint32_t r, uint32_t k)
+{
+	double w = cs->G[R[r].a * np + R[k].a];
+	return w == 0 ? 0 : w * dot3(R[r].e, R[k].e);
+}
+
+/* Row r's velocity after the impulses x (per row), each row yielding by yield; into *round
+   the rounding of that sum (8 DBL_EPSILON its terms' sizes). */
+static double row_after(const csf_contacts *cs, uint32_t np, const csf_srow *R, uint32_t nr, double (*vr)[3],
+                        const double *x, uint32_t r, double yield, double *round)
+{
+	double v = dot3(R[r].e, vr[R[r].a]) + yield * row_g(cs, np, R, r, r) * x[r], size = fabs(v);
+	for (uint32_t k = 0; k < nr; k++)
+		if (x[k] != 0) {
+			double t = row_g(cs, np, R, r, k) * x[k];
+			v += t, size += fabs(t);
+		}
+	*round = 8 * DBL_EPSILON * size;
+	return v;
+}
+
+/* G of the rows in the set A[0..na) (+ yield on its diagonal) into cs->K, factored; 0, or -1. */
+static int factor_rows(csf_contacts *cs, uint32_t np, const csf_srow *R, const uint32_t *A, uint32_t na, double yield)
+{
+	double *L = cs->K;
+	for (uint32_t i = 0; i < na; i++)
+		for (uint32_t k = 0; k <= i; k++) L[i * na + k] = row_g(cs, np, R, A[i], A[k]) * (k == i ? 1 + yield : 1);
+	return ldl(L, na);
+}
+
+/* Whether the impulses x hold every row: those of the set in[] at zero, the others not closing,
+   within each pair's vres and the rounding. */
+static int rows_hold(const csf_contacts *cs, uint32_t np, const csf_srow *R, uint32_t nr, double (*vr)[3],
+                     const double *x, const unsigned char *in, const double *vres, double yield)
+{
+	for (uint32_t r = 0; r < nr; r++) {
+		double round, v = row_after(cs, np, R, nr, vr, x, r, yield, &round), tol = vres[R[r].a] + round;
+		if (!(in[r] ? fabs(v) <= tol : v >= -tol)) return 0;
+	}
+	return 1;
+}
+
+/*
+ * csf_contact_stick_cluster's problem by the dual active-set method of
+ * dual_impulses, row by row: the velocities after the impulses are those
+ * nearest to the velocities before them, in the metric of the masses,
+ * among those that hold the rows eq at zero and leave no normal closing.
+ * The rows eq join first (their impulses of either sign), then the normal
+ * that closes fastest (in its pair's vres); a normal's impulse that would
+ * fall below zero leaves the set. The distance grows at every join, so no
+ * set comes back. Then the set is solved again without the yield, where
+ * its system is not singular to rounding and its normals push, as
+ * set_impulses does. Impulses per row into x, the set into in[]. 0, or -1:
+ * no impulses hold the rows, or rounding defeats it (4 nr + 8 changes).
+ */
+int csf_contact_dual_rows(csf_contacts *cs, uint32_t np, const csf_srow *R, uint32_t nr, double (*vr)[3],
+                          const double *vres, double *x, unsigned char *in)
+{
+	double *r = cs->x, *b = cs->rhs, keep[DIRECT_MAX];
+	uint32_t *A = cs->at, na = 0;
+	long p = -1;
+	for (uint32_t k = 0; k < nr; k++) x[k] = 0, in[k] = 0;
+	for (uint32_t iter = 0;; iter++) {
+		if (iter == 4 * nr + 8) return -1;
+		if (p < 0) { /* the first row eq not in the set, then the normal that closes fastest */
+			double worst = -1, round;
+			for (uint32_t k = 0; k < nr && p < 0; k++)
+				if (R[k].eq && !in[k]) p = k;
+			for (uint32_t k = 0; k < nr && !(p >= 0 && R[p].eq); k++) {
+				if (in[k] || R[k].eq) continue;
+				double v = row_after(cs, np, R, nr, vr, x, k, YIELD, &round) / vres[R[k].a];
+				if (v < -1 && v < worst) worst = v, p = k;
+			}
+			if (p < 0) break;
+		}
+		if (factor_rows(cs, np, R, A, na, YIELD)) return -1;
+		for (uint32_t i = 0; i < na; i++) r[i] = row_g(cs, np, R, A[i], (uint32_t)p);
+		ldl_solve(cs->K, na, r, r);
+		double sigma = row_g(cs, np, R, (uint32_t)p, (uint32_t)p) * (1 + YIELD), round;
+		for (uint32_t i = 0; i < na; i++) sigma -= row_g(cs, np, R, (uint32_t)p, A[i]) * r[i];
+		double s = row_after(cs, np, R, nr, vr, x, (uint32_t)p, YIELD, &round);
+		if (!(sigma > 0)) return -1;
+		double full = -s / sigma, sign = full < 0 ? -1 : 1, part = INFINITY;
+		uint32_t out = 0;
+		for (uint32_t i = 0; i < na; i++)
+			if (!R[A[i]].eq && sign * r[i] > 0 && x[A[i]] / (sign * r[i]) < part) part = x[A[i]] / (sign * r[i]), out = i;
+		double t = fabs(full) <= part ? full : sign * part;
+		for (uint32_t i = 0; i < na; i++) x[A[i]] -= t * r[i];
+		x[p] += t;
+		if (fabs(full) <= part) {
+			A[na++] = (uint32_t)p, in[p] = 1, p = -1;
+		} else {
+			x[A[out]] = 0, in[A[out]] = 0;
+			A[out] = A[--na];
+		}
+	}
+	memcpy(keep, x, nr * sizeof *keep); /* the set solved again without the yield */
+	if (!factor_rows(cs, np, R, A, na, 0)) {
+		for (uint32_t i = 0; i < na; i++) b[i] = -dot3(R[A[i]].e, vr[R[A[i]].a]);
+		ldl_solve(cs->K, na, b, b);
+		int push = 1;
+		for (uint32_t i = 0; i < na; i++) push &= R[A[i]].eq || b[i] >= 0;
+		if (push) {
+			for (uint32_t k = 0; k < nr; k++) x[k] = 0;
+			for (uint32_t i = 0; i < na; i++) x[A[i]] = b[i];
+			if (rows_hold(cs, np, R, nr, vr, x, in, vres, 0)) return 0;
+			memcpy(x, keep, nr * sizeof *x);
+		}
+	}
+	return rows_hold(cs, np, R, nr, vr, x, in, vres, YIELD) ? 0 : -1;
+}
+
+/*
+ * csf_contact_stick_cluster's impulses where its active sets fail, by
+ * csf_contact_dual_rows: the rows are each pair's normal, and for the hit and each
+ * pair held (wh) its two tangents. The hit's normal is held at zero too
+ * (it does not part: it is the pair that stops). In a scene in a plane
+ * (every normal and relative velocity without a part along one axis) the
+ * tangent across it is left out: nothing moves along it, and its rows would
+ * leave the system singular. A pair left sliding, with friction, whose
+ * slip the impulses turn back or speed up (beyond vres) is held too:
+ * friction stops a slip before it turns it, and cannot speed it up; a
+ * pair held whose normal the impulses part (beyond vres) is let go: parted,
+ * it has no friction. Then the rows are solved again, at most 2 np times
+ * (a pair let go is never held again). Every change takes a constraint
+ * away from the velocities or adds one, each a projection in the metric of
+ * the masses: no set gains energy. Fails (-1, nothing changed) where
+ * csf_contact_dual_rows does, or where the changes do not end.
+ */
+static int stick_dual(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t np, uint32_t ih, const double *n,
+                      double (*vr)[3], const unsigned char *whole, const double *vres)
+{
+	csf_srow R[DIRECT_MAX];
+	double x[DIRECT_MAX], P[DIRECT_MAX][3];
+	unsigned char in[DIRECT_MAX], wh[DIRECT_MAX], gone[DIRECT_MAX];
+	uint32_t rn[DIRECT_MAX]; /* each pair's normal row */
+	int flat = -1;           /* the axis nothing has a part along, if any */
+	for (int k = 0; k < 3 && flat < 0; k++) {
+		int off = 0;
+		for (uint32_t a = 0; a < np && !off; a++) off = n[3 * a + k] != 0 || vr[a][k] != 0;
+		if (!off) flat = k;
+	}
+	memcpy(wh, whole, np);
+	memset(gone, 0, np);
+	for (uint32_t round = 0; round < 2 * np; round++) {
+		uint32_t nr = 0;
+		for (uint32_t a = 0; a < np; a++) {
+			const double *na = n + 3 * a;
+			if (nr + (wh[a] ? 3 : 1) > DIRECT_MAX) return -1;
+			rn[a] = nr;
+			R[nr++] = (csf_srow){ { na[0], na[1], na[2] }, a, a == ih };
+			if (!wh[a]) continue;
+			double e[3] = { 0, 0, 0 }, t1[3], t2[3];
+			int k0 = flat;
+			if (k0 < 0) /* the axis the normal is least along */
+				k0 = fabs(na[0]) <= fabs(na[1]) && fabs(na[0]) <= fabs(na[2]) ? 0 : fabs(na[1]) <= fabs(na[2]) ? 1 : 2;
+			e[k0] = 1;
+			t1[0] = na[1] * e[2] - na[2] * e[1], t1[1] = na[2] * e[0] - na[0] * e[2];
+			t1[2] = na[0] * e[1] - na[1] * e[0];
+			double s = mag3(t1);
+			for (int k = 0; k < 3; k++) t1[k] /= s;
+			t2[0] = na[1] * t1[2] - na[2] * t1[1], t2[1] = na[2] * t1[0] - na[0] * t1[2];
+			t2[2] = na[0] * t1[1] - na[1] * t1[0];
+			R[nr++] = (csf_srow){ { t1[0], t1[1], t1[2] }, a, 1 };
+			if (flat < 0) R[nr++] = (csf_srow){ { t2[0], t2[1], t2[2] }, a, 1 };
+		}
+		if (csf_contact_dual_rows(cs, np, R, nr, vr, vres, x, in)) return -1;
+		for (uint32_t a = 0; a < np; a++) P[a][0] = P[a][1] = P[a][2] = 0;
+		for (uint32_t r = 0; r < nr; r++)
+			for (int k = 0; k < 3; k++) P[R[r].a][k] += R[r].e[k] * x[r];
+		int changed = 0;
+		for (uint32_t a = 0; a < np; a++) { /* each pair's relative velocity after the impulses */
+			const cpair *c = &cs->pairs[cl[a]];
+			const double *na = n + 3 * a;
+			if (wh[a]) { /* a pair held stays in contact */
+				double rnd;
+				if (a != ih && !in[rn[a]] && !(row_after(cs, np, R, nr, vr, x, rn[a], 0, &rnd) <= vres[a] + rnd))
+					wh[a] = 0, gone[a] = 1, changed = 1;
+				continue;
+			}
+			if (!has_friction(c, m) || gone[a]) continue;
+			double va[3];
+			memcpy(va, vr[a], sizeof va);
+			for (uint32_t b = 0; b < np; b++)
+				for (int k = 0; k < 3; k++) va[k] += cs->G[a * np + b] * P[b][k];
+			double t0[3], t1[3], s0 = dot3(vr[a], na), s1 = dot3(va, na);
+			for (int k = 0; k < 3; k++) t0[k] = vr[a][k] - s0 * na[k], t1[k] = va[k] - s1 * na[k];
+			double m0 = mag3(t0), d[3] = { t1[0] - t0[0], t1[1] - t0[1], t1[2] - t0[2] };
+			if (mag3(d) > vres[a] && !(dot3(t1, t0) >= -vres[a] * m0 && mag3(t1) <= m0 + vres[a]))
+				wh[a] = 1, changed = 1;
+		}
+		if (changed) continue;
+		apply_impulses(cs, m, cl, np, P);
+		return 0;
+	}
+	return -1;
+}
+
 /*
  * Pair hit stops slipping (it sticks) together with the pairs in contact
  * in its cluster: the impulses that leave hit and every sticking pair at a
@@ -335,9 +547,12 @@ void csf_contact_before_impact(csf_contacts *cs, const double *m)
  * parts, on trial, the first in the order of pairs whose parting leaves a
  * set that is solved (a pile of 64 balls whose slip failed so to stop,
  * stopped by its pair's own impulse instead, crawled at t = 0.7229 s, an
- * event every 5e-10 s). Returns 0, or -1 with nothing changed: a pair
- * alone, more than DIRECT_MAX unknowns, no such set among the trials, or
- * sets that do not settle in 5 np + 8 changes.
+ * event every 5e-10 s). Where no trial gives a set, or the sets do not
+ * settle in 5 np + 8 changes (they go round: pairs leave with impulses of
+ * -2.7e4 times their least speed and come back, in a pile of 64 balls at
+ * t = 0.7511 s), stick_dual's sets, which cannot. Returns 0, or -1 with
+ * nothing changed: a pair alone, more than DIRECT_MAX unknowns, or
+ * stick_dual fails.
  */
 int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double least)
 {
@@ -430,7 +645,7 @@ int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double le
 		if (unmet) { /* no impulses hold the pairs as they are: one held by its normal alone parts, on trial */
 			if (trial != UINT32_MAX) cs->act[trial] = 1;
 			while (next < np && (!cs->act[next] || whole[next])) next++;
-			if (next == np) return -1;
+			if (next == np) break;
 			cs->act[trial = next++] = 0;
 			continue;
 		}
@@ -438,16 +653,9 @@ int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double le
 		if (out >= 0) cs->act[out] = 0;
 		else if (in >= 0) cs->act[in] = 1;
 		else {
-			for (uint32_t a = 0; a < np; a++) {
-				cpair *c = &cs->pairs[cl[a]];
-				double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m);
-				for (int k = 0; k < 3; k++) {
-					m[I(c, V) + k] += P[a][k] * wi;
-					if (!c->plane) m[J(c, V) + k] -= P[a][k] * wj;
-				}
-			}
+			apply_impulses(cs, m, cl, np, P);
 			return 0;
 		}
 	}
-	return -1;
+	return stick_dual(cs, m, cl, np, ih, n, vr, whole, vres);
 }
