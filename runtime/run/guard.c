@@ -446,6 +446,7 @@ int csf_run_step_watch(void *ctx, double t, const double *y, double h)
 {
 	watch_ctx *w = ctx;
 	w->r->fail = 0; /* an evaluation that failed was in a trial step, tried again shorter */
+	w->r->trial_unsolved = 0;
 	if (csf_signal && !w->r->row_end) return 1;
 	if (w->r->prog) csf_run_progress(w->r, t);
 	guard *g = w->r->g;

@@ -163,14 +163,14 @@ static stop run_method(session *S, csf_opts *o)
 		}
 		vpair = S->vpair;
 	}
-	S->ode = csf_ode_new(S->method, o->fixed, p->ny, p->by, hmax, o->tol, o->atol, p->yatol, p->yscale, vpair, csf_run_rhs,
+	S->ode = csf_ode_new(S->method, o->fixed, p->ny, p->by, hmax, o->tol, o->atol, p->yatol, p->yscale, vpair, csf_run_rhs_trial,
 	                     p->jtan ? csf_run_jac : NULL, r, S->msg, sizeof S->msg);
 	if (S->ode) csf_ode_vectors(S->ode, S->vec);
 	if (S->ode && (r->row_y = csf_run_row_state(p, &r->nrow_y))) csf_ode_set_rows(S->ode, r->row_y, r->nrow_y);
 	if (S->ode && S->autom_on) { /* the implicit method ends its steps on the rows: at most by */
 		S->au.m[0] = S->ode;
 		S->au.m[1] = csf_ode_new(AUTO_STIFF, 0, p->ny, p->by, o->hmax > 0 && o->hmax < p->by ? o->hmax : p->by,
-		                         o->tol, o->atol, p->yatol, p->yscale, vpair, csf_run_rhs, csf_run_jac, r, S->msg, sizeof S->msg);
+		                         o->tol, o->atol, p->yatol, p->yscale, vpair, csf_run_rhs_trial, csf_run_jac, r, S->msg, sizeof S->msg);
 		r->au = &S->au;
 		if (S->au.m[1]) csf_ode_vectors(S->au.m[1], S->vec);
 		if (!S->au.m[1]) {
@@ -314,6 +314,8 @@ static stop advance_stop(session *S, int st, double t, double tk)
 		s.kind = STOP_HALTED;
 		break;
 	case CSF_ODE_STOPPED:
+		if (!r->unsettled && !r->fail && !r->nomem && !r->conflict && r->trial_unsolved)
+			r->unsettled = CSF_SETTLE_FORCES, r->unsettled_t = r->trial_unsolved_t; /* no step was short enough */
 		s.kind = r->unsettled ? STOP_UNSETTLED : r->nomem ? STOP_NOMEM : r->conflict ? STOP_CON_CONFLICT : STOP_NONFINITE;
 		s.t = r->fail_t;
 		break;

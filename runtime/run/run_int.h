@@ -24,6 +24,10 @@ typedef struct run {
 	double *m;
 	double fail_t; /* time of a non-finite derivative */
 	int fail;
+	/* contact forces that could not be solved at a trial state of the step being taken
+	   (csf_run_rhs_trial), and the time of the first */
+	int trial_unsolved;
+	double trial_unsolved_t;
 	unsigned long nrhs, njac; /* evaluations, for --stats */
 	unsigned long max_rhs;    /* csf_opts.max_rhs: past it, ADV_BUDGET (0: no limit) */
 	unsigned long nevents;
@@ -240,6 +244,7 @@ void csf_run_fmt_ratio(char buf[32], double x);
 
 /* eval.c */
 int csf_run_rhs(double t, const double *y, double *dydt, void *ctx);
+int csf_run_rhs_trial(double t, const double *y, double *dydt, void *ctx);
 
 /*
  * The state components the rows need, ascending, their number in *n: those
