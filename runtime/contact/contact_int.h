@@ -262,13 +262,15 @@ void csf_contact_before_impact(csf_contacts *cs, const double *m);
 /* impulse.c: pair hit sticks together with its cluster (0), or -1 (nothing changed); least as in
    csf_contact_speed_resolution */
 int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double least);
-/* A row of csf_contact_stick_cluster's dual solve: a direction e of pair a's relative velocity,
-   held at zero always (eq: the hit's normal and tangents, a held pair's tangents) or pushing (a
-   normal: its impulse >= 0 at velocity zero, or no impulse and not closing). */
+/* A row of a cluster's impulses (csf_contact_dual_rows: an impact's, a slip's stop): a direction e
+   of pair a's relative velocity, held at target always (eq: an impact's hit, a stop's hit and its
+   tangents, a held pair's tangents) or pushing (a normal, target 0: its impulse >= 0 at velocity
+   target, or no impulse and not closing). */
 typedef struct csf_srow {
 	double e[3];
 	uint32_t a;
 	unsigned char eq;
+	double target;
 } csf_srow;
 int csf_contact_dual_rows(csf_contacts *cs, uint32_t np, const csf_srow *R, uint32_t nr, double (*vr)[3],
                           const double *vres, double *x, unsigned char *in);

@@ -77,128 +77,9 @@ static void ldl_solve(const double *L, uint32_t n, const double *b, double *x)
  * bounded by its pair's velocity over 1e-14 of its effect, and the
  * velocities it leaves are off by 1e-14 of that effect, far below the
  * least velocity that counts. Where the set's system is not singular its
- * answer without the yield is taken (dual_impulses' caller).
+ * answer without the yield is taken (csf_contact_dual_rows).
  */
 #define YIELD 1e-14
-
-/* Pair a's relative normal velocity after impulses P (cs->lam), each pair yielding by yield,
-   less its target (the hit's, else 0); into *round (if not NULL) the rounding of that sum:
-   8 DBL_EPSILON its terms' sizes. */
-static double after(const csf_contacts *cs, uint32_t np, uint32_t a, uint32_t ih, double target, double yield,
-                    double *round)
-{
-	double v = cs->v0[a] - (a == ih ? target : 0) + yield * cs->G[a * np + a] * cs->lam[a], size = fabs(v);
-	for (uint32_t b = 0; b < np; b++) v += cs->G[a * np + b] * cs->lam[b], size += fabs(cs->G[a * np + b] * cs->lam[b]);
-	if (round) *round = 8 * DBL_EPSILON * size;
-	return v;
-}
-
-/* G_AA (+ yield on its diagonal) of the set A[0..na) into L, factored; 0, or -1 as ldl. */
-static int factor_set(const csf_contacts *cs, uint32_t np, const uint32_t *A, uint32_t na, double yield, double *L)
-{
-	for (uint32_t i = 0; i < na; i++)
-		for (uint32_t k = 0; k <= i; k++) L[i * na + k] = cs->G[A[i] * np + A[k]] * (k == i ? 1 + yield : 1);
-	return ldl(L, na);
-}
-
-/*
- * cluster_impulses' complementarity problem by the dual active-set method
- * of Goldfarb and Idnani ("A numerically stable dual method for solving
- * strictly convex quadratic programs", 1983): the velocities after the
- * impact are those nearest to the velocities before it, in the metric of
- * the masses, among those that leave the hit at its target and no pair
- * closing: a strictly convex problem, whose answer is unique even where
- * the impulses are not. From no impulses, the constraints join one at a
- * time, the hit first, then the pair that closes fastest (in its own least
- * velocity that counts, vres); each join raises its impulse until its
- * velocity is its target, the set's changing as that takes (-G_AA^-1 G_Ap
- * of it); where one of theirs would fall below zero first, that pair
- * leaves the set (at zero) and the join goes on. Every impulse stays >= 0
- * (but the hit's), the distance grows at every join, and no set comes
- * back: the sets cannot go round, as the primal active sets did on a jam
- * whose contacts were redundant to 1e-7 rad. Each pair yields by YIELD.
- * Impulses into cs->lam, the set into cs->act and cs->at (*na of them). 0,
- * or -1: no pushing impulses leave none closing, or rounding defeats it
- * (4 np + 8 changes).
- */
-static int dual_impulses(csf_contacts *cs, uint32_t np, uint32_t ih, double target, const double *vres, uint32_t *nap)
-{
-	const double *G = cs->G;
-	double *P = cs->lam, *L = cs->K, *r = cs->x;
-	uint32_t *A = cs->at, na = 0;
-	long p = -1; /* the pair joining */
-	for (uint32_t a = 0; a < np; a++) P[a] = 0, cs->act[a] = 0;
-	for (uint32_t iter = 0; iter < 4 * np + 8; iter++) {
-		if (p < 0) { /* the hit, then the pair that closes fastest */
-			double worst = -1;
-			if (!cs->act[ih]) p = ih;
-			else
-				for (uint32_t a = 0; a < np; a++) {
-					double v = cs->act[a] ? 0 : after(cs, np, a, ih, target, YIELD, NULL);
-					if (v < -vres[a] && v / vres[a] < worst) worst = v / vres[a], p = a;
-				}
-			if (p < 0) return *nap = na, 0;
-		}
-		/* the set's impulses change by -r per unit of p's, and p's velocity by sigma */
-		if (factor_set(cs, np, A, na, YIELD, L)) return -1;
-		for (uint32_t i = 0; i < na; i++) r[i] = G[A[i] * np + (uint32_t)p];
-		ldl_solve(L, na, r, r);
-		double sigma = G[p * np + p] * (1 + YIELD);
-		for (uint32_t i = 0; i < na; i++) sigma -= G[(uint32_t)p * np + A[i]] * r[i];
-		double s = after(cs, np, (uint32_t)p, ih, target, YIELD, NULL);
-		double full = sigma > 0 ? -s / sigma : INFINITY, part = INFINITY;
-		uint32_t out = 0;
-		for (uint32_t i = 0; i < na; i++)
-			if (A[i] != ih && r[i] > 0 && P[A[i]] / r[i] < part) part = P[A[i]] / r[i], out = i;
-		if (isinf(full) && isinf(part)) return -1;
-		double t = full <= part ? full : part;
-		for (uint32_t i = 0; i < na; i++) P[A[i]] -= t * r[i];
-		P[p] += t;
-		if (full <= part) {
-			A[na++] = (uint32_t)p, cs->act[p] = 1, p = -1;
-		} else {
-			P[A[out]] = 0, cs->act[A[out]] = 0;
-			A[out] = A[--na];
-		}
-	}
-	return -1;
-}
-
-/* Whether the impulses in cs->lam leave every pair of the set cs->act at its target and no other
-   closing, each yielding by yield: within its least velocity that counts and the rounding. */
-static int holds(const csf_contacts *cs, uint32_t np, uint32_t ih, double target, const double *vres, double yield)
-{
-	for (uint32_t a = 0; a < np; a++) {
-		double round, v = after(cs, np, a, ih, target, yield, &round);
-		if (!(cs->act[a] ? fabs(v) <= vres[a] + round : v >= -vres[a] - round)) return 0;
-	}
-	return 1;
-}
-
-/*
- * dual_impulses' set solved again without the yield (the set's impulses
- * that leave each of its pairs exactly at its target), where its system is
- * not singular to rounding, its impulses push (but the hit's) and they
- * hold; otherwise its own impulses, where they hold. 0, or -1.
- */
-static int set_impulses(csf_contacts *cs, uint32_t np, uint32_t ih, double target, const double *vres, uint32_t na)
-{
-	double *P = cs->lam, *L = cs->K, *b = cs->x, keep[DIRECT_MAX];
-	const uint32_t *A = cs->at;
-	memcpy(keep, P, np * sizeof *keep);
-	if (!factor_set(cs, np, A, na, 0, L)) {
-		for (uint32_t i = 0; i < na; i++) b[i] = (A[i] == ih ? target : 0) - cs->v0[A[i]];
-		ldl_solve(L, na, b, b);
-		int push = 1;
-		for (uint32_t i = 0; i < na; i++) push &= A[i] == ih || b[i] >= 0;
-		if (push) {
-			for (uint32_t i = 0; i < na; i++) P[A[i]] = b[i];
-			if (holds(cs, np, ih, target, vres, 0)) return 0;
-			memcpy(P, keep, np * sizeof *P);
-		}
-	}
-	return holds(cs, np, ih, target, vres, YIELD) ? 0 : -1;
-}
 
 /*
  * The impact of pair hit, whose relative normal velocity is to become
@@ -207,11 +88,12 @@ static int set_impulses(csf_contacts *cs, uint32_t np, uint32_t ih, double targe
  * pair in contact either pushes (P >= 0) and is left with a relative normal
  * velocity of zero, or takes no impulse and does not close (v >= 0): a
  * linear complementarity problem, whose matrix (the coupling of the pairs'
- * normals) is symmetric and positive semidefinite (dual_impulses). Each
+ * normals) is symmetric and positive semidefinite (csf_contact_dual_rows,
+ * a row a pair's normal, the hit's held at target). Each
  * pair is measured in its own least velocity that counts
  * (csf_contact_speed_resolution), so that a pair left closing within it is
  * not struck again. Fails (-1, nothing changed) for a cluster of more than
- * DIRECT_MAX pairs, where dual_impulses fails, or where its answer leaves
+ * DIRECT_MAX pairs, where csf_contact_dual_rows fails, or where its answer leaves
  * a pair closing or a pair of its set off its target beyond that velocity;
  * size is the scale of the velocities (at least those of the cluster's
  * bodies).
@@ -224,29 +106,27 @@ static int cluster_impulses(csf_contacts *cs, double *m, const cpair *hit, doubl
 	for (; q < nq && !cl; q++)
 		for (uint32_t a = cs->cstart[q]; a < cs->cstart[q + 1]; a++)
 			if (cs->cl[a] == h) cl = cs->cl + cs->cstart[q], np = cs->cstart[q + 1] - cs->cstart[q], ih = a - cs->cstart[q];
-	if (!cl || np > DIRECT_MAX) return -1;
-	double *G = cs->G, *n = cs->nv;
+	if (!cl || np == 0 || np > DIRECT_MAX) return -1;
+	double *n = cs->nv, vr[DIRECT_MAX][3], x[DIRECT_MAX];
+	csf_srow R[DIRECT_MAX]; /* a row each pair: its normal, the hit's held at target */
+	unsigned char in[DIRECT_MAX];
 	for (uint32_t a = 0; a < np; a++) {
 		const cpair *c = &cs->pairs[cl[a]];
-		double curv, vr[3];
+		double curv;
 		csf_contact_geometry(c, m, n + 3 * a, &curv);
-		rel(c, m, I(c, V), J(c, V), vr);
-		cs->v0[a] = dot3(vr, n + 3 * a);
+		rel(c, m, I(c, V), J(c, V), vr[a]);
+		R[a] = (csf_srow){ { n[3 * a], n[3 * a + 1], n[3 * a + 2] }, a, a == ih, a == ih ? target : 0 };
 		/* the velocities' own size: a pair that closes within its rounding does not close */
 		size = csf_max(size, csf_contact_speeds(c, m));
 	}
 	double vres[DIRECT_MAX]; /* the least relative velocity that counts, each pair's */
 	for (uint32_t a = 0; a < np; a++) vres[a] = csf_contact_speed_resolution(&cs->pairs[cl[a]], m, 1e-14 * size);
-	for (uint32_t a = 0; a < np; a++) /* G = the normals' coupling, once each normal is known */
-		for (uint32_t b = 0; b < np; b++) {
-			double w = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], m);
-			G[a * np + b] = w == 0 ? 0 : w * dot3(n + 3 * a, n + 3 * b);
-		}
-	uint32_t na;
-	if (dual_impulses(cs, np, ih, target, vres, &na) || set_impulses(cs, np, ih, target, vres, na)) return -1;
+	for (uint32_t a = 0; a < np; a++) /* the pairs' coupling, once each normal is known */
+		for (uint32_t b = 0; b < np; b++) cs->G[a * np + b] = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], m);
+	if (csf_contact_dual_rows(cs, np, R, np, vr, vres, x, in)) return -1;
 	for (uint32_t a = 0; a < np; a++) {
 		cpair *c = &cs->pairs[cl[a]];
-		double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), P = cs->lam[a];
+		double wi = inv_mass_i(c, m), wj = inv_mass_j(c, m), P = x[a];
 		for (int k = 0; k < 3; k++) {
 			m[I(c, V) + k] += P * n[3 * a + k] * wi;
 			if (!c->plane) m[J(c, V) + k] -= P * n[3 * a + k] * wj;
@@ -323,12 +203,12 @@ static double row_g(const csf_contacts *cs, uint32_t np, const csf_srow *R, uint
 	return w == 0 ? 0 : w * dot3(R[r].e, R[k].e);
 }
 
-/* Row r's velocity after the impulses x (per row), each row yielding by yield; into *round
-   the rounding of that sum (8 DBL_EPSILON its terms' sizes). */
+/* Row r's velocity after the impulses x (per row), each row yielding by yield (YIELD), less its
+   target; into *round the rounding of that sum (8 DBL_EPSILON its terms' sizes). */
 static double row_after(const csf_contacts *cs, uint32_t np, const csf_srow *R, uint32_t nr, double (*vr)[3],
                         const double *x, uint32_t r, double yield, double *round)
 {
-	double v = dot3(R[r].e, vr[R[r].a]) + yield * row_g(cs, np, R, r, r) * x[r], size = fabs(v);
+	double v = dot3(R[r].e, vr[R[r].a]) - R[r].target + yield * row_g(cs, np, R, r, r) * x[r], size = fabs(v);
 	for (uint32_t k = 0; k < nr; k++)
 		if (x[k] != 0) {
 			double t = row_g(cs, np, R, r, k) * x[k];
@@ -347,8 +227,8 @@ static int factor_rows(csf_contacts *cs, uint32_t np, const csf_srow *R, const u
 	return ldl(L, na);
 }
 
-/* Whether the impulses x hold every row: those of the set in[] at zero, the others not closing,
-   within each pair's vres and the rounding. */
+/* Whether the impulses x hold every row: those of the set in[] at their targets, the others not
+   closing, within each pair's vres and the rounding. */
 static int rows_hold(const csf_contacts *cs, uint32_t np, const csf_srow *R, uint32_t nr, double (*vr)[3],
                      const double *x, const unsigned char *in, const double *vres, double yield)
 {
@@ -360,17 +240,27 @@ static int rows_hold(const csf_contacts *cs, uint32_t np, const csf_srow *R, uin
 }
 
 /*
- * csf_contact_stick_cluster's problem by the dual active-set method of
- * dual_impulses, row by row: the velocities after the impulses are those
- * nearest to the velocities before them, in the metric of the masses,
- * among those that hold the rows eq at zero and leave no normal closing.
- * The rows eq join first (their impulses of either sign), then the normal
- * that closes fastest (in its pair's vres); a normal's impulse that would
- * fall below zero leaves the set. The distance grows at every join, so no
- * set comes back. Then the set is solved again without the yield, where
- * its system is not singular to rounding and its normals push, as
- * set_impulses does. Impulses per row into x, the set into in[]. 0, or -1:
- * no impulses hold the rows, or rounding defeats it (4 nr + 8 changes).
+ * The impulses of a cluster's rows (an impact's normals, a stop's normals
+ * and tangents) by the dual active-set method of Goldfarb and Idnani ("A
+ * numerically stable dual method for solving strictly convex quadratic
+ * programs", 1983): the velocities after the impulses are those nearest
+ * to the velocities before them, in the metric of the masses, among those
+ * that hold the rows eq at their targets and leave no other row closing: a
+ * strictly convex problem, whose answer is unique even where the impulses
+ * are not. From no impulses, the rows eq join first (their impulses of
+ * either sign), then the row that closes fastest (in its pair's least
+ * velocity that counts, vres); each join raises its impulse until its
+ * velocity is its target, the set's changing as that takes (-G_AA^-1 G_Ap
+ * of it); where one of theirs (not eq) would fall below zero first, that
+ * row leaves the set (at zero) and the join goes on. The distance grows at
+ * every join, and no set comes back: the sets cannot go round, as the
+ * primal active sets did on a jam whose contacts were redundant to 1e-7
+ * rad, and on a pile's slip at t = 0.7511 s. Each row yields by YIELD.
+ * Then the set is solved again without the yield, where its system is not
+ * singular to rounding and its impulses push (but the rows eq), and taken
+ * where it holds; otherwise the yield's answer, where it holds. Impulses
+ * per row into x, the set into in[]. 0, or -1: no pushing impulses leave
+ * none closing, or rounding defeats it (4 nr + 8 changes).
  */
 int csf_contact_dual_rows(csf_contacts *cs, uint32_t np, const csf_srow *R, uint32_t nr, double (*vr)[3],
                           const double *vres, double *x, unsigned char *in)
@@ -381,14 +271,14 @@ int csf_contact_dual_rows(csf_contacts *cs, uint32_t np, const csf_srow *R, uint
 	for (uint32_t k = 0; k < nr; k++) x[k] = 0, in[k] = 0;
 	for (uint32_t iter = 0;; iter++) {
 		if (iter == 4 * nr + 8) return -1;
-		if (p < 0) { /* the first row eq not in the set, then the normal that closes fastest */
+		if (p < 0) { /* the first row eq not in the set, then the row that closes fastest */
 			double worst = -1, round;
 			for (uint32_t k = 0; k < nr && p < 0; k++)
 				if (R[k].eq && !in[k]) p = k;
 			for (uint32_t k = 0; k < nr && !(p >= 0 && R[p].eq); k++) {
 				if (in[k] || R[k].eq) continue;
-				double v = row_after(cs, np, R, nr, vr, x, k, YIELD, &round) / vres[R[k].a];
-				if (v < -1 && v < worst) worst = v, p = k;
+				double v = row_after(cs, np, R, nr, vr, x, k, YIELD, &round), res = vres[R[k].a];
+				if (v < -res && v / res < worst) worst = v / res, p = k;
 			}
 			if (p < 0) break;
 		}
@@ -398,11 +288,11 @@ int csf_contact_dual_rows(csf_contacts *cs, uint32_t np, const csf_srow *R, uint
 		double sigma = row_g(cs, np, R, (uint32_t)p, (uint32_t)p) * (1 + YIELD), round;
 		for (uint32_t i = 0; i < na; i++) sigma -= row_g(cs, np, R, (uint32_t)p, A[i]) * r[i];
 		double s = row_after(cs, np, R, nr, vr, x, (uint32_t)p, YIELD, &round);
-		if (!(sigma > 0)) return -1;
-		double full = -s / sigma, sign = full < 0 ? -1 : 1, part = INFINITY;
+		double full = sigma > 0 ? -s / sigma : INFINITY, sign = full < 0 ? -1 : 1, part = INFINITY;
 		uint32_t out = 0;
 		for (uint32_t i = 0; i < na; i++)
 			if (!R[A[i]].eq && sign * r[i] > 0 && x[A[i]] / (sign * r[i]) < part) part = x[A[i]] / (sign * r[i]), out = i;
+		if (isinf(full) && isinf(part)) return -1;
 		double t = fabs(full) <= part ? full : sign * part;
 		for (uint32_t i = 0; i < na; i++) x[A[i]] -= t * r[i];
 		x[p] += t;
@@ -415,7 +305,7 @@ int csf_contact_dual_rows(csf_contacts *cs, uint32_t np, const csf_srow *R, uint
 	}
 	memcpy(keep, x, nr * sizeof *keep); /* the set solved again without the yield */
 	if (!factor_rows(cs, np, R, A, na, 0)) {
-		for (uint32_t i = 0; i < na; i++) b[i] = -dot3(R[A[i]].e, vr[R[A[i]].a]);
+		for (uint32_t i = 0; i < na; i++) b[i] = R[A[i]].target - dot3(R[A[i]].e, vr[R[A[i]].a]);
 		ldl_solve(cs->K, na, b, b);
 		int push = 1;
 		for (uint32_t i = 0; i < na; i++) push &= R[A[i]].eq || b[i] >= 0;
@@ -467,7 +357,7 @@ static int stick_dual(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t 
 			const double *na = n + 3 * a;
 			if (nr + (wh[a] ? 3 : 1) > DIRECT_MAX) return -1;
 			rn[a] = nr;
-			R[nr++] = (csf_srow){ { na[0], na[1], na[2] }, a, a == ih };
+			R[nr++] = (csf_srow){ { na[0], na[1], na[2] }, a, a == ih, 0 };
 			if (!wh[a]) continue;
 			double e[3] = { 0, 0, 0 }, t1[3], t2[3];
 			int k0 = flat;
@@ -480,8 +370,8 @@ static int stick_dual(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t 
 			for (int k = 0; k < 3; k++) t1[k] /= s;
 			t2[0] = na[1] * t1[2] - na[2] * t1[1], t2[1] = na[2] * t1[0] - na[0] * t1[2];
 			t2[2] = na[0] * t1[1] - na[1] * t1[0];
-			R[nr++] = (csf_srow){ { t1[0], t1[1], t1[2] }, a, 1 };
-			if (flat < 0) R[nr++] = (csf_srow){ { t2[0], t2[1], t2[2] }, a, 1 };
+			R[nr++] = (csf_srow){ { t1[0], t1[1], t1[2] }, a, 1, 0 };
+			if (flat < 0) R[nr++] = (csf_srow){ { t2[0], t2[1], t2[2] }, a, 1, 0 };
 		}
 		if (csf_contact_dual_rows(cs, np, R, nr, vr, vres, x, in)) return -1;
 		for (uint32_t a = 0; a < np; a++) P[a][0] = P[a][1] = P[a][2] = 0;

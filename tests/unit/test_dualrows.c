@@ -37,7 +37,7 @@ static void three_free(csf_contacts *cs)
 
 /* the rows: A on the floor (normal and tangent, held), B against A, B on the floor */
 static const csf_srow rows[4] = {
-	{ { 0, 0, 1 }, 0, 1 }, { { 1, 0, 0 }, 0, 1 }, { { 1, 0, 0 }, 1, 0 }, { { 0, 0, 1 }, 2, 0 }
+	{ { 0, 0, 1 }, 0, 1, 0 }, { { 1, 0, 0 }, 0, 1, 0 }, { { 1, 0, 0 }, 1, 0, 0 }, { { 0, 0, 1 }, 2, 0, 0 }
 };
 static const double vres[3] = { 1e-12, 1e-12, 1e-12 };
 
@@ -97,6 +97,25 @@ START_TEST(fall_and_rise)
 }
 END_TEST
 
+/* An impact (the rows of cluster_impulses: one normal a pair, the hit's held at its target): A
+   lands on the floor at 2 m/s and leaves at its target, 1.5 m/s, while sliding into B at 0.5 m/s:
+   the floor's impulse 3.5, and A's push on B 0.25, which leaves A and B both at 0.25 m/s along x
+   (B's floor, its normal across that, takes nothing). */
+START_TEST(impact_target)
+{
+	csf_contacts *cs = three_pairs();
+	const csf_srow hit[3] = { { { 0, 0, 1 }, 0, 1, 1.5 }, { { 1, 0, 0 }, 1, 0, 0 }, { { 0, 0, 1 }, 2, 0, 0 } };
+	double vr[3][3] = { { 0.5, 0, -2 }, { -0.5, 0, 2 }, { 0, 0, 0 } }, x[3];
+	unsigned char in[3];
+	ck_assert_int_eq(csf_contact_dual_rows(cs, 3, hit, 3, vr, vres, x, in), 0);
+	ck_assert_double_eq(x[0], 3.5);
+	ck_assert_double_eq(x[1], 0.25);
+	ck_assert_double_eq(x[2], 0);
+	ck_assert(in[0] && in[1] && !in[2]);
+	three_free(cs);
+}
+END_TEST
+
 Suite *dualrows_suite(void)
 {
 	Suite *s = suite_create("dualrows");
@@ -104,6 +123,7 @@ Suite *dualrows_suite(void)
 	tcase_add_test(tc, pushed_along);
 	tcase_add_test(tc, left_behind);
 	tcase_add_test(tc, fall_and_rise);
+	tcase_add_test(tc, impact_target);
 	suite_add_tcase(s, tc);
 	return s;
 }
