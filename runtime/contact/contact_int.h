@@ -262,6 +262,9 @@ void csf_contact_before_impact(csf_contacts *cs, const double *m);
 /* impulse.c: pair hit sticks together with its cluster (0), or -1 (nothing changed); least as in
    csf_contact_speed_resolution */
 int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double least);
+/* impulse.c: after a plastic impact or a group's collapse at hit (cs->group), the slips within the
+   rounding it leaves stopped together (0), or -1 (nothing changed) */
+int csf_contact_hold_group(csf_contacts *cs, double *m, const cpair *hit);
 /* A row of a cluster's impulses (csf_contact_dual_rows: an impact's, a slip's stop): a direction e
    of pair a's relative velocity, held at target always (eq: an impact's hit, a stop's hit and its
    tangents, a held pair's tangents) or pushing (a normal, target 0: its impulse >= 0 at velocity

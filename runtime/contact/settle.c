@@ -654,6 +654,7 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 				if (mark_touching(cs, m)) return -1;
 				cs->group = 1;
 				int st = csf_contact_collide(cs, m, c, 0, vn);
+				if (!st) csf_contact_hold_group(cs, m, c); /* its slips within the rounding, together */
 				cs->group = 0;
 				if (st) return CSF_SETTLE_IMPULSES;
 			} else { /* the pair alone, as through an infinitesimal gap */
