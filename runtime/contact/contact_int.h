@@ -154,6 +154,7 @@ struct csf_contacts {
 	double tol;                /* the integrator's tolerance at the last instant settled (settle.c) */
 	double zeno;               /* and its Zeno time (settle.c) */
 	double vfloor;             /* the least speed that counts at the instant being settled (settle.c) */
+	uint32_t vain;             /* the searches for modes that found none at that instant (modes.c) */
 	int unsolved; /* the sweeps left contact forces that do not hold (csf_contacts_unsolved) */
 };
 

@@ -508,7 +508,13 @@ static void take_pair(search *s, mpair *p, cpair *c)
  * Returns 0, or -1 with nothing written: the cluster has no friction, a
  * pair locked by its sliding friction (force.c: its impulse settles it),
  * more than MODES_LCP_MAX pairs, or no consistent set among those it tries
- * (or memory runs out).
+ * (or memory runs out). Past two searches that found none at one instant
+ * (cs->vain, csf_contact_settle), none at that instant: each tries up to
+ * MODES_TRIES sets, and the passes that follow one that failed, each
+ * changing a pair's mode, fail as well (a column of nine balls wedged in
+ * a narrow box: 32 searches at an instant, 70 ms each, at instants 2e-6 s
+ * apart); the cluster's modes are then chosen as without friction
+ * (force.c's choose_cluster), and its pairs' guards take it from there.
  */
 int csf_contact_choose_modes(csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np)
 {
@@ -519,7 +525,7 @@ int csf_contact_choose_modes(csf_contacts *cs, const double *m, const uint32_t *
 		friction |= has_friction(c, m);
 		if (W(c, LOCK)) return -1;
 	}
-	if (!friction) return -1;
+	if (!friction || cs->vain >= 2) return -1;
 	search s;
 	s.cs = cs, s.m = m, s.np = np, s.wratio = csf_contact_mass_ratio(cs, cl, np, m);
 	s.p = malloc(np * sizeof *s.p), s.F = malloc(3 * (size_t)np * sizeof *s.F);
@@ -533,8 +539,10 @@ int csf_contact_choose_modes(csf_contacts *cs, const double *m, const uint32_t *
 			cs->G1[a * np + b] = csf_contact_coupling(cs, s.p[a].c, s.p[b].c, NULL);
 		}
 	if (np <= MODES_MAX ? find_set(&s, 0, 1) && guided_set(&s) && find_set(&s, 2, np) && lcp_set(&s)
-	                    : find_set(&s, 0, 0) && lcp_set(&s))
+	                    : find_set(&s, 0, 0) && lcp_set(&s)) {
+		cs->vain++; /* none found */
 		goto out;
+	}
 	found = 0;
 	for (uint32_t a = 0; a < np; a++) {
 		const mpair *p = &s.p[a];

@@ -836,7 +836,7 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
                        void *ctx)
 {
 	if (!cs) return 0;
-	cs->vfloor = 0;
+	cs->vfloor = 0, cs->vain = 0;
 	cs->tol = tol, cs->zeno = zeno;
 	/* the modes chosen again (at most 3 times) when holding the pairs in contact moved a body:
 	   velocities changed, and a normal force could pull from the start of the next step */
