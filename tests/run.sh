@@ -544,8 +544,9 @@ t_column() {
 # the tangent plane): the error control of the 16-ball pile rejects at most 1 in 20 of its steps
 # (7 of 706; 488 of 1368 when d kept the part along the normal it takes as two balls turn); and
 # its events are located on the step's extension, then bracketed on exact states 1e-13 s wide
-# (csf(5), Events): at most 100 evaluations of the right-hand side an event, steps included (92;
-# 187 with brackets 2e-10 s wide narrowed by the Illinois method)
+# (csf(5), Events): at most 80 evaluations of the right-hand side an event, steps included (77;
+# 92 when a step's crossings were taken in the order of their lines, not of the gaps' crossings
+# on the extension; 187 with brackets 2e-10 s wide narrowed by the Illinois method)
 t_pile_steps() {
 	if ! sh bench/gen_pile.sh 16 0.5 0.3 3 0.01 "$T/p16.csf" || ! "$CSFC" "$T/p16.csf" -o "$T/p16.csfb" 2>"$T/err" ||
 		! "$CSFVM" --stats "$T/p16.csfb" >/dev/null 2>"$T/st"; then
@@ -554,10 +555,10 @@ t_pile_steps() {
 	fi
 	n=$(sed -n 's/^stats: method [^,]*, \([0-9]*\) steps (\([0-9]*\) rejected), \([0-9]*\) right-hand side .*, \([0-9]*\) events.*/\1 \2 \3 \4/p' "$T/st")
 	set -- $n
-	if [ $# -eq 4 ] && [ "$2" -le $(($1 / 20)) ] && [ "$3" -le $(($4 * 100)) ]; then
+	if [ $# -eq 4 ] && [ "$2" -le $(($1 / 20)) ] && [ "$3" -le $(($4 * 80)) ]; then
 		ok
 	else
-		bad "pile_steps: steps, rejected, evaluations, events: $n (at most 1 in 20 rejected, 100 evaluations an event)"
+		bad "pile_steps: steps, rejected, evaluations, events: $n (at most 1 in 20 rejected, 80 evaluations an event)"
 	fi
 }
 t_piles_statics() {

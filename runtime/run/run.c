@@ -794,6 +794,7 @@ static void run_free(session *S)
 	free(r->gl);
 	free(r->gp);
 	free(r->gx);
+	free(r->est);
 	free(r->order);
 	free(S->work);
 	free(S->y);
