@@ -406,45 +406,6 @@ static int stick_dual(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t 
 }
 
 /*
- * Pair hit stops slipping (it sticks) together with the pairs in contact
- * in its cluster: the impulses that leave hit and every sticking pair at a
- * relative velocity of zero (normal and tangential), and so every pair
- * that slides without slipping (its slip within the rounding of speeds: it
- * has stopped, and friction holds it as a sticking pair's does; left free,
- * the impulses of a pile of 64 balls that stopped one slip set its
- * neighbour slipping at 2.6e-8 m/s, whose stop set the first going again,
- * an event every 6e-9 s), and every other pair
- * in contact either pushing (its normal impulse >= 0) at a relative normal
- * velocity of zero, or taking no impulse and not closing: a linear
- * complementarity problem, solved by active sets as an impact's
- * (cluster_impulses; a sticking pair's unknown is its whole impulse, and
- * only the pairs other than hit may leave), each pair measured in its own
- * least speed that counts (csf_contact_speed_resolution, at least least).
- * Where the pairs are statically indeterminate (a ball on a peg leaning on
- * a divider) the impulses with the least friction (csf_contact_solve). A
- * slip stopped by its own pair's impulse alone drives its neighbours into
- * each other; their impact starts the slip again, a little slower, and
- * the slip stops again at the next event: a ball in a Galton board's bin,
- * leaning on one that rests on a peg, stopped and slipped 3400 times in
- * 3e-7 s, at 1e-10 m/s. A set whose impulses do not make the velocities
- * what they are to be (to 1e-9 of the cluster's speeds) or that turn back
- * or speed up the slip of a pair left sliding (which friction cannot) is
- * one that only impulses without bound would hold: contacts all but
- * redundant (two balls stuck together resting on two others stuck
- * together, along normals 8e-7 apart, one pair sliding on the other: the
- * impulses along the two normals that stop it grow without bound as the
- * normals align). Then one pair of the set held by its normal alone
- * parts, on trial, the first in the order of pairs whose parting leaves a
- * set that is solved (a pile of 64 balls whose slip failed so to stop,
- * stopped by its pair's own impulse instead, crawled at t = 0.7229 s, an
- * event every 5e-10 s). Where no trial gives a set, or the sets do not
- * settle in 5 np + 8 changes (they go round: pairs leave with impulses of
- * -2.7e4 times their least speed and come back, in a pile of 64 balls at
- * t = 0.7511 s), stick_dual's sets, which cannot. Returns 0, or -1 with
- * nothing changed: a pair alone, more than DIRECT_MAX unknowns, or
- * stick_dual fails.
- */
-/*
  * The cluster of pair hit's impact (the pairs in contact, or with cs->group
  * the pairs marked), of 2 to DIRECT_MAX pairs, into *cl (np pairs, hit the
  * ih-th), with each pair's normal (cs->nv), relative velocity vr, slip's
@@ -484,6 +445,45 @@ static int stop_cluster(csf_contacts *cs, double *m, const cpair *hit, double le
 	return 0;
 }
 
+/*
+ * Pair hit stops slipping (it sticks) together with the pairs in contact
+ * in its cluster: the impulses that leave hit and every sticking pair at a
+ * relative velocity of zero (normal and tangential), and so every pair
+ * that slides without slipping (its slip within the rounding of speeds: it
+ * has stopped, and friction holds it as a sticking pair's does; left free,
+ * the impulses of a pile of 64 balls that stopped one slip set its
+ * neighbour slipping at 2.6e-8 m/s, whose stop set the first going again,
+ * an event every 6e-9 s), and every other pair
+ * in contact either pushing (its normal impulse >= 0) at a relative normal
+ * velocity of zero, or taking no impulse and not closing: a linear
+ * complementarity problem, solved by active sets as an impact's
+ * (cluster_impulses; a sticking pair's unknown is its whole impulse, and
+ * only the pairs other than hit may leave), each pair measured in its own
+ * least speed that counts (csf_contact_speed_resolution, at least least).
+ * Where the pairs are statically indeterminate (a ball on a peg leaning on
+ * a divider) the impulses with the least friction (csf_contact_solve). A
+ * slip stopped by its own pair's impulse alone drives its neighbours into
+ * each other; their impact starts the slip again, a little slower, and
+ * the slip stops again at the next event: a ball in a Galton board's bin,
+ * leaning on one that rests on a peg, stopped and slipped 3400 times in
+ * 3e-7 s, at 1e-10 m/s. A set whose impulses do not make the velocities
+ * what they are to be (to 1e-9 of the cluster's speeds) or that turn back
+ * or speed up the slip of a pair left sliding (which friction cannot) is
+ * one that only impulses without bound would hold: contacts all but
+ * redundant (two balls stuck together resting on two others stuck
+ * together, along normals 8e-7 apart, one pair sliding on the other: the
+ * impulses along the two normals that stop it grow without bound as the
+ * normals align). Then one pair of the set held by its normal alone
+ * parts, on trial, the first in the order of pairs whose parting leaves a
+ * set that is solved (a pile of 64 balls whose slip failed so to stop,
+ * stopped by its pair's own impulse instead, crawled at t = 0.7229 s, an
+ * event every 5e-10 s). Where no trial gives a set, or the sets do not
+ * settle in 5 np + 8 changes (they go round: pairs leave with impulses of
+ * -2.7e4 times their least speed and come back, in a pile of 64 balls at
+ * t = 0.7511 s), stick_dual's sets, which cannot. Returns 0, or -1 with
+ * nothing changed: a pair alone, more than DIRECT_MAX unknowns, or
+ * stick_dual fails.
+ */
 int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double least)
 {
 	const uint32_t *cl;
