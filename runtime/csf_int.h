@@ -441,6 +441,10 @@ void csf_contacts_commit(csf_contacts *c, const double *m, double *const *g, con
  */
 int csf_contacts_gap_rate(const csf_contacts *cs, uint32_t k, const double *m, const double *y, double *gap,
                           double *rate);
+/* The slots of the state (indices from its start) that candidate k's gap and rate read: its bodies'
+   positions and velocities (3 each; a plane's, an anchor's are not the state's). 0 when the pair is
+   not apart. */
+uint32_t csf_contacts_gap_slots(const csf_contacts *cs, uint32_t k, uint32_t idx[12]);
 
 
 /*

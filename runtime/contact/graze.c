@@ -12,6 +12,18 @@ static const double *slot_at(const csf_prog *p, const double *m, const double *y
 	return s >= p->ystart && s - p->ystart < p->ny ? y + (s - p->ystart) : m + s;
 }
 
+uint32_t csf_contacts_gap_slots(const csf_contacts *cs, uint32_t k, uint32_t idx[12])
+{
+	const csf_prog *p = cs->p;
+	const cpair *c = &cs->pairs[k];
+	if (W(c, MODE) != APART) return 0;
+	uint32_t n = 0, s[4] = { I(c, POS), I(c, V), c->plane ? UINT32_MAX : J(c, POS), c->plane ? UINT32_MAX : J(c, V) };
+	for (int q = 0; q < 4; q++)
+		if (s[q] >= p->ystart && s[q] - p->ystart < p->ny) /* (a plane's, an anchor's are in m) */
+			for (uint32_t a = 0; a < 3; a++) idx[n++] = s[q] - p->ystart + a;
+	return n;
+}
+
 int csf_contacts_gap_rate(const csf_contacts *cs, uint32_t k, const double *m, const double *y, double *gap,
                           double *rate)
 {

@@ -280,6 +280,13 @@ void csf_erk_dense_eval(const gsl_odeiv2_step *s, double theta, double *y, int s
 		for (size_t i = 0; i < st->dim; i++) y[i] = dense_at(st, i, theta, s1);
 }
 
+void csf_erk_dense_at(const gsl_odeiv2_step *s, double theta, const uint32_t *idx, size_t n, double *y)
+{
+	const csf_erk_state *st = state_of(s);
+	if (!st) return;
+	for (size_t q = 0; q < n; q++) y[idx[q]] = st->dense == DENSE_ALL ? dense_at(st, idx[q], theta, 1.0 - theta) : NAN;
+}
+
 void csf_erk_last_step(const gsl_odeiv2_step *s, double *t0, double *h)
 {
 	const csf_erk_state *st = state_of(s);

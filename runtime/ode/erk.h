@@ -84,6 +84,9 @@ void csf_erk_set_scale(gsl_odeiv2_step *s, const double *scale);
 void csf_erk_set_rows(gsl_odeiv2_step *s, const uint32_t *rows, size_t n);
 int csf_erk_dense_prepare(gsl_odeiv2_step *s, const gsl_odeiv2_system *sys, int some);
 void csf_erk_dense_eval(const gsl_odeiv2_step *s, double theta, double *y, int some);
+/* The components idx[0..n) alone of a whole extension's value (csf_erk_dense_eval's, bit for bit),
+   into y[idx[q]]; NaN there when the extension prepared is not the whole one. */
+void csf_erk_dense_at(const gsl_odeiv2_step *s, double theta, const uint32_t *idx, size_t n, double *y);
 void csf_erk_last_step(const gsl_odeiv2_step *s, double *t0, double *h);
 
 /* Saves or restores the last step's stages, extension and flags under tag (a checkpoint): 0 or -1. */

@@ -22,7 +22,8 @@
 #include "ode_int.h"
 
 static int erk_dense_eval(csf_ode *o, double tc, double *out, int some);
-static const struct dense erk_dense = { csf_erk_set_scale, csf_erk_set_rows, erk_dense_eval };
+static int erk_dense_eval_at(csf_ode *o, double tc, const uint32_t *idx, size_t n, double *out);
+static const struct dense erk_dense = { csf_erk_set_scale, csf_erk_set_rows, erk_dense_eval, erk_dense_eval_at };
 
 #define STEP(T) &gsl_odeiv2_step_##T
 static const struct method methods[] = {
@@ -299,6 +300,11 @@ int csf_ode_dense_eval(csf_ode *o, double tc, double *out) { return o->m->dense-
 
 int csf_ode_dense_rows(csf_ode *o, double tc, double *out) { return o->m->dense->eval(o, tc, out, 1); }
 
+int csf_ode_dense_at(csf_ode *o, double tc, const uint32_t *idx, size_t n, double *out)
+{
+	return o->m->dense->eval_at(o, tc, idx, n, out);
+}
+
 void csf_ode_set_rows(csf_ode *o, const uint32_t *rows, size_t n)
 {
 	if (o->m->dense && o->drv) o->m->dense->set_rows(o->drv->s, rows, n);
@@ -312,6 +318,17 @@ static int erk_dense_eval(csf_ode *o, double tc, double *out, int some)
 	if (csf_erk_dense_prepare(s, &o->sys, some) != GSL_SUCCESS) return 1;
 	double theta = h != 0 ? (tc - t0) / h : 1;
 	csf_erk_dense_eval(s, theta < 0 ? 0 : theta > 1 ? 1 : theta, out, some);
+	return 0;
+}
+
+static int erk_dense_eval_at(csf_ode *o, double tc, const uint32_t *idx, size_t n, double *out)
+{
+	double t0, h;
+	gsl_odeiv2_step *s = o->drv->s;
+	csf_erk_last_step(s, &t0, &h);
+	if (csf_erk_dense_prepare(s, &o->sys, 0) != GSL_SUCCESS) return 1;
+	double theta = h != 0 ? (tc - t0) / h : 1;
+	csf_erk_dense_at(s, theta < 0 ? 0 : theta > 1 ? 1 : theta, idx, n, out);
 	return 0;
 }
 

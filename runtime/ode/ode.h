@@ -86,6 +86,9 @@ int csf_ode_dense_eval(csf_ode *o, double tc, double *out);
  */
 int csf_ode_dense_rows(csf_ode *o, double tc, double *out);
 void csf_ode_set_rows(csf_ode *o, const uint32_t *rows, size_t n);
+/* The components idx[0..n) alone, bit for bit as csf_ode_dense_eval gives them, into out[idx[q]];
+   the others of out are left as they were. 0, or 1 if an evaluation failed. */
+int csf_ode_dense_at(csf_ode *o, double tc, const uint32_t *idx, size_t n, double *out);
 
 /*
  * Advances (*t, y) to exactly t1 in equal steps of at most h, without error

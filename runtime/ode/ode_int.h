@@ -29,6 +29,7 @@ struct dense {
 	void (*set_scale)(gsl_odeiv2_step *s, const double *scale);
 	void (*set_rows)(gsl_odeiv2_step *s, const uint32_t *rows, size_t n);
 	int (*eval)(csf_ode *o, double tc, double *out, int some);
+	int (*eval_at)(csf_ode *o, double tc, const uint32_t *idx, size_t n, double *out);
 };
 
 /*

@@ -254,16 +254,22 @@ static int substep_guards(run *r, csf_ode *ode, double ta, double tb, const doub
  * positions alone (csf_contacts_gap_rate, the value its guard takes in an
  * evaluation), with no evaluation of the right-hand side: most events of a
  * pile are impacts, and this was some five of the 77 evaluations of each.
+ * Only its bodies' slots of r->ys are interpolated then (csf_ode_dense_at,
+ * the same values): the rest of r->ys is not that state.
  */
 static int guard_at(run *r, csf_ode *ode, int dense, uint32_t k, double ta, double tb, const double *yb, double tc,
                     char *msg, size_t msglen)
 {
 	if (!dense) return substep_guards(r, ode, ta, tb, yb, tc, msg, msglen);
-	if (csf_ode_dense_eval(ode, tc, r->ys)) return CSF_ODE_STOPPED;
+	uint32_t idx[12], ni;
 	double rate;
 	if (r->cs && k >= r->gcont && (k - r->gcont) % 2 == 0 &&
-	    csf_contacts_gap_rate(r->cs, (k - r->gcont) / 2, r->m, r->ys, &r->gs[k], &rate))
+	    (ni = csf_contacts_gap_slots(r->cs, (uint32_t)(k - r->gcont) / 2, idx)) > 0) {
+		if (csf_ode_dense_at(ode, tc, idx, ni, r->ys)) return CSF_ODE_STOPPED;
+		csf_contacts_gap_rate(r->cs, (uint32_t)(k - r->gcont) / 2, r->m, r->ys, &r->gs[k], &rate);
 		return CSF_ODE_OK;
+	}
+	if (csf_ode_dense_eval(ode, tc, r->ys)) return CSF_ODE_STOPPED;
 	return csf_run_guards_at(r, tc, r->ys, r->gs) ? CSF_ODE_STOPPED : CSF_ODE_OK;
 }
 

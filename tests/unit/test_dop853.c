@@ -673,6 +673,34 @@ START_TEST(test_dense_rows)
 END_TEST
 
 /*
+ * Chosen components alone (csf_erk_dense_at): each bit for bit the whole extension's, the others
+ * left as they were; NaN where only the rows' extension is prepared.
+ */
+START_TEST(test_dense_at)
+{
+	counter n = { 1.0, 0, -1 };
+	gsl_odeiv2_system sys = { osc_f, NULL, 2, &n };
+	gsl_odeiv2_step *s = gsl_odeiv2_step_alloc(csf_step_dop853, 2);
+	static const uint32_t rows[1] = { 1 }, one[1] = { 0 };
+	double y[2] = { 0.6, -0.8 }, yerr[2], a[2], b[2];
+	csf_erk_set_rows(s, rows, 1);
+	ck_assert_int_eq(gsl_odeiv2_step_apply(s, 0, 0.5, y, yerr, NULL, NULL, &sys), GSL_SUCCESS);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 1), GSL_SUCCESS);
+	a[0] = 7, a[1] = 7;
+	csf_erk_dense_at(s, 0.3, one, 1, a);
+	ck_assert(isnan(a[0]) && a[1] == 7);
+	ck_assert_int_eq(csf_erk_dense_prepare(s, &sys, 0), GSL_SUCCESS);
+	for (double theta = 0; theta <= 1; theta += 0.125) {
+		a[0] = 7, a[1] = 7;
+		csf_erk_dense_at(s, theta, one, 1, a);
+		csf_erk_dense_eval(s, theta, b, 0);
+		ck_assert(memcmp(&a[0], &b[0], sizeof b[0]) == 0 && a[1] == 7);
+	}
+	gsl_odeiv2_step_free(s);
+}
+END_TEST
+
+/*
  * A first step costs 13 evaluations (k0..k11 and k12 = f at its end), its
  * extension 3 more; the next step, from where it ended, starts from k12
  * (first same as last): 12; a step tried again from the same start keeps
@@ -756,6 +784,7 @@ Suite *dop853_suite(void)
 	tcase_add_loop_test(tc, test_failing_evaluation, 0, 2 * NSTAGE + 1);
 	tcase_add_loop_test(tc, test_failing_dense_stage, 0, 3);
 	tcase_add_test(tc, test_dense_rows);
+	tcase_add_test(tc, test_dense_at);
 	tcase_add_test(tc, test_fsal);
 	tcase_add_test(tc, test_failing_driver);
 	suite_add_tcase(s, tc);
