@@ -410,7 +410,7 @@ static int stick_dual(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t 
  * the pairs marked), of 2 to DIRECT_MAX pairs, into *cl (np pairs, hit the
  * ih-th), with each pair's normal (cs->nv), relative velocity vr, slip's
  * size (slip) and least velocity that counts (vres, at least least); 0,
- * or -1 (no such cluster).
+ * or -1 (no such cluster). Their coupling is couple's.
  */
 static int stop_cluster(csf_contacts *cs, double *m, const cpair *hit, double least, const uint32_t **cl,
                         uint32_t *np, uint32_t *ih, double (*vr)[3], double *slip, double *vres)
@@ -437,12 +437,18 @@ static int stop_cluster(csf_contacts *cs, double *m, const cpair *hit, double le
 		csf_contact_slip_velocity(c, m, n + 3 * a, vt);
 		slip[a] = mag3(vt);
 	}
-	for (uint32_t a = 0; a < *np; a++) /* the pairs' coupling, with their masses and with every mass 1 */
-		for (uint32_t b = 0; b < *np; b++) {
-			cs->G[a * *np + b] = csf_contact_coupling(cs, &cs->pairs[(*cl)[a]], &cs->pairs[(*cl)[b]], m);
-			cs->G1[a * *np + b] = csf_contact_coupling(cs, &cs->pairs[(*cl)[a]], &cs->pairs[(*cl)[b]], NULL);
-		}
 	return 0;
+}
+
+/* The coupling of the pairs cl[0..np) with their masses into cs->G, and, with unit, with every mass 1
+   into cs->G1 (only the primal active sets read it). */
+static void couple(csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np, int unit)
+{
+	for (uint32_t a = 0; a < np; a++)
+		for (uint32_t b = 0; b < np; b++) {
+			cs->G[a * np + b] = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], m);
+			if (unit) cs->G1[a * np + b] = csf_contact_coupling(cs, &cs->pairs[cl[a]], &cs->pairs[cl[b]], NULL);
+		}
 }
 
 /*
@@ -490,6 +496,7 @@ int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double le
 	uint32_t np, ih;
 	double vr[DIRECT_MAX][3], slip[DIRECT_MAX], vres[DIRECT_MAX];
 	if (stop_cluster(cs, m, hit, least, &cl, &np, &ih, vr, slip, vres)) return -1;
+	couple(cs, m, cl, np, 1);
 	double *n = cs->nv, size = 0, va[DIRECT_MAX][3], P[DIRECT_MAX][3], E[DIRECT_MAX][3];
 	unsigned char whole[DIRECT_MAX], dc[DIRECT_MAX];
 	uint32_t dim = 0, pa[DIRECT_MAX];
@@ -603,5 +610,6 @@ int csf_contact_hold_group(csf_contacts *cs, double *m, const cpair *hit)
 		any |= whole[a] && slip[a] > 0;
 	}
 	if (!any) return 0;
+	couple(cs, m, cl, np, 0);
 	return stick_dual(cs, m, cl, np, UINT32_MAX, cs->nv, vr, whole, vres);
 }
