@@ -257,28 +257,14 @@ static int substep_guards(run *r, csf_ode *ode, double ta, double tb, const doub
  * Only its bodies' slots of r->ys are interpolated then (csf_ode_dense_at,
  * the same values): the rest of r->ys is not that state.
  */
-/* Whether guard k is an apart pair's gap: the number of its bodies' slots in the state, into idx (0: not). */
-static uint32_t apart_gap(const run *r, size_t k, uint32_t idx[12])
-{
-	if (!r->cs || k < r->gcont || (k - r->gcont) % 2) return 0;
-	return csf_contacts_gap_slots(r->cs, (uint32_t)(k - r->gcont) / 2, idx);
-}
-
-/* Whether guard k's crossing in the samples' bracket is found on the continuous extension: an apart
-   pair's gap, not negative at the bracket's start (r->gp). */
-static int on_extension(const run *r, size_t k)
-{
-	uint32_t idx[12];
-	return r->dense && r->gp[k] >= 0 && apart_gap(r, k, idx) > 0;
-}
-
 static int guard_at(run *r, csf_ode *ode, int dense, uint32_t k, double ta, double tb, const double *yb, double tc,
                     char *msg, size_t msglen)
 {
 	if (!dense) return substep_guards(r, ode, ta, tb, yb, tc, msg, msglen);
 	uint32_t idx[12], ni;
 	double rate;
-	if ((ni = apart_gap(r, k, idx)) > 0) {
+	if (r->cs && k >= r->gcont && (k - r->gcont) % 2 == 0 &&
+	    (ni = csf_contacts_gap_slots(r->cs, (uint32_t)(k - r->gcont) / 2, idx)) > 0) {
 		if (csf_ode_dense_at(ode, tc, idx, ni, r->ys)) return CSF_ODE_STOPPED;
 		csf_contacts_gap_rate(r->cs, (uint32_t)(k - r->gcont) / 2, r->m, r->ys, &r->gs[k], &rate);
 		return CSF_ODE_OK;
@@ -334,8 +320,7 @@ static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
  * on states stepped from the step's start (ta, r->ya) that ended at
  * (tb, yb); leaves the state at that time in r->ys. *tl is the bracket's
  * other end: the guard is >= 0 there. With a continuous extension, the
- * crossing is found on it first, without steps (ext, where it is in
- * (lo, hi]: the crossing the candidates were ordered by); then the exact guards are
+ * crossing is found on it first, without steps; then the exact guards are
  * looked at on either side of it, tol / 8 away (a bracket a quarter of
  * the location's width: two steps, where the exact crossing is most often
  * within a fraction of tol of the extension's: a pile's impacts; the
@@ -353,18 +338,14 @@ static int illinois(run *r, csf_ode *ode, int dense, uint32_t k, double ta, doub
  * interpolant's alarm was false). Returns as substep_guards.
  */
 static int locate(run *r, csf_ode *ode, uint32_t k, double ta, double tb, const double *yb, double lo, double glo,
-                  double hi, double ghi, int sure, double ext, double *tk, double *tl, int *lx, int *none, char *msg,
-                  size_t msglen)
+                  double hi, double ghi, int sure, double *tk, double *tl, int *lx, int *none, char *msg, size_t msglen)
 {
 	const double tol = csf_run_location_tol(r->p);
 	int st, at_hi = 0;
 	*none = *lx = 0;
 	if (r->dense) {
-		double l = lo, gl = glo, u = ext, gu = ghi;
-		if (!(ext > lo && ext <= hi)) {
-			u = hi;
-			if ((st = illinois(r, ode, 1, k, ta, tb, yb, &l, &gl, &u, &gu, tol, &at_hi, NULL, msg, msglen))) return st;
-		}
+		double l = lo, gl = glo, u = hi, gu = ghi;
+		if ((st = illinois(r, ode, 1, k, ta, tb, yb, &l, &gl, &u, &gu, tol, &at_hi, NULL, msg, msglen))) return st;
 		at_hi = 0; /* the state in r->ys is hi's only when an exact step to hi was the last */
 		for (double w = tol / 8;; w *= 8) {
 			double x[2] = { u - w, u + w };
@@ -624,14 +605,15 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
 		size_t nc = 0;
 		for (size_t k = 0; k < ng; k++) {
 			if (!(r->ga[k] >= 0 && r->gh[k] < 0)) continue;
-			double sk = lo + (r->gp[k] >= 0 ? r->gp[k] / (r->gp[k] - r->gh[k]) : 0) * (hi - lo);
-			if (on_extension(r, k)) {
+			double sk = r->gp[k] >= 0 ? r->gp[k] / (r->gp[k] - r->gh[k]) : 0, g, rate;
+			if (r->dense && r->gp[k] >= 0 && k >= r->gcont && (k - r->gcont) % 2 == 0 &&
+			    csf_contacts_gap_rate(r->cs, (uint32_t)(k - r->gcont) / 2, r->m, y, &g, &rate)) {
 				double l = lo, gl = r->gp[k], u = hi, gu = r->gh[k];
 				int at_hi;
 				if ((st = illinois(r, ode, 1, (uint32_t)k, ta, tb, y, &l, &gl, &u, &gu, csf_run_location_tol(p),
 				                   &at_hi, NULL, msg, msglen)))
 					return st;
-				sk = u;
+				sk = (u - lo) / (hi - lo);
 			}
 			r->est[k] = sk;
 			size_t at = nc++; /* insertion by sk; ties in the guards' order */
@@ -664,8 +646,7 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
 				u = bl, gu = r->gl[k], sure = 1;
 			} /* else hi's exact guard is locate's to look at, when it needs it */
 			double tk, tl;
-			if ((st = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, sure, on_extension(r, k) ? r->est[k] : NAN,
-			                 &tk, &tl, &lx, &none, msg, msglen)))
+			if ((st = locate(r, ode, (uint32_t)k, ta, tb, y, l, gl, u, gu, sure, &tk, &tl, &lx, &none, msg, msglen)))
 				return st;
 			if (none) continue;
 			if (tk < best || *which < 0) { /* its guards at tk (locate's last), and at tl where it knows them */

@@ -49,7 +49,7 @@ typedef struct run {
 	double *gp;       /* the guards at the sample before the first where one is negative */
 	double *gx;       /* the exact guards at the lower end of locate's bracket */
 	uint32_t *order;  /* the guards negative there, by their crossings' estimates */
-	double *est;      /* those estimates, as times */
+	double *est;      /* those estimates, as fractions of the bracket */
 	double *jw; /* with contacts: 3 work vectors for the Jacobian by differences */
 	double *yh; /* with contacts: the 3 interpolated states of a step, one after the other */
 	csf_contacts *cs; /* with contacts: the candidate pairs (runtime/contact/) */
