@@ -244,43 +244,6 @@ static int lsq_solve(lsq *q, const double *b, double *y, double *r)
 	return 0;
 }
 
-/*
- * P V, P the projection on what the factored A cannot reach (the residual
- * of each column's least squares), in place: V is rows x nv, row-major.
- * P = Q diag(0, I) Q^T, 0 on the first rank rows, Q the product of the
- * factorisation's first rank reflectors (those past the rank act on the
- * rows past it alone, where the projection is the identity), each stored
- * in its column of A below the diagonal (its first entry 1) with its
- * scalar in tau_Q. The residual lsq_solve gives, with no solve: where only
- * the residual is wanted (P A_F, a column at a time there), the triangular
- * solve and the reflectors of Z cost more than the whole. Each reflector
- * is applied to every column at once, along V's rows.
- */
-static void lsq_project(const lsq *q, double *V, size_t nv, double *d)
-{
-	const double *A = q->A.matrix.data, *tau = q->tq.vector.data;
-	size_t rows = q->A.matrix.size1, ld = q->A.matrix.tda, r = q->rank;
-	for (int back = 0; back < 2; back++) {
-		for (size_t s = 0; s < r; s++) {
-			size_t i = back ? r - 1 - s : s; /* Q^T: H_0 first; Q: H_{r-1} first */
-			if (tau[i] == 0) continue;
-			memcpy(d, V + i * nv, nv * sizeof *d); /* d = v_i^T V, v_i = (1, A[i+1.., i]) */
-			for (size_t j = i + 1; j < rows; j++) {
-				double a = A[j * ld + i];
-				if (a != 0)
-					for (size_t k = 0; k < nv; k++) d[k] += a * V[j * nv + k];
-			}
-			for (size_t k = 0; k < nv; k++) d[k] *= tau[i], V[i * nv + k] -= d[k];
-			for (size_t j = i + 1; j < rows; j++) {
-				double a = A[j * ld + i];
-				if (a != 0)
-					for (size_t k = 0; k < nv; k++) V[j * nv + k] -= a * d[k];
-			}
-		}
-		if (!back) memset(V, 0, r * nv * sizeof *V);
-	}
-}
-
 /* The 2-norm of v[0..n): the root of the sum of squares, or hypot's where that overflows. */
 static double norm2(const double *v, uint32_t n)
 {
@@ -345,8 +308,11 @@ static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, con
 			for (uint32_t j = 0; j < nf; j++) AF[(size_t)i * nf + j] = A[(size_t)i * dim + cf[j]];
 		}
 		if (lsq_factor(&qn, AN, dim, nn, tol, w)) return -1;
-		memcpy(M, AF, (size_t)dim * nf * sizeof *M); /* M = P A_F */
-		lsq_project(&qn, M, nf, c);
+		for (uint32_t j = 0; j < nf; j++) { /* M = P A_F, column by column */
+			for (uint32_t i = 0; i < dim; i++) v[i] = AF[(size_t)i * nf + j];
+			if (lsq_solve(&qn, v, yn, c)) return -1;
+			for (uint32_t i = 0; i < dim; i++) M[(size_t)i * nf + j] = c[i];
+		}
 		if (lsq_factor(&qf, M, dim, nf, tol, wf)) return -1;
 	}
 	/* the forces for b, then once more for what they leave of it (its residual r, computed from K
@@ -359,9 +325,7 @@ static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, con
 		if (!nf) {
 			if (lsq_solve(&qn, rhs, dx, NULL)) return -1;
 		} else {
-			memcpy(c, rhs, dim * sizeof *c); /* c = P rhs */
-			lsq_project(&qn, c, 1, v);
-			if (lsq_solve(&qf, c, yf, NULL)) return -1;
+			if (lsq_solve(&qn, rhs, yn, c) || lsq_solve(&qf, c, yf, NULL)) return -1; /* c = P rhs */
 			for (uint32_t i = 0; i < dim; i++) { /* the normal forces for what friction leaves */
 				v[i] = rhs[i];
 				for (uint32_t j = 0; j < nf; j++) v[i] -= AF[(size_t)i * nf + j] * yf[j];
