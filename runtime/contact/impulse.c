@@ -485,7 +485,8 @@ static void couple(csf_contacts *cs, const double *m, const uint32_t *cl, uint32
  * leaning on one that rests on a peg, stopped and slipped 3400 times in
  * 3e-7 s, at 1e-10 m/s. A set whose impulses do not make the velocities
  * what they are to be (to 1e-9 of the cluster's speeds) or that turn back
- * or speed up the slip of a pair left sliding (which friction cannot) is
+ * the slip of a pair left sliding, or change it by more than its size
+ * (csf_contact_slide_turned: friction stops a slip before it turns it), is
  * one that only impulses without bound would hold: contacts all but
  * redundant (two balls stuck together resting on two others stuck
  * together, along normals 8e-7 apart, one pair sliding on the other: the
