@@ -278,9 +278,8 @@ typedef struct csf_srow {
 } csf_srow;
 /* impulse.c: does a slide whose relative velocity the impulses of a stop take from v0 to v1 (normal
    n) turn back, or change by more than its slip (beyond vres)? Friction stops a slip before it
-   turns it; a slip that the impulses on its bodies change by less than its size slides on. Its
-   slip before into *slip. */
-int csf_contact_slide_turned(const double n[3], const double v0[3], const double v1[3], double vres, double *slip);
+   turns it; a slip that the impulses on its bodies change by less than its size slides on. */
+int csf_contact_slide_turned(const double n[3], const double v0[3], const double v1[3], double vres);
 int csf_contact_dual_rows(csf_contacts *cs, uint32_t np, const csf_srow *R, uint32_t nr, double (*vr)[3],
                           const double *vres, double *x, unsigned char *in);
 

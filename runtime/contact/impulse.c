@@ -341,12 +341,12 @@ int csf_contact_dual_rows(csf_contacts *cs, uint32_t np, const csf_srow *R, uint
  * the masses: no set gains energy. Fails (-1, nothing changed) where
  * csf_contact_dual_rows does, or where the changes do not end.
  */
-int csf_contact_slide_turned(const double n[3], const double v0[3], const double v1[3], double vres, double *slip)
+int csf_contact_slide_turned(const double n[3], const double v0[3], const double v1[3], double vres)
 {
-	double t0[3], t1[3], s0 = dot3(v0, n), s1 = dot3(v1, n);
-	for (int k = 0; k < 3; k++) t0[k] = v0[k] - s0 * n[k], t1[k] = v1[k] - s1 * n[k];
+	double t0[3], t1[3];
+	csf_contact_tangential(v0, n, t0);
+	csf_contact_tangential(v1, n, t1);
 	double m0 = mag3(t0), d[3] = { t1[0] - t0[0], t1[1] - t0[1], t1[2] - t0[2] };
-	*slip = m0;
 	return !(dot3(t1, t0) >= -vres * m0 && mag3(d) <= m0 + vres);
 }
 
@@ -406,8 +406,7 @@ static int stick_dual(csf_contacts *cs, double *m, const uint32_t *cl, uint32_t 
 			memcpy(va, vr[a], sizeof va);
 			for (uint32_t b = 0; b < np; b++)
 				for (int k = 0; k < 3; k++) va[k] += cs->G[a * np + b] * P[b][k];
-			double slip;
-			if (csf_contact_slide_turned(na, vr[a], va, vres[a], &slip)) wh[a] = 1, changed = 1;
+			if (csf_contact_slide_turned(na, vr[a], va, vres[a])) wh[a] = 1, changed = 1;
 		}
 		if (changed) continue;
 		apply_impulses(cs, m, cl, np, P);
@@ -568,8 +567,7 @@ int csf_contact_stick_cluster(csf_contacts *cs, double *m, cpair *hit, double le
 		   m/s stopped so turned a neighbour's slide of 1.3e-3 m/s back) */
 		for (uint32_t a = 0; a < np && !unmet && out < 0 && in < 0; a++) {
 			if (!cs->act[a] || whole[a]) continue;
-			double slip;
-			unmet = csf_contact_slide_turned(n + 3 * a, vr[a], va[a], vres[a], &slip) && slip > vres[a];
+			unmet = slip[a] > vres[a] && csf_contact_slide_turned(n + 3 * a, vr[a], va[a], vres[a]);
 		}
 		if (unmet) { /* no impulses hold the pairs as they are: one held by its normal alone parts, on trial */
 			if (trial != UINT32_MAX) cs->act[trial] = 1;

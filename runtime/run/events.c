@@ -257,14 +257,17 @@ static int substep_guards(run *r, csf_ode *ode, double ta, double tb, const doub
  * Only its bodies' slots of r->ys are interpolated then (csf_ode_dense_at,
  * the same values): the rest of r->ys is not that state.
  */
+/* Whether guard k is a contact pair's first guard (an apart pair's gap: csf_contacts_gap_slots), that pair
+   (k - r->gcont) / 2. */
+static int pair_gap_guard(const run *r, size_t k) { return r->cs && k >= r->gcont && (k - r->gcont) % 2 == 0; }
+
 static int guard_at(run *r, csf_ode *ode, int dense, uint32_t k, double ta, double tb, const double *yb, double tc,
                     char *msg, size_t msglen)
 {
 	if (!dense) return substep_guards(r, ode, ta, tb, yb, tc, msg, msglen);
 	uint32_t idx[12], ni;
 	double rate;
-	if (r->cs && k >= r->gcont && (k - r->gcont) % 2 == 0 &&
-	    (ni = csf_contacts_gap_slots(r->cs, (uint32_t)(k - r->gcont) / 2, idx)) > 0) {
+	if (pair_gap_guard(r, k) && (ni = csf_contacts_gap_slots(r->cs, (uint32_t)(k - r->gcont) / 2, idx)) > 0) {
 		if (csf_ode_dense_at(ode, tc, idx, ni, r->ys)) return CSF_ODE_STOPPED;
 		csf_contacts_gap_rate(r->cs, (uint32_t)(k - r->gcont) / 2, r->m, r->ys, &r->gs[k], &rate);
 		return CSF_ODE_OK;
@@ -606,7 +609,7 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
 		for (size_t k = 0; k < ng; k++) {
 			if (!(r->ga[k] >= 0 && r->gh[k] < 0)) continue;
 			double sk = r->gp[k] >= 0 ? r->gp[k] / (r->gp[k] - r->gh[k]) : 0, g, rate;
-			if (r->dense && r->gp[k] >= 0 && k >= r->gcont && (k - r->gcont) % 2 == 0 &&
+			if (r->dense && r->gp[k] >= 0 && pair_gap_guard(r, k) &&
 			    csf_contacts_gap_rate(r->cs, (uint32_t)(k - r->gcont) / 2, r->m, y, &g, &rate)) {
 				double l = lo, gl = r->gp[k], u = hi, gu = r->gh[k];
 				int at_hi;
