@@ -545,7 +545,11 @@ t_column() {
 # a change to the contact solver that moves the trajectories must keep all of them passing
 # (a build that also stopped a slide only where its deceleration stopped it went on colliding
 # at 0.65 m/s, 50 290 impacts at one instant, and crawled at 0.7 m/s; slips_anew without the
-# rule for a neighbour's slide, csf_contact_slide_turned, crawled at 0.3 m/s; neither was kept)
+# rule for a neighbour's slide, csf_contact_slide_turned, crawled at 0.3 m/s; neither was kept;
+# nor were an event location that took fewer steps, or one that kept the state its crossing was
+# found on: each crawled at 0.2 m/s from t = 1.33 s, where the lower six balls lie in the
+# hexagonal packing the 0.25 m box fits exactly, and a cluster's friction there has its rank
+# decided at its threshold, bench/README.md's pile section)
 t_column_speed() {
 	column "column_$1" "$1" 4 401 2.5
 }
