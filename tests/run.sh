@@ -536,6 +536,19 @@ column() {
 		bad "$1: $(head -n 1 "$T/chk")"
 	fi
 }
+# a hexagonal packing of six balls wedged in a box 5 radii wide, a seventh dropped on it
+# (tests/piles/packing.csf): every row against check.awk
+t_packing() {
+	if ! "$CSFC" tests/piles/packing.csf -o "$T/packing.csfb" 2>"$T/err" || ! "$CSFVM" "$T/packing.csfb" >"$T/packing.csv" 2>"$T/err"; then
+		bad "packing: $(grep -v '^warning' "$T/err" | head -n 1)"
+		return
+	fi
+	if awk -v xw=0.2 -v m=0.5 -v r=0.04 -v mu=0.4 -v rest=2 -v rows=301 -f tests/piles/check.awk "$T/packing.csv" >"$T/chk" 2>&1; then
+		ok
+	else
+		bad "packing: $(head -n 1 "$T/chk")"
+	fi
+}
 t_column() {
 	column column 0.38 4 401 2.5
 	column column_collapse 0.4 1.43 144
@@ -546,10 +559,9 @@ t_column() {
 # (a build that also stopped a slide only where its deceleration stopped it went on colliding
 # at 0.65 m/s, 50 290 impacts at one instant, and crawled at 0.7 m/s; slips_anew without the
 # rule for a neighbour's slide, csf_contact_slide_turned, crawled at 0.3 m/s; neither was kept;
-# nor were an event location that took fewer steps, or one that kept the state its crossing was
-# found on: each crawled at 0.2 m/s from t = 1.33 s, where the lower six balls lie in the
-# hexagonal packing the 0.25 m box fits exactly, and a cluster's friction there has its rank
-# decided at its threshold, bench/README.md's pile section)
+# an event location that took fewer steps crawled at 0.2 m/s from t = 1.33 s, where the lower six
+# balls lie in the hexagonal packing the 0.25 m box fits exactly, until friction all but
+# redundant there was taken in part: bench/README.md's pile section)
 t_column_speed() {
 	column "column_$1" "$1" 4 401 2.5
 }
@@ -905,6 +917,7 @@ done
 	echo piles_now
 	echo piles_slow
 	echo column
+	echo packing
 	for v in 0.2 0.25 0.3 0.35 0.45 0.5 0.55 0.6 0.65 0.7 0.75 0.8; do echo "column_speed $v"; done
 	echo pile_steps
 	echo jam_now

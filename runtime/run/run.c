@@ -86,12 +86,13 @@ static stop run_alloc(session *S)
 	r->ng = r->gcont; /* and two per candidate contact, none yet */
 	if (S->events || S->autom_on || p->ncons) { /* (auto, constraints: jw, for a Jacobian by differences) */
 		size_t n = p->ny ? p->ny : 1;
-		S->work = malloc(12 * n * sizeof *S->work);
+		S->work = malloc(13 * n * sizeof *S->work);
 		if (S->work) {
 			r->ya = S->work, r->fa = r->ya + n, r->fb = r->fa + n, r->ys = r->fb + n, r->fs = r->ys + n,
 			r->ye = r->fs + n;
 			r->jw = r->ye + n;
 			r->yh = r->jw + 3 * n;
+			r->yk = r->yh + 3 * n;
 		}
 	}
 	if (S->events) csf_run_room_for_guards(r, r->ng ? r->ng : 1);
@@ -794,6 +795,7 @@ static void run_free(session *S)
 	free(r->gl);
 	free(r->gp);
 	free(r->gx);
+	free(r->gk);
 	free(r->est);
 	free(r->order);
 	free(S->work);

@@ -48,6 +48,7 @@ typedef struct run {
 	double *ga, *gb, *gs, *gh, *gt, *gl, *ya, *fa, *fb, *ys, *fs, *ye;
 	double *gp;       /* the guards at the sample before the first where one is negative */
 	double *gx;       /* the exact guards at the lower end of locate's bracket */
+	double *yk, *gk;  /* the state and guards at the upper end of locate's bracket, as they were found */
 	uint32_t *order;  /* the guards negative there, by their crossings' estimates */
 	double *est;      /* those estimates, as fractions of the bracket */
 	double *jw; /* with contacts: 3 work vectors for the Jacobian by differences */
