@@ -191,6 +191,12 @@ static inline int has_friction(const cpair *c, const double *m)
 static inline double mu_s(const cpair *c, const double *m) { return csf_max(m[I(c, MUS)], m[J(c, MUS)]); }
 static inline double mu_k(const cpair *c, const double *m) { return csf_max(m[I(c, MUK)], m[J(c, MUK)]); }
 static inline double restitution(const cpair *c, const double *m) { return csf_min(m[I(c, CR)], m[J(c, CR)]); }
+/* The slip (speed) that friction of coefficient mu at pair c's normal force stops within time
+   zeno: mu |N| (1/m_i + 1/m_j) zeno. */
+static inline double stopped_within(const cpair *c, const double *m, double mu, double zeno)
+{
+	return mu * fabs(W(c, LAM)) * (inv_mass_i(c, m) + inv_mass_j(c, m)) * zeno;
+}
 
 /* ---- the functions one file calls in another ---- */
 
@@ -248,6 +254,9 @@ int csf_contact_basis(const cpair *c, const double *m, const double n[3], double
 void csf_contact_choose(csf_contacts *cs, double *m, int fresh);
 /* modes.c: the modes of cluster cl[0..np) with friction, chosen together (0), or -1 (not chosen) */
 int csf_contact_choose_modes(csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np);
+
+/* settle.c: a pair in contact whose slip (sliding: ahead, slowing) its friction stops within time zeno */
+int csf_contact_slip_stops(const cpair *c, const double *m, double zeno);
 
 /* lemke.c: the linear complementarity problem w = M z + q >= 0, z >= 0, w . z = 0 (M n x n,
    row-major) by Lemke's method, into z, with T (csf_lcp_work(n) doubles) and basis (n) to work in:

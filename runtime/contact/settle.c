@@ -279,6 +279,21 @@ static int mark_touching(csf_contacts *cs, const double *m)
 	return 0;
 }
 
+/* A slip that friction stops within the Zeno time: a sticking pair's, within what its static friction
+   so stops (as hold_velocity holds it); a sliding pair's, ahead and slowing (its relative tangential
+   acceleration against its way), within what its sliding friction so stops. */
+int csf_contact_slip_stops(const cpair *c, const double *m, double zeno)
+{
+	double n[3], curv, vt[3], ar[3], at[3];
+	if (!has_friction(c, m) || !in_contact(c)) return 0;
+	csf_contact_geometry(c, m, n, &curv);
+	csf_contact_slip_velocity(c, m, n, vt);
+	if (W(c, MODE) == STICKING) return mag3(vt) <= stopped_within(c, m, mu_s(c, m), zeno);
+	rel(c, m, I(c, A), J(c, A), ar);
+	csf_contact_tangential(ar, n, at);
+	return dot3(vt, WV(c, DS)) > 0 && dot3(at, WV(c, DS)) < 0 && mag3(vt) <= stopped_within(c, m, mu_k(c, m), zeno);
+}
+
 /*
  * Pair c takes the mode csf_contact_choose chose for it (to, TO_*; a
  * slide along dir). Entering contact, it is placed exactly in contact and
@@ -306,14 +321,19 @@ static int take_mode(csf_contacts *cs, cpair *c, double *m, int to, const double
 	           (to == TO_SLIDE && W(c, MODE) == SLIDING && memcmp(WV(c, DS), dir, 3 * sizeof *dir) == 0))
 		return 0;
 	if (to == TO_STICK) stick(cs, c, m);
-	if (to == TO_SLIDE) { /* a slip within the rounding, whose way is noise, is taken away: it begins along dir */
+	if (to == TO_SLIDE) { /* a slip within the rounding, whose way is noise, is taken away, and a slide
+		                         that its friction stops within the Zeno time (csf_contact_slip_stops, as
+		                         csf_contact_choose_modes counts it) stops, as one that stops at once: it
+		                         begins along dir */
 		double n[3], curv, vt[3];
 		csf_contact_geometry(c, m, n, &curv);
 		csf_contact_slip_velocity(c, m, n, vt);
-		if (mag3(vt) <= speed_resolution(cs, c, m)) {
+		double s = mag3(vt);
+		if (s <= speed_resolution(cs, c, m)) {
 			for (int k = 0; k < 3; k++) vt[k] = -vt[k];
 			csf_contact_add_impulse(c, m, vt);
-		}
+		} else if (csf_contact_slip_stops(c, m, cs->zeno))
+			stick(cs, c, m); /* by its cluster's impulses (its pair's own drove a ball 3e-9 m into a wall) */
 		W(c, MODE) = SLIDING;
 		memcpy(WV(c, DS), dir, 3 * sizeof *dir);
 	}
@@ -386,13 +406,6 @@ static int turns_back(const csf_contacts *cs, const cpair *c, const double *m)
 	rel(c, m, I(c, A), J(c, A), ar);
 	csf_contact_tangential(ar, n, at);
 	return dot3(at, WV(c, DS)) < -csf_contact_accel_resolution(c, m, curv);
-}
-
-/* The slip (speed) that friction of coefficient mu at pair c's normal force stops within time
-   zeno: mu |N| (1/m_i + 1/m_j) zeno. */
-static double stopped_within(const cpair *c, const double *m, double mu, double zeno)
-{
-	return mu * fabs(W(c, LAM)) * (inv_mass_i(c, m) + inv_mass_j(c, m)) * zeno;
 }
 
 /*
