@@ -7,6 +7,9 @@
 #    after it the last, byte for byte.
 #  - csf(5) lists the bytecode payload's fields as the table csf_fields in
 #    runtime/prog/fields.c does (the one source): the same names, in the same order.
+#  - no man page holds a control character other than a tab (a font change
+#    written \f in a script that printed it came out as a form feed, which
+#    troff drops: "3\fIi\fR" showed as "3Ii R").
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3
 pass=0 fail=0
@@ -41,5 +44,8 @@ awk '/^\.SS Bytecode/ { on = 1 } on && /^An instruction is/ { exit } !on { next 
 	man/csf.5 | sed -n '/^strings$/,$p' >"$T/man"
 if [ "$(wc -l <"$T/table")" -gt 20 ] && cmp -s "$T/table" "$T/man"; then ok
 else bad "csf(5) does not list the bytecode fields of $F in order: $(diff "$T/table" "$T/man" | head -n 4 | tr '\n' ' ')"; fi
+# the man pages: no control character but a tab (and the newlines)
+ctl=$(LC_ALL=C grep -n "$(printf '[\001-\010\013-\037\177]')" man/*.[1-9] | head -n 3 | cut -c1-80)
+if [ -z "$ctl" ]; then ok; else bad "a control character in a man page: $(echo "$ctl" | cat -v | tr '\n' ' ')"; fi
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
