@@ -394,6 +394,7 @@ void csf_contacts_after_kick(csf_contacts *cs, double *m, double zeno);
 uint32_t csf_contacts_count(const csf_contacts *c);
 /* The contact systems solved directly so far, and how many of them were recalled (not solved again). */
 void csf_contacts_solves(const csf_contacts *c, unsigned long *solved, unsigned long *recalled);
+void csf_contacts_searches(const csf_contacts *c, unsigned long *searches, unsigned long *unfound);
 /* Whether the contact forces of some evaluation could not be solved (masses that differ by more than about 1e10,
    or a cluster that neither the direct solve nor the sweeps solve); set back (the stability guard's
    evaluations at states near the run's, which are not the run's). */

@@ -199,6 +199,11 @@ void csf_contacts_solves(const csf_contacts *c, unsigned long *solved, unsigned 
 	*solved = (unsigned long)c->solved_clock, *recalled = (unsigned long)c->recalled;
 }
 
+void csf_contacts_searches(const csf_contacts *c, unsigned long *searches, unsigned long *unfound)
+{
+	*searches = (unsigned long)c->searches, *unfound = (unsigned long)c->unfound;
+}
+
 void csf_contacts_guards(const csf_contacts *c, double *g)
 {
 	for (uint32_t k = 0; k < c->n; k++) g[2 * k] = c->pairs[k].w[W_G0], g[2 * k + 1] = c->pairs[k].w[W_G1];

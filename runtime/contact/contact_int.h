@@ -155,6 +155,7 @@ struct csf_contacts {
 	double zeno;               /* and its Zeno time (settle.c) */
 	double vfloor;             /* the least speed that counts at the instant being settled (settle.c) */
 	uint32_t vain;             /* the searches for modes that found none at that instant (modes.c) */
+	uint64_t searches, unfound; /* the searches for modes of the run, and those that found none */
 	int unsolved; /* the sweeps left contact forces that do not hold (csf_contacts_unsolved) */
 };
 
@@ -260,9 +261,11 @@ int csf_contact_slip_stops(const cpair *c, const double *m, double zeno);
 
 /* lemke.c: the linear complementarity problem w = M z + q >= 0, z >= 0, w . z = 0 (M n x n,
    row-major) by Lemke's method, into z, with T (csf_lcp_work(n) doubles) and basis (n) to work in:
-   0, or -1 when it finds no solution */
+   0, or -1 when it finds no solution; csf_lcp_solve: that, or where it ends on a ray, the
+   solution of the problem with M's diagonal raised by 1e-9 of its largest entry, 1 */
 size_t csf_lcp_work(uint32_t n);
 int csf_lcp_lemke(uint32_t n, const double *M, const double *q, double *z, double *T, uint32_t *basis);
+int csf_lcp_solve(uint32_t n, const double *M, const double *q, double *z, double *T, uint32_t *basis);
 
 /* impulse.c: a change dv of a pair's relative velocity; the impact of pair hit, whose relative
    normal velocity vn becomes target (1: not solved); the velocities before an impact, into W_VR */

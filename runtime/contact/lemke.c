@@ -17,6 +17,21 @@
  * Among rows that tie in the ratio test (a degenerate step, common where
  * contacts are redundant), z0's row leaves first, and otherwise the
  * lexicographic rule decides (prefer); the pivots are bounded too.
+ *
+ * csf_lcp_solve takes the method's answer, and where it ends on a ray,
+ * that of M + e I, e = LCP_SHIFT times M's largest entry: a copositive M
+ * (as the contact problems' pyramid of pairs at rest, z . M z >= 0 for z
+ * >= 0) is then strictly copositive, for which the method ends in a
+ * solution for every q (Cottle, Pang and Stone, 3.8 and 4.4). An unknown
+ * on which no row depends (a force that moves nothing) is brought in with
+ * nothing to limit it and ends the method on a ray, though the problem
+ * may have a solution, which the shift finds (tests/unit/test_lcp.c); the
+ * clusters of about 50 pairs of a Galton board's bins (balls on dividers,
+ * pegs and each other, 160 to 226 unknowns) ended on rays after some 300
+ * pivots, double or long double alike, and no longer do. The shifted
+ * answer solves a problem within e of the one asked, so it is a guess,
+ * which its caller checks (modes.c: the modes it gives are taken only
+ * where the cluster's exact system agrees).
  */
 #include "contact_int.h"
 
@@ -56,7 +71,12 @@ static int prefer(const double *T, uint32_t n, uint32_t wd, uint32_t c, const ui
 
 size_t csf_lcp_work(uint32_t n) { return (size_t)n * (2 * (size_t)n + 2); }
 
-int csf_lcp_lemke(uint32_t n, const double *M, const double *q, double *z, double *T, uint32_t *basis)
+/* The shift of csf_lcp_solve's second try, relative to M's largest entry (1e-12 left a
+   third of the Galton board's rays; 1e-9 and 1e-6 none). */
+static const double LCP_SHIFT = 1e-9;
+
+/* Lemke's method on M + shift I. */
+static int lemke(uint32_t n, const double *M, double shift, const double *q, double *z, double *T, uint32_t *basis)
 {
 	const uint32_t wd = 2 * n + 2, z0 = 2 * n, rhs = 2 * n + 1;
 	uint32_t r = 0;
@@ -69,6 +89,7 @@ int csf_lcp_lemke(uint32_t n, const double *M, const double *q, double *z, doubl
 		double *ti = T + (size_t)i * wd;
 		ti[i] = 1;
 		for (uint32_t j = 0; j < n; j++) ti[n + j] = -M[(size_t)i * n + j];
+		ti[n + i] -= shift;
 		ti[z0] = -1;
 		ti[rhs] = q[i];
 		basis[i] = i;
@@ -103,4 +124,17 @@ int csf_lcp_lemke(uint32_t n, const double *M, const double *q, double *z, doubl
 		}
 	}
 	return -1;
+}
+
+int csf_lcp_lemke(uint32_t n, const double *M, const double *q, double *z, double *T, uint32_t *basis)
+{
+	return lemke(n, M, 0, q, z, T, basis);
+}
+
+int csf_lcp_solve(uint32_t n, const double *M, const double *q, double *z, double *T, uint32_t *basis)
+{
+	if (!lemke(n, M, 0, q, z, T, basis)) return 0;
+	double big = 0;
+	for (size_t k = 0; k < (size_t)n * n; k++) big = csf_max(big, fabs(M[k]));
+	return big > 0 && !lemke(n, M, LCP_SHIFT * big, q, z, T, basis) ? 1 : -1;
 }

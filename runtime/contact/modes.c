@@ -331,7 +331,10 @@ static int guided_set(search *s)
  * l >= 0 with b. It sticks where l is 0 and otherwise slides against its
  * friction. In a scene in a plane the pyramid is the cone (t2 across the
  * plane, where nothing moves); elsewhere it is close to it. Solved by
- * Lemke's method (lemke.c), it names the pairs that part, stick and slide,
+ * Lemke's method (lemke.c; in a cluster of more than MODES_MAX pairs, or
+ * one in which no pair slides with mu_k N, csf_lcp_solve: where the method
+ * ends on a ray, again with the matrix's diagonal raised by 1e-9 of its
+ * largest entry), it names the pairs that part, stick and slide,
  * and the way each slide begins: a guess, taken where consistent() finds
  * it consistent with the cluster's exact system (mu_k's friction, the
  * cone). A pair at rest that is fixed (lcp_sets) is taken as one that
@@ -427,7 +430,12 @@ static int lcp_set(search *s)
 			q[iB[a] + nd[a]] = 0;
 		}
 	}
-	if (csf_lcp_lemke(nv, M, q, z, T, basis)) goto out;
+	/* where Lemke's method ends on a ray, the shifted problem (csf_lcp_solve): in a cluster too
+	   large for the searches, and in one where no pair slides with mu_k N (its matrix copositive,
+	   the shifted one strictly so, which the method always solves) */
+	int slides = 0;
+	for (uint32_t a = 0; a < np; a++) slides |= has_friction(s->p[a].c, m) && (s->p[a].slips || s->p[a].fixed);
+	if ((np > MODES_MAX || !slides ? csf_lcp_solve(nv, M, q, z, T, basis) : csf_lcp_lemke(nv, M, q, z, T, basis)) < 0) goto out;
 	for (uint32_t a = 0; a < np; a++) {
 		mpair *p = &s->p[a];
 		memcpy(u0[a], p->u0, sizeof u0[a]);
@@ -585,9 +593,10 @@ int csf_contact_choose_modes(csf_contacts *cs, const double *m, const uint32_t *
 			cs->G[a * np + b] = csf_contact_coupling(cs, s.p[a].c, s.p[b].c, m);
 			cs->G1[a * np + b] = csf_contact_coupling(cs, s.p[a].c, s.p[b].c, NULL);
 		}
+	cs->searches++;
 	if (np <= MODES_MAX ? find_set(&s, 0, 1) && guided_set(&s) && find_set(&s, 2, np) && lcp_sets(&s)
 	                    : find_set(&s, 0, 0) && lcp_sets(&s)) {
-		cs->vain++; /* none found */
+		cs->vain++, cs->unfound++; /* none found */
 		goto out;
 	}
 	found = 0;

@@ -625,14 +625,18 @@ static stop run_rows(session *S)
 static void stats_run(const session *S, const csf_opts *o, unsigned long steps, unsigned long rejected, FILE *err)
 {
 	const run *r = &S->r;
-	char cand[192] = "";
+	char cand[320] = "";
 	if (r->cs) {
-		unsigned long solved, recalled;
+		unsigned long solved, recalled, searches, unfound;
 		csf_contacts_solves(r->cs, &solved, &recalled);
-		snprintf(cand, sizeof cand,
-		         ", %.1f contact pairs watched (candidates) on average, at most %lu, %lu contact systems solved "
-		         "(%lu of them recalled)",
-		         r->nchoices ? (double)r->ncand / (double)r->nchoices : 0.0, r->maxcand, solved, recalled);
+		csf_contacts_searches(r->cs, &searches, &unfound);
+		int n = snprintf(cand, sizeof cand,
+		                 ", %.1f contact pairs watched (candidates) on average, at most %lu, %lu contact systems solved "
+		                 "(%lu of them recalled)",
+		                 r->nchoices ? (double)r->ncand / (double)r->nchoices : 0.0, r->maxcand, solved, recalled);
+		if (searches && n > 0 && (size_t)n < sizeof cand)
+			snprintf(cand + n, sizeof cand - (size_t)n, ", %lu search%s for the modes of a cluster with friction (%lu found none)",
+			         searches, searches > 1 ? "es" : "", unfound);
 	}
 	char fired[48] = "";
 	if (r->p->nwhens) snprintf(fired, sizeof fired, " (%lu when blocks fired)", r->nfired);

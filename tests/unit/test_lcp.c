@@ -5,8 +5,9 @@
  * contacts that say the same (a degenerate, singular M: every split of
  * the force is an answer), a contact with Coulomb friction in the four
  * directions of its tangent plane that sticks and one that slides (the
- * forces from the friction law by hand), and a problem without a
- * solution (a secondary ray).
+ * forces from the friction law by hand), a problem without a solution
+ * (a secondary ray), and one with a solution on which the method ends on
+ * a ray, which csf_lcp_solve's shifted diagonal finds.
  */
 #include <math.h>
 
@@ -131,6 +132,32 @@ START_TEST(no_solution)
 }
 END_TEST
 
+START_TEST(ray_with_a_solution)
+{
+	/* w1 = 2 z2 - 3, w2 = z2 - 2: z = (0, 2), w = (1, 0). No row depends on z1 (a force that
+	   moves nothing): the method brings it in first (the complement of w1, which z0 sent out)
+	   and nothing limits it, a ray; the shifted diagonal, e = 2e-9, limits it, and the answer
+	   solves the problem asked to within e. Without a solution it still says so. */
+	double M[4] = { 0, 2, 0, 1 }, q[2] = { -3, -2 }, z[2], w[2];
+	double T[2 * 6];
+	uint32_t basis[2];
+	ck_assert_int_eq(solve(2, M, q, z, w), -1);
+	ck_assert_int_eq(csf_lcp_solve(2, M, q, z, T, basis), 1);
+	for (uint32_t i = 0; i < 2; i++) w[i] = q[i] + M[i * 2] * z[0] + M[i * 2 + 1] * z[1];
+	ck_assert_double_eq_tol(z[0], 0, 1e-8);
+	ck_assert_double_eq_tol(z[1], 2, 1e-8);
+	ck_assert_double_eq_tol(w[0], 1, 1e-8);
+	ck_assert_double_eq_tol(w[1], 0, 1e-8);
+	double Mn[1] = { -1 }, qn[1] = { -1 };
+	ck_assert_int_eq(csf_lcp_solve(1, Mn, qn, z, T, basis), -1);
+	/* where the method finds the answer, it is the method's, unshifted */
+	double Mp[4] = { 2, 1, 1, 2 }, qp[2] = { -5, -6 };
+	ck_assert_int_eq(csf_lcp_solve(2, Mp, qp, z, T, basis), 0);
+	ck_assert_double_eq_tol(z[0], 4.0 / 3, 1e-14);
+	ck_assert_double_eq_tol(z[1], 7.0 / 3, 1e-14);
+}
+END_TEST
+
 Suite *lcp_suite(void)
 {
 	Suite *s = suite_create("lcp");
@@ -141,6 +168,7 @@ Suite *lcp_suite(void)
 	tcase_add_test(tc, friction_sticks);
 	tcase_add_test(tc, friction_slides);
 	tcase_add_test(tc, no_solution);
+	tcase_add_test(tc, ray_with_a_solution);
 	suite_add_tcase(s, tc);
 	return s;
 }
