@@ -353,7 +353,7 @@ static int lcp_set(search *s)
 	double (*D)[4][3] = malloc(np * sizeof *D), (*f0)[3] = malloc(2 * np * sizeof *f0), (*u0)[3] = f0 + np;
 	double *M = NULL;
 	uint32_t *basis = NULL;
-	int ok = -1;
+	int ok = -1, slides = 0; /* slides: a pair slides with mu_k N (its column not the pyramid's) */
 	for (uint32_t a = 0; a < np; a++) s->p[a].lslide = 0;
 	if (!iN || !D || !f0) goto out;
 	for (uint32_t a = 0; a < np; a++) { /* each pair's force directions: N's, and at rest with friction D's */
@@ -364,6 +364,7 @@ static int lcp_set(search *s)
 		if (!has_friction(p->c, m)) continue;
 		if (p->slips || p->fixed) { /* -mu_k N along the way it slips (csf_contact_basis), or slides */
 			double vt[3], u[3];
+			slides = 1;
 			csf_contact_slip_velocity(p->c, m, p->n, vt);
 			if (p->fixed) memcpy(u, p->uf, sizeof u);
 			else if (!unit(vt, u)) memcpy(u, p->u0, sizeof u);
@@ -433,8 +434,6 @@ static int lcp_set(search *s)
 	/* where Lemke's method ends on a ray, the shifted problem (csf_lcp_solve): in a cluster too
 	   large for the searches, and in one where no pair slides with mu_k N (its matrix copositive,
 	   the shifted one strictly so, which the method always solves) */
-	int slides = 0;
-	for (uint32_t a = 0; a < np; a++) slides |= has_friction(s->p[a].c, m) && (s->p[a].slips || s->p[a].fixed);
 	if ((np > MODES_MAX || !slides ? csf_lcp_solve(nv, M, q, z, T, basis) : csf_lcp_lemke(nv, M, q, z, T, basis)) < 0) goto out;
 	for (uint32_t a = 0; a < np; a++) {
 		mpair *p = &s->p[a];
