@@ -65,7 +65,9 @@ void lint_model(Model *M)
 			if (b->f[f]) vec_push(&read, sema_canon(b->f[f]));
 	}
 
-	/* a property the user set that nothing reads: a misspelling, most often */
+	/* a property the user set that nothing reads: a misspelling, most often; a radius, where
+	   nothing collides: the contacts of mechanics/rules not used (said once) */
+	int contact_hint = M->cbodies.n > 0;
 	for (int i = 0; i < M->objects.n; i++) {
 		Object *o = M->objects.v[i];
 		const char **c = NULL; /* the names a misspelt one may stand for: made once for the object */
@@ -83,7 +85,13 @@ void lint_model(Model *M)
 			const char *s = csf_suggest_name(p->name, c, nc);
 			/* of an object left out, nothing is read: only a misspelling is worth a word */
 			if (o->dropped && (!s || !first_at(&seen, p->loc))) continue;
-			if (s) warn_at(p->loc, "property '%s' of object '%s' is never read; did you mean '%s'?", p->name, o->name, s);
+			if (!s && !contact_hint && !strcmp(p->name, "radius")) {
+				warn_at(p->loc, "property 'radius' of object '%s' is never read: no contacts are made, so bodies "
+				                "pass through each other and through planes; hint: using mechanics/rules",
+				        o->name);
+				contact_hint = 1;
+			} else if (s)
+				warn_at(p->loc, "property '%s' of object '%s' is never read; did you mean '%s'?", p->name, o->name, s);
 			else warn_at(p->loc, "property '%s' of object '%s' is never read", p->name, o->name);
 		}
 	}
