@@ -156,6 +156,11 @@ struct csf_contacts {
 	double vfloor;             /* the least speed that counts at the instant being settled (settle.c) */
 	uint32_t vain;             /* the searches for modes that found none at that instant (modes.c) */
 	uint64_t searches, unfound; /* the searches for modes of the run, and those that found none */
+	/* the ranks held for the friction of indeterminate clusters (cluster.c, held_rank): per system's
+	   shape (its hash), the rank taken last, and when; held: the last solve took one */
+	struct csf_held { uint64_t sig, used; uint32_t rank; } held[16];
+	uint64_t held_clock;
+	int held_now, hold; /* hold: the force stage's solves, which hold ranks (impacts and searches do not) */
 	int unsolved; /* the sweeps left contact forces that do not hold (csf_contacts_unsolved) */
 };
 

@@ -589,11 +589,13 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 	}
 	/* each cluster directly; those it does not take (cluster.c) by Gauss-Seidel sweeps */
 	uint32_t nq = csf_contact_clusters(cs, picks_contact, NULL), sweeps = 0; /* some cluster needs them */
+	cs->hold = 1; /* the forces, continuous in time, hold the friction's rank (cluster.c, held_rank) */
 	for (uint32_t q = 0; q < nq; q++) {
 		int ok = !cluster_forces(cs, m, cs->cl + cs->cstart[q], cs->cstart[q + 1] - cs->cstart[q]);
 		for (uint32_t a = cs->cstart[q]; a < cs->cstart[q + 1]; a++) cs->direct[cs->cl[a]] = (unsigned char)ok;
 		sweeps |= !ok;
 	}
+	cs->hold = 0;
 	double before = sweeps ? residual(cs, m) : 0;
 	for (uint32_t sweep = 0; sweeps && sweep < 100; sweep++) {
 		double change = 0, size = 0;

@@ -128,6 +128,53 @@ START_TEST(more_than_kept)
 }
 END_TEST
 
+/*
+ * The friction's rank held near its threshold (cluster.c, held_rank). A
+ * normal force x0 and two friction unknowns x1, x2 (T = I, fric 0 1 1) in
+ * K = (1 1 0; 0 1 1; 0 0 e), b = (2, 1, e): the exact answer is (2, 0, 1)
+ * for every e. The friction's columns off the normal force's, (0, 1, 0)
+ * and (0, 1, e), have the pivots 1 and about e; the threshold is 1e-10 of
+ * A's largest column (sqrt 2), 1.414e-10. Its rank 2 gives the exact
+ * answer; rank 1 leaves the direction of e out and takes the least-norm
+ * friction of the other, x1 = x2 = 1/2 to 1e-9 (and x0 = 3/2). A pivot
+ * below the threshold by less than a factor of 4 is kept if the last solve
+ * of the same system's shape kept it; above the threshold, or below the
+ * band, the threshold decides. Only the force stage holds (cs->hold): an
+ * impact's solve takes the threshold's rank.
+ */
+static void solve_e(csf_contacts *cs, double e, double x2)
+{
+	const double K[9] = { 1, 1, 0, 0, 1, 1, 0, 0, e }, b[3] = { 2, 1, e }, T[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+	const unsigned char fric[3] = { 0, 1, 1 };
+	memcpy(cs->kb, K, sizeof K);
+	memcpy(cs->kb + 9, b, sizeof b);
+	ck_assert_int_eq(csf_contact_least_squares(cs, 3, T, fric), 0);
+	ck_assert_double_eq_tol(cs->x[2], x2, 1e-9);
+	ck_assert_double_eq_tol(cs->x[1], 1 - x2, 1e-9);
+	ck_assert_double_eq_tol(cs->x[0], 1 + x2, 1e-9);
+}
+
+START_TEST(rank_held)
+{
+	csf_contacts *cs = system_new();
+	cs->kb = calloc(12, sizeof *cs->kb);
+	ck_assert_ptr_nonnull(cs->kb);
+	cs->hold = 1;
+	solve_e(cs, 4e-10, 1);     /* above the threshold, in the band: the threshold's rank, 2 */
+	solve_e(cs, 1e-10, 1);     /* below it, in the band: 2 held (the threshold alone: 1, x2 = 1/2) */
+	solve_e(cs, 1e-11, 0.5);   /* below the band: 1 */
+	solve_e(cs, 1e-10, 0.5);   /* in the band again, below the threshold: 1, as last */
+	solve_e(cs, 4e-10, 1);     /* above the threshold: 2 */
+	solve_e(cs, 1e-10, 1);     /* below it, in the band: 2 held */
+	ck_assert_int_eq(cs->held_now, 1);
+	cs->hold = 0;
+	solve_e(cs, 1e-10, 0.5);   /* not the force stage: the threshold's rank */
+	cs->hold = 1;
+	solve_e(cs, 1e-6, 1);      /* far from the threshold: not held */
+	csf_contacts_free(cs);
+}
+END_TEST
+
 Suite *recall_suite(void)
 {
 	Suite *s = suite_create("recall");
@@ -135,6 +182,7 @@ Suite *recall_suite(void)
 	tcase_add_test(tc, same_answer);
 	tcase_add_test(tc, failure_recalled);
 	tcase_add_test(tc, more_than_kept);
+	tcase_add_test(tc, rank_held);
 	suite_add_tcase(s, tc);
 	return s;
 }
