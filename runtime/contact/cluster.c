@@ -323,18 +323,24 @@ static double rank_share(double column, double tol)
  */
 enum { HOLD_BAND = 4, HOLD_N = (int)(sizeof ((csf_contacts *)0)->held / sizeof ((csf_contacts *)0)->held[0]) };
 
-static uint64_t shape_of(uint32_t dim, uint32_t nf, const double *K, const unsigned char *fric)
+/* The bytes of a system's shape, dim, nf, which unknowns are friction and which of K's coefficients
+   are not zero (SHAPE_BYTES(dim) of them), into pat; returns their number. */
+#define SHAPE_BYTES(dim) (2 * sizeof(uint32_t) + (size_t)(dim) + (size_t)(dim) * (dim))
+static size_t shape_of(uint32_t dim, uint32_t nf, const double *K, const unsigned char *fric, unsigned char *pat)
 {
-	uint64_t h = 1469598103934665603u;
-	h = (h ^ dim) * 1099511628211u, h = (h ^ nf) * 1099511628211u;
-	for (uint32_t i = 0; i < dim; i++) h = (h ^ (fric[i] != 0)) * 1099511628211u;
-	for (size_t k = 0; k < (size_t)dim * dim; k++) h = (h ^ (K[k] != 0)) * 1099511628211u;
-	return h;
+	memcpy(pat, &dim, sizeof dim), memcpy(pat + sizeof dim, &nf, sizeof nf);
+	unsigned char *at = pat + 2 * sizeof(uint32_t);
+	for (uint32_t i = 0; i < dim; i++) *at++ = fric[i] != 0;
+	for (size_t k = 0; k < (size_t)dim * dim; k++) *at++ = K[k] != 0;
+	return (size_t)(at - pat);
 }
 
-static int held_rank(csf_contacts *cs, lsq *qf, double *M, const double *Mc, uint32_t dim, uint32_t nf, double thr,
-                     uint64_t sig, double *wf)
+/* M kept in Mc and factored for the system K, fric (its shape hashed in pat: SHAPE_BYTES(dim) bytes). */
+static int held_rank(csf_contacts *cs, lsq *qf, double *M, double *Mc, uint32_t dim, uint32_t nf, double thr,
+                     const double *K, const unsigned char *fric, unsigned char *pat, double *wf)
 {
+	memcpy(Mc, M, (size_t)dim * nf * sizeof *Mc);
+	uint64_t sig = csf_hash_bytes(pat, shape_of(dim, nf, K, fric, pat));
 	if (lsq_factor(qf, M, dim, nf, thr * HOLD_BAND, wf)) return -1;
 	size_t lo = qf->rank, hi = lo, r0 = lo, r;
 	double d[DIRECT_MAX]; /* the pivots past the rank: the RZ step leaves those rows as the QR's */
@@ -369,7 +375,7 @@ static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, con
 	for (uint32_t j = 0; T && j < dim; j++) nf += fric[j] != 0;
 	nn = dim - nf;
 	if (!nn) nf = 0; /* friction alone (a block of it: csf_contact_solve): T is orthogonal, the least-norm forces */
-	size_t need = 2 * (size_t)dim * dim + 3 * (size_t)dim * nf + 16 * (size_t)dim;
+	size_t need = 2 * (size_t)dim * dim + 3 * (size_t)dim * nf + 16 * (size_t)dim + SHAPE_BYTES(dim) / sizeof(double) + 1;
 	if (need > cs->capls) {
 		double *ls = realloc(cs->ls, need * sizeof *ls);
 		if (!ls) return -1;
@@ -392,7 +398,8 @@ static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, con
 	lsq qn, qf;
 	gsl_set_error_handler_off();
 	double *wf = yn + dim, *r = wf + 4 * dim, *x0 = r + dim; /* the friction's own work, past qn's */
-	double *Mc = x0 + dim; /* M kept, should it be factored again (held_rank) */
+	double *Mc = x0 + dim; /* M kept, should it be factored again, and the system's shape (held_rank) */
+	unsigned char *pat = (unsigned char *)(Mc + (size_t)dim * nf);
 	double share = 1; /* of the friction M leaves (rank_share) */
 	if (!nf) { /* the least-norm forces */
 		if (lsq_factor(&qn, A, dim, dim, tol, w)) return -1;
@@ -414,10 +421,8 @@ static int solve_least_norm(csf_contacts *cs, uint32_t dim, const double *K, con
 		}
 		double colm = max_column(M, dim, nf, nf);
 		share = rank_share(colm, tol);
-		memcpy(Mc, M, (size_t)dim * nf * sizeof *Mc);
 		double thr = colm <= tol ? tol / RANK_BAND : tol;
-		if (cs->hold ? held_rank(cs, &qf, M, Mc, dim, nf, thr, shape_of(dim, nf, K, fric), wf)
-		             : lsq_factor(&qf, M, dim, nf, thr, wf))
+		if (cs->hold ? held_rank(cs, &qf, M, Mc, dim, nf, thr, K, fric, pat, wf) : lsq_factor(&qf, M, dim, nf, thr, wf))
 			return -1;
 	}
 	/* the forces for b, then once more for what they leave of it (its residual r, computed from K
