@@ -88,9 +88,10 @@ enum { APART, SLIDING, STICKING, HOPPING }; /* the modes of a pair */
    times it has begun to stick at the instant being settled (csf_contact_settle), whether
    sliding friction locks it (force.c), the margin its gap's guard takes after it lifted off
    (settle.c's lift_off), whether it lifted off at the instant being settled, whether it would turn
-   back (settle.c's turns_back, on the accelerations of the pass's evaluation). A pair that is not a
-   candidate is apart. */
-enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_SS = 14, W_LOCK = 15, W_LIFT = 16, W_LO = 17, W_TB = 18, W_N = 19 };
+   back (settle.c's turns_back, on the accelerations of the pass's evaluation), whether its cluster's
+   modes were found only with the forces kept within the cones (modes.c; force.c then keeps them so:
+   spread.c). A pair that is not a candidate is apart. */
+enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_SS = 14, W_LOCK = 15, W_LIFT = 16, W_LO = 17, W_TB = 18, W_SPREAD = 19, W_N = 20 };
 
 /* A candidate pair: body i (a mass point, $0) and body j (a mass point, a plane or an anchor, $1). */
 typedef struct cpair {
@@ -271,6 +272,13 @@ int csf_contact_slip_stops(const cpair *c, const double *m, double zeno);
 size_t csf_lcp_work(uint32_t n);
 int csf_lcp_lemke(uint32_t n, const double *M, const double *q, double *z, double *T, uint32_t *basis);
 int csf_lcp_solve(uint32_t n, const double *M, const double *q, double *z, double *T, uint32_t *basis);
+extern const double csf_lcp_shift; /* csf_lcp_solve's shift, relative to M's largest entry */
+/* spread.c: the forces x of a cluster whose pairs with cone[a] stick, where one's friction is beyond
+   mu_s N, plus the smallest self-stress that brings each within its cone and leaves no normal force
+   pulling: 0 nothing to do, 1 x changed, -1 none does (x as it was). */
+int csf_contact_spread(csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np, uint32_t dim,
+                       const unsigned char *dc, const uint32_t *at, const double *B, const double *nv,
+                       const unsigned char *cone, double *x);
 
 /* impulse.c: a change dv of a pair's relative velocity; the impact of pair hit, whose relative
    normal velocity vn becomes target (1: not solved); the velocities before an impact, into W_VR */

@@ -299,6 +299,19 @@ static int cluster_forces(csf_contacts *cs, double *m, const uint32_t *cl, uint3
 	if (csf_contact_solve(cs, dim, cs->K1, csf_contact_mass_ratio(cs, cl, np, m), cs->T, cs->fric))
 		return cluster_locks(cs, m, cl, np, sign);
 	force_resolutions(cs, m, cl, np, res);
+	/* a cluster whose modes were found only with forces within the cones (modes.c): its sticking
+	   pairs' friction kept within them, and no normal force pulling, where other forces of the same
+	   motion can (spread.c) */
+	int spread = 0;
+	for (uint32_t a = 0; a < np; a++) spread |= W(&cs->pairs[cl[a]], SPREAD) != 0;
+	if (spread) {
+		unsigned char cone[DIRECT_MAX];
+		for (uint32_t a = 0; a < np; a++) {
+			const cpair *c = &cs->pairs[cl[a]];
+			cone[a] = has_friction(c, m) && W(c, MODE) == STICKING;
+		}
+		csf_contact_spread(cs, m, cl, np, dim, cs->dc, cs->at, cs->B, cs->nv, cone, cs->x);
+	}
 	for (uint32_t a = 0; a < np; a++) { /* a pair that pulls: the pairs that press (cluster_parts) */
 		double F[3] = { 0, 0, 0 };
 		for (int q = 0; q < cs->dc[a]; q++)

@@ -19,7 +19,7 @@
  * lexicographic rule decides (prefer); the pivots are bounded too.
  *
  * csf_lcp_solve takes the method's answer, and where it ends on a ray,
- * that of M + e I, e = LCP_SHIFT times M's largest entry: a copositive M
+ * that of M + e I, e = csf_lcp_shift times M's largest entry: a copositive M
  * (as the contact problems' pyramid of pairs at rest, z . M z >= 0 for z
  * >= 0) is then strictly copositive, for which the method ends in a
  * solution for every q (Cottle, Pang and Stone, 3.8 and 4.4). An unknown
@@ -73,7 +73,7 @@ size_t csf_lcp_work(uint32_t n) { return (size_t)n * (2 * (size_t)n + 2); }
 
 /* The shift of csf_lcp_solve's second try, relative to M's largest entry (1e-12 left a
    third of the Galton board's rays; 1e-9 and 1e-6 none). */
-static const double LCP_SHIFT = 1e-9;
+const double csf_lcp_shift = 1e-9;
 
 /* Lemke's method on M + shift I. */
 static int lemke(uint32_t n, const double *M, double shift, const double *q, double *z, double *T, uint32_t *basis)
@@ -136,5 +136,5 @@ int csf_lcp_solve(uint32_t n, const double *M, const double *q, double *z, doubl
 	if (!lemke(n, M, 0, q, z, T, basis)) return 0;
 	double big = 0;
 	for (size_t k = 0; k < (size_t)n * n; k++) big = csf_max(big, fabs(M[k]));
-	return big > 0 && !lemke(n, M, LCP_SHIFT * big, q, z, T, basis) ? 1 : -1;
+	return big > 0 && !lemke(n, M, csf_lcp_shift * big, q, z, T, basis) ? 1 : -1;
 }

@@ -109,6 +109,7 @@ int main(void)
 	srunner_add_suite(sr, signals_suite());
 	srunner_add_suite(sr, lcp_suite());
 	srunner_add_suite(sr, recall_suite());
+	srunner_add_suite(sr, spread_suite());
 	srunner_add_suite(sr, dualrows_suite());
 	srunner_set_fork_status(sr, CK_FORK);
 	srunner_run_all(sr, CK_NORMAL);

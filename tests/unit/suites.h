@@ -30,6 +30,7 @@ Suite *stability_suite(void);
 Suite *signals_suite(void);
 Suite *lcp_suite(void);
 Suite *recall_suite(void);
+Suite *spread_suite(void);
 Suite *dualrows_suite(void);
 
 /*
