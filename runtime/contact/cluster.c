@@ -42,12 +42,6 @@
 static uint32_t body_i(const csf_contacts *cs, const cpair *c) { return I(c, POS) - cs->p->ystart; }
 static uint32_t body_j(const csf_contacts *cs, const cpair *c) { return c->plane ? UINT32_MAX : J(c, POS) - cs->p->ystart; }
 
-static uint32_t uf_root(uint32_t *uf, uint32_t x)
-{
-	while (uf[x] != x) x = uf[x] = uf[uf[x]];
-	return x;
-}
-
 /* Sum over the common bodies of c and d of w_b s_cb s_db (above); with m NULL, w_b = 1. */
 double csf_contact_coupling(const csf_contacts *cs, const cpair *c, const cpair *d, const double *m)
 {
@@ -110,14 +104,14 @@ uint32_t csf_contact_clusters(csf_contacts *cs, int (*pick)(const cpair *, const
 				uf[bi] = bi, cid[bi] = UINT32_MAX;
 				if (bj != UINT32_MAX) uf[bj] = bj, cid[bj] = UINT32_MAX;
 			} else if (bj != UINT32_MAX) {
-				uint32_t a = uf_root(uf, bi), b = uf_root(uf, bj);
+				uint32_t a = csf_uf_root(uf, bi), b = csf_uf_root(uf, bj);
 				if (a != b) uf[a < b ? b : a] = a < b ? a : b;
 			}
 		}
 	for (uint32_t k = 0; k < cs->n; k++) { /* count each cluster's pairs; the clusters numbered as met */
 		const cpair *c = &cs->pairs[k];
 		if (!pick(c, arg)) continue;
-		uint32_t r = uf_root(uf, body_i(cs, c));
+		uint32_t r = csf_uf_root(uf, body_i(cs, c));
 		if (cid[r] == UINT32_MAX) cid[r] = nq, cs->cstart[++nq] = 0;
 		cs->cstart[cid[r] + 1]++;
 	}
@@ -125,7 +119,7 @@ uint32_t csf_contact_clusters(csf_contacts *cs, int (*pick)(const cpair *, const
 	for (uint32_t q = 0; q < nq; q++) cs->cstart[q + 1] += cs->cstart[q];
 	for (uint32_t k = 0; k < cs->n; k++) { /* cstart[q] is cluster q's cursor, then its end */
 		const cpair *c = &cs->pairs[k];
-		if (pick(c, arg)) cs->cl[cs->cstart[cid[uf_root(uf, body_i(cs, c))]]++] = k;
+		if (pick(c, arg)) cs->cl[cs->cstart[cid[csf_uf_root(uf, body_i(cs, c))]]++] = k;
 	}
 	for (uint32_t q = nq; q > 0; q--) cs->cstart[q] = cs->cstart[q - 1];
 	cs->cstart[0] = 0;
@@ -709,13 +703,6 @@ static int solve_whole(csf_contacts *cs, uint32_t dim, double *K1, double wratio
 	return e->rc;
 }
 
-/* Union-find over the nodes of a system (blocks): the root of x, halving the paths. */
-static uint32_t root(uint32_t *up, uint32_t x)
-{
-	while (up[x] != x) x = up[x] = up[up[x]];
-	return x;
-}
-
 /*
  * The blocks of a system K x = b whose unknowns x = T y are solved in the
  * frames y (T NULL: x itself): its equations, unknowns x and unknowns y
@@ -736,23 +723,23 @@ static uint32_t blocks(uint32_t dim, const double *K, const double *K1, const do
 	/* each row's (each x's) root found once: a node joined to it goes under it, which stays the root */
 	for (uint32_t i = 0; i < dim; i++) {
 		const double *Ki = K + (size_t)i * dim, *K1i = K1 ? K1 + (size_t)i * dim : NULL;
-		uint32_t ri = root(up, i);
+		uint32_t ri = csf_uf_root(up, i);
 		for (uint32_t k = 0; k < dim; k++)
 			if (Ki[k] != 0 || (K1i && K1i[k] != 0)) {
-				uint32_t rk = root(up, dim + k);
+				uint32_t rk = csf_uf_root(up, dim + k);
 				if (rk != ri) up[rk] = ri;
 			}
 	}
 	for (uint32_t k = 0; k < dim; k++) {
-		uint32_t rk = root(up, dim + k);
+		uint32_t rk = csf_uf_root(up, dim + k);
 		for (uint32_t j = 0; j < dim; j++)
 			if (T ? T[(size_t)k * dim + j] != 0 : k == j) {
-				uint32_t rj = root(up, 2 * dim + j);
+				uint32_t rj = csf_uf_root(up, 2 * dim + j);
 				if (rj != rk) up[rj] = rk;
 			}
 	}
 	for (uint32_t v = 0; v < 3 * dim; v++) { /* node v's block: its root's number */
-		uint32_t r = root(up, v);
+		uint32_t r = csf_uf_root(up, v);
 		if (id[r] == UINT32_MAX) id[r] = nb++;
 		blk[v] = id[r];
 	}

@@ -173,6 +173,12 @@ enum { DIRECT_MAX = 256 };
 #define W(c, k) ((c)->w[W_##k])
 #define WV(c, k) ((c)->w + W_##k)
 
+/* Union-find: the root of x in up, halving the paths (clusters, a system's blocks, spread.c's parts). */
+static inline uint32_t csf_uf_root(uint32_t *up, uint32_t x)
+{
+	while (up[x] != x) x = up[x] = up[up[x]];
+	return x;
+}
 static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 static inline double mag3(const double *a) { return csf_vmag3(a[0], a[1], a[2]); }
 

@@ -525,6 +525,17 @@ static int lcp_sets(search *s)
 	return ok;
 }
 
+static void take_pair(search *s, mpair *p, cpair *c);
+
+/* The searches in order (the header), each pair's options taken afresh: 0 with a set found, else 1. */
+static int search_sets(search *s)
+{
+	uint32_t np = s->np;
+	for (uint32_t a = 0; a < np; a++) take_pair(s, &s->p[a], &s->cs->pairs[s->cl[a]]);
+	return np <= MODES_MAX ? find_set(s, 0, 1) && guided_set(s) && find_set(s, 2, np) && lcp_sets(s)
+	                       : find_set(s, 0, 0) && lcp_sets(s);
+}
+
 /*
  * Pair a of the search, for cluster pair c at the instant m (whose
  * accelerations are those of the modes as they are): its geometry, its
@@ -621,17 +632,12 @@ int csf_contact_choose_modes(csf_contacts *cs, const double *m, const uint32_t *
 			cs->G1[a * np + b] = csf_contact_coupling(cs, s.p[a].c, s.p[b].c, NULL);
 		}
 	cs->searches++;
-	if (np <= MODES_MAX ? find_set(&s, 0, 1) && guided_set(&s) && find_set(&s, 2, np) && lcp_sets(&s)
-	                    : find_set(&s, 0, 0) && lcp_sets(&s)) {
-		/* none: again with the forces of a set kept within the cones where a self-stress can (the
-		   least-norm forces of a pile at rest may leave one, where others hold it: spread.c) */
-		s.spread = 1;
-		for (uint32_t a = 0; a < np; a++) take_pair(&s, &s.p[a], &cs->pairs[cl[a]]);
-		if (np <= MODES_MAX ? find_set(&s, 0, 1) && guided_set(&s) && find_set(&s, 2, np) && lcp_sets(&s)
-		                    : find_set(&s, 0, 0) && lcp_sets(&s)) {
-			cs->vain++, cs->unfound++; /* none found */
-			goto out;
-		}
+	/* the searches; where they find none, again with the forces of a set kept within the cones where
+	   a self-stress can (the least-norm forces of a pile at rest may leave one, where others hold it:
+	   spread.c) */
+	if (search_sets(&s) && (s.spread = 1, search_sets(&s))) {
+		cs->vain++, cs->unfound++; /* none found */
+		goto out;
 	}
 	found = 0;
 	for (uint32_t a = 0; a < np; a++) {

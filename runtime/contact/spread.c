@@ -175,13 +175,6 @@ out:
 	return rc;
 }
 
-/* The root of x in union-find up, halving the paths. */
-static uint32_t uf_root(uint32_t *up, uint32_t x)
-{
-	while (up[x] != x) x = up[x] = up[up[x]];
-	return x;
-}
-
 static int cmp_u32(const void *a, const void *b)
 {
 	uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
@@ -248,7 +241,7 @@ int csf_contact_spread(csf_contacts *cs, const double *m, const uint32_t *cl, ui
 				uint32_t *hit = bsearch(&sl, slot, nr, sizeof *slot, cmp_u32), ri = (uint32_t)(hit - slot);
 				for (int q = 0; q < dc[a]; q++) {
 					if (B[9 * a + 3 * q + k] == 0) continue;
-					uint32_t x1 = uf_root(up, at[a] + (uint32_t)q), x2 = uf_root(up, dim + ri);
+					uint32_t x1 = csf_uf_root(up, at[a] + (uint32_t)q), x2 = csf_uf_root(up, dim + ri);
 					if (x1 != x2) up[x1] = x2;
 				}
 			}
@@ -263,16 +256,16 @@ int csf_contact_spread(csf_contacts *cs, const double *m, const uint32_t *cl, ui
 		if (pulls || (cone[a] && dc[a] > 1 && outside(&s, a, x, &N, f)))
 			for (int q = 0; q < dc[a]; q++) {
 				const double *b = B + 9 * a + 3 * q;
-				if (dot3(b, nv + 3 * a) != 0 || dot3(b, f) != 0) mark[uf_root(up, at[a] + (uint32_t)q)] = 1;
+				if (dot3(b, nv + 3 * a) != 0 || dot3(b, f) != 0) mark[csf_uf_root(up, at[a] + (uint32_t)q)] = 1;
 			}
 	}
 	uint32_t nc = 0, nrc = 0;
 	for (uint32_t k = 0; k < dim; k++)
-		if (mark[uf_root(up, k)]) cidx[k] = nc, col[nc++] = k;
+		if (mark[csf_uf_root(up, k)]) cidx[k] = nc, col[nc++] = k;
 		else cidx[k] = UINT32_MAX;
 	for (uint32_t k = 0; k < nr; k++) row[k] = UINT32_MAX;
 	for (uint32_t k = 0; k < nr; k++)
-		if (mark[uf_root(up, dim + k)]) row[k] = nrc++;
+		if (mark[csf_uf_root(up, dim + k)]) row[k] = nrc++;
 	if (!nc || !nrc) goto out;
 	/* J^T (the unknowns' forces on the coordinates), its QR factorization: Q's last columns beyond
 	   its rank are the self-stresses */
