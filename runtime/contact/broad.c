@@ -183,6 +183,8 @@ void csf_contacts_free(csf_contacts *c)
 	free(c->v0);
 	free(c->nv);
 	free(c->act);
+	free(c->seen);
+	free(c->seenh);
 	free(c->rhs);
 	free(c->x);
 	free(c->at);

@@ -134,6 +134,9 @@ struct csf_contacts {
 	double *K, *G, *rhs, *x, *lam, *v0, *nv;
 	uint32_t *at;
 	unsigned char *act;
+	unsigned char *seen;       /* the sets force.c's lcp_sets has been through (np bytes each), */
+	uint64_t *seenh;           /* their hashes, */
+	size_t capseen, capseenh;  /* and the room for them */
 	double *B, *E;             /* per pair of a cluster: its force directions and equations (3 x 3 each) */
 	unsigned char *dc;        /* and its unknowns */
 	double *kb, *ls;           /* a copy of a system while it is solved, and the least-norm solve's work */

@@ -392,6 +392,34 @@ static int lcp_solve(csf_contacts *cs, const double *m, const uint32_t *cl, uint
 	return solved;
 }
 
+/* Room for lcp_sets to remember sets sets of np pairs: 1, or 0 (no memory: none remembered). */
+static int seen_room(csf_contacts *cs, uint32_t sets, uint32_t np)
+{
+	size_t n = (size_t)sets * np;
+	if (n > cs->capseen) {
+		unsigned char *s = realloc(cs->seen, n);
+		if (!s) return 0;
+		cs->seen = s, cs->capseen = n;
+	}
+	if (sets > cs->capseenh) {
+		uint64_t *h = realloc(cs->seenh, sets * sizeof *h);
+		if (!h) return 0;
+		cs->seenh = h, cs->capseenh = sets;
+	}
+	return 1;
+}
+
+/* Whether the set cs->act[0..np) is one of lcp_sets' sets 0..iter-1; if not, it is kept as set iter. */
+static int been_here(csf_contacts *cs, uint32_t np, uint32_t iter)
+{
+	uint64_t h = csf_hash_bytes(cs->act, np);
+	for (uint32_t k = 0; k < iter; k++)
+		if (cs->seenh[k] == h && !memcmp(cs->seen + (size_t)k * np, cs->act, np)) return 1;
+	cs->seenh[iter] = h;
+	memcpy(cs->seen + (size_t)iter * np, cs->act, np);
+	return 0;
+}
+
 /*
  * The pairs of cluster cl[0..np) that press, and their forces: a linear
  * complementarity problem. Each pair either pushes (N >= 0) and keeps its
@@ -409,7 +437,9 @@ static int lcp_solve(csf_contacts *cs, const double *m, const uint32_t *cl, uint
  * would close, join again, and the sets would go round (a ball jammed
  * between a wall and another whose squeeze, turned by the friction of its
  * slides into a vertical force, came out as a pull at both); where the sets
- * so chosen go round (4 np + 8 changes), they are chosen again from the
+ * so chosen go round (a set comes again, which what followed it follows
+ * again but for a rank a solve holds, cluster.c; or 4 np + 8 changes),
+ * they are chosen again from the
  * start with the pair that pulls most leaving, as before. Where a set's
  * forces cannot keep all of its accelerations zero (contacts all but
  * redundant that the motion pulls apart: a ball sliding past another
@@ -419,13 +449,16 @@ static int lcp_solve(csf_contacts *cs, const double *m, const uint32_t *cl, uint
  * for every pair's). The accelerations in m are those of the other
  * forces. Returns 0 with the set in cs->act, every pair's unknowns in
  * cs->lam (0 for those apart) and the system in cs->G, cs->v0; -1 when the
- * sets do not settle in 4 np + 8 changes.
+ * sets go round.
  */
 static int lcp_sets(csf_contacts *cs, const double *m, const uint32_t *cl, uint32_t np, const double *res, uint32_t dim,
                     int open_first)
 {
 	double wratio = csf_contact_mass_ratio(cs, cl, np, m), lam[DIRECT_MAX], an[DIRECT_MAX];
-	for (uint32_t iter = 0; iter < 4 * np + 8; iter++) {
+	uint32_t most = 4 * np + 8;
+	int track = seen_room(cs, most, np);
+	for (uint32_t iter = 0; iter < most; iter++) {
+		if (track && been_here(cs, np, iter)) return -1; /* round: it would go on so to the end */
 		int solved = lcp_solve(cs, m, cl, np, dim, wratio, lam, an);
 		if (solved < 0) return -1;
 		long out = -1, in = -1, pulls = 0;
