@@ -499,7 +499,7 @@ int csf_contacts_keep(csf_contacts *c, csf_keeper *k)
 {
 	if (!c) return 0;
 	const csf_prog *p = c->p;
-	int bad = CSF_KEEP(k, c->n) | CSF_KEEP(k, c->axis) | CSF_KEEP(k, c->nsap) | CSF_KEEP(k, c->held) |
+	int bad = CSF_KEEP(k, c->n) | CSF_KEEP(k, c->axis) | CSF_KEEP(k, c->nsap) | CSF_KEEP(k, c->held) | CSF_KEEP(k, c->fits) |
 	          CSF_KEEP(k, c->held_clock);
 	/* the pairs, and the clusters' work sized by them (csf_contacts_find's, which a resumed run's
 	   first evaluation comes before) */

@@ -161,8 +161,10 @@ struct csf_contacts {
 	uint32_t vain;             /* the searches for modes that found none at that instant (modes.c) */
 	uint64_t searches, unfound; /* the searches for modes of the run, and those that found none */
 	/* the ranks held for the friction of indeterminate clusters (cluster.c, held_rank): per system's
-	   shape (its hash), the rank taken last, and when; held: the last solve took one */
-	struct csf_held { uint64_t sig, used; uint32_t rank; } held[16];
+	   shape (its hash), the rank taken last, and when; and apart, per shape, whether its least-norm
+	   forces were taken as solving it (held_fit: rank 1 taken, 2 not); held_now: the last solve
+	   held one or the other */
+	struct csf_held { uint64_t sig, used; uint32_t rank; } held[16], fits[16];
 	uint64_t held_clock;
 	int held_now, hold; /* hold: the force stage's solves, which hold ranks (impacts and searches do not) */
 	int unsolved; /* the sweeps left contact forces that do not hold (csf_contacts_unsolved) */

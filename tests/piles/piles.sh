@@ -5,7 +5,8 @@
 # box, run to 3 s with rows every 0.01 s under csfvm --method METHOD
 # ("default": no --method, auto at its defaults; any other METHOD runs at
 # --tol 1e-12, since at their default 1e-10 positions are good to only
-# about 1e-8 m, csf(5), coarser than the 1e-9 checks), watching pos, v, FN
+# about 1e-8 m, csf(5), coarser than the 1e-9 checks; METHOD@TOL at --tol
+# TOL), watching pos, v, FN
 # and Ff. The run must end with exit 0 within PILES_LIMIT seconds (120) and every row must pass
 # check.awk: no overlap, the energy never grows (and with CR = 1 and MU = 0
 # stays E_0), forces consistent with the contacts, and, where the pile must
@@ -61,7 +62,11 @@ pile() { # N CR MU METHOD
 		fail=$((fail + 1)); echo "FAIL: $label: csfc: $(head -n 1 "$f.err")"; return
 	fi
 	margs=
-	[ "$method" = default ] || margs="--method $method --tol 1e-12"
+	case $method in
+	default) ;;
+	*@*) margs="--method ${method%@*} --tol ${method#*@}" ;; # METHOD@TOL: at that tolerance
+	*) margs="--method $method --tol 1e-12" ;;
+	esac
 	# shellcheck disable=SC2086 # margs holds csfvm options
 	timeout -k 10 "$LIMIT" "$CSFVM" $margs "$f.csfb" >"$f.csv" 2>"$f.err"
 	st=$?
