@@ -130,6 +130,10 @@ static int nnls(uint32_t rows, uint32_t n, const double *E, const double *f, dou
 			for (uint32_t j = 0; j < n; j++)
 				if (pas[j]) idx[p++] = j;
 			if (p > rows) goto out;
+			if (!p) { /* every variable left the passive set: u = 0 solves it (no columns to factor) */
+				for (uint32_t j = 0; j < n; j++) u[j] = 0;
+				break;
+			}
 			gsl_matrix_view Av = gsl_matrix_submatrix(A, 0, 0, rows, p);
 			for (uint32_t i = 0; i < rows; i++) {
 				gsl_vector_set(b, i, f[i]);
