@@ -387,8 +387,8 @@ static int held_rank(csf_contacts *cs, lsq *qf, double *M, double *Mc, uint32_t 
  * So in the force stage (cs->hold), a residual within a factor of
  * HOLD_BAND of the threshold is taken as it was taken last for a system of
  * the same shape (a table like held_rank's, cs->fits), and a decision
- * within the band is not recalled. Elsewhere, and away from the threshold, it is decided as
- * before.
+ * within the band is not recalled. Elsewhere, and away from the
+ * threshold, it is decided as before.
  */
 static int held_fit(csf_contacts *cs, double fit, uint32_t dim, uint32_t nf, const double *K,
                     const unsigned char *fric, unsigned char *pat)

@@ -437,8 +437,8 @@ static int been_here(csf_contacts *cs, uint32_t np, uint32_t iter)
  * would close, join again, and the sets would go round (a ball jammed
  * between a wall and another whose squeeze, turned by the friction of its
  * slides into a vertical force, came out as a pull at both); where the sets
- * so chosen go round (a set comes again, which what followed it follows
- * again but for a rank a solve holds, cluster.c; or 4 np + 8 changes),
+ * so chosen go round (a set comes again: what followed it follows again,
+ * but for a rank or a fit a solve holds, cluster.c; or 4 np + 8 changes),
  * they are chosen again from the
  * start with the pair that pulls most leaving, as before. Where a set's
  * forces cannot keep all of its accelerations zero (contacts all but
