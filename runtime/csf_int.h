@@ -418,13 +418,14 @@ void csf_contacts_objects(const csf_contacts *c, uint32_t k, uint32_t *oi, uint3
 uint32_t csf_contacts_overlaps(const csf_contacts *c, const double *m, uint32_t *deepest, double *depth);
 /*
  * Chooses the next candidates from the ns states ys[0..ns) (state vectors,
- * in time order: the instants at which the guards will be looked at): the
- * pairs in contact or hopping, and every pair whose gap is (nearly) closed
- * at one of them. m holds the radii and the planes (and is otherwise left
- * alone). Returns how many there will be, or -1 when memory runs out; then
- * csf_contacts_commit switches to them.
+ * in time order, h apart: the instants at which the guards will be looked
+ * at): the pairs in contact or hopping, and every pair whose gap is
+ * (nearly) closed at one of them or on the paths between them. m holds the
+ * radii and the planes (and is otherwise left alone). Returns how many
+ * there will be, or -1 when memory runs out; then csf_contacts_commit
+ * switches to them.
  */
-long csf_contacts_find(csf_contacts *c, const double *m, const double *const *ys, int ns);
+long csf_contacts_find(csf_contacts *c, const double *m, const double *const *ys, int ns, double h);
 /*
  * Switches to the candidates csf_contacts_find chose. For q < ng, g[q]
  * holds the guards (two per candidate) of the old candidates, and becomes

@@ -47,7 +47,7 @@ static int try_one(const unsigned char *buf, size_t len, int must_fail, long *re
 		csf_exec_ctx x = { .contacts = cs };
 		if (cs) {
 			const double *ys[1] = { m + p.ystart };
-			if (csf_contacts_find(cs, m, ys, 1) >= 0) csf_contacts_commit(cs, m, NULL, NULL, 0);
+			if (csf_contacts_find(cs, m, ys, 1, 0) >= 0) csf_contacts_commit(cs, m, NULL, NULL, 0);
 			exec_ctx e = { &p, m, x };
 			csf_contact_settle(&p, cs, m, 1e-7, 1e-10, exec_rhs, &e);
 		}

@@ -916,7 +916,7 @@ done
 	echo code_size
 	for m in examples/bouncing_ball examples/collision examples/incline examples/newtons_cradle examples/pushed_block \
 		examples/table_edge examples/peg tests/e2e/stack_drop tests/e2e/liftoff tests/e2e/peg_drop tests/e2e/peg_glance \
-		tests/e2e/peg_slide_off tests/e2e/graze_pass; do
+		tests/e2e/peg_slide_off tests/e2e/graze_pass tests/e2e/apex_touch; do
 		echo "contacts_methods $m"
 	done
 	echo piles_statics

@@ -103,9 +103,10 @@ int csf_run_room_for_guards(run *r, size_t ng)
  * g[0..ng) (ga, gb) become those of the new candidates, a new pair's
  * computed from state gy[q]. 0, or -1 when memory runs out.
  */
-static int choose_contacts(run *r, const double *const *ys, int ns, double **g[], const double *const *gy, int ng)
+static int choose_contacts(run *r, const double *const *ys, int ns, double h, double **g[], const double *const *gy,
+                           int ng)
 {
-	long k = csf_contacts_find(r->cs, r->m, ys, ns);
+	long k = csf_contacts_find(r->cs, r->m, ys, ns, h);
 	if (k < 0 || csf_run_room_for_guards(r, r->gcont + 2 * (size_t)k)) {
 		r->nomem = 1;
 		return -1;
@@ -151,7 +152,7 @@ int csf_run_update_modes(run *r, double t, double *y, FILE *warn)
 	csf_run_free_modes(r, t, y);
 	if (r->cs) {
 		const double *ys[1] = { y };
-		if (choose_contacts(r, ys, 1, NULL, NULL, 0)) return 1;
+		if (choose_contacts(r, ys, 1, 0, NULL, NULL, 0)) return 1;
 		settle_ctx s = { r, t, y };
 		memcpy(r->m + p->ystart, y, p->ny * sizeof *y);
 		if (warn) report_overlaps(r, warn);
@@ -615,7 +616,7 @@ int csf_run_step_events(run *r, csf_ode *ode, double ta, double tb, const double
 			if (csf_run_interp(r, ode, ta, tb, y, j / 4.0, r->yh + (size_t)(j - 1) * n)) return CSF_ODE_STOPPED;
 		const double *ys[5] = { r->ya, r->yh, r->yh + n, r->yh + 2 * n, y }, *gy[2] = { r->ya, y };
 		double **g[2] = { &r->ga, &r->gb };
-		if (choose_contacts(r, ys, 5, g, gy, 2)) return CSF_ODE_STOPPED;
+		if (choose_contacts(r, ys, 5, (tb - ta) / 4, g, gy, 2)) return CSF_ODE_STOPPED;
 	}
 	size_t ng = r->ng;
 	/* the sample points, as fractions of the step: 3 interpolated (with contacts, computed above),

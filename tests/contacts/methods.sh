@@ -2,7 +2,8 @@
 # tests/contacts/methods.sh CSFC CSFVM DIR [SCENE...] - every scene (or the SCENEs named, as in the list below) of contacts under
 # every integration method (the dense dop853 and dopri5 too): the mechanics examples, a ball dropped on a
 # resting ball, a ball lifted off the floor, balls dropped on a peg, glancing off one and sliding off
-# one, and two balls that graze each other within one step. Each run must finish (exit 0, every
+# one, two balls that graze each other within one step, and two balls whose paths turn back within one
+# step, 1 um into a roof and a peg (apex_touch). Each run must finish (exit 0, every
 # row) and every row must be within 1e-6 of the exact motion (the scene's checker), or 1e-4 for the
 # multistep msadams and msbdf, whose accuracy at the default tolerance is
 # lower on these scenes (restarted at first order at every event; csf(5),
@@ -15,7 +16,7 @@ CSFC=$1 CSFVM=$2 T=$3
 shift 3
 [ $# -gt 0 ] || set -- examples/bouncing_ball examples/collision examples/incline examples/newtons_cradle examples/pushed_block \
 	examples/table_edge examples/peg tests/e2e/stack_drop tests/e2e/liftoff tests/e2e/peg_drop tests/e2e/peg_glance \
-	tests/e2e/peg_slide_off tests/e2e/graze_pass
+	tests/e2e/peg_slide_off tests/e2e/graze_pass tests/e2e/apex_touch
 pass=0 fail=0
 for m in "$@"; do
 	if ! "$CSFC" "$m.csf" -o "$T/mm.csfb" 2>"$T/mm.err"; then

@@ -481,7 +481,7 @@ static csf_contacts *contacts_at(const csf_prog *p, const double *m)
 	csf_contacts *cs = csf_contacts_new(p);
 	ck_assert_ptr_nonnull(cs);
 	const double *ys[1] = { m + p->ystart };
-	ck_assert_int_ge(csf_contacts_find(cs, m, ys, 1), 0);
+	ck_assert_int_ge(csf_contacts_find(cs, m, ys, 1, 0), 0);
 	csf_contacts_commit(cs, m, NULL, NULL, 0);
 	return cs;
 }
@@ -824,7 +824,7 @@ START_TEST(test_contact_broad_phase)
 		}
 		csf_contacts *cs = csf_contacts_new(&p);
 		ck_assert_ptr_nonnull(cs);
-		long nc = csf_contacts_find(cs, m, (const double *const *)ys, NS);
+		long nc = csf_contacts_find(cs, m, (const double *const *)ys, NS, 0);
 		ck_assert_int_ge(nc, 0);
 		double *g[NS];
 		for (int s = 0; s < NS; s++) g[s] = malloc((2 * (size_t)nc + 1) * sizeof *g[s]);
@@ -867,10 +867,54 @@ START_TEST(test_contact_broad_phase)
 			ys[s][pos[i]] = -100.0 * i, ys[s][pos[i] + 2] = 1000 + 100.0 * i;
 	}
 	csf_contacts *cs = csf_contacts_new(&p);
-	long nc = csf_contacts_find(cs, m, (const double *const *)ys, NS);
+	long nc = csf_contacts_find(cs, m, (const double *const *)ys, NS, 0);
 	ck_assert_int_eq(nc, (N - 1) + 1 + N); /* b1 with each mass point and with f, w with each */
 	csf_contacts_free(cs);
 	for (int s = 0; s < NS; s++) free(ys[s]);
+	free(m);
+	csf_prog_free(&p);
+}
+END_TEST
+
+/*
+ * A path that turns back between two states: ball a (radius 0.05 m) at x =
+ * 0 at both, its velocity +1 m/s at the first and -1 m/s at the second, h =
+ * 0.01 s apart. The cubic through them, x(u) = h u (1 - u) on [0, 1],
+ * reaches 0.0025 m at u = 1/2, so ball b (radius 0.05 m, at x = 0.102 m,
+ * 0.002 m beyond a's reach at the states) touches it in between: a
+ * candidate with h = 0.01 s, and not with h = 0 (the states alone), nor
+ * with h = 0.01 s once b is beyond the bound 4/27 h (|v0| + |v1|) =
+ * 0.00296 m.
+ */
+START_TEST(test_contact_path_reach)
+{
+	const char *text = "def mass_point:\n    m = 1 kg\n    vector v = (0, 0, 0) m/s\n    vector a = (0, 0, 0) m/s^2\n"
+	                   "    vector pos = (0, 0, 0) m\n    radius = 0.05 m\n    cr = 1\n    mu_s = 0\n    mu_k = 0\n"
+	                   "    vector FN = (0, 0, 0) N\n    vector Ff = (0, 0, 0) N\n"
+	                   "object a: mass_point\nobject b: mass_point\n"
+	                   "rule: contact(pos, radius, pos$1, radius$1)\n"
+	                   "rule: RF = a.mul(m)\nrule: v' = a\nrule: pos' = v\ninc t till 1 by 1 watch a.pos\n";
+	csf_prog p;
+	ck_assert_int_eq(compile_string(text, &p, NULL), 0);
+	double *m = malloc(p.nmem * sizeof *m), *ys[2];
+	memcpy(m, p.mem0, p.nmem * sizeof *m);
+	const csf_cbody *a = cbody_of(&p, "a"), *b = cbody_of(&p, "b");
+	uint32_t av = a->s[CSF_CF_V] - p.ystart, bp = b->s[CSF_CF_POS] - p.ystart;
+	struct { double h, bx; long want; } c[] = { { 0.01, 0.102, 1 }, { 0, 0.102, 0 }, { 0.01, 0.1035, 0 } };
+	for (size_t k = 0; k < sizeof c / sizeof c[0]; k++) {
+		for (int s = 0; s < 2; s++) {
+			ys[s] = malloc(p.ny * sizeof *ys[s]);
+			memcpy(ys[s], p.mem0 + p.ystart, p.ny * sizeof *ys[s]);
+			ys[s][av] = s ? -1 : 1;
+			ys[s][bp] = c[k].bx;
+		}
+		csf_contacts *cs = csf_contacts_new(&p);
+		ck_assert_ptr_nonnull(cs);
+		long nc = csf_contacts_find(cs, m, (const double *const *)ys, 2, c[k].h);
+		ck_assert_msg(nc == c[k].want, "h %g, b at x = %g: %ld candidates, expected %ld", c[k].h, c[k].bx, nc, c[k].want);
+		csf_contacts_free(cs);
+		for (int s = 0; s < 2; s++) free(ys[s]);
+	}
 	free(m);
 	csf_prog_free(&p);
 }
@@ -965,6 +1009,7 @@ Suite *bytecode_suite(void)
 	tcase_add_test(tc, test_contact_tables_verified);
 	tcase_add_test(tc, test_contact_settle);
 	tcase_add_test(tc, test_contact_broad_phase);
+	tcase_add_test(tc, test_contact_path_reach);
 	tcase_add_test(tc, test_disassembler);
 	tcase_add_test(tc, test_param_tables_verified);
 	tcase_add_test(tc, test_when_section);
