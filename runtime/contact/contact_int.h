@@ -90,8 +90,9 @@ enum { APART, SLIDING, STICKING, HOPPING }; /* the modes of a pair */
    (settle.c's lift_off), whether it lifted off at the instant being settled, whether it would turn
    back (settle.c's turns_back, on the accelerations of the pass's evaluation), whether its cluster's
    modes were found only with the forces kept within the cones (modes.c; force.c then keeps them so:
-   spread.c). A pair that is not a candidate is apart. */
-enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_SS = 14, W_LOCK = 15, W_LIFT = 16, W_LO = 17, W_TB = 18, W_SPREAD = 19, W_N = 20 };
+   spread.c), whether it slid with a slip beyond the rounding when the instant began (settle.c's
+   stops_at_once). A pair that is not a candidate is apart. */
+enum { W_MODE = 0, W_G0 = 1, W_G1 = 2, W_LAM = 3, W_F = 4, W_DS = 7, W_TL = 10, W_VR = 11, W_SS = 14, W_LOCK = 15, W_LIFT = 16, W_LO = 17, W_TB = 18, W_SPREAD = 19, W_SL = 20, W_N = 21 };
 
 /* A candidate pair: body i (a mass point, $0) and body j (a mass point, a plane or an anchor, $1). */
 typedef struct cpair {

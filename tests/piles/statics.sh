@@ -3,7 +3,8 @@
 # whose forces are known in closed form; each scene runs 1 s (rows every
 # 0.01 s, watching pos, v, a, FN and Ff) and statics.awk checks every row:
 # nothing moves (v and a 0, pos as placed, to 1e-9) and the forces are the
-# exact ones to 1e-9 m g. Balls: 1 kg, radius r = 0.05 m; W = m g.
+# exact ones to 1e-9 m g (a ball dropped into a groove runs 3 s, and its rows
+# from t = 2 s are checked). Balls: 1 kg, radius r = 0.05 m; W = m g.
 #
 # FN of a ball is the sum of the normal forces of all its contacts, Ff of
 # their friction forces, so at rest FN + Ff = (0, 0, W) for every ball
@@ -94,8 +95,10 @@ run() {
 		done
 		return
 	fi
+	# FROM: only the rows from t = FROM s on are at rest (ROWS of them)
+	awk -F, -v from="${FROM:-}" 'NR == 1 || from == "" || $1 + 0 >= from + 0' "$T/$s.csv" >"$T/$s.rest.csv"
 	for k in "$@"; do
-		if timeout -k 10 60 awk -v name="$k" -v rows=101 -f "$HERE/statics.awk" "$T/$k.expect" "$T/$s.csv" >"$T/$k.chk" 2>&1; then
+		if timeout -k 10 60 awk -v name="$k" -v rows="${ROWS:-101}" -f "$HERE/statics.awk" "$T/$k.expect" "$T/$s.rest.csv" >"$T/$k.chk" 2>&1; then
 			pass=$((pass + 1)); [ -n "${VERBOSE:-}" ] && cat "$T/$k.chk"
 		else
 			fail=$((fail + 1)); echo "FAIL: $(head -n 1 "$T/$k.chk")"
@@ -135,6 +138,29 @@ run box box
 	forces b0 0 0 $W 0 0 0
 } >"$T/groove.expect"
 run groove groove
+
+# groove, dropped: a rough ball (cr 0.4, mu_s 0.3, mu_k 0.2, the planes' too)
+# dropped off centre into a V of two planes at 45 deg through (100, 0, 2) m;
+# from t = 2 s it is at rest at (100, 0, 2 + r sqrt 2), each plane pushing
+# W/sqrt(2) along its normal (FN = (0, 0, W)) and no friction (Ff = 0, the
+# least there is: csf(5), Rest). Dropped at x = 100.013 or 99.98 m, its last
+# impact left one plane's slip at 5e-20 m/s, and that pair slid on, with
+# mu_k N up its plane (Ff = (-W/10, 0, -W/10), FN = (W/10, 0, 1.1 W)).
+for x in 100.013 99.98; do
+	{
+		echo "$HEAD"
+		ball b0 $x 0 2.4
+		for o in b0 left right; do printf 'object %s: cr = 0.4\nobject %s: mu_s = 0.3\nobject %s: mu_k = 0.2\n' $o $o $o; done
+		printf 'object left: plane\nobject left: point = (100, 0, 2) m\nobject left: normal = (1, 0, 1)\n'
+		printf 'object right: plane\nobject right: point = (100, 0, 2) m\nobject right: normal = (-1, 0, 1)\n'
+		echo "$TAIL" | sed 's/till 1 s/till 3 s/'
+	} >"$T/drop$x.csf"
+	{
+		at_rest b0 100 0 "$(awk 'BEGIN { printf "%.17g", 2 + 0.05 * sqrt(2) }')"
+		forces b0 0 0 $W 0 0 0
+	} >"$T/groove, dropped at x = $x.expect"
+	FROM=2 ROWS=101 run drop$x "groove, dropped at x = $x"
+done
 
 # pyramid
 {
