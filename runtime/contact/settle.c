@@ -47,6 +47,14 @@ static double speed_resolution(const csf_contacts *cs, const cpair *c, const dou
 	return csf_contact_speed_resolution(c, m, cs->vfloor);
 }
 
+/* The pair's slip velocity (into vt, with its normal and curvature at n, curv), and its size. */
+static double slip_of(const cpair *c, const double *m, double n[3], double *curv, double vt[3])
+{
+	csf_contact_geometry(c, m, n, curv);
+	csf_contact_slip_velocity(c, m, n, vt);
+	return mag3(vt);
+}
+
 /*
  * Enters contact: the relative normal velocity is zero; sticks if the
  * tangential one is too, or slips no faster than the speeds' rounding
@@ -330,10 +338,7 @@ static int take_mode(csf_contacts *cs, cpair *c, double *m, int to, const double
 		                         that its friction stops within the Zeno time (csf_contact_slip_stops, as
 		                         csf_contact_choose_modes counts it) stops, as one that stops at once: it
 		                         begins along dir */
-		double n[3], curv, vt[3];
-		csf_contact_geometry(c, m, n, &curv);
-		csf_contact_slip_velocity(c, m, n, vt);
-		double s = mag3(vt);
+		double n[3], curv, vt[3], s = slip_of(c, m, n, &curv, vt);
 		if (s <= speed_resolution(cs, c, m)) {
 			for (int k = 0; k < 3; k++) vt[k] = -vt[k];
 			csf_contact_add_impulse(c, m, vt);
@@ -428,9 +433,7 @@ static int stops_at_once(const csf_contacts *cs, const cpair *c, const double *m
 {
 	double n[3], curv, vt[3];
 	if (W(c, MODE) != SLIDING || !has_friction(c, m) || W(c, SS) >= 2) return 0;
-	csf_contact_geometry(c, m, n, &curv);
-	csf_contact_slip_velocity(c, m, n, vt);
-	double s = mag3(vt), ar[3], at[3];
+	double s = slip_of(c, m, n, &curv, vt), ar[3], at[3];
 	if (s > speed_resolution(cs, c, m)) return s <= stopped_within(c, m, mu_k(c, m), zeno);
 	/* a slip that the instant's impulses took away, leaving no tangential acceleration beyond
 	   its rounding: at rest (an impact left a slip of 5e-20 m/s, and a ball in a V-groove slid
@@ -461,9 +464,7 @@ static int slips_anew(const csf_contacts *cs, cpair *c, const double *m, double 
 {
 	double n[3], curv, vt[3];
 	if (!in_contact(c) || !has_friction(c, m)) return 0;
-	csf_contact_geometry(c, m, n, &curv);
-	csf_contact_slip_velocity(c, m, n, vt);
-	double s = mag3(vt), res = speed_resolution(cs, c, m);
+	double s = slip_of(c, m, n, &curv, vt), res = speed_resolution(cs, c, m);
 	int sticks = W(c, MODE) == STICKING;
 	if (!sticks && dot3(vt, WV(c, DS)) > res) return 0; /* sliding ahead */
 	if (!(s > res && s > stopped_within(c, m, sticks ? mu_s(c, m) : mu_k(c, m), zeno))) return 0;
@@ -615,9 +616,7 @@ static int settle(const csf_prog *p, csf_contacts *cs, double *m, double zeno, d
 		W(c, SL) = 0;
 		if (W(c, MODE) == SLIDING && has_friction(c, m)) {
 			double n[3], curv, vt[3];
-			csf_contact_geometry(c, m, n, &curv);
-			csf_contact_slip_velocity(c, m, n, vt);
-			W(c, SL) = mag3(vt) > speed_resolution(cs, c, m);
+			W(c, SL) = slip_of(c, m, n, &curv, vt) > speed_resolution(cs, c, m);
 		}
 		cs->vfloor = csf_max(cs->vfloor, 1e-13 * csf_contact_speeds(c, m));
 	}
