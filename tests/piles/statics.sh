@@ -162,6 +162,89 @@ for x in 100.013 99.98; do
 	FROM=2 ROWS=101 run drop$x "groove, dropped at x = $x"
 done
 
+# pegs, dropped: the same ball (mu_s 0.4, mu_k 0.3, cr 0.3) set down 2.7 mm
+# above its rest on three pegs (anchors of radius 0.01 m at (0, 0, 0),
+# (0.06, 0, 0) and (0.03, 0.05, 0) m): from t = 2 s at rest over the
+# circumcentre (0.03, 0.016) of the pegs, its centre 0.06 m from each, at
+# z = sqrt(0.06^2 - 0.03^2 - 0.016^2); the three normal forces alone hold
+# it, so FN = (0, 0, W) and Ff = 0, the least friction (csf(5), Rest).
+# Before, FN = (0.68, -0.46, 10.37) N and Ff = -(0.68, -0.46, 0.56) N: a
+# pair left sliding at rest (no slip, no tangential acceleration).
+{
+	echo "$HEAD"
+	ball b0 0.0305 0.0163 0.052
+	printf 'object b0: cr = 0.3\nobject b0: mu_s = 0.4\nobject b0: mu_k = 0.3\n'
+	k=1
+	for at in '0, 0, 0' '0.06, 0, 0' '0.03, 0.05, 0'; do
+		printf 'object p%d: anchor\nobject p%d: pos = (%s) m\nobject p%d: radius = 0.01 m\n' $k $k "$at" $k
+		k=$((k + 1))
+	done
+	echo "$TAIL" | sed 's/till 1 s/till 3 s/'
+} >"$T/pegs.csf"
+{
+	at_rest b0 0.03 0.016 "$(awk 'BEGIN { printf "%.17g", sqrt(0.06 * 0.06 - 0.03 * 0.03 - 0.016 * 0.016) }')"
+	forces b0 0 0 $W 0 0 0
+} >"$T/pegs, dropped.expect"
+FROM=2 ROWS=101 run pegs "pegs, dropped"
+
+# two in a groove: a (1 kg, radius 0.05 m) and then b (0.25 kg, radius 0.03
+# m) dropped into a V of planes at 50 and 40 deg from horizontal, all
+# rough (mu_s 0.5, mu_k 0.4, cr 0.3): from t = 2 s a rests on both planes
+# (its centre r/sin 90 deg from the corner along the bisector: x and z from
+# the two planes' equations) and b on a and the 50-deg plane. The normal
+# forces alone hold both (b's two pushes are positive), so each ball's FN
+# is its weight and Ff = 0 (csf(5), Rest). Before, both balls were held
+# with friction: a pair sliding at rest.
+{
+	echo "$HEAD"
+	ball a 0.011 0 0.3
+	printf 'object b: mass_point\nobject b: m = 0.25 kg\nobject b: radius = 0.03 m\nobject b: pos = (-0.017, 0, 0.6) m\n'
+	for o in a b p q; do printf 'object %s: cr = 0.3\nobject %s: mu_s = 0.5\nobject %s: mu_k = 0.4\n' $o $o $o; done
+	printf 'object p: plane\nobject p: normal = (sin(50 deg), 0, cos(50 deg))\n'
+	printf 'object q: plane\nobject q: normal = (-sin(40 deg), 0, cos(40 deg))\n'
+	echo "$TAIL" | sed 's/till 1 s/till 3 s/'
+} >"$T/two.csf"
+{
+	# a's centre: sin50 x + cos50 z = r and -sin40 x + cos40 z = r
+	awk -v r=0.05 'BEGIN { d = atan2(0, -1) / 180; s5 = sin(50 * d); c5 = cos(50 * d); s4 = sin(40 * d); c4 = cos(40 * d)
+		det = s5 * c4 + c5 * s4; x = r * (c4 - c5) / det; z = r * (s5 + s4) / det
+		printf "pos of a;eq;%.17g;1;1 a.pos.x\npos of a;eq;0;1;1 a.pos.y\npos of a;eq;%.17g;1;1 a.pos.z\n", x, z }'
+	forces a 0 0 $W 0 0 0
+	forces b 0 0 "$(awk -v W=$W 'BEGIN { printf "%.17g", W / 4 }')" 0 0 0
+} >"$T/two in a groove.expect"
+FROM=2 ROWS=101 run two "two in a groove"
+
+# box, dropped: two rough balls b and d (2 kg, radius 0.15 m) on the floor
+# of a box whose walls stand at x = -1 and -0.3 m, each against a wall, at
+# x = -0.85 and -0.45 m, and a third, a (0.8 kg, radius 0.12 m), dropped
+# from (-0.652, 0, 0.9) m into the gap between them; all rough (mu_s 0.5,
+# mu_k 0.3) and a little elastic (cr 0.2). From t = 2 s all three are at
+# rest, a at x = -0.65 m touching both (its centre sqrt(0.27^2 - 0.2^2)
+# above theirs); a's two pushes hold it, the floor and the walls hold b and
+# d, so each FN is its ball's weight and Ff = 0 (csf(5), Rest). Before, a
+# went on moving at 3e-12 m/s, away from both, its two pairs sliding at
+# that slip with mu_k N of friction (a.Ff.z = -3.88 N, a.FN.z = 11.72 N,
+# b.FN.x = 1.76 N).
+{
+	echo "$HEAD"
+	for o in b d; do printf 'object %s: mass_point\nobject %s: m = 2 kg\nobject %s: radius = 0.15 m\n' $o $o $o; done
+	printf 'object b: pos = (-0.85, 0, 0.15) m\nobject d: pos = (-0.45, 0, 0.15) m\n'
+	printf 'object a: mass_point\nobject a: m = 0.8 kg\nobject a: radius = 0.12 m\nobject a: pos = (-0.652, 0, 0.9) m\n'
+	for o in a b d; do printf 'object %s: cr = 0.2\nobject %s: mu_s = 0.5\nobject %s: mu_k = 0.3\n' $o $o $o; done
+	printf 'object floor: plane\nobject floor: cr = 0.2\nobject w0: plane\nobject w0: point = (-1, 0, 0) m\nobject w0: normal = (1, 0, 0)\n'
+	printf 'object w1: plane\nobject w1: point = (-0.3, 0, 0) m\nobject w1: normal = (-1, 0, 0)\n'
+	echo "$TAIL" | sed 's/till 1 s/till 3 s/'
+} >"$T/boxdrop.csf"
+{
+	at_rest b -0.85 0 0.15
+	at_rest d -0.45 0 0.15
+	at_rest a -0.65 0 "$(awk 'BEGIN { printf "%.17g", 0.15 + sqrt(0.27 * 0.27 - 0.2 * 0.2) }')"
+	forces b 0 0 "$(awk -v W=$W 'BEGIN { printf "%.17g", 2 * W }')" 0 0 0
+	forces d 0 0 "$(awk -v W=$W 'BEGIN { printf "%.17g", 2 * W }')" 0 0 0
+	forces a 0 0 "$(awk -v W=$W 'BEGIN { printf "%.17g", 0.8 * W }')" 0 0 0
+} >"$T/box, dropped.expect"
+FROM=2 ROWS=101 run boxdrop "box, dropped"
+
 # pyramid
 {
 	echo "$HEAD"
