@@ -487,7 +487,7 @@ t_slide_stop() {
 }
 
 # 5i. every contact scene under every method: each finishes, exact to 1e-6 (tests/contacts/methods.sh;
-#     contacts_methods SCENE, one job a scene)
+#     contacts_methods SCENE, one job a scene of tests/contacts/scenes)
 t_contacts_methods() {
 	suite "contacts and methods, $1" sh tests/contacts/methods.sh "$CSFC" "$CSFVM" "$T" "$1"
 }
@@ -914,11 +914,7 @@ done
 # the short ones fill the gaps at the end
 {
 	echo code_size
-	for m in examples/bouncing_ball examples/collision examples/incline examples/newtons_cradle examples/pushed_block \
-		examples/table_edge examples/peg tests/e2e/stack_drop tests/e2e/liftoff tests/e2e/peg_drop tests/e2e/peg_glance \
-		tests/e2e/peg_slide_off tests/e2e/graze_pass tests/e2e/apex_touch; do
-		echo "contacts_methods $m"
-	done
+	while read -r m; do echo "contacts_methods $m"; done <tests/contacts/scenes
 	echo piles_statics
 	echo piles_now
 	echo piles_slow

@@ -1,5 +1,5 @@
 #!/bin/sh
-# tests/contacts/methods.sh CSFC CSFVM DIR [SCENE...] - every scene (or the SCENEs named, as in the list below) of contacts under
+# tests/contacts/methods.sh CSFC CSFVM DIR [SCENE...] - every scene (or the SCENEs named) of contacts (tests/contacts/scenes) under
 # every integration method (the dense dop853 and dopri5 too): the mechanics examples, a ball dropped on a
 # resting ball, a ball lifted off the floor, balls dropped on a peg, glancing off one and sliding off
 # one, two balls that graze each other within one step, and two balls whose paths turn back within one
@@ -14,9 +14,8 @@
 # Prints one line per failure and, last, "N passed, N failed".
 CSFC=$1 CSFVM=$2 T=$3
 shift 3
-[ $# -gt 0 ] || set -- examples/bouncing_ball examples/collision examples/incline examples/newtons_cradle examples/pushed_block \
-	examples/table_edge examples/peg tests/e2e/stack_drop tests/e2e/liftoff tests/e2e/peg_drop tests/e2e/peg_glance \
-	tests/e2e/peg_slide_off tests/e2e/graze_pass tests/e2e/apex_touch
+# shellcheck disable=SC2046 # one scene a word
+[ $# -gt 0 ] || set -- $(cat "$(dirname "$0")/scenes")
 pass=0 fail=0
 for m in "$@"; do
 	if ! "$CSFC" "$m.csf" -o "$T/mm.csfb" 2>"$T/mm.err"; then
