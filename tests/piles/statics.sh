@@ -3,8 +3,9 @@
 # whose forces are known in closed form; each scene runs 1 s (rows every
 # 0.01 s, watching pos, v, a, FN and Ff) and statics.awk checks every row:
 # nothing moves (v and a 0, pos as placed, to 1e-9) and the forces are the
-# exact ones to 1e-9 m g (a ball dropped into a groove runs 3 s, and its rows
-# from t = 2 s are checked). Balls: 1 kg, radius r = 0.05 m; W = m g.
+# exact ones to 1e-9 m g (the scenes whose balls are dropped, into a groove,
+# onto pegs, into a box, run 3 s, and their rows from t = 2 s are checked).
+# Balls: 1 kg, radius r = 0.05 m, unless a scene says; W = m g.
 #
 # FN of a ball is the sum of the normal forces of all its contacts, Ff of
 # their friction forces, so at rest FN + Ff = (0, 0, W) for every ball
@@ -160,6 +161,35 @@ for x in 100.013 99.98; do
 		forces b0 0 0 $W 0 0 0
 	} >"$T/groove, dropped at x = $x.expect"
 	FROM=2 ROWS=101 run drop$x "groove, dropped at x = $x"
+done
+
+# pegs: a ball set down at rest on three pegs (anchors of radius 0.01 m at
+# (0, 0, 0), (0.06, 0, 0) and (0.03, 0.05, 0) m), over their circumcentre
+# (0.03, 0.016), its centre 0.06 m from each, at z = sqrt(0.06^2 - 0.034^2)
+# (0.034 m the circumradius): the three normal forces, along the lines
+# from the pegs' centres, are the only forces of a frictionless ball and
+# are determined (three unknowns, three equations), their sum (0, 0, W);
+# rough (mu_s 0.4, mu_k 0.3), the least friction is none. Both: nothing
+# moves, FN = (0, 0, W), Ff = 0 from the first row.
+for rough in 0 1; do
+	{
+		echo "$HEAD"
+		ball b0 0.03 0.016 'sqrt(0.06 * 0.06 - 0.034 * 0.034)'
+		[ $rough = 1 ] && printf 'object b0: mu_s = 0.4\nobject b0: mu_k = 0.3\n'
+		k=1
+		for at in '0, 0, 0' '0.06, 0, 0' '0.03, 0.05, 0'; do
+			printf 'object p%d: anchor\nobject p%d: pos = (%s) m\nobject p%d: radius = 0.01 m\n' $k $k "$at" $k
+			k=$((k + 1))
+		done
+		echo "$TAIL"
+	} >"$T/pegs$rough.csf"
+	name="pegs"
+	[ $rough = 1 ] && name="pegs, rough"
+	{
+		at_rest b0 0.03 0.016 "$(awk 'BEGIN { printf "%.17g", sqrt(0.06 * 0.06 - 0.034 * 0.034) }')"
+		forces b0 0 0 $W 0 0 0
+	} >"$T/$name.expect"
+	run pegs$rough "$name"
 done
 
 # pegs, dropped: the same ball (mu_s 0.4, mu_k 0.3, cr 0.3) set down 2.7 mm
