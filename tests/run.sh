@@ -593,6 +593,12 @@ t_pile_steps() {
 t_piles_statics() {
 	suite "balls at rest" sh tests/piles/statics.sh "$CSFC" "$CSFVM" "$T"
 }
+# random piles of rough balls of mixed sizes and masses (tests/piles/mixed.sh): each against
+# check.awk; each stopped with 3 contacts that contradicted each other before a cluster whose
+# forces do not hold stopped its slides by an impulse of friction
+t_piles_mixed() {
+	suite "piles of mixed balls" sh tests/piles/mixed.sh "$CSFC" "$CSFVM" "$T"
+}
 # a ball dropped onto two jammed between the walls of a box (tests/piles/jam.sh): its 12 cases
 # (X = 0.2 with restitution 0.3 stopped at t = 0.405 s before a step's crossings were located
 # earliest first), and two
@@ -916,6 +922,7 @@ done
 	echo code_size
 	while read -r m; do echo "contacts_methods $m"; done <tests/contacts/scenes
 	echo piles_statics
+	echo piles_mixed
 	echo piles_now
 	echo piles_slow
 	echo column

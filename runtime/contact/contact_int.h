@@ -237,6 +237,7 @@ void csf_contact_slip_velocity(const cpair *c, const double *m, const double n[3
    K1 the system with every mass 1, wratio the masses' ratio (-1: not solved) */
 double csf_contact_coupling(const csf_contacts *cs, const cpair *c, const cpair *d, const double *m);
 uint32_t csf_contact_clusters(csf_contacts *cs, int (*pick)(const cpair *, const void *), const void *arg);
+int csf_contact_picks_contact(const cpair *c, const void *arg); /* (force.c) for it: the pairs in contact */
 int csf_contact_solve(csf_contacts *cs, uint32_t dim, double *K1, double wratio, const double *T,
                       const unsigned char *fric);
 double csf_contact_mass_ratio(const csf_contacts *cs, const uint32_t *cl, uint32_t np, const double *m);

@@ -20,7 +20,7 @@ static void add_force(cpair *c, double *m, const double f[3], uint32_t fi, uint3
 }
 
 /* For csf_contact_clusters(): the pairs in contact. */
-static int picks_contact(const cpair *c, const void *arg)
+int csf_contact_picks_contact(const cpair *c, const void *arg)
 {
 	(void)arg;
 	return in_contact(c);
@@ -634,7 +634,7 @@ void csf_contact_apply(const csf_prog *p, const csf_exec_ctx *x, double *m)
 		W(c, LAM) = W(c, LOCK) = 0;
 	}
 	/* each cluster directly; those it does not take (cluster.c) by Gauss-Seidel sweeps */
-	uint32_t nq = csf_contact_clusters(cs, picks_contact, NULL), sweeps = 0; /* some cluster needs them */
+	uint32_t nq = csf_contact_clusters(cs, csf_contact_picks_contact, NULL), sweeps = 0; /* some cluster needs them */
 	cs->hold = 1; /* the forces, continuous in time, hold the friction's rank (cluster.c, held_rank) */
 	for (uint32_t q = 0; q < nq; q++) {
 		int ok = !cluster_forces(cs, m, cs->cl + cs->cstart[q], cs->cstart[q + 1] - cs->cstart[q]);

@@ -928,6 +928,33 @@ static int stick_at_rest(csf_contacts *cs, double *m)
 }
 
 /*
+ * The modes stand and the forces of the cluster that cs->why_pair names
+ * do not hold its contacts (no set of modes holds: sticking and sliding,
+ * or pressing and parting, decide each other). That is Painleve's
+ * inconsistent case, whose motion is an impulse of friction, a tangential
+ * impact (as lock_slides): every pair of the cluster that slides stops
+ * and sticks, by its cluster's impulses. Returns 1 if one did.
+ */
+static int jam(csf_contacts *cs, double *m)
+{
+	uint32_t k, np, big;
+	csf_contacts_why(cs, &k, &np, &big);
+	if (big || np == 0) return 0;
+	uint32_t nq = csf_contact_clusters(cs, csf_contact_picks_contact, NULL), q = 0;
+	for (; q < nq; q++) {
+		uint32_t a = cs->cstart[q];
+		while (a < cs->cstart[q + 1] && cs->cl[a] != k) a++;
+		if (a < cs->cstart[q + 1]) break;
+	}
+	if (q == nq) return 0;
+	uint32_t lo = cs->cstart[q], hi = cs->cstart[q + 1], list[DIRECT_MAX], n = 0;
+	for (uint32_t a = lo; a < hi && n < DIRECT_MAX; a++) /* (sticking changes cs->cl) */
+		if (W(&cs->pairs[cs->cl[a]], MODE) == SLIDING) list[n++] = cs->cl[a];
+	for (uint32_t a = 0; a < n; a++) stick(cs, &cs->pairs[list[a]], m);
+	return n > 0;
+}
+
+/*
  * The pairs in contact held, once the modes stand: their velocities, then
  * their gaps, in sweeps; then the apart pairs these moves left overlapping
  * armed (arm_apart), and a lift-off's margin dropped once the gap is clear
@@ -953,12 +980,18 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 	cs->vfloor = 0, cs->vain = 0;
 	cs->tol = tol, cs->zeno = zeno;
 	/* the modes chosen again (at most 3 times) when holding the pairs in contact moved a body:
-	   velocities changed, and a normal force could pull from the start of the next step */
-	int st;
-	for (int round = 0; !(st = settle(p, cs, m, zeno, tol, eval, ctx)) && round < 3 &&
-	                    (hold_contacts(cs, m) | stick_at_rest(cs, m));
-	     round++)
-		;
+	   velocities changed, and a normal force could pull from the start of the next step; or
+	   when a slide at rest stuck; and (at most twice) when a cluster's forces do not hold and
+	   its slides stopped (jam) */
+	int st, jams = 0;
+	for (int round = 0;; round++) {
+		st = settle(p, cs, m, zeno, tol, eval, ctx);
+		if (!st && cs->unsolved && jams < 2 && jam(cs, m)) {
+			jams++, cs->unsolved = 0;
+			continue;
+		}
+		if (st || round >= 3 || !(hold_contacts(cs, m) | stick_at_rest(cs, m))) break;
+	}
 	if (!st) arm_apart(cs, m);
 	cs->vfloor = 0;
 	return st;

@@ -33,7 +33,9 @@
 #      several contacts has no check of its own: its FN and Ff are sums.
 #
 # -v: xw (required), r (0.05), m (1), g (9.80665), tol (1e-9), near (1e-6),
-# by (0.01), rows, conserve, rest, mu, name (printed before a failure).
+# by (0.01), rows, conserve, rest, mu, name (printed before a failure), and
+# balls: "NAME:M:R ..." for balls of other masses M (kg) and radii R (m)
+# than m and r (then each ball's own m g, and the pile's weight their sum).
 # Each row costs O(N^2) (fine for N <= 256 at 0.01 s).
 function abs(x) { return x < 0 ? -x : x }
 function fail(msg) {
@@ -68,7 +70,13 @@ NR == 1 {
 	for (b = 1; b <= nb; b++)
 		for (q = 1; q <= 4; q++)
 			for (k = 1; k <= 3; k++) ci[b, q, k] = col(ball[b] "." qs[q] "." ax[k])
-	W = m * g
+	nown = split(balls, own, " ")
+	for (i = 1; i <= nown; i++) { split(own[i], f, ":"); om[f[1]] = f[2]; orr[f[1]] = f[3] }
+	sumW = 0
+	for (b = 1; b <= nb; b++) {
+		mb[b] = ball[b] in om ? om[ball[b]] + 0 : m; rb[b] = ball[b] in orr ? orr[ball[b]] + 0 : r
+		Wb[b] = mb[b] * g; sumW += Wb[b]
+	}
 	next
 }
 {
@@ -85,23 +93,24 @@ NR == 1 {
 	for (b = 1; b <= nb; b++) {
 		if (abs(y[b]) > tol || abs(vy[b]) > tol)
 			fail(sprintf("%s leaves the plane y = 0: y = %.17g m, v_y = %.17g m/s", ball[b], y[b], vy[b]))
-		if (z[b] < r - tol) fail(sprintf("%s overlaps the floor: z = %.17g m < r = %s m by %.3g m", ball[b], z[b], r, r - z[b]))
-		if (x[b] < r - tol) fail(sprintf("%s overlaps the wall x = 0: x = %.17g m < r = %s m by %.3g m", ball[b], x[b], r, r - x[b]))
-		if (x[b] > xw - r + tol)
-			fail(sprintf("%s overlaps the wall x = %s: x = %.17g m > %.17g m by %.3g m", ball[b], xw, x[b], xw - r, x[b] - xw + r))
+		R = rb[b]
+		if (z[b] < R - tol) fail(sprintf("%s overlaps the floor: z = %.17g m < r = %s m by %.3g m", ball[b], z[b], R, R - z[b]))
+		if (x[b] < R - tol) fail(sprintf("%s overlaps the wall x = 0: x = %.17g m < r = %s m by %.3g m", ball[b], x[b], R, R - x[b]))
+		if (x[b] > xw - R + tol)
+			fail(sprintf("%s overlaps the wall x = %s: x = %.17g m > %.17g m by %.3g m", ball[b], xw, x[b], xw - R, x[b] - xw + R))
 		for (j = b + 1; j <= nb; j++) {
-			dx = x[j] - x[b]; dz = z[j] - z[b]
-			if (abs(dx) > 2 * r + near || abs(dz) > 2 * r + near) continue
+			dx = x[j] - x[b]; dz = z[j] - z[b]; D = R + rb[j]
+			if (abs(dx) > D + near || abs(dz) > D + near) continue
 			dy = y[j] - y[b]
 			d = sqrt(dx * dx + dy * dy + dz * dz)
-			if (d < 2 * r - tol)
-				fail(sprintf("%s and %s overlap: distance %.17g m < 2 r = %.17g m by %.3g m", ball[b], ball[j], d, 2 * r, 2 * r - d))
-			if (d <= 2 * r + near) { nnb[b]++; nnb[j]++ }
+			if (d < D - tol)
+				fail(sprintf("%s and %s overlap: distance %.17g m < r_i + r_j = %.17g m by %.3g m", ball[b], ball[j], d, D, D - d))
+			if (d <= D + near) { nnb[b]++; nnb[j]++ }
 		}
 	}
 	# (b) energy
 	E = 0
-	for (b = 1; b <= nb; b++) E += m * (vx[b] * vx[b] + vy[b] * vy[b] + vz[b] * vz[b]) / 2 + m * g * z[b]
+	for (b = 1; b <= nb; b++) E += mb[b] * (vx[b] * vx[b] + vy[b] * vy[b] + vz[b] * vz[b]) / 2 + mb[b] * g * z[b]
 	if (NR == 2) { E0 = E; Es = abs(E0) > 0 ? abs(E0) : 1 }
 	else {
 		if (E - Eprev > tol * Es)
@@ -119,26 +128,27 @@ NR == 1 {
 		sx = sy = sz = snx = snz = 0
 		for (b = 1; b <= nb; b++) { sx += nx[b] + fx[b]; sy += ny[b] + fy[b]; sz += nz[b] + fz[b]; snx += nx[b]; snz += nz[b] }
 		if (mu != "" && mu + 0 == 0) {
-			if (abs(snz - nb * W) > tol * nb * W)
-				fail(sprintf("at rest the floor does not carry the pile: sum FN_z = %.17g N, N m g = %.17g N (%.3g relative)", snz, nb * W, (snz - nb * W) / (nb * W)))
-			if (abs(snx) > tol * nb * W)
-				fail(sprintf("at rest the walls do not balance: sum FN_x = %.17g N (%.3g of N m g)", snx, snx / (nb * W)))
+			if (abs(snz - sumW) > tol * sumW)
+				fail(sprintf("at rest the floor does not carry the pile: sum FN_z = %.17g N, N m g = %.17g N (%.3g relative)", snz, sumW, (snz - sumW) / sumW))
+			if (abs(snx) > tol * sumW)
+				fail(sprintf("at rest the walls do not balance: sum FN_x = %.17g N (%.3g of N m g)", snx, snx / sumW))
 		}
-		if (abs(sx) > tol * nb * W || abs(sy) > tol * nb * W || abs(sz - nb * W) > tol * nb * W)
-			fail(sprintf("at rest the box does not carry the pile: sum (FN + Ff) = (%.17g, %.17g, %.17g) N, expected (0, 0, %.17g) N", sx, sy, sz, nb * W))
+		if (abs(sx) > tol * sumW || abs(sy) > tol * sumW || abs(sz - sumW) > tol * sumW)
+			fail(sprintf("at rest the box does not carry the pile: sum (FN + Ff) = (%.17g, %.17g, %.17g) N, expected (0, 0, %.17g) N", sx, sy, sz, sumW))
 		for (b = 1; b <= nb; b++)
-			if (abs(nx[b] + fx[b]) > tol * W || abs(ny[b] + fy[b]) > tol * W || abs(nz[b] + fz[b] - W) > tol * W)
+			if (abs(nx[b] + fx[b]) > tol * Wb[b] || abs(ny[b] + fy[b]) > tol * Wb[b] || abs(nz[b] + fz[b] - Wb[b]) > tol * Wb[b])
 				fail(sprintf("%s at rest is not in equilibrium: FN + Ff = (%.17g, %.17g, %.17g) N, expected (0, 0, %.17g) N; FN = (%.17g, %.17g, %.17g) N, Ff = (%.17g, %.17g, %.17g) N",
-					ball[b], nx[b] + fx[b], ny[b] + fy[b], nz[b] + fz[b], W, nx[b], ny[b], nz[b], fx[b], fy[b], fz[b]))
+					ball[b], nx[b] + fx[b], ny[b] + fy[b], nz[b] + fz[b], Wb[b], nx[b], ny[b], nz[b], fx[b], fy[b], fz[b]))
 	}
 	# (d) balls whose contacts are known
 	for (b = 1; b <= nb; b++) {
-		if (nnb[b] > 0 || x[b] - r <= near || xw - x[b] - r <= near) continue
+		R = rb[b]; W = Wb[b]
+		if (nnb[b] > 0 || x[b] - R <= near || xw - x[b] - R <= near) continue
 		fn = sqrt(nx[b] * nx[b] + ny[b] * ny[b] + nz[b] * nz[b]); ff = sqrt(fx[b] * fx[b] + fy[b] * fy[b] + fz[b] * fz[b])
-		if (z[b] - r > near) {
+		if (z[b] - R > near) {
 			if (fn > tol * W || ff > tol * W)
 				fail(sprintf("%s touches nothing (gap to the floor %.3g m) but FN = (%.17g, %.17g, %.17g) N, Ff = (%.17g, %.17g, %.17g) N",
-					ball[b], z[b] - r, nx[b], ny[b], nz[b], fx[b], fy[b], fz[b]))
+					ball[b], z[b] - R, nx[b], ny[b], nz[b], fx[b], fy[b], fz[b]))
 			continue
 		}
 		if (abs(nx[b]) > tol * W || abs(ny[b]) > tol * W || nz[b] < -tol * W || abs(fz[b]) > tol * W)
