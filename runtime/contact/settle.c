@@ -54,6 +54,15 @@ static int bodies_at_rest(const cpair *c, const double *m, double vres, double a
 	       (c->plane || (mag3(m + J(c, V)) <= vres && mag3(m + J(c, A)) <= ares));
 }
 
+/* The pair's relative tangential acceleration (into at; n its normal), and its size. */
+static double tangential_accel_of(const cpair *c, const double *m, const double n[3], double at[3])
+{
+	double ar[3];
+	rel(c, m, I(c, A), J(c, A), ar);
+	csf_contact_tangential(ar, n, at);
+	return mag3(at);
+}
+
 /* The pair's slip velocity (into vt, with its normal and curvature at n, curv), and its size. */
 static double slip_of(const cpair *c, const double *m, double n[3], double *curv, double vt[3])
 {
@@ -304,13 +313,12 @@ static int mark_touching(csf_contacts *cs, const double *m)
    acceleration against its way), within what its sliding friction so stops. */
 int csf_contact_slip_stops(const cpair *c, const double *m, double zeno)
 {
-	double n[3], curv, vt[3], ar[3], at[3];
+	double n[3], curv, vt[3], at[3];
 	if (!has_friction(c, m) || !in_contact(c)) return 0;
 	csf_contact_geometry(c, m, n, &curv);
 	csf_contact_slip_velocity(c, m, n, vt);
 	if (W(c, MODE) == STICKING) return mag3(vt) <= stopped_within(c, m, mu_s(c, m), zeno);
-	rel(c, m, I(c, A), J(c, A), ar);
-	csf_contact_tangential(ar, n, at);
+	tangential_accel_of(c, m, n, at);
 	return dot3(vt, WV(c, DS)) > 0 && dot3(at, WV(c, DS)) < 0 && mag3(vt) <= stopped_within(c, m, mu_k(c, m), zeno);
 }
 
@@ -415,13 +423,12 @@ static int lock_slides(csf_contacts *cs, const cpair *c, double *m)
  */
 static int turns_back(const csf_contacts *cs, const cpair *c, const double *m)
 {
-	double n[3], curv, vt[3], ar[3], at[3];
+	double n[3], curv, vt[3], at[3];
 	if (W(c, MODE) != SLIDING || !has_friction(c, m)) return 0;
 	csf_contact_geometry(c, m, n, &curv);
 	csf_contact_slip_velocity(c, m, n, vt);
 	if (dot3(vt, WV(c, DS)) > speed_resolution(cs, c, m)) return 0;
-	rel(c, m, I(c, A), J(c, A), ar);
-	csf_contact_tangential(ar, n, at);
+	tangential_accel_of(c, m, n, at);
 	return dot3(at, WV(c, DS)) < -csf_contact_accel_resolution(c, m, curv);
 }
 
@@ -440,7 +447,7 @@ static int stops_at_once(const csf_contacts *cs, const cpair *c, const double *m
 {
 	double n[3], curv, vt[3];
 	if (W(c, MODE) != SLIDING || !has_friction(c, m) || W(c, SS) >= 2) return 0;
-	double s = slip_of(c, m, n, &curv, vt), ar[3], at[3];
+	double s = slip_of(c, m, n, &curv, vt), at[3];
 	if (s > speed_resolution(cs, c, m)) return s <= stopped_within(c, m, mu_k(c, m), zeno);
 	/* a slip that the instant's impulses took away, leaving no tangential acceleration beyond
 	   its rounding: at rest (an impact left a slip of 5e-20 m/s, and a ball in a V-groove slid
@@ -449,10 +456,7 @@ static int stops_at_once(const csf_contacts *cs, const cpair *c, const double *m
 	   slipping before the instant to the modes as they were chosen (sticking those as well
 	   put two balls of a packing 1.1e-9 m into each other, and a column of nine balls thrown
 	   at 0.8 m/s collided 50 290 times at one instant) */
-	if (!W(c, SL)) return 0;
-	rel(c, m, I(c, A), J(c, A), ar);
-	csf_contact_tangential(ar, n, at);
-	return mag3(at) <= csf_contact_accel_resolution(c, m, curv);
+	return W(c, SL) && tangential_accel_of(c, m, n, at) <= csf_contact_accel_resolution(c, m, curv);
 }
 
 /*
@@ -913,14 +917,12 @@ static int stick_at_rest(csf_contacts *cs, double *m)
 	int any = 0;
 	for (uint32_t i = 0; i < cs->n; i++) {
 		cpair *c = &cs->pairs[i];
-		double n[3], curv, vt[3], ar[3], at[3];
+		double n[3], curv, vt[3], at[3];
 		if (W(c, MODE) != SLIDING || !has_friction(c, m)) continue;
 		double s = slip_of(c, m, n, &curv, vt), res = speed_resolution(cs, c, m);
 		double ares = csf_contact_accel_resolution(c, m, curv);
 		if (s > res || !bodies_at_rest(c, m, sqrt(2) * res, ares)) continue;
-		rel(c, m, I(c, A), J(c, A), ar);
-		csf_contact_tangential(ar, n, at);
-		if (mag3(at) > ares) continue;
+		if (tangential_accel_of(c, m, n, at) > ares) continue;
 		stick(cs, c, m);
 		any = 1;
 	}
