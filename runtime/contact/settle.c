@@ -983,16 +983,15 @@ int csf_contact_settle(const csf_prog *p, csf_contacts *cs, double *m, double ze
 	cs->tol = tol, cs->zeno = zeno;
 	/* the modes chosen again (at most 3 times) when holding the pairs in contact moved a body:
 	   velocities changed, and a normal force could pull from the start of the next step; or
-	   when a slide at rest stuck; and (at most twice) when a cluster's forces do not hold and
-	   its slides stopped (jam) */
+	   when a slide at rest stuck; and then (at most twice) when a cluster's forces still do not
+	   hold and its slides stopped (jam: before the holds, a row of three balls between two walls
+	   struck from above jammed at a state the hold would have made consistent, and stopped) */
 	int st, jams = 0;
 	for (int round = 0;; round++) {
-		st = settle(p, cs, m, zeno, tol, eval, ctx);
-		if (!st && cs->unsolved && jams < 2 && jam(cs, m)) {
-			jams++, cs->unsolved = 0;
-			continue;
-		}
-		if (st || round >= 3 || !(hold_contacts(cs, m) | stick_at_rest(cs, m))) break;
+		if ((st = settle(p, cs, m, zeno, tol, eval, ctx))) break;
+		if (round < 3 && (hold_contacts(cs, m) | stick_at_rest(cs, m))) continue;
+		if (!cs->unsolved || jams == 2 || !jam(cs, m)) break;
+		jams++, cs->unsolved = 0; /* after the holds: forces that did not hold before one may after it */
 	}
 	if (!st) arm_apart(cs, m);
 	cs->vfloor = 0;
